@@ -1,9 +1,28 @@
-"""ethimon: a formal-spec-checked runtime safety monitor for robot manipulation."""
+"""ethimon: a formal-spec-checked runtime safety monitor for robot manipulation.
+
+The one loop::
+
+    spec = ethimon.load_spec("specs/governor.yaml")
+    monitor = ethimon.Monitor(spec)
+    decision = monitor.step({"risk": 0.62, "human_distance": 0.4, "ee_speed": 0.1})
+    if decision.override:
+        ...  # drive to spec.safe_pose now
+
+``import ethimon`` never imports torch or pybullet.
+"""
 
 from __future__ import annotations
 
+from ._api import load_spec, load_spec_text
 from .errors import DependencyNotInstalled, EthimonError, ModelError, SpecError
+from .risk._formula import risk_from_p_unsafe, risk_from_probs
+from .runtime import Decision, Monitor, ReferenceMonitor
+from .spec import Response, Spec
 
 __version__ = "0.1.0"
 
-__all__ = ["DependencyNotInstalled", "EthimonError", "ModelError", "SpecError", "__version__"]
+__all__ = [
+    "Decision", "DependencyNotInstalled", "EthimonError", "ModelError", "Monitor", "ReferenceMonitor",
+    "Response", "Spec", "SpecError", "__version__", "load_spec", "load_spec_text", "risk_from_p_unsafe",
+    "risk_from_probs",
+]

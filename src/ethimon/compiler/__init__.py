@@ -1,1 +1,6 @@
-"""ethimon.compiler."""
+"""Stage 2 of 3: check a spec (names, types, units, windows) and compile it."""
+
+from ._check import ObligationPlan, Plan, SignalSlot, compile_plan
+from ._codegen import Machine, build_machine
+
+__all__ = ["Machine", "ObligationPlan", "Plan", "SignalSlot", "build_machine", "compile_plan"]

@@ -1,1 +1,8 @@
-"""ethimon.spec."""
+"""Stage 1 of 3: the spec language (YAML files, validated models, expressions)."""
+
+from ._expr import parse_expr
+from ._load import parse_spec_file, parse_spec_text
+from ._model import Constant, Obligation, Release, Response, RiskConfig, SafePose, Signal, Spec
+
+__all__ = ["Constant", "Obligation", "Release", "Response", "RiskConfig", "SafePose", "Signal", "Spec",
+           "parse_expr", "parse_spec_file", "parse_spec_text"]

@@ -1,0 +1,40 @@
+"""Top-level entry points: load and compile a spec in one call."""
+
+from __future__ import annotations
+
+import os
+
+from .compiler._check import compile_plan
+from .spec._load import parse_spec_file, parse_spec_text
+from .spec._model import Spec
+
+__all__ = ["load_spec", "load_spec_text"]
+
+
+def load_spec(path: str | os.PathLike) -> Spec:
+    """Read, validate and compile a spec file.
+
+    Args:
+        path: a YAML spec file.
+
+    Returns:
+        The :class:`Spec`, already compiled (so ``Monitor(spec)`` cannot fail on it).
+
+    Raises:
+        SpecError: any problem with the file, with ``path:line:column`` and a hint.
+
+    Example:
+        >>> spec = load_spec("specs/governor.yaml")  # doctest: +SKIP
+        >>> spec.risk.threshold  # doctest: +SKIP
+        0.5
+    """
+    spec = parse_spec_file(path)
+    spec._program = compile_plan(spec)
+    return spec
+
+
+def load_spec_text(text: str, path: str = "<string>") -> Spec:
+    """Like :func:`load_spec`, from YAML text (``path`` is used in error messages)."""
+    spec = parse_spec_text(text, path)
+    spec._program = compile_plan(spec)
+    return spec

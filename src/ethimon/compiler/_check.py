@@ -1,0 +1,339 @@
+"""Compile stage 1: resolve names, check types and units, and build a :class:`Plan`.
+
+A plan is the checked, resolved form of a spec that every later consumer
+shares: the runtime monitor builds its closures from it, the reference
+interpreter walks it, and ``ethimon verify`` translates it to SMT.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from dataclasses import dataclass, field
+
+from ..errors import SpecError
+from ..spec._expr import (FUNCTIONS, TEMPORAL, Binary, BoolLit, Call, ExprSyntaxError, Name, Node, Num,
+                          Unary, parse_expr)
+from ..spec._model import Constant, Response, Spec
+from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit
+
+__all__ = ["Plan", "ObligationPlan", "SignalSlot", "Ty", "compile_plan", "RISK_NAME", "MAX_WINDOW"]
+
+RISK_NAME = "risk"
+MAX_WINDOW = 1_000_000
+
+
+@dataclass(frozen=True)
+class Ty:
+    """Type of an expression: ``bool`` or ``num`` with a unit (``None`` = unknown)."""
+
+    kind: str  # "bool" | "num"
+    unit: Unit | None = None
+
+    def show(self) -> str:
+        return "a boolean" if self.kind == "bool" else f"a number [{format_unit(self.unit)}]"
+
+
+BOOL = Ty("bool")
+
+
+@dataclass(frozen=True)
+class SignalSlot:
+    """A declared signal resolved to an input slot."""
+
+    name: str
+    slot: int
+    kind: str  # "number" | "bool"
+    lo: float
+    hi: float
+    unit: Unit | None
+
+
+@dataclass(frozen=True)
+class ObligationPlan:
+    """A checked obligation: ``when ⇒ require`` with optional bounded response."""
+
+    index: int
+    id: str
+    description: str
+    when: Node | None
+    require: Node
+    within_cycles: int | None
+    response: Response
+    when_text: str | None
+    require_text: str
+
+
+@dataclass
+class Plan:
+    """The compiled, checked form of a spec.
+
+    Attributes:
+        spec: the spec it came from.
+        signals: declared signals in slot order; slot ``len(signals)`` holds R_e.
+        risk_slot: the slot index of R_e (``risk`` in expressions).
+        constants: constant values by name.
+        obligations: checked obligations in spec order.
+        temporal: every temporal call node, children before parents.
+        types: type of every expression node, keyed by ``id(node)``.
+        windows: the integer bound of each temporal node (``id(node)`` → n or None).
+    """
+
+    spec: Spec
+    signals: tuple[SignalSlot, ...]
+    risk_slot: int
+    constants: dict[str, float]
+    obligations: tuple[ObligationPlan, ...]
+    temporal: tuple[Call, ...]
+    types: dict[int, Ty] = field(default_factory=dict)
+    windows: dict[int, int | None] = field(default_factory=dict)
+
+    @property
+    def n_slots(self) -> int:
+        return len(self.signals) + 1
+
+    def type_of(self, node: Node) -> Ty:
+        return self.types[id(node)]
+
+
+class _Checker:
+    def __init__(self, spec: Spec) -> None:
+        self.spec = spec
+        self.smap = spec.source
+        self.types: dict[int, Ty] = {}
+        self.windows: dict[int, int | None] = {}
+        self.temporal: list[Call] = []
+        self.names: dict[str, Ty] = {}
+        self.consts: dict[str, float] = {}
+        self.loc: tuple = ()
+        self.text = ""
+        for name, sig in spec.signals.items():
+            try:
+                unit = parse_unit(sig.unit) if sig.type == "number" else None
+            except ValueError as exc:
+                raise self.smap.error(str(exc), ("signals", name, "unit"),
+                                      hint="units look like m, m/s, m/s^2, N, rad/s or 1") from None
+            self.names[name] = BOOL if sig.type == "bool" else Ty("num", unit)
+        for name, c in spec.constants.items():
+            if isinstance(c, Constant):
+                try:
+                    unit = parse_unit(c.unit)
+                except ValueError as exc:
+                    raise self.smap.error(str(exc), ("constants", name, "unit")) from None
+                self.names[name] = Ty("num", unit)
+                self.consts[name] = float(c.value)
+            else:
+                self.names[name] = Ty("num", None)
+                self.consts[name] = float(c)
+        self.names[RISK_NAME] = Ty("num", DIMENSIONLESS)
+
+    # -- errors -----------------------------------------------------------
+    def err(self, node: Node | None, msg: str, hint: str | None = None) -> SpecError:
+        index = node.start if node is not None else 0
+        return self.smap.error(msg, self.loc, hint=hint, index=index, text=self.text)
+
+    def snippet(self, node: Node) -> str:
+        s = self.text[node.start:node.end]
+        return s if len(s) <= 50 else s[:47] + "..."
+
+    # -- expressions -------------------------------------------------------
+    def parse(self, text: str, loc: tuple) -> Node:
+        self.loc, self.text = loc, text
+        try:
+            return parse_expr(text)
+        except ExprSyntaxError as exc:
+            raise self.smap.error(f"syntax error in {loc[-1]!r}: {exc.message}", loc, hint=exc.hint,
+                                  index=exc.index, text=text) from None
+
+    def check_bool(self, node: Node, role: str) -> None:
+        ty = self.check(node)
+        if ty.kind != "bool":
+            raise self.err(node, f"{role} must be a condition (true/false), but {self.snippet(node)!r} is {ty.show()}",
+                           hint="compare it, e.g. 'x > 0.5'")
+
+    def need(self, node: Node, kind: str, what: str) -> Ty:
+        ty = self.check(node)
+        if ty.kind != kind:
+            want = "a boolean" if kind == "bool" else "a number"
+            raise self.err(node, f"{what} needs {want}, but {self.snippet(node)!r} is {ty.show()}")
+        return ty
+
+    def same_unit(self, node: Node, a: Ty, b: Ty, what: str) -> Unit | None:
+        if a.unit is not None and b.unit is not None and a.unit != b.unit:
+            raise self.err(node, f"unit mismatch in {what}: [{format_unit(a.unit)}] vs [{format_unit(b.unit)}] "
+                                 f"in {self.snippet(node)!r}",
+                           hint="both sides must have the same unit; declare constants with a unit")
+        return a.unit if a.unit is not None else b.unit
+
+    def check(self, node: Node) -> Ty:
+        ty = self._check(node)
+        self.types[id(node)] = ty
+        return ty
+
+    def _check(self, node: Node) -> Ty:
+        if isinstance(node, Num):
+            if not math.isfinite(node.value):
+                raise self.err(node, "number is not finite")
+            return Ty("num", None)
+        if isinstance(node, BoolLit):
+            return BOOL
+        if isinstance(node, Name):
+            ty = self.names.get(node.id)
+            if ty is None:
+                known = sorted(self.names)
+                close = difflib.get_close_matches(node.id, known, n=1, cutoff=0.6)
+                if close:
+                    hint = f"did you mean {close[0]!r}?"
+                elif node.id in FUNCTIONS:
+                    hint = f"{node.id} is a function: {node.id}(...)"
+                else:
+                    hint = "declare it under 'signals:' or 'constants:'" + (
+                        f"; known names: {', '.join(known)}" if len(known) <= 12 else "")
+                what = "signal"
+                raise self.err(node, f"unknown {what} {node.id!r}", hint=hint)
+            return ty
+        if isinstance(node, Unary):
+            if node.op == "not":
+                self.need(node.operand, "bool", "'not'")
+                return BOOL
+            ty = self.need(node.operand, "num", "unary '-'")
+            return ty
+        if isinstance(node, Binary):
+            op = node.op
+            if op in ("and", "or", "implies"):
+                self.need(node.left, "bool", f"'{op}'")
+                self.need(node.right, "bool", f"'{op}'")
+                return BOOL
+            if op in ("==", "!="):
+                a, b = self.check(node.left), self.check(node.right)
+                if a.kind != b.kind:
+                    raise self.err(node, f"cannot compare {a.show()} with {b.show()} in {self.snippet(node)!r}")
+                if a.kind == "num":
+                    self.same_unit(node, a, b, f"'{op}'")
+                return BOOL
+            if op in ("<", "<=", ">", ">="):
+                a = self.need(node.left, "num", f"'{op}'")
+                b = self.need(node.right, "num", f"'{op}'")
+                self.same_unit(node, a, b, f"'{op}'")
+                return BOOL
+            a = self.need(node.left, "num", f"'{op}'")
+            b = self.need(node.right, "num", f"'{op}'")
+            if op in ("+", "-"):
+                return Ty("num", self.same_unit(node, a, b, f"'{op}'"))
+            if op == "*":
+                return Ty("num", mul(a.unit, b.unit) if a.unit is not None and b.unit is not None
+                          else (a.unit if b.unit is None and _is_literal(node.right) else
+                                b.unit if a.unit is None and _is_literal(node.left) else None))
+            if op == "/":
+                if isinstance(node.right, Num) and node.right.value == 0:
+                    raise self.err(node.right, "division by zero")
+                if a.unit is not None and b.unit is not None:
+                    return Ty("num", div(a.unit, b.unit))
+                if b.unit is None and _is_literal(node.right):
+                    return Ty("num", a.unit)
+                return Ty("num", None)
+            raise self.err(node, f"unknown operator {op!r}")  # pragma: no cover
+        if isinstance(node, Call):
+            return self.check_call(node)
+        raise self.err(node, "unsupported expression")  # pragma: no cover
+
+    def bound(self, node: Call, arg: Node, fname: str) -> int:
+        if isinstance(arg, Num):
+            value = arg.value
+        elif isinstance(arg, Name) and arg.id in self.consts:
+            value = self.consts[arg.id]
+            self.types[id(arg)] = Ty("num", None)
+        else:
+            raise self.err(arg, f"the window of {fname}() must be a whole number of cycles, "
+                                f"not {self.snippet(arg)!r}", hint=f"e.g. {fname}(x, 3)")
+        if value != int(value):
+            raise self.err(arg, f"the window of {fname}() must be a whole number of cycles, got {value}")
+        n = int(value)
+        if n < 1:
+            raise self.err(arg, f"a window of {n} cycles makes no sense in {fname}()",
+                           hint="windows count the current cycle, so the smallest is 1")
+        if n > MAX_WINDOW:
+            raise self.err(arg, f"window {n} is too long (at most {MAX_WINDOW} cycles)")
+        self.types[id(arg)] = Ty("num", None)
+        return n
+
+    def check_call(self, node: Call) -> Ty:
+        f = node.func
+        if f not in FUNCTIONS:
+            close = difflib.get_close_matches(f, list(FUNCTIONS), n=1)
+            hint = f"did you mean {close[0]!r}?" if close else f"functions: {', '.join(FUNCTIONS)}"
+            raise self.err(node, f"unknown function {f!r}", hint=hint)
+        lo, hi = FUNCTIONS[f]
+        nargs = len(node.args)
+        if not lo <= nargs <= hi:
+            want = str(lo) if lo == hi else f"{lo} to {hi}"
+            raise self.err(node, f"{f}() takes {want} arguments, got {nargs}")
+        args = node.args
+        if f == "abs":
+            return self.need(args[0], "num", "abs()")
+        if f == "sqrt":
+            ty = self.need(args[0], "num", "sqrt()")
+            try:
+                return Ty("num", sqrt_unit(ty.unit))
+            except ValueError as exc:
+                raise self.err(node, str(exc)) from None
+        if f in ("min", "max"):
+            tys = [self.need(a, "num", f"{f}()") for a in args]
+            unit = tys[0].unit
+            for a, t in zip(args[1:], tys[1:]):
+                unit = self.same_unit(a, Ty("num", unit), t, f"{f}()")
+            return Ty("num", unit)
+        # temporal operators
+        if f == "prev":
+            ty = self.check(args[0])
+            if nargs == 2:
+                ity = self.check(args[1])
+                if ity.kind != ty.kind:
+                    raise self.err(args[1], f"prev() initial value must be {ty.show()}, got {ity.show()}")
+                if ty.kind == "num":
+                    self.same_unit(args[1], ty, ity, "prev()")
+            self.windows[id(node)] = 1
+        elif f in ("held", "once"):
+            self.need(args[0], "bool", f"{f}()")
+            self.windows[id(node)] = self.bound(node, args[1], f)
+            ty = BOOL
+        else:  # since
+            self.need(args[0], "bool", "since()")
+            self.need(args[1], "bool", "since()")
+            self.windows[id(node)] = self.bound(node, args[2], f) if nargs == 3 else None
+            ty = BOOL
+        self.temporal.append(node)  # children were checked (and appended) first
+        return ty
+
+
+def _is_literal(node: Node) -> bool:
+    return isinstance(node, Num) or (isinstance(node, Unary) and isinstance(node.operand, Num))
+
+
+def compile_plan(spec: Spec) -> Plan:
+    """Check a spec's expressions and build its :class:`Plan`.
+
+    Raises:
+        SpecError: unknown names, type or unit errors, bad windows, with
+            file:line:column of the offending text and a hint.
+    """
+    ck = _Checker(spec)
+    obligations = []
+    for i, ob in enumerate(spec.obligations):
+        when = None
+        if ob.when is not None:
+            when = ck.parse(ob.when, ("obligations", i, "when"))
+            ck.check_bool(when, f"'when' of obligation {ob.id!r}")
+        require = ck.parse(ob.require, ("obligations", i, "require"))
+        ck.check_bool(require, f"'require' of obligation {ob.id!r}")
+        obligations.append(ObligationPlan(i, ob.id, ob.description, when, require, ob.within_cycles,
+                                          Response(ob.response), ob.when, ob.require))
+    signals = []
+    big = 1.7976931348623157e308
+    for slot, (name, sig) in enumerate(spec.signals.items()):
+        lo, hi = (sig.range if sig.range is not None else (-big, big))
+        ty = ck.names[name]
+        signals.append(SignalSlot(name, slot, sig.type, float(lo), float(hi), ty.unit))
+    return Plan(spec=spec, signals=tuple(signals), risk_slot=len(signals), constants=dict(ck.consts),
+                obligations=tuple(obligations), temporal=tuple(ck.temporal), types=ck.types,
+                windows=ck.windows)

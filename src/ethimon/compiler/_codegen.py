@@ -1,0 +1,395 @@
+"""Compile stage 2: turn a checked :class:`Plan` into closures for the runtime.
+
+Every expression node becomes a zero-argument closure that reads input slots
+(``vals``) and temporal-operator results (``tv``). Common shapes
+(``signal < constant``, ``signal < signal``) get specialised closures, so a
+typical comparison is one Python call. Temporal operators become O(1) state
+machines (counters, no buffers) updated once per cycle, inner operators first,
+so short-circuiting ``and``/``or`` can never skip a state update.
+
+No source text is generated and nothing is ``eval``-ed: closures are built
+from the checked AST only.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary
+from ._check import RISK_NAME, Plan
+
+__all__ = ["Machine", "build_machine"]
+
+INF = math.inf
+
+
+@dataclass
+class Machine:
+    """Closures and state of one monitor instance (built by :func:`build_machine`)."""
+
+    vals: list
+    tv: list
+    updates: tuple[Callable[[], None], ...]
+    resets: tuple[Callable[[], None], ...]
+    violated: tuple[Callable[[], bool], ...]
+    margins: tuple[Callable[[], float], ...]
+
+    def reset(self) -> None:
+        """Forget every temporal state and pending response (a fresh trace)."""
+        for r in self.resets:
+            r()
+
+
+# operand descriptors: ("c", value) | ("r", list, index) | ("f", fn)
+
+
+def _as_fn(d) -> Callable[[], object]:
+    if d[0] == "f":
+        return d[1]
+    if d[0] == "c":
+        v = d[1]
+        return lambda: v
+    lst, i = d[1], d[2]
+    return lambda: lst[i]
+
+
+def _cmp(op: str, a, b):
+    ka, kb = a[0], b[0]
+    if ka == "r" and kb == "c":
+        lst, i, c = a[1], a[2], b[1]
+        if op == "<":
+            return lambda: lst[i] < c
+        if op == "<=":
+            return lambda: lst[i] <= c
+        if op == ">":
+            return lambda: lst[i] > c
+        if op == ">=":
+            return lambda: lst[i] >= c
+        if op == "==":
+            return lambda: lst[i] == c
+        return lambda: lst[i] != c
+    if ka == "c" and kb == "r":
+        flip = {"<": ">", "<=": ">=", ">": "<", ">=": "<=", "==": "==", "!=": "!="}[op]
+        return _cmp(flip, b, a)
+    if ka == "r" and kb == "r":
+        la, i, lb, j = a[1], a[2], b[1], b[2]
+        if op == "<":
+            return lambda: la[i] < lb[j]
+        if op == "<=":
+            return lambda: la[i] <= lb[j]
+        if op == ">":
+            return lambda: la[i] > lb[j]
+        if op == ">=":
+            return lambda: la[i] >= lb[j]
+        if op == "==":
+            return lambda: la[i] == lb[j]
+        return lambda: la[i] != lb[j]
+    if kb == "c":
+        f, c = _as_fn(a), b[1]
+        if op == "<":
+            return lambda: f() < c
+        if op == "<=":
+            return lambda: f() <= c
+        if op == ">":
+            return lambda: f() > c
+        if op == ">=":
+            return lambda: f() >= c
+        if op == "==":
+            return lambda: f() == c
+        return lambda: f() != c
+    if ka == "c":
+        flip = {"<": ">", "<=": ">=", ">": "<", ">=": "<=", "==": "==", "!=": "!="}[op]
+        return _cmp(flip, b, a)
+    f, g = _as_fn(a), _as_fn(b)
+    if op == "<":
+        return lambda: f() < g()
+    if op == "<=":
+        return lambda: f() <= g()
+    if op == ">":
+        return lambda: f() > g()
+    if op == ">=":
+        return lambda: f() >= g()
+    if op == "==":
+        return lambda: f() == g()
+    return lambda: f() != g()
+
+
+def _arith(op: str, a, b):
+    if a[0] == "r" and b[0] == "c":
+        lst, i, c = a[1], a[2], b[1]
+        if op == "+":
+            return lambda: lst[i] + c
+        if op == "-":
+            return lambda: lst[i] - c
+        if op == "*":
+            return lambda: lst[i] * c
+        return lambda: lst[i] / c
+    if a[0] == "c" and b[0] == "r":
+        c, lst, i = a[1], b[1], b[2]
+        if op == "+":
+            return lambda: c + lst[i]
+        if op == "-":
+            return lambda: c - lst[i]
+        if op == "*":
+            return lambda: c * lst[i]
+        return lambda: c / lst[i]
+    if a[0] == "r" and b[0] == "r":
+        la, i, lb, j = a[1], a[2], b[1], b[2]
+        if op == "+":
+            return lambda: la[i] + lb[j]
+        if op == "-":
+            return lambda: la[i] - lb[j]
+        if op == "*":
+            return lambda: la[i] * lb[j]
+        return lambda: la[i] / lb[j]
+    f, g = _as_fn(a), _as_fn(b)
+    if op == "+":
+        return lambda: f() + g()
+    if op == "-":
+        return lambda: f() - g()
+    if op == "*":
+        return lambda: f() * g()
+    return lambda: f() / g()
+
+
+class _Gen:
+    def __init__(self, plan: Plan) -> None:
+        self.plan = plan
+        self.vals: list = [0.0] * plan.n_slots
+        self.tv: list = [False] * len(plan.temporal)
+        self.tindex = {id(n): k for k, n in enumerate(plan.temporal)}
+        self.slots = {s.name: s.slot for s in plan.signals}
+        self.slots[RISK_NAME] = plan.risk_slot
+        self.consts = plan.constants
+
+    # -- values --------------------------------------------------------------
+    def d(self, node: Node):
+        """Operand descriptor of ``node``."""
+        if isinstance(node, Num):
+            return ("c", node.value)
+        if isinstance(node, BoolLit):
+            return ("c", node.value)
+        if isinstance(node, Name):
+            if node.id in self.consts:
+                return ("c", self.consts[node.id])
+            return ("r", self.vals, self.slots[node.id])
+        if isinstance(node, Call) and node.func in ("prev", "held", "once", "since"):
+            return ("r", self.tv, self.tindex[id(node)])
+        if isinstance(node, Unary) and node.op == "-" and isinstance(node.operand, Num):
+            return ("c", -node.operand.value)
+        return ("f", self.fn(node))
+
+    def fn(self, node: Node) -> Callable[[], object]:
+        if isinstance(node, (Num, BoolLit, Name)) or (isinstance(node, Call) and node.func in (
+                "prev", "held", "once", "since")):
+            return _as_fn(self.d(node))
+        if isinstance(node, Unary):
+            f = self.fn(node.operand)
+            if node.op == "not":
+                return lambda: not f()
+            return lambda: -f()
+        if isinstance(node, Binary):
+            op = node.op
+            if op == "and":
+                f, g = self.fn(node.left), self.fn(node.right)
+                return lambda: f() and g()
+            if op == "or":
+                f, g = self.fn(node.left), self.fn(node.right)
+                return lambda: f() or g()
+            if op == "implies":
+                f, g = self.fn(node.left), self.fn(node.right)
+                return lambda: (not f()) or g()
+            a, b = self.d(node.left), self.d(node.right)
+            if op in ("<", "<=", ">", ">=", "==", "!="):
+                c = _cmp(op, a, b)
+                return c
+            return _arith(op, a, b)
+        if isinstance(node, Call):
+            args = [self.fn(a) for a in node.args]
+            f = node.func
+            if f == "abs":
+                g = args[0]
+                return lambda: abs(g())
+            if f == "sqrt":
+                g = args[0]
+                return lambda: math.sqrt(g())
+            if f == "min":
+                if len(args) == 2:
+                    g, h = args
+                    return lambda: min(g(), h())
+                return lambda: min([g() for g in args])
+            if f == "max":
+                if len(args) == 2:
+                    g, h = args
+                    return lambda: max(g(), h())
+                return lambda: max([g() for g in args])
+        raise TypeError(f"cannot compile {node!r}")  # pragma: no cover
+
+    # -- robustness (margins) ------------------------------------------------
+    def rob(self, node: Node) -> Callable[[], float]:
+        """Quantitative robustness: > 0 satisfied, < 0 violated; ±inf for boolean leaves."""
+        if isinstance(node, Binary):
+            op = node.op
+            if op in ("<", "<=", ">", ">=", "==", "!=") and self.plan.type_of(node.left).kind == "num":
+                f, g = self.fn(node.left), self.fn(node.right)
+                if op in ("<", "<="):
+                    return lambda: g() - f()
+                if op in (">", ">="):
+                    return lambda: f() - g()
+                if op == "==":
+                    return lambda: -abs(f() - g())
+                return lambda: abs(f() - g())
+            if op == "and":
+                f, g = self.rob(node.left), self.rob(node.right)
+                return lambda: min(f(), g())
+            if op == "or":
+                f, g = self.rob(node.left), self.rob(node.right)
+                return lambda: max(f(), g())
+            if op == "implies":
+                f, g = self.rob(node.left), self.rob(node.right)
+                return lambda: max(-f(), g())
+        if isinstance(node, Unary) and node.op == "not":
+            f = self.rob(node.operand)
+            return lambda: -f()
+        b = self.fn(node)
+        return lambda: INF if b() else -INF
+
+    # -- temporal operators ----------------------------------------------------
+    def temporal(self, node: Call):
+        k = self.tindex[id(node)]
+        tv = self.tv
+        n = self.plan.windows[id(node)]
+        f = node.func
+        if f == "held":
+            e = self.fn(node.args[0])
+            run = 0
+
+            def upd() -> None:
+                nonlocal run
+                if e():
+                    if run < n:
+                        run += 1
+                else:
+                    run = 0
+                tv[k] = run >= n
+
+            def rst() -> None:
+                nonlocal run
+                run = 0
+                tv[k] = False
+            return upd, rst
+        if f == "once":
+            e = self.fn(node.args[0])
+            age = n  # n means "not seen within the window"
+
+            def upd() -> None:
+                nonlocal age
+                if e():
+                    age = 0
+                elif age < n:
+                    age += 1
+                tv[k] = age < n
+
+            def rst() -> None:
+                nonlocal age
+                age = n
+                tv[k] = False
+            return upd, rst
+        if f == "since":
+            a, b = self.fn(node.args[0]), self.fn(node.args[1])
+            cap = n if n is not None else 1
+            bounded = n is not None
+            age = cap
+
+            def upd() -> None:
+                nonlocal age
+                va = a()
+                if b():
+                    age = 0
+                elif va and age < cap:
+                    if bounded:
+                        age += 1
+                else:
+                    age = cap
+                tv[k] = age < cap
+
+            def rst() -> None:
+                nonlocal age
+                age = cap
+                tv[k] = False
+            return upd, rst
+        # prev
+        e = self.fn(node.args[0])
+        init = self.fn(node.args[1]) if len(node.args) == 2 else None
+        is_bool = self.plan.type_of(node).kind == "bool"
+        first = True
+        last: object = None
+
+        def upd() -> None:
+            nonlocal first, last
+            cur = e()
+            iv = init() if init is not None else None
+            if first:
+                first = False
+                tv[k] = iv if init is not None else (False if is_bool else cur)
+            else:
+                tv[k] = last
+            last = cur
+
+        def rst() -> None:
+            nonlocal first, last
+            first = True
+            last = None
+            tv[k] = False
+        return upd, rst
+
+    def obligation(self, ob) -> tuple[Callable[[], bool], Callable[[], None] | None]:
+        req = self.fn(ob.require)
+        when = self.fn(ob.when) if ob.when is not None else None
+        n = ob.within_cycles
+        if not n:
+            if when is None:
+                return (lambda: not req()), None
+            return (lambda: bool(when()) and not req()), None
+        pend = -1
+
+        def violated() -> bool:
+            nonlocal pend
+            w = True if when is None else when()
+            if req():
+                pend = -1
+            elif pend >= 0:
+                if pend < n:
+                    pend += 1
+            elif w:
+                pend = 0
+            return pend >= n
+
+        def rst() -> None:
+            nonlocal pend
+            pend = -1
+        return violated, rst
+
+
+def build_machine(plan: Plan) -> Machine:
+    """Build fresh closures and state for one monitor instance."""
+    g = _Gen(plan)
+    updates, resets = [], []
+    for node in plan.temporal:
+        u, r = g.temporal(node)
+        updates.append(u)
+        resets.append(r)
+    violated, margins = [], []
+    for ob in plan.obligations:
+        v, r = g.obligation(ob)
+        violated.append(v)
+        if r is not None:
+            resets.append(r)
+        if ob.when is not None:
+            rw, rr = g.rob(ob.when), g.rob(ob.require)
+            margins.append(lambda rw=rw, rr=rr: max(-rw(), rr()))
+        else:
+            margins.append(g.rob(ob.require))
+    return Machine(g.vals, g.tv, tuple(updates), tuple(resets), tuple(violated), tuple(margins))

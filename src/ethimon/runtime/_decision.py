@@ -1,0 +1,77 @@
+"""The verdict of one monitor cycle."""
+
+from __future__ import annotations
+
+from ..spec._model import Response
+
+__all__ = ["Decision", "Response"]
+
+
+class Decision:
+    """What the monitor decided in one control cycle.
+
+    Attributes:
+        override: ``True`` means: leave the task now and execute ``response``.
+        response: the :class:`Response` to execute (``Response.NONE`` when not overriding).
+        violations: ids of the obligations violated this cycle (``"risk"`` for the
+            built-in rule R_e ≥ τ).
+        margins: robustness of each obligation this cycle, in ``Monitor.obligation_ids``
+            order (> 0 satisfied, < 0 violated, ±inf for purely boolean conditions,
+            NaN on a fault cycle when nothing was evaluated).
+        risk: R_e used this cycle, or ``None`` if no usable risk input arrived.
+        cycle: the cycle number (0 after construction or ``reset()``).
+        latched: the override is held by the release rule, not by a current violation.
+        faults: fail-closed reasons (missing/NaN/out-of-range/stale input, internal error).
+
+    Example:
+        >>> d = Decision(True, Response.SAFE_POSE, ("risk",), (), 0.62, 3, False, ())
+        >>> d.override, str(d.response), d.violations
+        (True, 'safe_pose', ('risk',))
+    """
+
+    __slots__ = ("override", "response", "violations", "margins", "risk", "cycle", "latched", "faults")
+
+    def __init__(self, override: bool, response: Response, violations: tuple[str, ...],
+                 margins: tuple[float, ...], risk: float | None, cycle: int, latched: bool,
+                 faults: tuple[str, ...]) -> None:
+        self.override = override
+        self.response = response
+        self.violations = violations
+        self.margins = margins
+        self.risk = risk
+        self.cycle = cycle
+        self.latched = latched
+        self.faults = faults
+
+    @property
+    def reasons(self) -> tuple[str, ...]:
+        """Human-readable reasons for an override (violations, faults, latch)."""
+        out = [f"violated: {v}" for v in self.violations]
+        out += [f"fault: {f}" for f in self.faults]
+        if self.latched:
+            out.append("latched: waiting for the release rule")
+        return tuple(out)
+
+    def as_dict(self) -> dict:
+        """A JSON-ready dict of this decision."""
+        return {
+            "cycle": self.cycle, "override": self.override, "response": self.response.value,
+            "violations": list(self.violations), "risk": self.risk, "latched": self.latched,
+            "faults": list(self.faults),
+            "margins": [m if m == m and abs(m) != float("inf") else (None if m != m else (
+                "inf" if m > 0 else "-inf")) for m in self.margins],
+        }
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Decision):
+            return NotImplemented
+        return (self.override, self.response, self.violations, self.risk, self.cycle, self.latched,
+                self.faults) == (other.override, other.response, other.violations, other.risk,
+                                 other.cycle, other.latched, other.faults)
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __repr__(self) -> str:
+        return (f"Decision(cycle={self.cycle}, override={self.override}, response={self.response.value!r}, "
+                f"violations={self.violations!r}, risk={self.risk!r}, latched={self.latched}, "
+                f"faults={self.faults!r})")

@@ -1,0 +1,283 @@
+"""The runtime monitor: ``Monitor.step(signals) -> Decision`` every control cycle.
+
+The monitor never imports YAML, the loader, torch or pybullet. Everything is
+resolved at construction (signal slots, closures, thresholds); ``step`` reads
+the inputs, updates O(1) temporal state, evaluates each obligation once and
+applies the latch/release rule. One guard turns any internal fault into a
+fail-closed override: no exception escapes ``step``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from ..compiler._check import Plan
+from ..compiler._codegen import build_machine
+from ..spec._model import Response, Spec
+from ..risk._formula import risk_bounds, risk_from_probs
+from ._decision import Decision
+
+__all__ = ["Monitor", "plan_of"]
+
+_RESPONSES = (Response.NONE, Response.SAFE_POSE, Response.STOP_2, Response.STOP_1, Response.STOP_0)
+_EMPTY: tuple = ()
+
+
+def plan_of(spec: Spec | Plan) -> Plan:
+    """The compiled :class:`Plan` of a spec (compiled once and cached on the spec)."""
+    if isinstance(spec, Plan):
+        return spec
+    if not isinstance(spec, Spec):
+        raise TypeError(f"Monitor needs a Spec from ethimon.load_spec(), got {type(spec).__name__}")
+    plan = spec._program
+    if plan is None:
+        from ..compiler._check import compile_plan
+        plan = compile_plan(spec)
+        spec._program = plan
+    return plan
+
+
+class Monitor:
+    """Runtime monitor compiled from a spec; call :meth:`step` once per control cycle.
+
+    Args:
+        spec: a :class:`~ethimon.Spec` from :func:`ethimon.load_spec` (or its compiled plan).
+        margins: compute per-obligation robustness margins each cycle (a little slower).
+
+    Each cycle pass a mapping with the spec's signals and one risk input:
+    ``risk`` (R_e itself), or ``p_unsafe`` (two classes), or ``p`` (the class
+    probability vector); the monitor then forms R_e with the spec's formula.
+    With ``risk.max_age_s`` set, ``risk_age_s`` (seconds since the estimate)
+    is required too. Keys the spec does not declare are ignored.
+
+    Example:
+        >>> import ethimon
+        >>> spec = ethimon.load_spec_text('''
+        ... ethimon: 1
+        ... name: demo
+        ... signals: {human_distance: {unit: m, range: [0, 10]}}
+        ... obligations:
+        ...   - {id: keep_away, require: "human_distance >= 0.5"}
+        ... ''')
+        >>> m = ethimon.Monitor(spec)
+        >>> m.step({"p_unsafe": 0.05, "human_distance": 2.0}).override
+        False
+        >>> d = m.step({"p_unsafe": 0.05, "human_distance": 0.3})
+        >>> d.override, d.violations
+        (True, ('keep_away',))
+    """
+
+    __slots__ = ("spec", "plan", "obligation_ids", "_m", "_sig", "_vals", "_rslot", "_updates", "_obs",
+                 "_margin_fns", "_nan_margins", "_tau", "_risk_sev", "_fault_sev", "_auto", "_below",
+                 "_hold", "_alpha", "_beta", "_gamma", "_sample", "_k", "_uidx", "_rlo", "_rhi",
+                 "_max_age", "_cycle", "_latched", "_clean", "_margins_on")
+
+    def __init__(self, spec: Spec | Plan, *, margins: bool = True) -> None:
+        plan = plan_of(spec)
+        self.plan = plan
+        self.spec = plan.spec
+        m = build_machine(plan)
+        self._m = m
+        self._vals = m.vals
+        self._sig = tuple((s.name, s.slot, s.kind == "bool", s.lo, s.hi) for s in plan.signals)
+        self._rslot = plan.risk_slot
+        self._updates = m.updates
+        self._obs = tuple((fn, ob.id, ob.response.severity) for fn, ob in zip(m.violated, plan.obligations))
+        self.obligation_ids: tuple[str, ...] = tuple(ob.id for ob in plan.obligations)
+        self._margins_on = margins
+        self._margin_fns = m.margins
+        self._nan_margins = tuple(math.nan for _ in plan.obligations)
+        r = plan.spec.risk
+        self._tau = float(r.threshold)
+        self._risk_sev = Response(r.response).severity
+        self._fault_sev = Response(plan.spec.on_fault).severity
+        self._auto = r.release.mode == "auto"
+        self._below = float(r.threshold - r.release.hysteresis)
+        self._hold = int(r.release.hold_cycles)
+        self._alpha, self._beta, self._gamma = float(r.alpha), float(r.beta), float(r.gamma)
+        self._sample = r.variance == "sample"
+        self._k = int(r.classes)
+        self._uidx = int(r.unsafe_index)
+        lo, hi = risk_bounds(r.alpha, r.beta, r.gamma, r.variance) if r.classes == 2 else (0.0, 1.0)
+        self._rlo, self._rhi = min(0.0, lo), max(1.0, hi)
+        self._max_age = float(r.max_age_s) if r.max_age_s is not None else None
+        self._cycle = 0
+        self._latched = 0  # severity of the latched response, 0 = not latched
+        self._clean = 0
+
+    # -- public state ------------------------------------------------------------
+    @property
+    def cycle(self) -> int:
+        """Number of cycles stepped since construction or the last :meth:`reset`."""
+        return self._cycle
+
+    @property
+    def latched(self) -> bool:
+        """Whether an override is latched right now."""
+        return self._latched > 0
+
+    def reset(self) -> None:
+        """Start a fresh trace: cycle 0, no latch, empty temporal history."""
+        self._m.reset()
+        self._cycle = 0
+        self._latched = 0
+        self._clean = 0
+
+    def release(self) -> None:
+        """Explicitly release a latched override (operator acknowledgement).
+
+        Temporal history is kept; the next :meth:`step` still overrides if a
+        rule is violated or an input is bad.
+        """
+        self._latched = 0
+        self._clean = 0
+
+    # -- the hot path --------------------------------------------------------------
+    def _risk(self, get) -> tuple[float | None, str | None]:
+        r = get("risk")
+        if r is not None:
+            if r.__class__ is bool or not (self._rlo <= r <= self._rhi):
+                return None, f"risk input R_e={r!r} is NaN, not a number or outside [{self._rlo:g}, {self._rhi:g}]"
+            return float(r), None
+        q = get("p_unsafe")
+        if q is not None:
+            if self._k != 2:
+                return None, f"p_unsafe alone needs a 2-class spec (risk.classes is {self._k}); pass p"
+            if q.__class__ is bool or not (0.0 <= q <= 1.0):
+                return None, f"p_unsafe={q!r} is NaN, not a number or outside [0, 1]"
+            d = q - 0.5
+            var = 2.0 * d * d if self._sample else d * d
+            top = q if q >= 0.5 else 1.0 - q
+            return self._alpha * q + self._beta * (1.0 - top) + self._gamma * var, None
+        p = get("p")
+        if p is None:
+            return None, "no risk input this cycle (give risk, p_unsafe or p)"
+        try:
+            n = len(p)
+            if n != self._k:
+                return None, f"p has {n} classes, the spec expects {self._k}"
+            s = 0.0
+            for v in p:
+                if not (0.0 <= v <= 1.0):
+                    return None, f"p contains {v!r} (NaN, not a number or outside [0, 1])"
+                s += v
+            if abs(s - 1.0) > 1e-3:
+                return None, f"p sums to {s:.6g}, not 1"
+            return risk_from_probs(p, self._alpha, self._beta, self._gamma,
+                                   "sample" if self._sample else "population", self._uidx), None
+        except TypeError:
+            return None, f"p must be a sequence of probabilities, got {type(p).__name__}"
+
+    def step(self, signals: Mapping[str, Any]) -> Decision:
+        """Check one control cycle.
+
+        Args:
+            signals: the cycle's inputs by name (extra keys are ignored).
+
+        Returns:
+            The :class:`Decision`. Never raises: bad input or an internal error
+            gives ``override=True`` with the reason in ``Decision.faults``.
+        """
+        cycle = self._cycle
+        self._cycle = cycle + 1
+        try:
+            get = signals.get
+            vals = self._vals
+            faults = None
+            for name, slot, is_bool, lo, hi in self._sig:
+                v = get(name)
+                if v is None:
+                    (faults := faults or []).append(f"signal {name!r} is missing")
+                elif is_bool:
+                    if v is True or v is False:
+                        vals[slot] = v
+                    elif v.__class__ is not str and (v == 0 or v == 1):
+                        vals[slot] = bool(v)
+                    else:
+                        (faults := faults or []).append(f"signal {name!r} must be true/false, got {v!r}")
+                elif v.__class__ is bool or v.__class__ is str:
+                    (faults := faults or []).append(f"signal {name!r} must be a number, got {v!r}")
+                elif lo <= v <= hi:
+                    vals[slot] = v
+                else:
+                    (faults := faults or []).append(
+                        f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]")
+            r, why = self._risk(get)
+            if why is not None:
+                (faults := faults or []).append(why)
+            if self._max_age is not None:
+                age = get("risk_age_s")
+                if age is None:
+                    (faults := faults or []).append("risk_age_s is missing (the spec sets risk.max_age_s)")
+                elif not (0.0 <= age <= self._max_age):
+                    (faults := faults or []).append(
+                        f"risk estimate is stale or its age is invalid: {age!r} s > max_age_s {self._max_age:g}")
+            if faults is not None:
+                return self._fault(cycle, tuple(faults), r)
+            vals[self._rslot] = r
+            for u in self._updates:
+                u()
+            violations = None
+            sev = 0
+            for fn, oid, s in self._obs:
+                if fn():
+                    if violations is None:
+                        violations = [oid]
+                    else:
+                        violations.append(oid)
+                    if s > sev:
+                        sev = s
+            if r >= self._tau:
+                if violations is None:
+                    violations = ["risk"]
+                else:
+                    violations.append("risk")
+                if self._risk_sev > sev:
+                    sev = self._risk_sev
+            margins = tuple([f() for f in self._margin_fns]) if self._margins_on else _EMPTY
+            if sev:
+                if sev > self._latched:
+                    self._latched = sev
+                self._clean = 0
+                return Decision(True, _RESPONSES[self._latched], tuple(violations), margins, r, cycle,
+                                False, _EMPTY)
+            if self._latched:
+                if self._auto and r < self._below:
+                    self._clean += 1
+                    if self._clean >= self._hold:
+                        self._latched = 0
+                        self._clean = 0
+                        return Decision(False, Response.NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
+                else:
+                    self._clean = 0
+                return Decision(True, _RESPONSES[self._latched], _EMPTY, margins, r, cycle, True, _EMPTY)
+            return Decision(False, Response.NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
+        except Exception as exc:  # fail closed: nothing escapes into the control loop
+            try:
+                reason = f"internal error: {type(exc).__name__}: {exc}"
+            except Exception:  # pragma: no cover - a broken __str__
+                reason = "internal error"
+            return self._fault(cycle, (reason,), None)
+
+    def _fault(self, cycle: int, reasons: tuple[str, ...], r: float | None) -> Decision:
+        """Fail closed: override with the spec's fault response; history is invalid."""
+        try:
+            self._m.reset()
+        except Exception:  # pragma: no cover
+            pass
+        sev = self._fault_sev
+        violations = _EMPTY
+        if r is not None and r >= self._tau:
+            violations = ("risk",)
+            if self._risk_sev > sev:
+                sev = self._risk_sev
+        if sev > self._latched:
+            self._latched = sev
+        self._clean = 0
+        margins = self._nan_margins if self._margins_on else _EMPTY
+        return Decision(True, _RESPONSES[self._latched], violations, margins, r, cycle, False, reasons)
+
+    def __repr__(self) -> str:
+        return f"Monitor(spec={self.spec.name!r}, obligations={len(self.obligation_ids)}, cycle={self._cycle})"

@@ -1,0 +1,233 @@
+"""Reference interpreter: slow, obviously correct, for cross-checking the compiler.
+
+It keeps the whole history since the last reset or fault and evaluates every
+expression by walking the AST, with the temporal operators written straight
+from their definitions (look back over the history). It shares nothing with
+the compiled closures except the checked :class:`Plan`. Tests and the property
+suite check that it and :class:`Monitor` agree on random traces.
+
+Semantics (the definition both implementations follow), for a history
+``h[0..t]`` of valid cycles since the last reset or fault:
+
+* ``prev(e, i)``: ``e`` at ``t-1``; at ``t = 0`` it is ``i`` at ``t`` (without
+  ``i``: ``false`` for a condition, ``e`` itself for a number).
+* ``held(e, n)``: ``e`` at each of ``t-n+1 .. t`` (needs ``n`` cycles of history).
+* ``once(e, n)``: ``e`` at some cycle of ``max(0, t-n+1) .. t``.
+* ``since(a, b[, n])``: some ``j`` (with ``t - j < n``) has ``b`` at ``j`` and ``a``
+  at every cycle of ``j+1 .. t``.
+* Every temporal operator's arguments are evaluated at every cycle (so an
+  error such as a division by zero inside one is a fault even if a
+  surrounding ``and`` would short-circuit).
+* An obligation ``when ⇒ require`` without ``within_cycles`` (or 0) is violated
+  at ``t`` if ``when`` and not ``require``; with ``within_cycles = n`` it is
+  violated if some ``j ≤ t`` with ``t - j ≥ n`` had ``when`` (``true`` if absent)
+  and ``require`` was false at every cycle of ``j .. t``.
+* A bad input or an evaluation error makes a fault cycle: override with
+  ``on_fault`` (or the risk response if R_e ≥ τ and more severe), history cleared.
+* Override latches at the most severe response seen; with ``release.mode: auto``
+  it releases at the cycle that completes ``hold_cycles`` consecutive cycles
+  with no violation and R_e < τ − δ.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from ..compiler._check import RISK_NAME, Plan
+from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary
+from ..spec._model import Response, Spec
+from ..risk._formula import risk_bounds, risk_from_p_unsafe, risk_from_probs
+from ._decision import Decision
+from ._monitor import plan_of
+
+__all__ = ["ReferenceMonitor"]
+
+_BY_SEV = {r.severity: r for r in Response}
+
+
+class ReferenceMonitor:
+    """Same contract as :class:`~ethimon.Monitor`, implemented by AST walking."""
+
+    def __init__(self, spec: Spec | Plan) -> None:
+        self.plan = plan_of(spec)
+        self.spec = self.plan.spec
+        self.obligation_ids = tuple(ob.id for ob in self.plan.obligations)
+        self.reset()
+
+    def reset(self) -> None:
+        self.history: list[dict[str, Any]] = []
+        self.cycle = 0
+        self.latched = 0
+        self.clean = 0
+
+    def release(self) -> None:
+        self.latched = 0
+        self.clean = 0
+
+    # -- expression semantics -----------------------------------------------------
+    def ev(self, node: Node, t: int) -> Any:
+        env = self.history[t]
+        if isinstance(node, Num):
+            return node.value
+        if isinstance(node, BoolLit):
+            return node.value
+        if isinstance(node, Name):
+            if node.id in self.plan.constants:
+                return self.plan.constants[node.id]
+            return env[node.id]
+        if isinstance(node, Unary):
+            v = self.ev(node.operand, t)
+            return (not v) if node.op == "not" else -v
+        if isinstance(node, Binary):
+            op = node.op
+            if op == "and":
+                return bool(self.ev(node.left, t)) and bool(self.ev(node.right, t))
+            if op == "or":
+                return bool(self.ev(node.left, t)) or bool(self.ev(node.right, t))
+            if op == "implies":
+                return (not self.ev(node.left, t)) or bool(self.ev(node.right, t))
+            a, b = self.ev(node.left, t), self.ev(node.right, t)
+            return {
+                "<": lambda: a < b, "<=": lambda: a <= b, ">": lambda: a > b, ">=": lambda: a >= b,
+                "==": lambda: a == b, "!=": lambda: a != b, "+": lambda: a + b, "-": lambda: a - b,
+                "*": lambda: a * b, "/": lambda: a / b,
+            }[op]()
+        if isinstance(node, Call):
+            f, args = node.func, node.args
+            if f == "abs":
+                return abs(self.ev(args[0], t))
+            if f == "sqrt":
+                return math.sqrt(self.ev(args[0], t))
+            if f == "min":
+                return min(self.ev(a, t) for a in args)
+            if f == "max":
+                return max(self.ev(a, t) for a in args)
+            n = self.plan.windows.get(id(node))
+            if f == "prev":
+                if t == 0:
+                    if len(args) == 2:
+                        return self.ev(args[1], 0)
+                    return False if self.plan.type_of(node).kind == "bool" else self.ev(args[0], 0)
+                return self.ev(args[0], t - 1)
+            if f == "held":
+                if t + 1 < n:
+                    return False
+                return all(self.ev(args[0], j) for j in range(t - n + 1, t + 1))
+            if f == "once":
+                return any(self.ev(args[0], j) for j in range(max(0, t - n + 1), t + 1))
+            if f == "since":
+                first = 0 if n is None else max(0, t - n + 1)
+                for j in range(first, t + 1):
+                    if self.ev(args[1], j) and all(self.ev(args[0], k) for k in range(j + 1, t + 1)):
+                        return True
+                return False
+        raise TypeError(node)  # pragma: no cover
+
+    def _touch_temporal(self, t: int) -> None:
+        for node in self.plan.temporal:
+            for a in node.args:
+                self.ev(a, t)
+
+    def _violated(self, ob, t: int) -> bool:
+        n = ob.within_cycles
+        if not n:
+            if ob.when is None:
+                return not self.ev(ob.require, t)
+            return bool(self.ev(ob.when, t)) and not self.ev(ob.require, t)
+        # a bounded-response obligation evaluates both conditions every cycle
+        if ob.when is not None:
+            self.ev(ob.when, t)
+        req = [bool(self.ev(ob.require, j)) for j in range(t + 1)]
+        for j in range(0, t - n + 1):
+            if all(not req[k] for k in range(j, t + 1)):
+                if ob.when is None or self.ev(ob.when, j):
+                    return True
+        return False
+
+    # -- a cycle -------------------------------------------------------------------
+    def _risk(self, signals) -> tuple[float | None, str | None]:
+        r = self.spec.risk
+        lo, hi = risk_bounds(r.alpha, r.beta, r.gamma, r.variance) if r.classes == 2 else (0.0, 1.0)
+        lo, hi = min(0.0, lo), max(1.0, hi)
+        if signals.get("risk") is not None:
+            v = signals["risk"]
+            if isinstance(v, (int, float)) and not isinstance(v, bool) and lo <= v <= hi:
+                return float(v), None
+            return None, "bad risk"
+        if signals.get("p_unsafe") is not None:
+            q = signals["p_unsafe"]
+            if r.classes == 2 and isinstance(q, (int, float)) and not isinstance(q, bool) and 0 <= q <= 1:
+                return risk_from_p_unsafe(q, r.alpha, r.beta, r.gamma, r.variance), None
+            return None, "bad p_unsafe"
+        if signals.get("p") is not None:
+            p = list(signals["p"])
+            if len(p) == r.classes and all(0 <= v <= 1 for v in p) and abs(sum(p) - 1) <= 1e-3:
+                return risk_from_probs(p, r.alpha, r.beta, r.gamma, r.variance, r.unsafe_index), None
+            return None, "bad p"
+        return None, "no risk"
+
+    def _valid_signal(self, sig, v) -> bool:
+        if v is None:
+            return False
+        if sig.kind == "bool":
+            return v is True or v is False or (not isinstance(v, str) and (v == 0 or v == 1))
+        if isinstance(v, (bool, str)):
+            return False
+        return sig.lo <= v <= sig.hi
+
+    def step(self, signals: dict[str, Any]) -> Decision:
+        cycle = self.cycle
+        self.cycle += 1
+        spec = self.spec
+        tau = spec.risk.threshold
+        r, why = self._risk(signals)
+        ok = why is None and all(self._valid_signal(s, signals.get(s.name)) for s in self.plan.signals)
+        if spec.risk.max_age_s is not None:
+            age = signals.get("risk_age_s")
+            ok = ok and age is not None and 0 <= age <= spec.risk.max_age_s
+        violations: list[str] = []
+        sev = 0
+        if ok:
+            env = {s.name: (bool(signals[s.name]) if s.kind == "bool" else signals[s.name])
+                   for s in self.plan.signals}
+            env[RISK_NAME] = r
+            self.history.append(env)
+            t = len(self.history) - 1
+            try:
+                self._touch_temporal(t)
+                for ob in self.plan.obligations:
+                    if self._violated(ob, t):
+                        violations.append(ob.id)
+                        sev = max(sev, ob.response.severity)
+            except Exception:
+                ok = False
+        if not ok:
+            self.history = []
+            fsev = Response(spec.on_fault).severity
+            v: tuple[str, ...] = ()
+            if r is not None and r >= tau:
+                v = ("risk",)
+                fsev = max(fsev, Response(spec.risk.response).severity)
+            self.latched = max(self.latched, fsev)
+            self.clean = 0
+            return Decision(True, _BY_SEV[self.latched], v, (), r, cycle, False, ("fault",))
+        if r >= tau:
+            violations.append("risk")
+            sev = max(sev, Response(spec.risk.response).severity)
+        if sev:
+            self.latched = max(self.latched, sev)
+            self.clean = 0
+            return Decision(True, _BY_SEV[self.latched], tuple(violations), (), r, cycle, False, ())
+        if self.latched:
+            rel = spec.risk.release
+            if rel.mode == "auto" and r < tau - rel.hysteresis:
+                self.clean += 1
+                if self.clean >= rel.hold_cycles:
+                    self.latched = 0
+                    self.clean = 0
+                    return Decision(False, Response.NONE, (), (), r, cycle, False, ())
+            else:
+                self.clean = 0
+            return Decision(True, _BY_SEV[self.latched], (), (), r, cycle, True, ())
+        return Decision(False, Response.NONE, (), (), r, cycle, False, ())

@@ -1,0 +1,359 @@
+"""The obligation expression language: tokenizer, parser and AST.
+
+Grammar (lowest precedence first)::
+
+    expr    := or ( "implies" expr )?            # right-associative
+    or      := and ( "or" and )*
+    and     := not ( "and" not )*
+    not     := "not" not | cmp
+    cmp     := sum ( ("<" | "<=" | ">" | ">=" | "==" | "!=") sum )?
+    sum     := term ( ("+" | "-") term )*
+    term    := unary ( ("*" | "/") unary )*
+    unary   := "-" unary | primary
+    primary := NUMBER | "true" | "false" | NAME | NAME "(" args? ")" | "(" expr ")"
+
+Functions: ``abs(x)``, ``min(x, y, ...)``, ``max(x, y, ...)``, ``sqrt(x)`` and
+the bounded past-time temporal operators ``prev(e[, init])``,
+``held(e, n)``, ``once(e, n)``, ``since(a, b[, n])`` (integer cycle bounds).
+
+The parser is hand-written (no ``eval``); every node keeps the character
+offsets of its source text so errors can point at file:line:column.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+__all__ = [
+    "Node", "Num", "BoolLit", "Name", "Unary", "Binary", "Call", "ExprSyntaxError",
+    "parse_expr", "FUNCTIONS", "TEMPORAL", "walk", "to_source",
+]
+
+
+class ExprSyntaxError(Exception):
+    """A syntax error at character ``index`` of the expression text."""
+
+    def __init__(self, message: str, index: int, hint: str | None = None) -> None:
+        super().__init__(message)
+        self.message = message
+        self.index = index
+        self.hint = hint
+
+
+@dataclass(frozen=True, eq=False)
+class Node:
+    start: int
+    end: int
+
+
+@dataclass(frozen=True, eq=False)
+class Num(Node):
+    value: float
+
+
+@dataclass(frozen=True, eq=False)
+class BoolLit(Node):
+    value: bool
+
+
+@dataclass(frozen=True, eq=False)
+class Name(Node):
+    id: str
+
+
+@dataclass(frozen=True, eq=False)
+class Unary(Node):
+    op: str  # "-" or "not"
+    operand: Node
+
+
+@dataclass(frozen=True, eq=False)
+class Binary(Node):
+    op: str
+    left: Node
+    right: Node
+
+
+@dataclass(frozen=True, eq=False)
+class Call(Node):
+    func: str
+    args: tuple[Node, ...]
+    name_end: int = 0
+
+
+#: name -> (min args, max args)
+FUNCTIONS: dict[str, tuple[int, int]] = {
+    "abs": (1, 1), "min": (2, 16), "max": (2, 16), "sqrt": (1, 1),
+    "prev": (1, 2), "held": (2, 2), "once": (2, 2), "since": (2, 3),
+}
+TEMPORAL = frozenset({"prev", "held", "once", "since"})
+KEYWORDS = frozenset({"and", "or", "not", "implies", "true", "false"})
+COMPARISONS = ("<=", ">=", "==", "!=", "<", ">")
+
+_TOKEN = re.compile(r"""
+    (?P<ws>\s+)
+  | (?P<num>(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?)
+  | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
+  | (?P<op><=|>=|==|!=|<|>|\+|-|\*|/|\(|\)|,)
+""", re.VERBOSE)
+
+MAX_EXPR_CHARS = 4000
+MAX_EXPR_DEPTH = 48
+
+
+@dataclass(frozen=True)
+class _Tok:
+    kind: str
+    text: str
+    start: int
+    end: int
+
+
+def _tokenize(src: str) -> list[_Tok]:
+    toks: list[_Tok] = []
+    i, n = 0, len(src)
+    while i < n:
+        m = _TOKEN.match(src, i)
+        if m is None:
+            ch = src[i]
+            hint = None
+            if ch == "&":
+                hint = "write 'and'"
+            elif ch == "|":
+                hint = "write 'or'"
+            elif ch == "!":
+                hint = "write 'not' (or '!=' for inequality)"
+            elif ch == "=":
+                hint = "compare with '=='"
+            elif ch in "[]{}":
+                hint = "windows are written held(x, n) / once(x, n)"
+            raise ExprSyntaxError(f"unexpected character {ch!r}", i, hint)
+        kind = m.lastgroup
+        if kind != "ws":
+            text = m.group()
+            if kind == "name" and text in KEYWORDS:
+                kind = text
+            toks.append(_Tok(kind, text, i, m.end()))
+        i = m.end()
+    toks.append(_Tok("eof", "", n, n))
+    return toks
+
+
+class _Parser:
+    def __init__(self, src: str) -> None:
+        self.src = src
+        self.toks = _tokenize(src)
+        self.i = 0
+        self.depth = 0
+
+    @property
+    def tok(self) -> _Tok:
+        return self.toks[self.i]
+
+    def take(self) -> _Tok:
+        t = self.toks[self.i]
+        self.i += 1
+        return t
+
+    def expect(self, kind: str, what: str) -> _Tok:
+        t = self.tok
+        if t.kind != kind:
+            found = "end of expression" if t.kind == "eof" else repr(t.text)
+            raise ExprSyntaxError(f"expected {what}, found {found}", t.start)
+        return self.take()
+
+    def _enter(self) -> None:
+        self.depth += 1
+        if self.depth > MAX_EXPR_DEPTH:
+            raise ExprSyntaxError("expression is nested too deeply", self.tok.start,
+                                  f"at most {MAX_EXPR_DEPTH} levels")
+
+    def parse(self) -> Node:
+        if not self.src.strip():
+            raise ExprSyntaxError("empty expression", 0, "write a condition such as 'human_distance > 0.5'")
+        node = self.expr()
+        if self.tok.kind != "eof":
+            t = self.tok
+            hint = None
+            if t.kind in ("num", "name", "("):
+                hint = "an operator ('and', 'or', '<', '+', ...) is missing"
+            raise ExprSyntaxError(f"unexpected {t.text!r}", t.start, hint)
+        return node
+
+    def expr(self) -> Node:
+        self._enter()
+        left = self.or_()
+        if self.tok.kind == "implies":
+            self.take()
+            right = self.expr()
+            left = Binary(left.start, right.end, "implies", left, right)
+        self.depth -= 1
+        return left
+
+    def or_(self) -> Node:
+        left = self.and_()
+        while self.tok.kind == "or":
+            self.take()
+            right = self.and_()
+            left = Binary(left.start, right.end, "or", left, right)
+        return left
+
+    def and_(self) -> Node:
+        left = self.not_()
+        while self.tok.kind == "and":
+            self.take()
+            right = self.not_()
+            left = Binary(left.start, right.end, "and", left, right)
+        return left
+
+    def not_(self) -> Node:
+        if self.tok.kind == "not":
+            t = self.take()
+            self._enter()
+            operand = self.not_()
+            self.depth -= 1
+            return Unary(t.start, operand.end, "not", operand)
+        return self.cmp()
+
+    def cmp(self) -> Node:
+        left = self.sum()
+        if self.tok.kind == "op" and self.tok.text in COMPARISONS:
+            op = self.take().text
+            right = self.sum()
+            if self.tok.kind == "op" and self.tok.text in COMPARISONS:
+                raise ExprSyntaxError("comparisons cannot be chained", self.tok.start,
+                                      "write 'a < b and b < c'")
+            return Binary(left.start, right.end, op, left, right)
+        return left
+
+    def sum(self) -> Node:
+        left = self.term()
+        while self.tok.kind == "op" and self.tok.text in ("+", "-"):
+            op = self.take().text
+            right = self.term()
+            left = Binary(left.start, right.end, op, left, right)
+        return left
+
+    def term(self) -> Node:
+        left = self.unary()
+        while self.tok.kind == "op" and self.tok.text in ("*", "/"):
+            op = self.take().text
+            right = self.unary()
+            left = Binary(left.start, right.end, op, left, right)
+        return left
+
+    def unary(self) -> Node:
+        if self.tok.kind == "op" and self.tok.text == "-":
+            t = self.take()
+            self._enter()
+            operand = self.unary()
+            self.depth -= 1
+            if isinstance(operand, Num):
+                return Num(t.start, operand.end, -operand.value)
+            return Unary(t.start, operand.end, "-", operand)
+        return self.primary()
+
+    def primary(self) -> Node:
+        t = self.tok
+        if t.kind == "num":
+            self.take()
+            return Num(t.start, t.end, float(t.text))
+        if t.kind in ("true", "false"):
+            self.take()
+            return BoolLit(t.start, t.end, t.kind == "true")
+        if t.kind == "name":
+            self.take()
+            if self.tok.kind == "op" and self.tok.text == "(":
+                return self.call(t)
+            return Name(t.start, t.end, t.text)
+        if t.kind == "op" and t.text == "(":
+            self.take()
+            self._enter()
+            inner = self.expr()
+            self.depth -= 1
+            self.expect_close(t.start)
+            return inner
+        if t.kind == "eof":
+            raise ExprSyntaxError("expression ends too early", t.start, "an operand is missing")
+        raise ExprSyntaxError(f"unexpected {t.text!r}", t.start, "an operand is missing")
+
+    def expect_close(self, open_at: int) -> _Tok:
+        t = self.tok
+        if t.kind == "op" and t.text == ")":
+            return self.take()
+        if t.kind == "eof":
+            raise ExprSyntaxError("unclosed '('", open_at, "add ')'")
+        raise ExprSyntaxError(f"expected ')', found {t.text!r}", t.start)
+
+    def call(self, name: _Tok) -> Node:
+        open_tok = self.take()  # "("
+        args: list[Node] = []
+        self._enter()
+        if not (self.tok.kind == "op" and self.tok.text == ")"):
+            while True:
+                args.append(self.expr())
+                if self.tok.kind == "op" and self.tok.text == ",":
+                    self.take()
+                    continue
+                break
+        self.depth -= 1
+        close = self.expect_close(open_tok.start)
+        return Call(name.start, close.end, name.text, tuple(args), name.end)
+
+
+def parse_expr(src: str) -> Node:
+    """Parse expression text into an AST.
+
+    Raises:
+        ExprSyntaxError: with the character index of the problem.
+
+    Example:
+        >>> to_source(parse_expr("held(d < 0.5, 3) implies not (v > 1)"))
+        'held((d < 0.5), 3) implies not (v > 1)'
+    """
+    if len(src) > MAX_EXPR_CHARS:
+        raise ExprSyntaxError(f"expression is too long ({len(src)} characters)", MAX_EXPR_CHARS,
+                              f"at most {MAX_EXPR_CHARS}")
+    return _Parser(src).parse()
+
+
+def walk(node: Node):
+    """Yield ``node`` and all its descendants, parents first."""
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        yield n
+        if isinstance(n, Unary):
+            stack.append(n.operand)
+        elif isinstance(n, Binary):
+            stack.extend((n.right, n.left))
+        elif isinstance(n, Call):
+            stack.extend(reversed(n.args))
+
+
+def to_source(node: Node) -> str:
+    """Render an AST back to (fully parenthesised where needed) source text."""
+    if isinstance(node, Num):
+        v = node.value
+        return repr(int(v)) if v == int(v) and abs(v) < 1e15 else repr(v)
+    if isinstance(node, BoolLit):
+        return "true" if node.value else "false"
+    if isinstance(node, Name):
+        return node.id
+    if isinstance(node, Unary):
+        inner = to_source(node.operand)
+        if not isinstance(node.operand, (Num, Name, Call, BoolLit)):
+            inner = f"({inner})"
+        return f"not {inner}" if node.op == "not" else f"-{inner}"
+    if isinstance(node, Binary):
+        left, right = to_source(node.left), to_source(node.right)
+        if node.op in ("and", "or", "implies"):
+            wrap = lambda n, s: s if not isinstance(n, Binary) or n.op not in ("and", "or", "implies") else f"({s})"  # noqa: E731
+            if node.op == "implies":
+                return f"{left} implies {right}"
+            return f"{wrap(node.left, left)} {node.op} {wrap(node.right, right)}"
+        return f"({left} {node.op} {right})"
+    if isinstance(node, Call):
+        return f"{node.func}({', '.join(to_source(a) for a in node.args)})"
+    raise TypeError(node)  # pragma: no cover

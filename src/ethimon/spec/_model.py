@@ -1,0 +1,298 @@
+"""Pydantic models of the spec file format (version 1).
+
+These models validate the *shape* of a spec; names, types and units inside
+expressions are checked by the compiler. All models are frozen and reject
+unknown keys.
+"""
+
+from __future__ import annotations
+
+import difflib
+import enum
+import math
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator
+
+from ..errors import SpecError
+from ._yaml import SourceMap
+
+__all__ = [
+    "Response", "Signal", "Constant", "Release", "RiskConfig", "Obligation", "SafePose", "Spec",
+    "FORMAT_VERSION", "RESERVED_INPUTS", "validation_to_spec_error", "IDENT",
+]
+
+FORMAT_VERSION = 1
+IDENT = r"^[A-Za-z_][A-Za-z0-9_]*$"
+#: step() input keys with a built-in meaning; specs cannot declare them as signals
+RESERVED_INPUTS = frozenset({"risk", "p_unsafe", "p", "risk_age_s", "true", "false", "and", "or",
+                             "not", "implies", "abs", "min", "max", "sqrt", "prev", "held", "once",
+                             "since"})
+
+
+class Response(str, enum.Enum):
+    """What the arm must do. Ordered by severity: ``none`` < ``safe_pose`` < ``stop_2`` < ``stop_1`` < ``stop_0``.
+
+    * ``safe_pose``: leave the task, drive to the spec's safe pose under its joint-speed limit.
+    * ``stop_2``: IEC 60204-1 stop category 2, controlled stop, power kept (held).
+    * ``stop_1``: category 1, controlled stop, then power removed.
+    * ``stop_0``: category 0, power removed at once (uncontrolled stop).
+    """
+
+    NONE = "none"
+    SAFE_POSE = "safe_pose"
+    STOP_2 = "stop_2"
+    STOP_1 = "stop_1"
+    STOP_0 = "stop_0"
+
+    @property
+    def severity(self) -> int:
+        return _SEVERITY[self]
+
+    def __str__(self) -> str:
+        return self.value
+
+
+_SEVERITY = {Response.NONE: 0, Response.SAFE_POSE: 1, Response.STOP_2: 2, Response.STOP_1: 3,
+             Response.STOP_0: 4}
+ACTIVE_RESPONSES = Literal["safe_pose", "stop_2", "stop_1", "stop_0"]
+
+_CFG = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
+
+FiniteFloat = Annotated[float, Field(allow_inf_nan=False)]
+
+
+class Signal(BaseModel):
+    """One input the monitor reads every cycle."""
+
+    model_config = _CFG
+    type: Literal["number", "bool"] = Field("number", description="'number' (default) or 'bool'")
+    unit: str | None = Field(None, description="unit, e.g. m, m/s, N, rad/s, s, 1 (dimensionless)")
+    range: tuple[FiniteFloat, FiniteFloat] | None = Field(
+        None, description="valid [min, max]; a value outside fails closed (override)")
+    description: str = ""
+
+    @model_validator(mode="after")
+    def _check(self) -> "Signal":
+        if self.type == "bool":
+            if self.range is not None:
+                raise ValueError("a bool signal has no range")
+            if self.unit not in (None, "", "1"):
+                raise ValueError("a bool signal has no unit")
+        elif self.range is not None and self.range[0] > self.range[1]:
+            raise ValueError(f"range [{self.range[0]}, {self.range[1]}] is empty: min > max")
+        return self
+
+
+class Constant(BaseModel):
+    """A named constant usable in expressions."""
+
+    model_config = _CFG
+    value: FiniteFloat
+    unit: str | None = None
+    description: str = ""
+
+
+class Release(BaseModel):
+    """How a latched override is released."""
+
+    model_config = _CFG
+    mode: Literal["auto", "manual"] = Field(
+        "auto", description="auto: hysteresis rule below; manual: only Monitor.reset()/release()")
+    hysteresis: FiniteFloat = Field(0.05, ge=0.0, description="δ: release needs R_e < τ − δ")
+    hold_cycles: int = Field(10, ge=1, le=10_000_000,
+                             description="N: the release condition must hold N consecutive cycles")
+
+
+class RiskConfig(BaseModel):
+    """How R_e is formed and judged. The rule R_e ≥ τ ⇒ override is always present."""
+
+    model_config = _CFG
+    alpha: FiniteFloat = Field(0.6, description="weight α of p_unsafe")
+    beta: FiniteFloat = Field(0.2, description="weight β of (1 − max p)")
+    gamma: FiniteFloat = Field(0.2, description="weight γ of Var(p)")
+    variance: Literal["sample", "population"] = Field(
+        "sample", description="sample (÷(K−1), torch.var default) or population (÷K)")
+    threshold: FiniteFloat = Field(0.5, description="τ: R_e ≥ τ ⇒ override")
+    classes: int = Field(2, ge=2, le=1000, description="number of classifier classes K")
+    unsafe_index: int = Field(-1, description="index of the unsafe class in p")
+    response: ACTIVE_RESPONSES = "safe_pose"
+    release: Release = Field(default_factory=Release)
+    max_age_s: FiniteFloat | None = Field(
+        None, gt=0.0, description="estimates older than this (input risk_age_s) fail closed")
+
+    @model_validator(mode="after")
+    def _check(self) -> "RiskConfig":
+        if not -self.classes <= self.unsafe_index < self.classes:
+            raise ValueError(f"unsafe_index {self.unsafe_index} is outside 0..{self.classes - 1}")
+        return self
+
+
+class Obligation(BaseModel):
+    """One checked rule: ``when`` ⇒ ``require`` (within ``within_cycles``)."""
+
+    model_config = _CFG
+    id: str = Field(pattern=IDENT, description="identifier, unique within the spec")
+    description: str = ""
+    when: str | None = Field(None, description="trigger condition (default: always)")
+    require: str = Field(description="condition that must hold (when triggered)")
+    within_cycles: int | None = Field(
+        None, ge=0, le=1_000_000,
+        description="bounded response: after the trigger, require must hold within this many cycles")
+    response: ACTIVE_RESPONSES = "safe_pose"
+
+    @field_validator("when", "require", mode="before")
+    @classmethod
+    def _expr_text(cls, v: Any) -> Any:
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, (int, float)):
+            raise ValueError("expected a condition (text), got a number")
+        return v
+
+
+class SafePose(BaseModel):
+    """Where the arm goes on override, and how fast it may move there."""
+
+    model_config = _CFG
+    joints_rad: tuple[FiniteFloat, ...] = Field(
+        (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785), description="joint configuration (rad)")
+    max_joint_speed_rad_s: FiniteFloat = Field(1.0, gt=0.0, le=10.0,
+                                               description="joint-speed limit on the way (rad/s)")
+    tolerance_rad: FiniteFloat = Field(0.02, gt=0.0, le=1.0, description="reached when every joint is this close")
+
+    @field_validator("joints_rad")
+    @classmethod
+    def _len(cls, v: tuple[float, ...]) -> tuple[float, ...]:
+        if not 1 <= len(v) <= 16:
+            raise ValueError(f"expected 1 to 16 joint values, got {len(v)}")
+        return v
+
+
+class Spec(BaseModel):
+    """A validated spec (format version 1). Build it with :func:`ethimon.load_spec`."""
+
+    model_config = _CFG
+    ethimon: Literal[1] = Field(description="format version; this ethimon reads 1")
+    name: str = Field(min_length=1)
+    description: str = ""
+    signals: dict[Annotated[str, Field(pattern=IDENT)], Signal] = Field(default_factory=dict)
+    constants: dict[Annotated[str, Field(pattern=IDENT)], FiniteFloat | Constant] = Field(default_factory=dict)
+    risk: RiskConfig = Field(default_factory=RiskConfig)
+    obligations: tuple[Obligation, ...] = ()
+    on_fault: ACTIVE_RESPONSES = Field("safe_pose", description="response to missing/NaN/out-of-range/stale input")
+    safe_pose: SafePose = Field(default_factory=SafePose)
+
+    _source: SourceMap | None = PrivateAttr(default=None)
+    _program: Any = PrivateAttr(default=None)
+
+    @property
+    def path(self) -> str | None:
+        """The file this spec came from (``None`` if built in code)."""
+        return self._source.path if self._source else None
+
+    @property
+    def source(self) -> SourceMap:
+        """Positions of every value in the spec file."""
+        return self._source or SourceMap("<spec>")
+
+    @model_validator(mode="after")
+    def _check(self) -> "Spec":
+        seen: dict[str, int] = {}
+        for i, ob in enumerate(self.obligations):
+            if ob.id in seen:
+                raise _LocError(f"duplicate obligation id {ob.id!r} (first is obligations[{seen[ob.id]}])",
+                                ("obligations", i, "id"))
+            seen[ob.id] = i
+        for name in self.signals:
+            if name in RESERVED_INPUTS:
+                raise _LocError(f"{name!r} is a built-in name and cannot be declared as a signal",
+                                ("signals", name), hint="'risk', 'p_unsafe', 'p' and 'risk_age_s' are "
+                                "read by the risk rule; pick another name")
+        for name in self.constants:
+            if name in RESERVED_INPUTS:
+                raise _LocError(f"{name!r} is a built-in name and cannot be a constant", ("constants", name))
+            if name in self.signals:
+                raise _LocError(f"{name!r} is declared both as a signal and as a constant", ("constants", name))
+        return self
+
+
+class _LocError(ValueError):
+    def __init__(self, msg: str, loc: tuple, hint: str | None = None) -> None:
+        super().__init__(msg)
+        self.msg, self.loc, self.hint = msg, loc, hint
+
+
+def _model_at(model: type[BaseModel], loc: tuple) -> type[BaseModel] | None:
+    """The model class that owns the last key of ``loc`` (for "did you mean")."""
+    cur: Any = model
+    for part in loc[:-1]:
+        if isinstance(part, int):
+            continue
+        if isinstance(cur, type) and issubclass(cur, BaseModel):
+            field = cur.model_fields.get(part)
+            if field is None:
+                return None
+            ann = field.annotation
+            cur = _unwrap(ann)
+        else:
+            cur = None
+    return cur if isinstance(cur, type) and issubclass(cur, BaseModel) else None
+
+
+def _unwrap(ann: Any) -> Any:
+    import typing
+    args = typing.get_args(ann)
+    for a in args or ():
+        if isinstance(a, type) and issubclass(a, BaseModel):
+            return a
+        inner = _unwrap(a)
+        if inner is not None:
+            return inner
+    if isinstance(ann, type) and issubclass(ann, BaseModel):
+        return ann
+    return None
+
+
+def _fmt_loc(loc: tuple) -> str:
+    out = ""
+    for part in loc:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        else:
+            out += ("." if out else "") + str(part)
+    return out or "(top level)"
+
+
+def validation_to_spec_error(exc: ValidationError, smap: SourceMap, model: type[BaseModel],
+                             data: Any) -> SpecError:
+    """Turn the first pydantic error into a positioned :class:`SpecError`."""
+    errs = exc.errors(include_url=False)
+    # prefer errors that are not inside union branches' noise
+    err = errs[0]
+    loc = tuple(p for p in err["loc"] if not (isinstance(p, str) and (p.startswith("function-") or p in (
+        "float", "Constant", "constrained-str", "tuple[float, float]"))))
+    typ, msg = err["type"], err["msg"]
+    ctx_err = (err.get("ctx") or {}).get("error")
+    if isinstance(ctx_err, _LocError):
+        return smap.error(ctx_err.msg, ctx_err.loc, hint=ctx_err.hint)
+    if typ == "extra_forbidden":
+        key = loc[-1]
+        owner = _model_at(model, loc)
+        known = list(owner.model_fields) if owner else []
+        close = difflib.get_close_matches(str(key), known, n=1)
+        hint = f"did you mean {close[0]!r}?" if close else (f"known keys: {', '.join(known)}" if known else None)
+        return smap.error(f"unknown key {key!r} in {_fmt_loc(loc[:-1])}", loc, hint=hint, key=True)
+    if typ == "missing":
+        return smap.error(f"missing required key {loc[-1]!r} in {_fmt_loc(loc[:-1])}", loc[:-1])
+    if typ == "literal_error" and loc and loc[-1] == "ethimon":
+        return smap.error(f"unsupported format version {err.get('input')!r}", loc,
+                          hint=f"this ethimon reads 'ethimon: {FORMAT_VERSION}'")
+    value = err.get("input")
+    shown = repr(value)
+    if len(shown) > 60:
+        shown = shown[:57] + "..."
+    msg = msg.replace("Value error, ", "")
+    if typ in ("finite_number",):
+        msg = "must be a finite number (not NaN or infinity)"
+    return smap.error(f"{_fmt_loc(loc)}: {msg} (got {shown})", loc)

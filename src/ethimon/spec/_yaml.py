@@ -1,0 +1,305 @@
+"""Safe YAML reading that keeps source positions.
+
+PyYAML composes a node graph (with 0-based marks) using the *safe* resolver;
+we then build plain Python values ourselves, so that
+
+* only the YAML core types are accepted (any ``!!python/...`` or custom tag is
+  an error, nothing is ever constructed or executed),
+* duplicate mapping keys are errors,
+* alias expansion is bounded (no "billion laughs"), nesting depth is bounded,
+  and file size is bounded,
+* every value's position is recorded in a :class:`SourceMap` keyed by its path
+  (a tuple of keys and indices), so later stages can point at the user's text.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+import yaml
+from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
+
+from ..errors import SpecError
+
+__all__ = ["SourceMap", "Pos", "read_yaml", "parse_yaml_text", "MAX_BYTES", "MAX_NODES", "MAX_DEPTH"]
+
+MAX_BYTES = 4 * 1024 * 1024
+MAX_NODES = 200_000
+MAX_DEPTH = 64
+
+_STR = "tag:yaml.org,2002:str"
+_INT = "tag:yaml.org,2002:int"
+_FLOAT = "tag:yaml.org,2002:float"
+_BOOL = "tag:yaml.org,2002:bool"
+_NULL = "tag:yaml.org,2002:null"
+_MAP = "tag:yaml.org,2002:map"
+_SEQ = "tag:yaml.org,2002:seq"
+_ALLOWED = {_STR, _INT, _FLOAT, _BOOL, _NULL, _MAP, _SEQ}
+
+
+@dataclass(frozen=True)
+class Pos:
+    """A 1-based position of a YAML node, plus how its scalar was written."""
+
+    line: int
+    column: int
+    style: str | None = None  # None plain, "'" / '"' quoted, "|" / ">" block
+
+    def offset(self, text: str, index: int) -> tuple[int, int]:
+        """Line and column of character ``index`` inside this scalar's value.
+
+        Exact for plain and quoted single-line scalars and for literal block
+        scalars (``|``) with the usual indentation; approximate otherwise.
+        """
+        if self.style in ("|", ">"):
+            before = text[:index]
+            nl = before.count("\n")
+            last = before.rfind("\n")
+            col_in = index - (last + 1)
+            # block content starts on the next line, indented: we cannot see the
+            # indentation here, so report column relative to the block's indent
+            return self.line + 1 + nl, self.column + 2 + col_in
+        quote = 1 if self.style in ("'", '"') else 0
+        before = text[:index]
+        nl = before.count("\n")
+        if nl:
+            return self.line + nl, index - before.rfind("\n")
+        return self.line, self.column + quote + index
+
+
+@dataclass
+class SourceMap:
+    """Positions of every value of one YAML document, keyed by path."""
+
+    path: str
+    positions: dict[tuple, Pos] = field(default_factory=dict)
+    key_positions: dict[tuple, Pos] = field(default_factory=dict)
+
+    def pos(self, loc: tuple) -> Pos | None:
+        """Position of the value at ``loc``, or of its closest known ancestor."""
+        loc = tuple(loc)
+        while True:
+            p = self.positions.get(loc)
+            if p is not None:
+                return p
+            if not loc:
+                return None
+            loc = loc[:-1]
+
+    def error(self, message: str, loc: tuple = (), *, hint: str | None = None,
+              key: bool = False, index: int | None = None, text: str | None = None) -> SpecError:
+        """Build a :class:`SpecError` pointing at ``loc`` (its key if ``key``)."""
+        p = self.key_positions.get(tuple(loc)) if key else None
+        if p is None:
+            p = self.pos(loc)
+        if p is None:
+            return SpecError(message, path=self.path, hint=hint)
+        line, col = p.line, p.column
+        if index is not None and text is not None:
+            line, col = p.offset(text, index)
+        return SpecError(message, path=self.path, line=line, column=col, hint=hint)
+
+
+def read_yaml(path: str | os.PathLike, *, what: str = "file",
+              max_bytes: int = MAX_BYTES) -> tuple[Any, SourceMap]:
+    """Read one YAML document from ``path`` safely.
+
+    Returns:
+        ``(data, source_map)`` where ``data`` is built from dicts, lists, str,
+        int, float, bool and None only.
+
+    Raises:
+        SpecError: unreadable, too large, binary, non-UTF-8, empty, broken YAML,
+            disallowed tags, duplicate keys, alias bombs, too deep nesting.
+    """
+    spath = os.fspath(path)
+    try:
+        if os.path.isdir(spath):
+            raise SpecError(f"expected a {what}, found a directory", path=spath)
+        size = os.path.getsize(spath)
+        if size > max_bytes:
+            raise SpecError(f"{what} is too large ({size} bytes; limit {max_bytes})", path=spath,
+                            hint="split it into smaller files")
+        with open(spath, "rb") as fh:
+            raw = fh.read(max_bytes + 1)
+    except FileNotFoundError:
+        raise SpecError(f"{what} not found", path=spath, hint="check the path") from None
+    except PermissionError:
+        raise SpecError(f"{what} is not readable (permission denied)", path=spath) from None
+    except IsADirectoryError:
+        raise SpecError(f"expected a {what}, found a directory", path=spath) from None
+    except OSError as exc:
+        raise SpecError(f"cannot read {what}: {exc.strerror or exc}", path=spath) from None
+    return parse_yaml_bytes(raw, spath, what=what)
+
+
+def parse_yaml_bytes(raw: bytes, path: str, *, what: str = "file") -> tuple[Any, SourceMap]:
+    """Decode and parse YAML bytes; see :func:`read_yaml`."""
+    if b"\x00" in raw:
+        nul = raw.index(b"\x00")
+        line = raw.count(b"\n", 0, nul) + 1
+        col = nul - (raw.rfind(b"\n", 0, nul) + 1) + 1
+        raise SpecError(f"{what} looks binary (NUL byte)", path=path, line=line, column=col,
+                        hint="ethimon reads UTF-8 YAML text")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        bad = exc.start
+        line = raw.count(b"\n", 0, bad) + 1
+        col = bad - (raw.rfind(b"\n", 0, bad) + 1) + 1
+        raise SpecError(f"{what} is not valid UTF-8 (byte 0x{raw[bad]:02x})", path=path,
+                        line=line, column=col, hint="save the file as UTF-8") from None
+    if text.startswith("\ufeff"):
+        text = text[1:]
+    return parse_yaml_text(text, path, what=what)
+
+
+def parse_yaml_text(text: str, path: str = "<string>", *, what: str = "file") -> tuple[Any, SourceMap]:
+    """Parse YAML text (one document); see :func:`read_yaml`."""
+    if not text.strip() or all(ln.strip().startswith("#") or not ln.strip() for ln in text.splitlines()):
+        raise SpecError(f"{what} is empty", path=path, line=1, column=1,
+                        hint="a spec starts with 'ethimon: 1' and 'name: ...'")
+    smap = SourceMap(path)
+    try:
+        loader = yaml.SafeLoader(text)
+        try:
+            node = loader.get_single_node()
+        finally:
+            loader.dispose()
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        msg = exc.problem or exc.context or "invalid YAML"
+        if exc.context and exc.problem:
+            msg = f"{exc.problem} ({exc.context})"
+        if mark is not None:
+            raise SpecError(f"invalid YAML: {msg}", path=path, line=mark.line + 1,
+                            column=mark.column + 1, hint=_yaml_hint(msg)) from None
+        raise SpecError(f"invalid YAML: {msg}", path=path) from None
+    except yaml.YAMLError as exc:
+        raise SpecError(f"invalid YAML: {exc}", path=path) from None
+    except RecursionError:
+        raise SpecError(f"{what} is nested too deeply", path=path,
+                        hint=f"at most {MAX_DEPTH} levels are allowed") from None
+    if node is None:
+        raise SpecError(f"{what} is empty", path=path, line=1, column=1)
+    builder = _Builder(smap)
+    try:
+        data = builder.build(node, (), 0)
+    except RecursionError:
+        raise SpecError(f"{what} is nested too deeply", path=path,
+                        hint=f"at most {MAX_DEPTH} levels are allowed") from None
+    return data, smap
+
+
+def _yaml_hint(msg: str) -> str | None:
+    if "tab" in msg:
+        return "indent with spaces, not tabs"
+    if "mapping values are not allowed" in msg:
+        return "a value containing ': ' must be quoted"
+    if "could not find expected ':'" in msg:
+        return "each mapping entry needs 'key: value'"
+    return None
+
+
+_FLOAT_SPECIAL = re.compile(r"^[-+]?(\.inf|\.Inf|\.INF)$|^\.(nan|NaN|NAN)$")
+
+
+class _Builder:
+    def __init__(self, smap: SourceMap) -> None:
+        self.smap = smap
+        self.count = 0
+
+    def _pos(self, node: Node) -> Pos:
+        m = node.start_mark
+        style = getattr(node, "style", None) if isinstance(node, ScalarNode) else None
+        return Pos(m.line + 1, m.column + 1, style)
+
+    def _err(self, node: Node, msg: str, hint: str | None = None) -> SpecError:
+        m = node.start_mark
+        return SpecError(msg, path=self.smap.path, line=m.line + 1, column=m.column + 1, hint=hint)
+
+    def build(self, node: Node, loc: tuple, depth: int) -> Any:
+        self.count += 1
+        if self.count > MAX_NODES:
+            raise self._err(node, f"document expands to more than {MAX_NODES} values",
+                            hint="YAML aliases that expand exponentially are refused")
+        if depth > MAX_DEPTH:
+            raise self._err(node, "document is nested too deeply",
+                            hint=f"at most {MAX_DEPTH} levels are allowed")
+        if node.tag not in _ALLOWED:
+            raise self._err(node, f"YAML tag {node.tag!r} is not allowed",
+                            hint="ethimon files use plain YAML values only; tags that construct objects are refused")
+        if loc not in self.smap.positions:
+            self.smap.positions[loc] = self._pos(node)
+        if isinstance(node, ScalarNode):
+            return self._scalar(node)
+        if isinstance(node, SequenceNode):
+            return [self.build(child, loc + (i,), depth + 1) for i, child in enumerate(node.value)]
+        if isinstance(node, MappingNode):
+            out: dict[Any, Any] = {}
+            for knode, vnode in node.value:
+                if knode.tag == "tag:yaml.org,2002:merge":
+                    raise self._err(knode, "YAML merge keys ('<<') are not supported",
+                                    hint="write the keys out")
+                if not isinstance(knode, ScalarNode):
+                    raise self._err(knode, "mapping keys must be plain scalars")
+                key = self._scalar(knode)
+                if isinstance(key, float) and math.isnan(key):
+                    raise self._err(knode, "a mapping key cannot be NaN")
+                if key in out:
+                    first = self.smap.key_positions.get(loc + (key,))
+                    where = f" (first at line {first.line})" if first else ""
+                    raise self._err(knode, f"duplicate key {key!r}{where}",
+                                    hint="each key may appear once in a mapping")
+                self.smap.key_positions[loc + (key,)] = self._pos(knode)
+                out[key] = self.build(vnode, loc + (key,), depth + 1)
+            return out
+        raise self._err(node, "unsupported YAML node")  # pragma: no cover
+
+    def _scalar(self, node: ScalarNode) -> Any:
+        tag, value = node.tag, node.value
+        if tag == _STR:
+            return value
+        if tag == _NULL:
+            return None
+        if tag == _BOOL:
+            return value.lower() in ("yes", "true", "on", "y")
+        if tag == _INT:
+            v = value.replace("_", "")
+            sign = -1 if v.startswith("-") else 1
+            v = v.lstrip("+-")
+            try:
+                if v.startswith("0b"):
+                    n = int(v[2:], 2)
+                elif v.startswith("0x"):
+                    n = int(v[2:], 16)
+                elif v.startswith("0o"):
+                    n = int(v[2:], 8)
+                elif v != "0" and v.startswith("0"):
+                    n = int(v, 8)
+                elif ":" in v:
+                    raise ValueError(v)
+                else:
+                    if len(v) > 400:
+                        raise ValueError(v)
+                    n = int(v)
+            except ValueError:
+                raise self._err(node, f"cannot read integer {value!r}") from None
+            return sign * n
+        if tag == _FLOAT:
+            v = value.replace("_", "").lower()
+            if v in (".nan",):
+                return math.nan
+            if v in (".inf", "+.inf"):
+                return math.inf
+            if v == "-.inf":
+                return -math.inf
+            try:
+                return float(v)
+            except ValueError:
+                raise self._err(node, f"cannot read number {value!r}") from None
+        raise self._err(node, f"unsupported scalar tag {tag!r}")  # pragma: no cover
