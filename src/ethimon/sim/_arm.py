@@ -1,0 +1,469 @@
+"""``ArmSim``: a Franka Panda cell in PyBullet (humans, objects, signals, controllers).
+
+PyBullet is imported when an ``ArmSim`` is built, never at module import.
+Every call passes ``physicsClientId``, so several simulations can live in one
+process; with the same inputs a DIRECT simulation is bit-for-bit repeatable.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import DependencyNotInstalled
+from ._model import PHYSICS_HZ, Human, SimBlock, SimObject
+
+__all__ = ["ArmSim", "HOME_JOINTS_RAD", "ARM_JOINTS", "EE_LINK", "import_pybullet"]
+
+#: Panda arm joint indices in ``panda.urdf`` (fingers are 9 and 10).
+ARM_JOINTS = (0, 1, 2, 3, 4, 5, 6)
+FINGER_JOINTS = (9, 10)
+HAND_LINK = 8
+#: The grasp-target frame between the fingertips.
+EE_LINK = 11
+#: A comfortable start pose (the Panda "ready" pose).
+HOME_JOINTS_RAD = (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785)
+ARM_MAX_FORCE_N_M = (87.0, 87.0, 87.0, 87.0, 12.0, 12.0, 12.0)
+_DOWN_RPY = (math.pi, 0.0, 0.0)
+_NO_HUMAN_M = 10.0
+_KP, _KD = 0.2, 1.0  # PyBullet position-motor gains  # distance reported when no human is within range
+
+
+def import_pybullet():
+    """Import PyBullet (and pybullet_data) or raise :class:`DependencyNotInstalled`."""
+    try:
+        import pybullet
+        import pybullet_data
+    except ImportError as exc:  # pragma: no cover - depends on the environment
+        raise DependencyNotInstalled(
+            'the simulator needs PyBullet: pip install "ethimon[sim]"') from exc
+    return pybullet, pybullet_data
+
+
+@dataclass
+class Segment:
+    """One task motion: min-jerk from the previous joint target to ``q`` in ``duration_s``."""
+
+    q: np.ndarray
+    duration_s: float
+    gripper_m: float = 0.04
+    attach: str | None = None   # object to attach at the end of this segment
+    detach: bool = False        # release the held object at the end
+    label: str = ""
+
+
+@dataclass
+class _HumanBody:
+    spec: Human
+    body: int
+    times: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    xy: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+
+    def xy_at(self, t: float) -> np.ndarray:
+        ts = self.times
+        return np.array([np.interp(t, ts, self.xy[:, 0]), np.interp(t, ts, self.xy[:, 1])])
+
+
+class ArmSim:
+    """A Panda arm on the floor at the origin, with humans and objects, at 240 Hz.
+
+    One :meth:`step` advances one *control cycle* (``PHYSICS_HZ // control_hz``
+    physics steps) using the joint command last given (:meth:`command_joints`,
+    :meth:`command_torque_off`). :meth:`signals` reads the monitor's inputs
+    from the physics state.
+
+    Args:
+        control_hz: control (and monitor) rate; must divide 240.
+        gui: open the PyBullet GUI instead of DIRECT (needs a display).
+        start_joints_rad: initial arm pose (default :data:`HOME_JOINTS_RAD`).
+        humans, objects: :class:`~ethimon.sim.Human` / :class:`~ethimon.sim.SimObject`.
+
+    Example:
+        >>> sim = ArmSim(control_hz=60)              # doctest: +SKIP
+        >>> sim.step(); sorted(sim.signals())         # doctest: +SKIP
+        ['contact_force', 'ee_speed', 'human_distance', 'joint_speed_max']
+        >>> sim.close()                               # doctest: +SKIP
+    """
+
+    def __init__(self, *, control_hz: int = 60, gui: bool = False,
+                 start_joints_rad: Sequence[float] | None = None,
+                 humans: Sequence[Human] = (), objects: Sequence[SimObject] = ()) -> None:
+        if control_hz <= 0 or PHYSICS_HZ % control_hz:
+            raise ValueError(f"control_hz={control_hz} must divide {PHYSICS_HZ}")
+        p, pd = import_pybullet()
+        self._p = p
+        self.control_hz = control_hz
+        self.substeps = PHYSICS_HZ // control_hz
+        self.dt = 1.0 / control_hz
+        self.gui = gui
+        self.cid = p.connect(p.GUI if gui else p.DIRECT)
+        if self.cid < 0:
+            raise RuntimeError("could not connect to PyBullet")
+        cid = self.cid
+        p.setAdditionalSearchPath(pd.getDataPath(), physicsClientId=cid)
+        p.setGravity(0, 0, -9.81, physicsClientId=cid)
+        p.setTimeStep(1.0 / PHYSICS_HZ, physicsClientId=cid)
+        p.setPhysicsEngineParameter(deterministicOverlappingPairs=1, physicsClientId=cid)
+        if gui:
+            p.configureDebugVisualizer(p.COV_ENABLE_GUI, 0, physicsClientId=cid)
+        self.plane = p.loadURDF("plane.urdf", physicsClientId=cid)
+        self.robot = p.loadURDF("franka_panda/panda.urdf", useFixedBase=True,
+                                flags=p.URDF_USE_SELF_COLLISION_EXCLUDE_PARENT,
+                                physicsClientId=cid)
+        info = [p.getJointInfo(self.robot, j, physicsClientId=cid) for j in ARM_JOINTS]
+        self.lower = np.array([i[8] for i in info])
+        self.upper = np.array([i[9] for i in info])
+        q0 = np.array(start_joints_rad if start_joints_rad is not None else HOME_JOINTS_RAD,
+                      dtype=float)
+        self.reset_joints(q0)  # also sets q_cmd and the substep setpoint _q_sub
+        self.qd_cmd = np.zeros(7)
+        self.gripper_cmd = 0.04
+        self.max_velocity: float | None = None
+        self.powered = True
+        self.graspable: set[str] = set()
+        self.time_s = 0.0
+        self.cycle = 0
+        self.max_joint_speed_substep = 0.0  # max |qdot| over the last step's physics substeps
+        self.held: str | None = None
+        self._held_constraint: int | None = None
+        self.objects: dict[str, int] = {}
+        self.object_specs: dict[str, SimObject] = {}
+        for o in objects:
+            self.add_object(o)
+        self.humans: dict[str, _HumanBody] = {}
+        for h in humans:
+            self.add_human(h)
+        self._apply_command()
+
+    # ------------------------------------------------------------ construction
+
+    @classmethod
+    def from_block(cls, block: SimBlock, *, gui: bool = False) -> ArmSim:
+        """Build the cell a scenario's ``sim:`` block describes."""
+        return cls(control_hz=block.control_hz, gui=gui, start_joints_rad=block.start_joints_rad,
+                   humans=block.humans, objects=block.objects)
+
+    def add_object(self, o: SimObject) -> int:
+        """Add a rigid object; returns its body id."""
+        p, cid = self._p, self.cid
+        if o.shape == "box":
+            col = p.createCollisionShape(p.GEOM_BOX, halfExtents=o.half_extents_m, physicsClientId=cid)
+            vis_kw = {"halfExtents": o.half_extents_m}
+        elif o.shape == "sphere":
+            col = p.createCollisionShape(p.GEOM_SPHERE, radius=o.radius_m, physicsClientId=cid)
+            vis_kw = {"radius": o.radius_m}
+        else:
+            col = p.createCollisionShape(p.GEOM_CYLINDER, radius=o.radius_m, height=o.height_m,
+                                         physicsClientId=cid)
+            vis_kw = {"radius": o.radius_m, "length": o.height_m}
+        shape = {"box": p.GEOM_BOX, "sphere": p.GEOM_SPHERE, "cylinder": p.GEOM_CYLINDER}[o.shape]
+        rgba = o.rgba or ((0.9, 0.2, 0.1, 1) if o.hazard else (0.3, 0.5, 0.9, 1))
+        vis = p.createVisualShape(shape, rgbaColor=rgba, physicsClientId=cid, **vis_kw)
+        body = p.createMultiBody(baseMass=0.0 if o.fixed else o.mass_kg,
+                                 baseCollisionShapeIndex=col, baseVisualShapeIndex=vis,
+                                 basePosition=o.xyz_m, physicsClientId=cid)
+        self.objects[o.name] = body
+        self.object_specs[o.name] = o
+        return body
+
+    def add_human(self, h: Human) -> int:
+        """Add a person as a kinematic (massless, scripted) upright capsule."""
+        p, cid = self._p, self.cid
+        # capsule "height" is the cylinder part; total height = cylinder + 2 r
+        cyl = max(h.height_m - 2 * h.radius_m, 0.01)
+        col = p.createCollisionShape(p.GEOM_CAPSULE, radius=h.radius_m, height=cyl,
+                                     physicsClientId=cid)
+        vis = p.createVisualShape(p.GEOM_CAPSULE, radius=h.radius_m, length=cyl,
+                                  rgbaColor=(0.95, 0.75, 0.55, 1), physicsClientId=cid)
+        body = p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=col,
+                                 baseVisualShapeIndex=vis,
+                                 basePosition=(0, 0, h.height_m / 2), physicsClientId=cid)
+        hb = _HumanBody(h, body, np.array([w.t_s for w in h.waypoints], dtype=float),
+                        np.array([w.xy_m for w in h.waypoints], dtype=float))
+        self.humans[h.name] = hb
+        self._place_human(hb, 0.0)
+        return body
+
+    def _place_human(self, hb: _HumanBody, t: float) -> None:
+        x, y = hb.xy_at(t)
+        self._p.resetBasePositionAndOrientation(hb.body, (float(x), float(y), hb.spec.height_m / 2),
+                                                (0, 0, 0, 1), physicsClientId=self.cid)
+
+    def close(self) -> None:
+        """Disconnect from PyBullet (idempotent)."""
+        if self.cid is not None and self.cid >= 0:
+            try:
+                self._p.disconnect(physicsClientId=self.cid)
+            except Exception:  # already gone
+                pass
+            self.cid = -1
+
+    def __enter__(self) -> ArmSim:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    # ------------------------------------------------------------ state
+
+    def reset_joints(self, q: Sequence[float]) -> None:
+        """Teleport the arm to ``q`` (zero velocity); fingers open."""
+        p, cid = self._p, self.cid
+        for j, v in zip(ARM_JOINTS, q):
+            p.resetJointState(self.robot, j, float(v), 0.0, physicsClientId=cid)
+        for j in FINGER_JOINTS:
+            p.resetJointState(self.robot, j, 0.04, 0.0, physicsClientId=cid)
+        self.q_cmd = np.asarray(q, dtype=float).copy()
+        self._q_sub = self.q_cmd.copy()
+
+    def joint_state(self) -> tuple[np.ndarray, np.ndarray]:
+        """Measured arm joint positions and velocities (7 each)."""
+        st = self._p.getJointStates(self.robot, ARM_JOINTS, physicsClientId=self.cid)
+        return np.array([s[0] for s in st]), np.array([s[1] for s in st])
+
+    def applied_torques(self) -> np.ndarray:
+        """Motor torques the last physics step applied to the 7 arm joints."""
+        st = self._p.getJointStates(self.robot, ARM_JOINTS, physicsClientId=self.cid)
+        return np.array([s[3] for s in st])
+
+    def ee_pose(self) -> tuple[np.ndarray, np.ndarray]:
+        """End-effector (grasp target) world position and quaternion."""
+        ls = self._p.getLinkState(self.robot, EE_LINK, computeForwardKinematics=1,
+                                  physicsClientId=self.cid)
+        return np.array(ls[4]), np.array(ls[5])
+
+    def ee_velocity(self) -> np.ndarray:
+        """End-effector linear velocity (m/s, world frame)."""
+        ls = self._p.getLinkState(self.robot, EE_LINK, computeLinkVelocity=1,
+                                  computeForwardKinematics=1, physicsClientId=self.cid)
+        return np.array(ls[6])
+
+    def human_position(self, name: str) -> np.ndarray:
+        """Capsule centre of human ``name``."""
+        pos, _ = self._p.getBasePositionAndOrientation(self.humans[name].body,
+                                                       physicsClientId=self.cid)
+        return np.array(pos)
+
+    # ------------------------------------------------------------ signals
+
+    def distance(self, body_a: int, body_b: int, max_m: float = _NO_HUMAN_M) -> float:
+        """Minimum surface distance between two bodies (0 when touching), via getClosestPoints."""
+        pts = self._p.getClosestPoints(body_a, body_b, max_m, physicsClientId=self.cid)
+        if not pts:
+            return max_m
+        return max(0.0, min(pt[8] for pt in pts))
+
+    def human_distance(self) -> float:
+        """Minimum distance between any human and the arm (or the object it holds)."""
+        best = _NO_HUMAN_M
+        held = self.objects.get(self.held) if self.held else None
+        for hb in self.humans.values():
+            best = min(best, self.distance(self.robot, hb.body, best))
+            if held is not None:
+                best = min(best, self.distance(held, hb.body, best))
+        return best
+
+    def contact_force(self) -> float:
+        """Largest contact normal force (N) of the arm against humans/objects.
+
+        Counts arm–human, held-object–human and arm–object contacts; the
+        objects the task picks (see :meth:`set_graspable`) and the floor are excluded.
+        """
+        p, cid = self._p, self.cid
+        best = 0.0
+        held = self.objects.get(self.held) if self.held else None
+        others = [hb.body for hb in self.humans.values()]
+        others += [b for n, b in self.objects.items() if n not in self.graspable]
+        for b in others:
+            for c in p.getContactPoints(self.robot, b, physicsClientId=cid):
+                if c[9] > best:
+                    best = c[9]
+        if held is not None:
+            for hb in self.humans.values():
+                for c in p.getContactPoints(held, hb.body, physicsClientId=cid):
+                    if c[9] > best:
+                        best = c[9]
+        return float(best)
+
+    def signals(self) -> dict[str, float]:
+        """The monitor's inputs from the current physics state.
+
+        Returns:
+            ``human_distance`` (m), ``ee_speed`` (m/s), ``contact_force`` (N),
+            ``joint_speed_max`` (rad/s).
+        """
+        _, qd = self.joint_state()
+        return {
+            "human_distance": float(self.human_distance()),
+            "ee_speed": float(np.linalg.norm(self.ee_velocity())),
+            "contact_force": self.contact_force(),
+            "joint_speed_max": float(np.max(np.abs(qd))),
+        }
+
+    # ------------------------------------------------------------ commands
+
+    def command_joints(self, q: Sequence[float], qd: Sequence[float] | None = None,
+                       gripper_m: float | None = None, *,
+                       max_velocity: float | None = None) -> None:
+        """Position-control the arm towards ``q`` (feed-forward velocity ``qd``); powers motors on.
+
+        ``max_velocity`` (rad/s) makes each motor clamp its speed at that value.
+        """
+        self.max_velocity = max_velocity
+        if not self.powered:  # re-powering: interpolate from where the arm is
+            self._q_sub = self.joint_state()[0]
+        self.q_cmd = np.asarray(q, dtype=float)
+        self.qd_cmd = np.zeros(7) if qd is None else np.asarray(qd, dtype=float)
+        if gripper_m is not None:
+            self.gripper_cmd = gripper_m
+        self.powered = True
+
+    def command_torque_off(self) -> None:
+        """Stop category 0 style: remove motor power at once (no torque, no velocity hold)."""
+        p, cid = self._p, self.cid
+        self.powered = False
+        p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
+                                    targetVelocities=[0.0] * 7, forces=[0.0] * 7,
+                                    physicsClientId=cid)
+        p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.TORQUE_CONTROL,
+                                    forces=[0.0] * 7, physicsClientId=cid)
+
+    def _apply_command(self, q: np.ndarray | None = None) -> None:
+        p, cid = self._p, self.cid
+        if not self.powered:
+            return
+        q = self.q_cmd if q is None else q
+        if self.max_velocity is None:
+            p.setJointMotorControlArray(
+                self.robot, ARM_JOINTS, p.POSITION_CONTROL,
+                targetPositions=q.tolist(), targetVelocities=self.qd_cmd.tolist(),
+                forces=ARM_MAX_FORCE_N_M, positionGains=[_KP] * 7, velocityGains=[_KD] * 7,
+                physicsClientId=cid)
+        else:
+            for k, j in enumerate(ARM_JOINTS):
+                p.setJointMotorControl2(
+                    self.robot, j, p.POSITION_CONTROL, targetPosition=float(q[k]),
+                    targetVelocity=float(self.qd_cmd[k]), force=ARM_MAX_FORCE_N_M[k],
+                    positionGain=_KP, velocityGain=_KD, maxVelocity=self.max_velocity,
+                    physicsClientId=cid)
+        p.setJointMotorControlArray(self.robot, FINGER_JOINTS, p.POSITION_CONTROL,
+                                    targetPositions=[self.gripper_cmd] * 2, forces=[40.0] * 2,
+                                    physicsClientId=cid)
+
+    def attach(self, name: str) -> None:
+        """Rigidly attach object ``name`` to the hand where it is now (a grasp)."""
+        if self.held is not None:
+            self.detach()
+        p, cid = self._p, self.cid
+        body = self.objects[name]
+        hs = p.getLinkState(self.robot, HAND_LINK, computeForwardKinematics=1, physicsClientId=cid)
+        obj_pos, obj_orn = p.getBasePositionAndOrientation(body, physicsClientId=cid)
+        inv_pos, inv_orn = p.invertTransform(hs[0], hs[1])  # constraint frames are COM frames
+        rel_pos, rel_orn = p.multiplyTransforms(inv_pos, inv_orn, obj_pos, obj_orn)
+        self.set_graspable(name)
+        self._held_constraint = p.createConstraint(
+            self.robot, HAND_LINK, body, -1, p.JOINT_FIXED, (0, 0, 0), rel_pos, (0, 0, 0),
+            parentFrameOrientation=rel_orn, physicsClientId=cid)
+        p.changeConstraint(self._held_constraint, maxForce=500, physicsClientId=cid)
+        self.held = name
+
+    def set_graspable(self, name: str) -> None:
+        """Stop the arm from colliding with object ``name`` (grasps are kinematic).
+
+        The task planner calls this for every object it picks, so fingers that
+        close on or let go of an object never kick it; such objects never add
+        to ``contact_force`` either.
+        """
+        p, cid = self._p, self.cid
+        body = self.objects[name]
+        for link in range(-1, p.getNumJoints(self.robot, physicsClientId=cid)):
+            p.setCollisionFilterPair(self.robot, body, link, -1, 0, physicsClientId=cid)
+        self.graspable.add(name)
+
+    def detach(self) -> None:
+        """Let go of the held object (it falls under gravity)."""
+        if self._held_constraint is not None:
+            p, cid = self._p, self.cid
+            p.removeConstraint(self._held_constraint, physicsClientId=cid)
+        self._held_constraint = None
+        self.held = None
+
+    # ------------------------------------------------------------ stepping
+
+    def step(self) -> None:
+        """Advance one control cycle: move humans, run the physics substeps."""
+        p, cid = self._p, self.cid
+        self.time_s = (self.cycle + 1) * self.dt
+        for hb in self.humans.values():
+            self._place_human(hb, self.time_s)
+        peak = 0.0
+        n = self.substeps
+        q_from = self._q_sub
+        for k in range(1, n + 1):
+            if self.powered:  # interpolate the setpoint at the physics rate
+                self._q_sub = q_from + (k / n) * (self.q_cmd - q_from)
+                self._apply_command(self._q_sub)
+            p.stepSimulation(physicsClientId=cid)
+            st = p.getJointStates(self.robot, ARM_JOINTS, physicsClientId=cid)
+            for s in st:
+                v = abs(s[1])
+                if v > peak:
+                    peak = v
+        self.max_joint_speed_substep = peak
+        self.cycle += 1
+
+    # ------------------------------------------------------------ kinematics
+
+    def solve_ik(self, xyz: Sequence[float], rpy: Sequence[float] | None = None,
+                 seed: Sequence[float] | None = None, iterations: int = 6) -> np.ndarray:
+        """Joint angles that put the grasp target at ``xyz`` with orientation ``rpy``.
+
+        Deterministic: seeds from ``seed`` (default the current pose), refines a
+        few times, and restores the arm's state afterwards.
+        """
+        p, cid = self._p, self.cid
+        q_now, qd_now = self.joint_state()
+        seed_q = np.asarray(seed if seed is not None else q_now, dtype=float)
+        orn = p.getQuaternionFromEuler(tuple(rpy) if rpy is not None else _DOWN_RPY)
+        ranges = (self.upper - self.lower).tolist()
+        q = seed_q.copy()
+        for _ in range(iterations):
+            for j, v in zip(ARM_JOINTS, q):
+                p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+            sol = p.calculateInverseKinematics(
+                self.robot, EE_LINK, list(xyz), orn,
+                lowerLimits=self.lower.tolist() + [0.0, 0.0],
+                upperLimits=self.upper.tolist() + [0.04, 0.04],
+                jointRanges=ranges + [0.04, 0.04],
+                restPoses=list(HOME_JOINTS_RAD) + [0.04, 0.04],
+                maxNumIterations=200, residualThreshold=1e-5, physicsClientId=cid)
+            q = np.clip(np.array(sol[:7]), self.lower, self.upper)
+        for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
+            p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+        return q
+
+    def fk(self, q: Sequence[float]) -> np.ndarray:
+        """Grasp-target position for joint angles ``q`` (state restored afterwards)."""
+        p, cid = self._p, self.cid
+        q_now, qd_now = self.joint_state()
+        for j, v in zip(ARM_JOINTS, q):
+            p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+        pos, _ = self.ee_pose()
+        for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
+            p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+        return pos
+
+    # ------------------------------------------------------------ rendering
+
+    def render(self, width: int = 480, height: int = 360) -> np.ndarray:
+        """An RGB frame (H×W×3 uint8) from PyBullet's software TinyRenderer (headless)."""
+        p, cid = self._p, self.cid
+        view = p.computeViewMatrixFromYawPitchRoll((0.35, 0.0, 0.45), 2.4, 50, -28, 0, 2,
+                                                   physicsClientId=cid)
+        proj = p.computeProjectionMatrixFOV(55, width / height, 0.05, 10, physicsClientId=cid)
+        _, _, rgba, _, _ = p.getCameraImage(width, height, view, proj,
+                                            renderer=p.ER_TINY_RENDERER, physicsClientId=cid)
+        return np.asarray(rgba, dtype=np.uint8).reshape(height, width, 4)[:, :, :3]

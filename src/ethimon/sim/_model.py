@@ -1,0 +1,257 @@
+"""The scenario YAML's ``sim:`` block as pydantic v2 models.
+
+No PyBullet here: the scenario loader validates ``sim:`` blocks even where
+the ``sim`` extra is not installed. Every model forbids unknown keys, so a
+typo such as ``duraton_s`` is named back to the user.
+
+Example:
+    >>> block = SimBlock.model_validate({
+    ...     "duration_s": 3.0,
+    ...     "task": [{"primitive": "reach", "xyz_m": [0.5, 0.0, 0.3]}],
+    ...     "humans": [{"name": "worker", "waypoints": [{"t_s": 0, "xy_m": [1.5, 0]}]}],
+    ... })
+    >>> block.control_hz, block.task[0].primitive, block.humans[0].radius_m
+    (60, 'reach', 0.2)
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Annotated, Literal, Union
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+__all__ = [
+    "PHYSICS_HZ",
+    "SIGNAL_NAMES",
+    "SimBlock",
+    "SimExpect",
+    "Human",
+    "Waypoint",
+    "SimObject",
+    "Dropout",
+    "Primitive",
+    "Reach",
+    "Pick",
+    "Place",
+    "HandOver",
+    "Pour",
+    "Wipe",
+    "Wait",
+]
+
+#: Physics rate of every simulation (Hz); the control rate must divide it.
+PHYSICS_HZ = 240
+
+#: Signals the simulation produces each control cycle.
+SIGNAL_NAMES = ("human_distance", "ee_speed", "contact_force", "joint_speed_max")
+
+Vec3 = tuple[float, float, float]
+Vec2 = tuple[float, float]
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+# ---------------------------------------------------------------- primitives
+
+
+class _Primitive(_Model):
+    duration_s: float | None = Field(
+        None, gt=0, description="minimum time for each motion segment; longer if the "
+        "joint-speed budget (task_joint_speed_rad_s) needs it")
+
+
+class _Target(_Primitive):
+    xyz_m: Vec3 | None = Field(None, description="Cartesian end-effector target (IK)")
+    joints_rad: tuple[float, float, float, float, float, float, float] | None = Field(
+        None, description="joint target, instead of xyz_m")
+    rpy_rad: Vec3 | None = Field(None, description="end-effector orientation; default points down")
+
+    @model_validator(mode="after")
+    def _one_target(self):
+        if (self.xyz_m is None) == (self.joints_rad is None):
+            raise ValueError("give exactly one of 'xyz_m' or 'joints_rad'")
+        return self
+
+
+class Reach(_Target):
+    """Move the end effector to a Cartesian (``xyz_m``) or joint (``joints_rad``) target."""
+
+    primitive: Literal["reach"]
+
+
+class Pick(_Primitive):
+    """Approach an object from above, grasp it, lift it."""
+
+    primitive: Literal["pick"]
+    object: str
+    approach_height_m: float = Field(0.15, ge=0.0)
+
+
+class Place(_Primitive):
+    """Carry the held object to ``xyz_m`` (its resting point), release it, retreat."""
+
+    primitive: Literal["place"]
+    xyz_m: Vec3
+    approach_height_m: float = Field(0.15, ge=0.0)
+
+
+class HandOver(_Primitive):
+    """Bring the held object to a hand-over point, hold it out, optionally let go."""
+
+    primitive: Literal["hand_over"]
+    xyz_m: Vec3
+    human: str | None = Field(None, description="who receives it (documentation)")
+    hold_s: float = Field(1.0, ge=0.0)
+    release: bool = True
+
+
+class Pour(_Primitive):
+    """Move the held container above ``xyz_m``, tilt by ``tilt_rad``, hold, tilt back."""
+
+    primitive: Literal["pour"]
+    xyz_m: Vec3
+    tilt_rad: float = Field(1.6, ge=0.0, le=math.pi)
+    hold_s: float = Field(1.0, ge=0.0)
+
+
+class Wipe(_Primitive):
+    """Zig-zag over a surface rectangle centred at ``xyz_m``."""
+
+    primitive: Literal["wipe"]
+    xyz_m: Vec3
+    length_m: float = Field(0.3, gt=0.0)
+    width_m: float = Field(0.2, gt=0.0)
+    passes: int = Field(3, ge=1, le=20)
+
+
+class Wait(_Primitive):
+    """Hold the current pose for ``duration_s``."""
+
+    primitive: Literal["wait"]
+    duration_s: float = Field(1.0, gt=0)
+
+
+Primitive = Annotated[Union[Reach, Pick, Place, HandOver, Pour, Wipe, Wait],
+                      Field(discriminator="primitive")]
+
+
+# ---------------------------------------------------------------- the world
+
+
+class Waypoint(_Model):
+    """Where a human stands (capsule axis, floor coordinates) at time ``t_s``."""
+
+    t_s: float = Field(ge=0.0)
+    xy_m: Vec2
+
+
+class Human(_Model):
+    """A person as an upright capsule on the floor, moving between waypoints.
+
+    Between waypoints the position is interpolated linearly; before the first
+    and after the last the person stands still.
+    """
+
+    name: str
+    radius_m: float = Field(0.2, gt=0.0, le=1.0)
+    height_m: float = Field(1.7, gt=0.0, le=2.5)
+    waypoints: tuple[Waypoint, ...] = Field(min_length=1)
+
+    @field_validator("waypoints")
+    @classmethod
+    def _increasing(cls, v):
+        ts = [w.t_s for w in v]
+        if any(b <= a for a, b in zip(ts, ts[1:])):
+            raise ValueError(f"waypoint times must increase, got {ts}")
+        return v
+
+
+class SimObject(_Model):
+    """A rigid object on the floor or in the scene; ``hazard`` tags it (e.g. sharp, hot)."""
+
+    name: str
+    shape: Literal["box", "sphere", "cylinder"] = "box"
+    xyz_m: Vec3
+    half_extents_m: Vec3 = (0.03, 0.03, 0.03)
+    radius_m: float = Field(0.03, gt=0.0)
+    height_m: float = Field(0.1, gt=0.0)
+    mass_kg: float = Field(0.2, ge=0.0)
+    hazard: str | None = None
+    fixed: bool = False
+    rgba: tuple[float, float, float, float] | None = None
+
+
+class Dropout(_Model):
+    """A sensor fault: ``signal`` is NaN (or absent, ``mode: missing``) in [from_s, to_s)."""
+
+    signal: str
+    from_s: float = Field(ge=0.0)
+    to_s: float
+    mode: Literal["nan", "missing"] = "nan"
+
+    @model_validator(mode="after")
+    def _order(self):
+        if self.to_s <= self.from_s:
+            raise ValueError(f"to_s={self.to_s} must be after from_s={self.from_s}")
+        return self
+
+
+class SimExpect(_Model):
+    """What ``check --sim`` verifies about the simulated run (all optional)."""
+
+    safe_pose_within_s: float | None = Field(
+        None, gt=0.0, description="safe pose reached (within the spec's tolerance) this "
+        "soon after the first override")
+    min_separation_m: float | None = Field(
+        None, ge=0.0, description="human-robot distance never below this")
+    task_completed: bool | None = None
+    released: bool | None = Field(None, description="an override was released before the end")
+    response: Literal["none", "safe_pose", "stop_2", "stop_1", "stop_0"] | None = Field(
+        None, description="most severe response the arm executed")
+    max_reaction_cycles: int = Field(0, ge=0, description="cycles from override to controller switch")
+
+
+class SimBlock(_Model):
+    """The ``sim:`` block of a scenario: what the simulated cell does."""
+
+    control_hz: int = Field(60, gt=0, le=PHYSICS_HZ)
+    duration_s: float = Field(6.0, gt=0.0, le=120.0)
+    start_joints_rad: tuple[float, float, float, float, float, float, float] | None = None
+    task_joint_speed_rad_s: float = Field(
+        0.8, gt=0.0, description="peak joint speed of task motions (auto-timing)")
+    stop_ramp_s: float = Field(0.25, gt=0.0, description="deceleration time of stop_1/stop_2")
+    task: tuple[Primitive, ...] = ()
+    humans: tuple[Human, ...] = ()
+    objects: tuple[SimObject, ...] = ()
+    dropouts: tuple[Dropout, ...] = ()
+    expect: SimExpect = SimExpect()
+
+    @field_validator("control_hz")
+    @classmethod
+    def _divides(cls, v):
+        if PHYSICS_HZ % v:
+            ok = [h for h in range(1, PHYSICS_HZ + 1) if PHYSICS_HZ % h == 0 and h >= 10]
+            raise ValueError(f"control_hz={v} must divide the physics rate {PHYSICS_HZ} Hz "
+                             f"(one of {ok})")
+        return v
+
+    @model_validator(mode="after")
+    def _names(self):
+        seen: set[str] = set()
+        for thing in (*self.humans, *self.objects):
+            if thing.name in seen:
+                raise ValueError(f"duplicate name {thing.name!r} among humans/objects")
+            seen.add(thing.name)
+        objs = {o.name for o in self.objects}
+        humans = {h.name for h in self.humans}
+        for i, prim in enumerate(self.task):
+            if isinstance(prim, Pick) and prim.object not in objs:
+                raise ValueError(f"task[{i}] picks unknown object {prim.object!r} "
+                                 f"(objects: {sorted(objs)})")
+            if isinstance(prim, HandOver) and prim.human is not None and prim.human not in humans:
+                raise ValueError(f"task[{i}] hands over to unknown human {prim.human!r} "
+                                 f"(humans: {sorted(humans)})")
+        return self

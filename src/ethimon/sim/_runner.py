@@ -1,0 +1,383 @@
+"""``GovernedArm`` and ``run_sim``: the monitor in the PyBullet loop.
+
+Each control cycle: read the signals from the physics state, call
+``monitor.step``, and in that same cycle command the controller the decision
+names (task, safe pose, stop 0/1/2) before the physics substeps run.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Mapping, Sequence
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ._arm import ArmSim
+from ._control import SEVERITY, SafePoseController, StopController, TaskController, plan_task
+from ._model import SimBlock
+
+__all__ = ["GovernedArm", "CycleRecord", "SimResult", "run_sim", "check_sim_expectations"]
+
+_DEFAULT_SAFE_POSE = (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785)
+
+
+def _response_name(resp: Any) -> str:
+    return str(getattr(resp, "value", resp))
+
+
+@dataclass(frozen=True)
+class CycleRecord:
+    """One control cycle of a governed run.
+
+    Attributes:
+        cycle: control-cycle index (0-based; the monitor's ``Decision.cycle`` is ``monitor_cycle``).
+        t_s: simulated time at which the signals were read.
+        signals: what the monitor was given (after dropouts; NaN for a dropped value).
+        override, response, violations, risk, faults, latched: the monitor's decision.
+        controller: the controller that commanded the arm in this same cycle.
+        joint_speed_max_rad_s: the largest |joint velocity| over this cycle's physics substeps.
+        safe_pose_error_rad: max |q − q_safe| after the cycle's physics.
+        human_distance_true_m: the simulated distance (also during a sensor dropout).
+    """
+
+    cycle: int
+    monitor_cycle: int
+    t_s: float
+    signals: dict[str, float]
+    override: bool
+    response: str
+    violations: tuple[str, ...]
+    risk: float | None
+    faults: tuple[str, ...]
+    latched: bool
+    controller: str
+    task_step: str
+    joint_speed_max_rad_s: float
+    safe_pose_error_rad: float
+    human_distance_true_m: float
+
+
+@dataclass
+class SimResult:
+    """The outcome of :func:`run_sim`.
+
+    Attributes:
+        trace: one :class:`CycleRecord` per control cycle.
+        first_override_cycle: first cycle with ``override`` (``None``: never).
+        override_reaction_cycles: cycles from that decision to the first cycle a
+            response controller commanded the arm (0 = same cycle; ``None``: no override).
+        time_to_safe_pose_s: simulated seconds from the first override to every joint
+            within the spec's tolerance of the safe pose (``None``: not reached / not asked).
+        max_joint_speed_safe_pose_rad_s: largest |joint velocity| (per physics step)
+            while the safe-pose controller drove the arm (``None``: it never did).
+        joint_speed_limit_rad_s: the spec's safe-pose joint-speed limit.
+        min_separation_m: smallest simulated human–robot distance of the run.
+        task_completed: every task primitive finished.
+        released: an override was released (override went back to false) before the end.
+        executed_response: the most severe response the arm executed ("none" if none).
+        fired: ids of every obligation violated at least once.
+        fault_cycles: cycles whose decision carried fail-closed faults.
+        sim_time_s, wall_time_s, realtime_factor: simulated vs. wall-clock time of the loop.
+        files: paths written by ``record_dir``.
+    """
+
+    trace: list[CycleRecord] = field(default_factory=list)
+    first_override_cycle: int | None = None
+    override_reaction_cycles: int | None = None
+    time_to_safe_pose_s: float | None = None
+    max_joint_speed_safe_pose_rad_s: float | None = None
+    joint_speed_limit_rad_s: float = 1.0
+    min_separation_m: float = math.inf
+    task_completed: bool = False
+    released: bool = False
+    executed_response: str = "none"
+    fired: tuple[str, ...] = ()
+    fault_cycles: int = 0
+    sim_time_s: float = 0.0
+    wall_time_s: float = 0.0
+    realtime_factor: float = 0.0
+    files: list[str] = field(default_factory=list)
+
+    @property
+    def override(self) -> bool:
+        """The monitor overrode at least once."""
+        return self.first_override_cycle is not None
+
+    def summary(self) -> dict[str, Any]:
+        """The scalar results as a JSON-ready dict (no trace)."""
+        d = {k: v for k, v in asdict(self).items() if k not in ("trace",)}
+        d["override"] = self.override
+        d["fired"] = list(self.fired)
+        if d["min_separation_m"] == math.inf:
+            d["min_separation_m"] = None
+        return d
+
+
+class GovernedArm:
+    """An :class:`ArmSim` whose every control cycle goes through a ``Monitor``.
+
+    ``step()`` = read signals → ``monitor.step`` → command the controller the
+    decision names (same cycle) → physics. On override the arm leaves the
+    task for the response controller (never de-escalating while the override
+    lasts); when the monitor releases the override the task resumes from where
+    the arm is.
+
+    Args:
+        sim: the simulated cell.
+        monitor: an ``ethimon.Monitor`` (anything with ``step(mapping) -> Decision``).
+        segments: the task as planned segments (default: none, the arm holds still).
+        safe_pose: joint angles; default ``monitor.spec.safe_pose``.
+        inputs: constant extra inputs each cycle (``p_unsafe``, ``p``, ``risk``…).
+        signal_filter: ``f(t_s, signals) -> signals`` applied before the monitor sees
+            them (sensor faults).
+        task_joint_speed_rad_s, stop_ramp_s: see :class:`~ethimon.sim.SimBlock`.
+
+    Example:
+        >>> sim = ArmSim()                                      # doctest: +SKIP
+        >>> arm = GovernedArm(sim, ethimon.Monitor(spec), inputs={"p_unsafe": 0.9})  # doctest: +SKIP
+        >>> rec = arm.step(); rec.override, rec.controller      # doctest: +SKIP
+        (True, 'safe_pose')
+    """
+
+    def __init__(self, sim: ArmSim, monitor: Any, *, segments: Sequence = (),
+                 safe_pose: Any = None, inputs: Mapping[str, Any] | None = None,
+                 signal_filter=None, task_joint_speed_rad_s: float = 0.8,
+                 stop_ramp_s: float = 0.25) -> None:
+        self.sim = sim
+        self.monitor = monitor
+        sp = safe_pose if safe_pose is not None else getattr(getattr(monitor, "spec", None),
+                                                               "safe_pose", None)
+        if sp is None or isinstance(sp, (list, tuple, np.ndarray)):
+            self.safe_joints = np.array(sp if sp is not None else _DEFAULT_SAFE_POSE, dtype=float)
+            self.safe_speed = 1.0
+            self.safe_tol = 0.02
+        else:
+            self.safe_joints = np.array(sp.joints_rad, dtype=float)
+            self.safe_speed = float(sp.max_joint_speed_rad_s)
+            self.safe_tol = float(sp.tolerance_rad)
+        if self.safe_joints.shape != (7,):
+            raise ValueError(f"the Panda safe pose needs 7 joint values, got {len(self.safe_joints)}")
+        self.inputs = dict(inputs or {})
+        self.signal_filter = signal_filter
+        self.stop_ramp_s = stop_ramp_s
+        q0, _ = sim.joint_state()
+        self.task = TaskController(segments, q0, task_joint_speed_rad_s)
+        self.controller: Any = self.task
+        self.active = "none"       # response being executed
+        self.last_decision = None
+
+    def step(self) -> CycleRecord:
+        """Run one control cycle; returns what happened."""
+        sim = self.sim
+        t = sim.time_s
+        cycle = sim.cycle
+        sig = sim.signals()
+        true_dist = sig["human_distance"]
+        fed = {**sig, **self.inputs}
+        if self.signal_filter is not None:
+            fed = self.signal_filter(t, fed)
+        d = self.monitor.step(fed)
+        self.last_decision = d
+        resp = _response_name(d.response)
+        if d.override:
+            if resp == "none":
+                resp = "safe_pose"
+            if SEVERITY[resp] > SEVERITY[self.active]:
+                self._switch(resp)
+        elif self.active != "none":
+            q, _ = sim.joint_state()
+            self.task.resume(q)
+            self.controller = self.task
+            self.active = "none"
+        self.controller.command(sim)        # same cycle as the decision
+        label = self.controller.name if self.controller is not self.task else "task"
+        task_step = self.task.label
+        sim.step()
+        q, _ = sim.joint_state()
+        return CycleRecord(
+            cycle=cycle, monitor_cycle=int(d.cycle), t_s=t,
+            signals={k: _num(v) for k, v in fed.items() if not isinstance(v, (list, tuple))},
+            override=bool(d.override), response=_response_name(d.response),
+            violations=tuple(d.violations), risk=d.risk, faults=tuple(d.faults),
+            latched=bool(getattr(d, "latched", False)), controller=label, task_step=task_step,
+            joint_speed_max_rad_s=sim.max_joint_speed_substep,
+            safe_pose_error_rad=float(np.max(np.abs(q - self.safe_joints))),
+            human_distance_true_m=true_dist)
+
+    def _switch(self, resp: str) -> None:
+        q, qd = self.sim.joint_state()
+        if resp == "safe_pose":
+            self.controller = SafePoseController(q, self.safe_joints, self.safe_speed)
+        else:
+            self.controller = StopController(int(resp[-1]), q, qd, self.stop_ramp_s)
+        self.active = resp
+
+
+def _num(v: Any) -> float:
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def _dropout_filter(block: SimBlock):
+    drops = block.dropouts
+    if not drops:
+        return None
+
+    def apply(t: float, fed: dict) -> dict:
+        for dr in drops:
+            if dr.from_s <= t < dr.to_s:
+                if dr.mode == "missing":
+                    fed.pop(dr.signal, None)
+                else:
+                    fed[dr.signal] = math.nan
+        return fed
+
+    return apply
+
+
+def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
+            probs: Sequence[float] | None = None, risk: float | None = None,
+            p_unsafe: float | None = None, inputs: Mapping[str, Any] | None = None,
+            record_dir: str | None = None, gui: bool = False) -> SimResult:
+    """Run a scenario's ``sim:`` block with ``monitor`` in the loop.
+
+    Args:
+        sim_block: a :class:`SimBlock` (or a dict that validates as one).
+        monitor: an ``ethimon.Monitor``; it is ``reset()`` first.
+        probs: the risk estimator's class probabilities for the task text (fed as ``p``).
+        risk: R_e itself (fed as ``risk``).
+        p_unsafe: the unsafe-class probability (fed as ``p_unsafe``).
+        inputs: other constant inputs for every cycle.
+        record_dir: write PNG frames, ``trace.jsonl``/``trace.csv`` and ``plot.png`` there.
+        gui: show the PyBullet GUI (needs a display) and run in real time.
+
+    Returns:
+        A :class:`SimResult`.
+
+    Raises:
+        DependencyNotInstalled: PyBullet is missing (``pip install "ethimon[sim]"``).
+    """
+    block = sim_block if isinstance(sim_block, SimBlock) else SimBlock.model_validate(sim_block)
+    wall0 = time.perf_counter()
+    fixed: dict[str, Any] = dict(inputs or {})
+    if probs is not None:
+        fixed["p"] = tuple(float(x) for x in probs)
+    if p_unsafe is not None:
+        fixed["p_unsafe"] = float(p_unsafe)
+    if risk is not None:
+        fixed["risk"] = float(risk)
+    fixed.setdefault("risk_age_s", 0.0)  # the task text does not change: the estimate is current
+    if hasattr(monitor, "reset"):
+        monitor.reset()
+    recorder = None
+    with ArmSim.from_block(block, gui=gui) as sim:
+        segments = plan_task(sim, block)
+        arm = GovernedArm(sim, monitor, segments=segments, inputs=fixed,
+                          signal_filter=_dropout_filter(block),
+                          task_joint_speed_rad_s=block.task_joint_speed_rad_s,
+                          stop_ramp_s=block.stop_ramp_s)
+        if record_dir is not None:
+            from ._record import Recorder
+            recorder = Recorder(record_dir, sim)
+            recorder.frame("start")
+        res = SimResult(joint_speed_limit_rad_s=arm.safe_speed)
+        n_cycles = int(round(block.duration_s * block.control_hz))
+        fired: dict[str, None] = {}
+        first_cmd: int | None = None
+        t_override: float | None = None
+        max_sp = None
+        overridden_before = False
+        loop0 = time.perf_counter()
+        for _ in range(n_cycles):
+            rec = arm.step()
+            res.trace.append(rec)
+            for v in rec.violations:
+                fired.setdefault(v, None)
+            if rec.faults:
+                res.fault_cycles += 1
+            if rec.override:
+                if res.first_override_cycle is None:
+                    res.first_override_cycle = rec.cycle
+                    t_override = rec.t_s
+                    if recorder:
+                        recorder.frame("override", rec.cycle)
+                overridden_before = True
+            elif overridden_before and not res.released:
+                res.released = True
+            if rec.controller != "task" and first_cmd is None:
+                first_cmd = rec.cycle
+            if SEVERITY[rec.controller if rec.controller in SEVERITY else "none"] > \
+                    SEVERITY[res.executed_response]:
+                res.executed_response = rec.controller
+            if rec.controller == "safe_pose":
+                max_sp = max(max_sp or 0.0, rec.joint_speed_max_rad_s)
+                if (res.time_to_safe_pose_s is None and t_override is not None
+                        and rec.safe_pose_error_rad <= arm.safe_tol):
+                    res.time_to_safe_pose_s = round(rec.t_s + sim.dt - t_override, 6)
+                    if recorder:
+                        recorder.frame("safe_pose", rec.cycle)
+            res.min_separation_m = min(res.min_separation_m, rec.human_distance_true_m)
+            if gui:
+                time.sleep(max(0.0, loop0 + sim.time_s - time.perf_counter()))
+        loop_wall = time.perf_counter() - loop0
+        res.task_completed = arm.task.done
+        if res.first_override_cycle is not None and first_cmd is not None:
+            res.override_reaction_cycles = first_cmd - res.first_override_cycle
+        res.max_joint_speed_safe_pose_rad_s = max_sp
+        res.fired = tuple(fired)
+        res.sim_time_s = round(sim.time_s, 6)
+        res.realtime_factor = res.sim_time_s / loop_wall if loop_wall > 0 else math.inf
+        if recorder:
+            recorder.frame("end")
+            res.files = recorder.finish(res)
+    res.wall_time_s = time.perf_counter() - wall0
+    return res
+
+
+def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
+    """Compare a run with the block's ``expect:`` (and the always-on rules).
+
+    Always checked: the response controller took over in the override's own
+    cycle (``max_reaction_cycles``, default 0), and the safe-pose move kept every
+    joint at or under the spec's speed limit (+1 % for physics jitter).
+
+    Returns:
+        Problems as one-line messages; an empty list means the run passed.
+    """
+    ex = sim_block.expect
+    out: list[str] = []
+    r = result
+    if r.override_reaction_cycles is not None and r.override_reaction_cycles > ex.max_reaction_cycles:
+        out.append(f"sim: response controller took over {r.override_reaction_cycles} cycle(s) after "
+                   f"the override at cycle {r.first_override_cycle} (allowed {ex.max_reaction_cycles})")
+    lim = r.joint_speed_limit_rad_s
+    if r.max_joint_speed_safe_pose_rad_s is not None and r.max_joint_speed_safe_pose_rad_s > lim * 1.01:
+        out.append(f"sim: joint speed {r.max_joint_speed_safe_pose_rad_s:.3f} rad/s on the way to the "
+                   f"safe pose exceeds the limit {lim:g} rad/s")
+    if ex.safe_pose_within_s is not None:
+        if r.first_override_cycle is None:
+            out.append(f"sim: expected the safe pose within {ex.safe_pose_within_s:g} s, "
+                       "but the monitor never overrode")
+        elif r.time_to_safe_pose_s is None:
+            out.append(f"sim: safe pose not reached (override at cycle {r.first_override_cycle}, "
+                       f"response {r.executed_response})")
+        elif r.time_to_safe_pose_s > ex.safe_pose_within_s + 1e-9:
+            out.append(f"sim: safe pose reached after {r.time_to_safe_pose_s:.3f} s, "
+                       f"expected within {ex.safe_pose_within_s:g} s")
+    if ex.min_separation_m is not None and r.min_separation_m < ex.min_separation_m:
+        out.append(f"sim: human-robot separation fell to {r.min_separation_m:.3f} m, "
+                   f"expected never below {ex.min_separation_m:g} m")
+    if ex.task_completed is not None and r.task_completed != ex.task_completed:
+        out.append(f"sim: task_completed is {str(r.task_completed).lower()}, "
+                   f"expected {str(ex.task_completed).lower()}")
+    if ex.released is not None and r.released != ex.released:
+        out.append(f"sim: override {'was' if r.released else 'was not'} released, "
+                   f"expected released: {str(ex.released).lower()}")
+    if ex.response is not None and r.executed_response != ex.response:
+        out.append(f"sim: the arm executed {r.executed_response!r}, expected {ex.response!r}")
+    return out
