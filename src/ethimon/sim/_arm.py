@@ -143,8 +143,26 @@ class ArmSim:
     @classmethod
     def from_block(cls, block: SimBlock, *, gui: bool = False) -> ArmSim:
         """Build the cell a scenario's ``sim:`` block describes."""
-        return cls(control_hz=block.control_hz, gui=gui, start_joints_rad=block.start_joints_rad,
-                   humans=block.humans, objects=block.objects)
+        sim = cls(control_hz=block.control_hz, gui=gui, start_joints_rad=block.start_joints_rad,
+                  humans=block.humans, objects=block.objects)
+        if block.start_xyz_m is not None:
+            q = sim.solve_ik(block.start_xyz_m, seed=HOME_JOINTS_RAD)
+            sim.reset_joints(q)
+            sim._apply_command()
+        if block.start_holding is not None:
+            sim.hold_at_start(block.start_holding)
+        return sim
+
+    def hold_at_start(self, name: str) -> None:
+        """Teleport object ``name`` into the closed gripper and attach it."""
+        o = self.object_specs[name]
+        pos, _ = self.ee_pose()
+        from ._control import _half_height, _half_width  # no cycle at import time
+        z = pos[2] - max(_half_height(o) - 0.02, 0.0)
+        self._p.resetBasePositionAndOrientation(self.objects[name], (pos[0], pos[1], z),
+                                                (0, 0, 0, 1), physicsClientId=self.cid)
+        self.gripper_cmd = min(_half_width(o), 0.04)
+        self.attach(name)
 
     def add_object(self, o: SimObject) -> int:
         """Add a rigid object; returns its body id."""

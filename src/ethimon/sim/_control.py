@@ -47,7 +47,7 @@ def plan_task(sim: ArmSim, block: SimBlock) -> list[Segment]:
     """
     v = block.task_joint_speed_rad_s
     q_prev, _ = sim.joint_state()
-    grip = 0.04
+    grip = sim.gripper_cmd
     segs: list[Segment] = []
     held_half_h = 0.0  # grasp point above the held object's resting centre
 

@@ -30,6 +30,7 @@ __all__ = [
     "Waypoint",
     "SimObject",
     "Dropout",
+    "InputChange",
     "Primitive",
     "Reach",
     "Pick",
@@ -199,6 +200,14 @@ class Dropout(_Model):
         return self
 
 
+class InputChange(_Model):
+    """From ``t_s`` on, feed these monitor inputs (e.g. the planner's next instruction
+    raised ``p_unsafe``); they replace the run's constant inputs of the same name."""
+
+    t_s: float = Field(ge=0.0)
+    inputs: dict[str, float | tuple[float, ...] | bool]
+
+
 class SimExpect(_Model):
     """What ``check --sim`` verifies about the simulated run (all optional)."""
 
@@ -220,6 +229,9 @@ class SimBlock(_Model):
     control_hz: int = Field(60, gt=0, le=PHYSICS_HZ)
     duration_s: float = Field(6.0, gt=0.0, le=120.0)
     start_joints_rad: tuple[float, float, float, float, float, float, float] | None = None
+    start_xyz_m: Vec3 | None = Field(None, description="start with the end effector here (IK), "
+                                     "instead of start_joints_rad")
+    start_holding: str | None = Field(None, description="object already in the gripper at t = 0")
     task_joint_speed_rad_s: float = Field(
         0.8, gt=0.0, description="peak joint speed of task motions (auto-timing)")
     stop_ramp_s: float = Field(0.25, gt=0.0, description="deceleration time of stop_1/stop_2")
@@ -227,6 +239,7 @@ class SimBlock(_Model):
     humans: tuple[Human, ...] = ()
     objects: tuple[SimObject, ...] = ()
     dropouts: tuple[Dropout, ...] = ()
+    inputs_at: tuple[InputChange, ...] = ()
     expect: SimExpect = SimExpect()
 
     @field_validator("control_hz")
@@ -240,12 +253,17 @@ class SimBlock(_Model):
 
     @model_validator(mode="after")
     def _names(self):
+        if self.start_joints_rad is not None and self.start_xyz_m is not None:
+            raise ValueError("give at most one of 'start_joints_rad' or 'start_xyz_m'")
         seen: set[str] = set()
         for thing in (*self.humans, *self.objects):
             if thing.name in seen:
                 raise ValueError(f"duplicate name {thing.name!r} among humans/objects")
             seen.add(thing.name)
         objs = {o.name for o in self.objects}
+        if self.start_holding is not None and self.start_holding not in objs:
+            raise ValueError(f"start_holding names unknown object {self.start_holding!r} "
+                             f"(objects: {sorted(objs)})")
         humans = {h.name for h in self.humans}
         for i, prim in enumerate(self.task):
             if isinstance(prim, Pick) and prim.object not in objs:

@@ -223,12 +223,16 @@ def _num(v: Any) -> float:
         return math.nan
 
 
-def _dropout_filter(block: SimBlock):
+def _signal_filter(block: SimBlock):
     drops = block.dropouts
-    if not drops:
+    changes = sorted(block.inputs_at, key=lambda c: c.t_s)
+    if not drops and not changes:
         return None
 
     def apply(t: float, fed: dict) -> dict:
+        for ch in changes:
+            if ch.t_s <= t + 1e-9:
+                fed.update(ch.inputs)
         for dr in drops:
             if dr.from_s <= t < dr.to_s:
                 if dr.mode == "missing":
@@ -278,7 +282,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
     with ArmSim.from_block(block, gui=gui) as sim:
         segments = plan_task(sim, block)
         arm = GovernedArm(sim, monitor, segments=segments, inputs=fixed,
-                          signal_filter=_dropout_filter(block),
+                          signal_filter=_signal_filter(block),
                           task_joint_speed_rad_s=block.task_joint_speed_rad_s,
                           stop_ramp_s=block.stop_ramp_s)
         if record_dir is not None:
