@@ -1,1 +1,103 @@
-"""ethimon.cli."""
+"""The ``ethimon`` command line: a thin layer over the library.
+
+Exit codes: 0 success, 1 an expectation/property failed, 2 bad input.
+Errors print as ``path:line:column: message (hint)``, never as a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import json
+import sys
+from collections.abc import Sequence
+
+from ..errors import EthimonError, SpecError
+
+__all__ = ["main"]
+
+#: optional sub-command modules: (module, function that adds its parsers)
+_PLUGINS = (("_risk_cmds", "add_risk_parsers"), ("_sim_cmds", "add_sim_parsers"),
+            ("_verify_cmds", "add_verify_parsers"), ("_audit_cmds", "add_audit_parsers"))
+
+
+def _build_parser() -> argparse.ArgumentParser:
+    from .. import __version__
+    from ._check import add_check_parser
+
+    p = argparse.ArgumentParser(prog="ethimon", description="Formal-spec-checked runtime safety monitor.")
+    p.add_argument("--version", action="version", version=f"ethimon {__version__}")
+    sub = p.add_subparsers(dest="command", metavar="COMMAND")
+    add_check_parser(sub)
+    sp = sub.add_parser("schema", help="print the JSON Schema of spec or scenario files")
+    sp.add_argument("kind", nargs="?", choices=("spec", "scenario"), default="spec")
+    sp.set_defaults(handler=_cmd_schema)
+    lp = sub.add_parser("lint", help="load and compile specs, report errors (no proofs)")
+    lp.add_argument("paths", nargs="+", metavar="SPEC")
+    lp.set_defaults(handler=_cmd_lint)
+    for mod, fn in _PLUGINS:
+        try:
+            module = importlib.import_module(f"{__name__}.{mod}")
+        except ModuleNotFoundError as exc:
+            if exc.name and exc.name.endswith(mod):
+                continue
+            raise
+        getattr(module, fn)(sub)
+    return p
+
+
+def _cmd_schema(args: argparse.Namespace) -> int:
+    if args.kind == "spec":
+        from ..spec._model import Spec as model
+    else:
+        from ..scenario._model import Scenario as model
+    schema = model.model_json_schema()
+    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    schema["title"] = f"ethimon {args.kind} (format 1)"
+    print(json.dumps(schema, indent=2))
+    return 0
+
+
+def _cmd_lint(args: argparse.Namespace) -> int:
+    from .._api import load_spec
+    from ..scenario import find_scenarios
+    rc = 0
+    for path in find_scenarios(args.paths):
+        try:
+            spec = load_spec(path)
+            print(f"{path}: ok ({spec.name}, {len(spec.obligations)} obligations)")
+        except SpecError as exc:
+            print(str(exc), file=sys.stderr)
+            rc = 2
+    return rc
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the CLI; returns the exit code (also used as the console-script entry)."""
+    try:
+        parser = _build_parser()
+        args = parser.parse_args(argv)
+        if not getattr(args, "handler", None):
+            parser.print_help()
+            return 2
+        return int(args.handler(args) or 0)
+    except SpecError as exc:
+        print(str(exc), file=sys.stderr)
+        return 2
+    except EthimonError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return 0
+    except SystemExit as exc:  # argparse usage errors
+        return int(exc.code) if isinstance(exc.code, int) else 2
+    except Exception as exc:  # never a traceback for the user
+        print(f"internal error: {type(exc).__name__}: {exc} (please report this)", file=sys.stderr)
+        return 3
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

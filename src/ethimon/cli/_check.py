@@ -1,0 +1,210 @@
+"""``ethimon check PATH...``: run scenarios, print a table, exit 0 / 1 / 2."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+import xml.etree.ElementTree as ET
+
+from ..errors import DependencyNotInstalled, EthimonError, ModelError, SpecError
+
+__all__ = ["add_check_parser", "cmd_check"]
+
+
+def add_check_parser(sub) -> None:
+    p = sub.add_parser("check", help="run scenario files against their specs",
+                       description="Run every scenario; exit 0 all pass, 1 an expectation failed, 2 bad input.")
+    p.add_argument("paths", nargs="+", metavar="PATH", help="scenario files or folders")
+    p.add_argument("--json", metavar="FILE", help="write results as JSON ('-' for stdout)")
+    p.add_argument("--junit", metavar="FILE", help="write a JUnit XML report")
+    p.add_argument("--sim", action="store_true", help="also run scenarios with a 'sim:' block in PyBullet")
+    p.add_argument("--model", metavar="DIR", help="risk model directory (default: the shipped model)")
+    p.add_argument("--quiet", "-q", action="store_true", help="print only problems and the summary")
+    p.set_defaults(handler=cmd_check)
+
+
+class _LazyEstimator:
+    """Loads the risk model on first use, once for all scenarios."""
+
+    def __init__(self, model_dir: str | None) -> None:
+        self.model_dir = model_dir
+        self.est = None
+
+    def probs(self, text: str):
+        if self.est is None:
+            from ..risk import load_estimator
+            self.est = load_estimator(self.model_dir) if self.model_dir else load_estimator()
+        return self.est.probs(text)
+
+
+def _expect_line(sc) -> int | None:
+    if sc is None or sc._source is None:
+        return None
+    p = sc._source.pos(("expect",))
+    return p.line if p else None
+
+
+def cmd_check(args: argparse.Namespace) -> int:
+    from ..scenario import find_scenarios, load_scenario, run_scenario
+
+    files = find_scenarios(args.paths)
+    est = _LazyEstimator(args.model)
+    rows, results, problems = [], [], []
+    bad_input = failed = False
+    specs: dict[str, object] = {}
+    t0 = time.perf_counter()
+    for path in files:
+        sc = None
+        try:
+            sc = load_scenario(path)
+            spec = specs.get(sc.spec_path)
+            if spec is None:
+                from .._api import load_spec
+                try:
+                    spec = load_spec(sc.spec_path)
+                except SpecError as exc:
+                    if exc.path == sc.spec_path and "not found" in exc.message:
+                        pos = sc._source.pos(("spec",))
+                        raise SpecError(f"spec {sc.spec!r} not found (looked at {sc.spec_path})", path=path,
+                                        line=pos.line if pos else None, column=pos.column if pos else None,
+                                        hint="'spec:' is relative to the scenario file") from None
+                    raise
+                specs[sc.spec_path] = spec
+            # a sim scenario whose signals come from the simulator cannot run as a timeline
+            sim_only = sc.sim is not None and any(name not in sc.inputs for name in spec.signals)
+            if sim_only and not args.sim:
+                rows.append((sc.name, "(sim only)", "skipped: needs --sim", "-", "SKIP"))
+                results.append({"name": sc.name, "path": path, "passed": None, "skipped": "needs --sim"})
+                continue
+            if sim_only:
+                sim_row, sim_res, sim_problems = _run_sim(sc, spec, est, path)
+                rows.append(sim_row)
+                results.append(sim_res)
+                problems.extend(sim_problems)
+                failed = failed or bool(sim_problems)
+                continue
+            res = run_scenario(sc, spec=spec, estimator=est)
+            first = "-" if res.first_override_cycle is None else str(res.first_override_cycle)
+            rows.append((res.name, res.expected, res.got, first, "PASS" if res.passed else "FAIL"))
+            results.append({**res.as_dict(), "path": path})
+            if not res.passed:
+                failed = True
+                line = _expect_line(sc)
+                for f in res.failures:
+                    problems.append(f"{path}:{line}: {res.name}: {f}" if line else f"{path}: {res.name}: {f}")
+            if args.sim and sc.sim is not None:
+                sim_row, sim_res, sim_problems = _run_sim(sc, spec, est, path)
+                rows.append(sim_row)
+                results.append(sim_res)
+                problems.extend(sim_problems)
+                failed = failed or bool(sim_problems)
+        except (SpecError, DependencyNotInstalled, ModelError, EthimonError) as exc:
+            bad_input = True
+            msg = str(exc) if isinstance(exc, SpecError) else f"{path}: {exc}"
+            problems.append(msg)
+            name = sc.name if sc is not None else path
+            rows.append((name, "-", "bad input", "-", "ERROR"))
+            results.append({"name": name, "path": path, "passed": False, "error": msg})
+    elapsed = time.perf_counter() - t0
+    n_pass = sum(1 for r in rows if r[4] == "PASS")
+    n_fail = sum(1 for r in rows if r[4] == "FAIL")
+    n_err = sum(1 for r in rows if r[4] == "ERROR")
+    n_skip = sum(1 for r in rows if r[4] == "SKIP")
+    if not args.quiet:
+        _print_table(rows)
+    for p in problems:
+        print(p, file=sys.stderr)
+    summary = f"{n_pass} passed, {n_fail} failed, {n_err} errors"
+    if n_skip:
+        summary += f", {n_skip} skipped"
+    print(f"{summary} in {elapsed:.2f}s")
+    if args.json:
+        doc = json.dumps({"results": results, "passed": n_pass, "failed": n_fail, "errors": n_err,
+                          "skipped": n_skip, "seconds": elapsed}, indent=2, default=str)
+        if args.json == "-":
+            print(doc)
+        else:
+            with open(args.json, "w", encoding="utf-8") as fh:
+                fh.write(doc + "\n")
+    if args.junit:
+        _write_junit(args.junit, results, elapsed)
+    return 2 if bad_input else (1 if failed else 0)
+
+
+def _run_sim(sc, spec, est, path):
+    try:
+        from ..sim import check_sim_expectations, run_sim
+        from ..sim._model import SimBlock
+    except ImportError as exc:
+        raise DependencyNotInstalled(f"--sim needs the simulator: {exc}") from None
+    from ..runtime import Monitor
+    from ..scenario._run import needs_text_risk
+    block = SimBlock.model_validate(sc.sim)
+    kwargs = {}
+    if needs_text_risk(sc):
+        kwargs["probs"] = tuple(est.probs(sc.task))
+    else:
+        for key in ("risk", "p_unsafe", "p"):
+            if key in sc.inputs:
+                kwargs[key] = sc.inputs[key]
+                break
+    res = run_sim(block, Monitor(spec), **kwargs)
+    problems = check_sim_expectations(block, res)
+    problems += _sim_expect(sc, res)
+    first = "-" if res.first_override_cycle is None else str(res.first_override_cycle)
+    got = "no override" if res.first_override_cycle is None else "override"
+    row = (f"{sc.name} [sim]", "sim expectations", got, first, "FAIL" if problems else "PASS")
+    out = {"name": f"{sc.name} [sim]", "path": path, "passed": not problems, "failures": problems,
+           "first_override_cycle": res.first_override_cycle, "mode": "sim",
+           "time_to_safe_pose_s": getattr(res, "time_to_safe_pose_s", None),
+           "min_separation_m": getattr(res, "min_separation_m", None),
+           "realtime_factor": getattr(res, "realtime_factor", None)}
+    return row, out, [f"{path}: {sc.name} [sim]: {p}" for p in problems]
+
+
+def _sim_expect(sc, res) -> list[str]:
+    """The scenario's generic expectations that make sense in the sim."""
+    e = sc.expect
+    out = []
+    first = res.first_override_cycle
+    if e.override is True and first is None:
+        out.append("expected an override, none happened")
+    if e.override is False and first is not None:
+        out.append(f"expected no override, got one at cycle {first}")
+    return out
+
+
+def _print_table(rows) -> None:
+    header = ("scenario", "expected", "got", "first override", "result")
+    table = [header] + [tuple(str(c) for c in r) for r in rows]
+    widths = [min(max(len(r[i]) for r in table), 44) for i in range(len(header))]
+
+    def fmt(r):
+        cells = []
+        for c, w in zip(r, widths):
+            c = c if len(c) <= w else c[: w - 1] + "…"
+            cells.append(c.ljust(w))
+        return "  ".join(cells).rstrip()
+    print(fmt(header))
+    print("  ".join("-" * w for w in widths))
+    for r in table[1:]:
+        print(fmt(r))
+
+
+def _write_junit(path: str, results: list[dict], elapsed: float) -> None:
+    suite = ET.Element("testsuite", name="ethimon check", tests=str(len(results)),
+                       failures=str(sum(1 for r in results if r.get("passed") is False and "error" not in r)),
+                       errors=str(sum(1 for r in results if "error" in r)),
+                       skipped=str(sum(1 for r in results if r.get("skipped"))), time=f"{elapsed:.3f}")
+    for r in results:
+        case = ET.SubElement(suite, "testcase", classname=str(r.get("path")), name=str(r.get("name")))
+        if "error" in r:
+            ET.SubElement(case, "error", message=str(r["error"]))
+        elif r.get("skipped"):
+            ET.SubElement(case, "skipped", message=str(r["skipped"]))
+        elif r.get("passed") is False:
+            el = ET.SubElement(case, "failure", message="; ".join(r.get("failures", [])))
+            el.text = "\n".join(r.get("failures", []))
+    ET.ElementTree(suite).write(path, encoding="utf-8", xml_declaration=True)
