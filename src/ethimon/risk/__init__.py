@@ -1,11 +1,15 @@
 """Ethical risk: the R_e formula (always available) and the learned estimator.
 
 The estimator needs the optional extra ``ethimon[risk]`` (torch, transformers);
-it is imported lazily, so ``import ethimon.risk`` stays light.
+torch is imported only when a model is loaded, so ``import ethimon.risk`` stays light.
 """
 
 from __future__ import annotations
 
+from ._estimator import (RiskEstimate, RiskEstimator, RiskInferenceError, default_model_dir,
+                         load_estimator)
 from ._formula import VARIANCE_MODES, risk_bounds, risk_from_p_unsafe, risk_from_probs
 
-__all__ = ["VARIANCE_MODES", "risk_bounds", "risk_from_p_unsafe", "risk_from_probs"]
+__all__ = ["VARIANCE_MODES", "RiskEstimate", "RiskEstimator", "RiskInferenceError",
+           "default_model_dir", "load_estimator", "risk_bounds", "risk_from_p_unsafe",
+           "risk_from_probs"]

