@@ -176,7 +176,7 @@ class GovernedArm:
         cycle = sim.cycle
         sig = sim.signals()
         true_dist = sig["human_distance"]
-        fed = {**sig, **self.inputs}
+        fed = {**self.inputs, **sig}  # the simulation's own signals always win
         if self.signal_filter is not None:
             fed = self.signal_filter(t, fed)
         d = self.monitor.step(fed)
@@ -246,7 +246,8 @@ def _signal_filter(block: SimBlock):
 
 def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
             probs: Sequence[float] | None = None, risk: float | None = None,
-            p_unsafe: float | None = None, inputs: Mapping[str, Any] | None = None,
+            p_unsafe: float | None = None, p: Sequence[float] | None = None,
+            inputs: Mapping[str, Any] | None = None,
             record_dir: str | None = None, gui: bool = False) -> SimResult:
     """Run a scenario's ``sim:`` block with ``monitor`` in the loop.
 
@@ -256,7 +257,10 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         probs: the risk estimator's class probabilities for the task text (fed as ``p``).
         risk: R_e itself (fed as ``risk``).
         p_unsafe: the unsafe-class probability (fed as ``p_unsafe``).
-        inputs: other constant inputs for every cycle.
+        p: same as ``probs`` (the monitor's input name).
+        inputs: other constant inputs for every cycle; the simulated signals
+            (human_distance, ee_speed, contact_force, joint_speed_max) always
+            replace inputs of the same name.
         record_dir: write PNG frames, ``trace.jsonl``/``trace.csv`` and ``plot.png`` there.
         gui: show the PyBullet GUI (needs a display) and run in real time.
 
@@ -269,6 +273,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
     block = sim_block if isinstance(sim_block, SimBlock) else SimBlock.model_validate(sim_block)
     wall0 = time.perf_counter()
     fixed: dict[str, Any] = dict(inputs or {})
+    if probs is None and p is not None:
+        probs = p
     if probs is not None:
         fixed["p"] = tuple(float(x) for x in probs)
     if p_unsafe is not None:
