@@ -479,9 +479,9 @@ class ArmSim:
     def render(self, width: int = 480, height: int = 360) -> np.ndarray:
         """An RGB frame (H×W×3 uint8) from PyBullet's software TinyRenderer (headless)."""
         p, cid = self._p, self.cid
-        view = p.computeViewMatrixFromYawPitchRoll((0.35, 0.0, 0.45), 2.4, 50, -28, 0, 2,
+        view = p.computeViewMatrixFromYawPitchRoll((0.6, 0.3, 0.35), 2.7, -40, -25, 0, 2,
                                                    physicsClientId=cid)
-        proj = p.computeProjectionMatrixFOV(55, width / height, 0.05, 10, physicsClientId=cid)
-        _, _, rgba, _, _ = p.getCameraImage(width, height, view, proj,
+        proj = p.computeProjectionMatrixFOV(50, width / height, 0.05, 10, physicsClientId=cid)
+        _, _, rgba, _, _ = p.getCameraImage(width, height, view, proj, lightDirection=(1, 1, 2),
                                             renderer=p.ER_TINY_RENDERER, physicsClientId=cid)
         return np.asarray(rgba, dtype=np.uint8).reshape(height, width, 4)[:, :, :3]

@@ -6,6 +6,7 @@ import csv
 import json
 import math
 import os
+import time
 from typing import Any
 
 __all__ = ["Recorder", "plot_trace"]
@@ -27,15 +28,18 @@ class Recorder:
         self.sim = sim
         os.makedirs(directory, exist_ok=True)
         self.files: list[str] = []
+        self.seconds = 0.0  # time spent rendering frames (kept out of the realtime factor)
 
     def frame(self, moment: str, cycle: int | None = None) -> str:
         """Render the current scene to ``frame_<cycle>_<moment>.png``."""
         from matplotlib import image as mpimg
 
+        t0 = time.perf_counter()
         c = self.sim.cycle if cycle is None else cycle
         path = os.path.join(self.dir, f"frame_{c:05d}_{moment}.png")
         mpimg.imsave(path, self.sim.render())
         self.files.append(path)
+        self.seconds += time.perf_counter() - t0
         return path
 
     def finish(self, result: Any) -> list[str]:

@@ -74,7 +74,8 @@ class SimResult:
         max_joint_speed_safe_pose_rad_s: largest |joint velocity| (per physics step)
             while the safe-pose controller drove the arm (``None``: it never did).
         joint_speed_limit_rad_s: the spec's safe-pose joint-speed limit.
-        min_separation_m: smallest simulated human–robot distance of the run.
+        min_separation_m: smallest simulated human–robot distance of the run
+            (``inf`` when the scene has no humans).
         task_completed: every task primitive finished.
         released: an override was released (override went back to false) before the end.
         executed_response: the most severe response the arm executed ("none" if none).
@@ -303,6 +304,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         max_sp = None
         overridden_before = False
         loop0 = time.perf_counter()
+        rec_s0 = recorder.seconds if recorder else 0.0
         for _ in range(n_cycles):
             rec = arm.step()
             res.trace.append(rec)
@@ -315,7 +317,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
                     res.first_override_cycle = rec.cycle
                     t_override = rec.t_s
                     if recorder:
-                        recorder.frame("override", rec.cycle)
+                        recorder.frame("override", rec.cycle)  # time excluded from the loop
                 overridden_before = True
             elif overridden_before and not res.released:
                 res.released = True
@@ -331,10 +333,11 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
                     res.time_to_safe_pose_s = round(rec.t_s + sim.dt - t_override, 6)
                     if recorder:
                         recorder.frame("safe_pose", rec.cycle)
-            res.min_separation_m = min(res.min_separation_m, rec.human_distance_true_m)
+            if sim.humans:
+                res.min_separation_m = min(res.min_separation_m, rec.human_distance_true_m)
             if gui:
                 time.sleep(max(0.0, loop0 + sim.time_s - time.perf_counter()))
-        loop_wall = time.perf_counter() - loop0
+        loop_wall = time.perf_counter() - loop0 - (recorder.seconds - rec_s0 if recorder else 0.0)
         res.task_completed = arm.task.done
         if res.first_override_cycle is not None and first_cmd is not None:
             res.override_reaction_cycles = first_cmd - res.first_override_cycle
