@@ -225,15 +225,21 @@ class _LocError(ValueError):
 
 def _model_at(model: type[BaseModel], loc: tuple) -> type[BaseModel] | None:
     """The model class that owns the last key of ``loc`` (for "did you mean")."""
+    import typing
     cur: Any = model
+    skip_key = False
     for part in loc[:-1]:
         if isinstance(part, int):
+            continue
+        if skip_key:  # a key of a dict-valued field (e.g. a signal name)
+            skip_key = False
             continue
         if isinstance(cur, type) and issubclass(cur, BaseModel):
             field = cur.model_fields.get(part)
             if field is None:
                 return None
             ann = field.annotation
+            skip_key = typing.get_origin(ann) is dict
             cur = _unwrap(ann)
         else:
             cur = None

@@ -77,7 +77,27 @@ class SourceMap:
 
     path: str
     positions: dict[tuple, Pos] = field(default_factory=dict)
+    lines: list[str] = field(default_factory=list, repr=False)
     key_positions: dict[tuple, Pos] = field(default_factory=dict)
+
+    def _find_in_block(self, start_line: int, text: str, index: int) -> tuple[int, int] | None:
+        """Locate text[index:] inside a block scalar that starts at ``start_line``."""
+        rest = text[index:].split("\n", 1)[0].strip()
+        needle = rest[:24] or text[max(0, index - 1):index + 1].strip()
+        if not needle:
+            return None
+        # which occurrence: count earlier occurrences in the value text
+        nth = text[:index].replace("\n", " ").count(needle)
+        seen = 0
+        for ln in range(start_line, min(len(self.lines), start_line + text.count("\n") + 200)):
+            src = self.lines[ln]  # 0-based list: line ln + 1
+            col = src.find(needle)
+            while col >= 0:
+                if seen == nth:
+                    return ln + 1, col + 1
+                seen += 1
+                col = src.find(needle, col + 1)
+        return None
 
     def pos(self, loc: tuple) -> Pos | None:
         """Position of the value at ``loc``, or of its closest known ancestor."""
@@ -101,6 +121,10 @@ class SourceMap:
         line, col = p.line, p.column
         if index is not None and text is not None:
             line, col = p.offset(text, index)
+            if p.style in ("|", ">") and self.lines:
+                found = self._find_in_block(p.line, text, index)
+                if found is not None:
+                    line, col = found
         return SpecError(message, path=self.path, line=line, column=col, hint=hint)
 
 
@@ -163,7 +187,7 @@ def parse_yaml_text(text: str, path: str = "<string>", *, what: str = "file") ->
     if not text.strip() or all(ln.strip().startswith("#") or not ln.strip() for ln in text.splitlines()):
         raise SpecError(f"{what} is empty", path=path, line=1, column=1,
                         hint="a spec starts with 'ethimon: 1' and 'name: ...'")
-    smap = SourceMap(path)
+    smap = SourceMap(path, lines=text.splitlines())
     try:
         loader = yaml.SafeLoader(text)
         try:
