@@ -182,6 +182,7 @@ class Monitor:
         """
         cycle = self._cycle
         self._cycle = cycle + 1
+        r = None
         try:
             get = signals.get
             vals = self._vals
@@ -259,7 +260,41 @@ class Monitor:
                 reason = f"internal error: {type(exc).__name__}: {exc}"
             except Exception:  # pragma: no cover - a broken __str__
                 reason = "internal error"
-            return self._fault(cycle, (reason,), None)
+            return self._fault(cycle, (reason,), r if r.__class__ is float else None)
+
+    def fault(self, *reasons: str, decision: Decision | None = None) -> Decision:
+        """Fail closed on a fault found outside the monitor (watchdog, estimator, audit).
+
+        Args:
+            reasons: why, one line each (e.g. ``"control cycle missed its deadline"``).
+            decision: the :class:`Decision` that :meth:`step` just returned for this
+                cycle. If given, that cycle is escalated in place: same cycle number,
+                violations and margins kept, ``override`` forced, the response raised to
+                at least the spec's ``on_fault``, and the reasons appended to ``faults``;
+                temporal history is kept (the inputs were valid). Without it, the fault
+                counts as a cycle of its own in which no input was evaluated (history
+                is cleared, as for a bad input).
+
+        Returns:
+            The fail-closed :class:`Decision`; the override latches like any other.
+
+        Example:
+            >>> import ethimon
+            >>> m = ethimon.Monitor(ethimon.load_spec_text("{ethimon: 1, name: demo}"))
+            >>> d = m.fault("risk estimator hung")
+            >>> d.override, d.faults
+            (True, ('risk estimator hung',))
+        """
+        reasons = tuple(str(r) for r in reasons) or ("external fault",)
+        if decision is None:
+            cycle = self._cycle
+            self._cycle = cycle + 1
+            return self._fault(cycle, reasons, None)
+        sev = max(self._fault_sev, decision.response.severity, self._latched)
+        self._latched = sev
+        self._clean = 0
+        return Decision(True, _RESPONSES[sev], decision.violations, decision.margins, decision.risk,
+                        decision.cycle, decision.latched, decision.faults + reasons)
 
     def _fault(self, cycle: int, reasons: tuple[str, ...], r: float | None) -> Decision:
         """Fail closed: override with the spec's fault response; history is invalid."""
