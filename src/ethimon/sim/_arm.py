@@ -340,14 +340,16 @@ class ArmSim:
         self.powered = True
 
     def command_torque_off(self) -> None:
-        """Stop category 0 style: remove motor power at once (no torque, no velocity hold)."""
+        """Stop category 0 style: remove motor power at once.
+
+        The arm's velocity motors get a zero force budget, so they apply no
+        torque at all; gravity and contacts act freely (no brakes are modelled).
+        """
         p, cid = self._p, self.cid
         self.powered = False
         p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
                                     targetVelocities=[0.0] * 7, forces=[0.0] * 7,
                                     physicsClientId=cid)
-        p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.TORQUE_CONTROL,
-                                    forces=[0.0] * 7, physicsClientId=cid)
 
     def _apply_command(self, q: np.ndarray | None = None) -> None:
         p, cid = self._p, self.cid
