@@ -1,0 +1,176 @@
+"""Check an audit log's hash chain: tampering, deletion, reordering, truncation."""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+
+from ._log import FORMAT, GENESIS, canonical, record_hash
+
+__all__ = ["AuditReport", "verify_log", "read_log", "AuditFormatError"]
+
+
+class AuditFormatError(ValueError):
+    """The file is not an ethimon audit log at all (unreadable, empty, wrong header)."""
+
+
+@dataclass(frozen=True)
+class AuditReport:
+    """Result of :func:`verify_log`.
+
+    Attributes:
+        ok: the chain is intact (and closed, if that was required).
+        records: complete, verified records.
+        closed: the log ends with a ``close`` record (the writer finished cleanly).
+        torn_tail: the file ends in a partial line (a write cut short by a kill);
+            that line was never reported written and is ignored.
+        error: what is wrong, or ``None``.
+        line: 1-based line of the first problem, or ``None``.
+        head: hash of the last verified record (compare with an anchor kept elsewhere).
+        log_id: the log's id from its ``open`` record.
+        kinds: number of records of each kind.
+    """
+
+    ok: bool
+    records: int
+    closed: bool
+    torn_tail: bool = False
+    error: str | None = None
+    line: int | None = None
+    head: str = GENESIS
+    log_id: str | None = None
+    kinds: dict = field(default_factory=dict)
+
+    def summary(self) -> str:
+        """One line for humans."""
+        if not self.ok:
+            where = f"line {self.line}: " if self.line else ""
+            return f"TAMPERED: {where}{self.error}"
+        state = "closed" if self.closed else "not closed (writer killed or still running)"
+        torn = "; ignored a partial last line" if self.torn_tail else ""
+        return f"ok: {self.records} records, chain intact, {state}{torn}; head {self.head[:16]}"
+
+
+def _lines(path: str) -> Iterator[tuple[int, bytes, bool]]:
+    with open(path, "rb") as fh:
+        for i, raw in enumerate(fh, start=1):
+            yield i, raw, raw.endswith(b"\n")
+
+
+def verify_log(path: str | os.PathLike, *, key: bytes | None = None, require_closed: bool = False,
+               expect_head: str | None = None) -> AuditReport:
+    """Verify an audit log written by :class:`~ethimon.audit.AuditLog`.
+
+    Every complete line must be a record whose ``seq`` counts up from 0, whose
+    ``prev`` is the previous record's ``hash`` and whose ``hash`` matches its
+    content; the first record is ``open`` and nothing follows ``close``. A
+    final line without its newline is a torn write (a kill mid-write, never
+    reported written) and is ignored.
+
+    Args:
+        path: the log file.
+        key: the HMAC key, if the log was written with one.
+        require_closed: a log without a ``close`` record fails (detects a
+            truncated tail of a log known to have finished).
+        expect_head: the hash of the last record as kept elsewhere; the log must
+            reach exactly this record (detects truncation and rewriting).
+
+    Returns:
+        An :class:`AuditReport`; ``ok`` is ``False`` for tampering.
+
+    Raises:
+        AuditFormatError: unreadable, empty, or not an ethimon audit log.
+
+    Example:
+        >>> verify_log("run.jsonl").summary()   # doctest: +SKIP
+        'ok: 1204 records, chain intact, closed; head 3f9c0a1b2c3d4e5f'
+    """
+    path = os.fspath(path)
+    try:
+        if os.path.isdir(path):
+            raise AuditFormatError(f"{path}: is a directory, not an audit log")
+        lines = list(_lines(path))
+    except AuditFormatError:
+        raise
+    except OSError as exc:
+        raise AuditFormatError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    if not lines:
+        raise AuditFormatError(f"{path}: empty file, not an audit log")
+    prev = GENESIS
+    count = 0
+    closed = False
+    torn = False
+    log_id = None
+    kinds: dict[str, int] = {}
+
+    def bad(msg: str, line: int) -> AuditReport:
+        return AuditReport(False, count, closed, torn, msg, line, prev, log_id, kinds)
+
+    for lineno, raw, complete in lines:
+        if not complete:
+            torn = True
+            break
+        try:
+            rec = json.loads(raw)
+        except (ValueError, UnicodeDecodeError):
+            if count == 0:
+                raise AuditFormatError(f"{path}: line 1 is not JSON; not an ethimon audit log") from None
+            return bad("not a JSON record (edited or corrupted)", lineno)
+        if not isinstance(rec, dict):
+            if count == 0:
+                raise AuditFormatError(f"{path}: line 1 is not a JSON object; not an ethimon audit log")
+            return bad("not a JSON object", lineno)
+        if count == 0:
+            if rec.get("kind") != "open" or rec.get("format") != FORMAT:
+                if "hash" in rec and "seq" in rec:
+                    return bad("first record is not the 'open' record (head of the log removed)", lineno)
+                raise AuditFormatError(f"{path}: no '{FORMAT}' header on line 1; not an ethimon audit log")
+            log_id = rec.get("log_id")
+            if bool(rec.get("keyed")) and not key:
+                raise AuditFormatError(f"{path}: the log is HMAC-keyed; give the key")
+        if closed:
+            return bad("record after the 'close' record", lineno)
+        h = rec.get("hash")
+        if not isinstance(h, str):
+            return bad("record has no hash", lineno)
+        if rec.get("seq") != count:
+            return bad(f"seq is {rec.get('seq')!r}, expected {count} (records removed, added or reordered)",
+                       lineno)
+        if rec.get("prev") != prev:
+            return bad("prev does not match the previous record's hash (records removed or reordered)", lineno)
+        try:
+            want = record_hash(rec, key)
+        except (TypeError, ValueError):
+            return bad("record cannot be re-serialised", lineno)
+        if want != h:
+            return bad(f"hash mismatch: record seq {count} was modified", lineno)
+        body = canonical({k: v for k, v in rec.items() if k != "hash"})
+        if raw != body[:-1] + b',"hash":"' + h.encode("ascii") + b'"}\n':
+            return bad(f"record seq {count} is not in canonical form (edited: duplicate keys, spacing)", lineno)
+        prev = h
+        count += 1
+        kind = str(rec.get("kind"))
+        kinds[kind] = kinds.get(kind, 0) + 1
+        if kind == "close":
+            closed = True
+    if expect_head is not None and prev != expect_head:
+        return bad(f"log ends at {prev[:16]}…, expected head {expect_head[:16]}… (truncated or rewritten)",
+                   None)
+    if require_closed and not closed:
+        return bad("no 'close' record (log truncated, or the writer was killed)", None)
+    return AuditReport(True, count, closed, torn, None, None, prev, log_id, kinds)
+
+
+def read_log(path: str | os.PathLike, *, key: bytes | None = None) -> list[dict]:
+    """The verified records of a log (raises :class:`AuditFormatError`/``ValueError`` if tampered)."""
+    rep = verify_log(path, key=key)
+    if not rep.ok:
+        raise ValueError(f"{os.fspath(path)}: {rep.summary()}")
+    out = []
+    for _, raw, complete in _lines(os.fspath(path)):
+        if not complete or len(out) >= rep.records:
+            break
+        out.append(json.loads(raw))
+    return out
