@@ -7,6 +7,7 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
+from ..sim._model import SimBlock
 from ..spec._model import ACTIVE_RESPONSES
 
 __all__ = ["Scenario", "TimelineEntry", "Expect", "Value"]
@@ -54,7 +55,7 @@ class Scenario(BaseModel):
     inputs: dict[str, Value] = Field(default_factory=dict, description="input values from cycle 0 on")
     timeline: tuple[TimelineEntry, ...] = ()
     expect: Expect = Field(default_factory=Expect)
-    sim: dict[str, Any] | None = Field(None, description="PyBullet run (see ethimon.sim); used by check --sim")
+    sim: SimBlock | None = Field(None, description="PyBullet run (see ethimon.sim); used by check --sim")
 
     _source: Any = PrivateAttr(default=None)
 

@@ -34,45 +34,13 @@ def load_scenario(path: str | os.PathLike) -> Scenario:
         SpecError: bad YAML or shape, with path:line:column.
     """
     data, smap = read_yaml(path, what="scenario", max_bytes=16 * 1024 * 1024)
-    sc = validate_document(Scenario, data, smap, "scenario")
-    if sc.sim is not None:
-        _validate_sim_block(sc, smap)
-    return sc
+    return validate_document(Scenario, data, smap, "scenario")
 
 
 def load_scenario_text(text: str, path: str = "<string>") -> Scenario:
     """Validate scenario YAML given as text (spec paths resolve against ``path``'s folder)."""
     data, smap = parse_yaml_text(text, path, what="scenario")
-    sc = validate_document(Scenario, data, smap, "scenario")
-    if sc.sim is not None:
-        _validate_sim_block(sc, smap)
-    return sc
-
-
-def _validate_sim_block(sc: Scenario, smap) -> None:
-    """Check the ``sim:`` block with the sim package's model, if it provides one."""
-    try:
-        from ..sim._model import SimBlock  # no pybullet import there
-    except ImportError:
-        return
-    from pydantic import ValidationError
-
-    from ..spec._model import validation_to_spec_error
-    try:
-        SimBlock.model_validate(sc.sim)
-    except ValidationError as exc:
-        err = validation_to_spec_error(exc, _Prefixed(smap, ("sim",)), SimBlock, sc.sim)
-        raise err from None
-
-
-class _Prefixed:
-    """A SourceMap view whose locations are relative to a sub-document."""
-
-    def __init__(self, smap, prefix: tuple) -> None:
-        self.smap, self.prefix = smap, prefix
-
-    def error(self, message, loc=(), **kw):
-        return self.smap.error(message, self.prefix + tuple(loc), **kw)
+    return validate_document(Scenario, data, smap, "scenario")
 
 
 def find_scenarios(paths: Iterable[str]) -> list[str]:
