@@ -1,0 +1,509 @@
+"""The properties and lints of ``ethimon verify`` (imports z3)."""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+from typing import Any
+
+import z3
+
+from ..compiler._check import Plan
+from ..risk._formula import risk_bounds, risk_from_p_unsafe
+from ..runtime import Monitor
+from ..runtime._monitor import plan_of
+from ..spec._model import Response, Spec
+from ._encode import DecisionTrace, Unrolled, decision_trace, lookback, real, z3_value
+from ._report import OK, PROVED, REFUTED, SKIPPED, UNKNOWN, WARNING, Counterexample, Finding
+
+__all__ = ["Verifier"]
+
+_SEV_NAME = {r.severity: r.value for r in Response}
+
+
+def _fmt(x: float) -> str:
+    return f"{x:.6g}"
+
+
+class Verifier:
+    """Runs every check of one compiled spec (see :func:`ethimon.verify.verify_spec`)."""
+
+    def __init__(self, spec: Spec, *, path: str, timeout_s: float, max_unroll: int) -> None:
+        self.spec = spec
+        self.plan: Plan = plan_of(spec)
+        self.path = path
+        self.timeout_ms = max(1, int(timeout_s * 1000))
+        self.max_unroll = max(2, int(max_unroll))
+        self.need: dict[str, int] = {}
+        for ob in self.plan.obligations:
+            lb = max(lookback(self.plan, ob.require), lookback(self.plan, ob.when) if ob.when is not None else 0)
+            self.need[ob.id] = lb + (ob.within_cycles or 0) + 1
+        want = max([2, *self.need.values()])
+        self.k = min(want, self.max_unroll)
+        self.truncated = want > self.max_unroll
+        r = spec.risk
+        self.tau = float(r.threshold)
+        self.below = float(r.threshold - r.release.hysteresis)
+        self.risk_sev = Response(r.response).severity
+        self.fault_sev = Response(spec.on_fault).severity
+        self._enc: Unrolled | None = None
+        self._dt: DecisionTrace | None = None
+
+    # -- solver helpers ----------------------------------------------------------------
+    def solve(self, *constraints) -> tuple[str, z3.ModelRef | None, str]:
+        """``sat`` (with a model), ``unsat`` or ``unknown`` (with the reason)."""
+        s = z3.Solver()
+        s.set("timeout", self.timeout_ms)
+        for c in constraints:
+            s.add(c)
+        r = s.check()
+        if r == z3.sat:
+            return "sat", s.model(), ""
+        if r == z3.unsat:
+            return "unsat", None, ""
+        return "unknown", None, s.reason_unknown()
+
+    @property
+    def enc(self) -> Unrolled:
+        if self._enc is None:
+            self._enc = Unrolled(self.plan, self.k)
+        return self._enc
+
+    @property
+    def dt(self) -> DecisionTrace:
+        if self._dt is None:
+            self._dt = decision_trace(self.enc)
+        return self._dt
+
+    def all_defined(self, enc: Unrolled, upto: int) -> z3.BoolRef:
+        return z3.And([enc.obligation_defined(ob, t) for t in range(upto + 1) for ob in self.plan.obligations])
+
+    def _state_prefs(self, dt: DecisionTrace) -> list[list[z3.BoolRef]]:
+        """Initial latch states to try, most replayable first: fresh, just after a fault, any."""
+        return [[dt.L0 == 0, dt.C0 == 0], [dt.L0 == self.fault_sev, dt.C0 == 0], []]
+
+    # -- counterexamples ------------------------------------------------------------------
+    def frames(self, model: z3.ModelRef, enc: Unrolled, upto: int) -> list[dict[str, Any]]:
+        out = []
+        for t in range(upto + 1):
+            f: dict[str, Any] = {}
+            for s in self.plan.signals:
+                v = z3_value(model, enc.sig[t][s.name])
+                f[s.name] = bool(v) if s.kind == "bool" else v
+            f["risk"] = z3_value(model, enc.R[t])
+            if self.spec.risk.max_age_s is not None:
+                f["risk_age_s"] = 0.0
+            out.append(f)
+        return out
+
+    def fault_frame(self, like: dict[str, Any]) -> dict[str, Any]:
+        """A frame that fails closed (a missing input) and keeps R_e below τ."""
+        f = dict(like)
+        if self.plan.signals:
+            f.pop(self.plan.signals[0].name, None)
+        else:
+            f.pop("risk", None)
+        return f
+
+    def counterexample(self, prop: str, model: z3.ModelRef, enc: Unrolled, upto: int,
+                       expect: dict[str, Any], broken, dt: DecisionTrace | None = None) -> Counterexample:
+        """Build the frames, replay them in a fresh :class:`Monitor`, and check ``broken(decision)``."""
+        frames = self.frames(model, enc, upto)
+        cycle = upto
+        if dt is not None:
+            L0 = z3_value(model, dt.L0)
+            if L0:  # reach the latched start state with one fault cycle first
+                frames = [self.fault_frame(frames[0])] + frames
+                cycle += 1
+        monitor = Monitor(self.spec)
+        decisions = [monitor.step(f) for f in frames]
+        d = decisions[cycle]
+        ok = bool(broken(d))
+        note = (f"Monitor at cycle {cycle}: override={d.override}, response={d.response.value}, "
+                f"violations={list(d.violations)}, faults={list(d.faults)}")
+        return Counterexample(prop, frames, cycle, expect, [x.as_dict() for x in decisions], ok, note)
+
+    # -- properties -------------------------------------------------------------------------
+    def properties(self) -> list[Finding]:
+        out = [self.prop_risk_bounds(), self.prop_risk_override(), self.prop_fault()]
+        for ob in self.plan.obligations:
+            out.append(self.prop_defined(ob))
+            out.append(self.prop_response(ob))
+        out.append(self.prop_resume_explained())
+        out.append(self.prop_release_rule())
+        return out
+
+    def _timed(self, fn) -> Finding:
+        t0 = time.perf_counter()
+        f = fn()
+        f.seconds = time.perf_counter() - t0
+        return f
+
+    def prop_risk_bounds(self) -> Finding:
+        def run() -> Finding:
+            name = "risk.bounds"
+            r = self.spec.risk
+            if r.classes != 2:
+                return Finding("property", name, SKIPPED, f"closed-form bounds are for two classes (K={r.classes})")
+            lo, hi = risk_bounds(r.alpha, r.beta, r.gamma, r.variance)
+            q = z3.Real("q")
+            d = q - z3.RealVal("1/2")
+            var = (2 if r.variance == "sample" else 1) * d * d
+            top = z3.If(q >= z3.RealVal("1/2"), q, 1 - q)
+            R = real(r.alpha) * q + real(r.beta) * (1 - top) + real(r.gamma) * var
+            eps = 1e-9 * max(1.0, abs(lo), abs(hi))
+            st, model, why = self.solve(q >= 0, q <= 1, z3.Or(R < real(lo - eps), R > real(hi + eps)))
+            if st == "unsat":
+                return Finding("property", name, PROVED,
+                               f"R_e in [{_fmt(lo)}, {_fmt(hi)}] for every p_unsafe in [0, 1] ({r.variance} variance)")
+            if st == "sat":
+                qv = z3_value(model, q)
+                rv = risk_from_p_unsafe(qv, r.alpha, r.beta, r.gamma, r.variance)
+                return Finding("property", name, REFUTED,
+                               f"p_unsafe={qv!r} gives R_e={rv!r} outside [{_fmt(lo)}, {_fmt(hi)}]")
+            return Finding("property", name, UNKNOWN, f"z3: {why}")
+        return self._timed(run)
+
+    def _decision_check(self, name: str, bad_at, expect_for, broken, proved_msg: str,
+                        assume_defined: bool = True) -> Finding:
+        """Search for a cycle ``t`` where ``bad_at(dt, t)`` holds; refute with a replayed trace."""
+        enc, dt = self.enc, self.dt
+        base = enc.constraints + dt.init
+        terms = {}
+        for t in range(self.k):
+            bad = bad_at(dt, t)
+            if bad is not None:
+                terms[t] = z3.And(self.all_defined(enc, t), bad) if assume_defined else bad
+        if not terms:
+            return Finding("property", name, PROVED, proved_msg + self._bound_note())
+        st, model, why = self.solve(*base, z3.Or(list(terms.values())))
+        if st == "unknown":
+            return Finding("property", name, UNKNOWN, f"z3: {why}")
+        if st == "unsat":
+            return Finding("property", name, PROVED, proved_msg + self._bound_note())
+        t = next(t for t, term in terms.items() if z3.is_true(model.eval(term, model_completion=True)))
+        for pref in self._state_prefs(dt):  # most replayable start state first
+            st2, m2, _ = self.solve(*base, terms[t], *pref)
+            if st2 == "sat":
+                model = m2
+                break
+        cex = self.counterexample(name, model, enc, t, expect_for(t), lambda d: broken(d, t), dt)
+        return Finding("property", name, REFUTED, f"fails at cycle {t}", counterexample=cex)
+
+    def _bound_note(self) -> str:
+        if self.truncated:
+            return f" (bounded: windows need more than --max-unroll {self.max_unroll} cycles)"
+        return ""
+
+    def prop_risk_override(self) -> Finding:
+        sev = self.risk_sev
+
+        def bad(dt, t):
+            return z3.And(dt.risk_fires[t], z3.Not(z3.And(dt.override[t], dt.response[t] >= sev)))
+        return self._timed(lambda: self._decision_check(
+            "risk.override", bad, lambda t: {"final_override": True, "fired": ["risk"]},
+            lambda d, t: not (d.override and d.response.severity >= sev),
+            f"R_e >= tau={_fmt(self.tau)} => override ({_SEV_NAME[sev]} or more) in the same cycle"))
+
+    def prop_fault(self) -> Finding:
+        """On a fault cycle the decision is override with at least ``on_fault`` (and the risk response if R_e ≥ τ)."""
+        def run() -> Finding:
+            L = z3.Int("latched")
+            r = z3.Real("risk")
+            has_r = z3.Bool("risk_known")
+            tau = real(self.tau)
+            sev = z3.If(L >= self.fault_sev, L, z3.IntVal(self.fault_sev))
+            rs = z3.IntVal(self.risk_sev)
+            sev = z3.If(z3.And(has_r, r >= tau, rs > sev), rs, sev)
+            ok = z3.And(sev >= self.fault_sev, z3.Implies(z3.And(has_r, r >= tau), sev >= self.risk_sev), sev > 0)
+            st, _, why = self.solve(L >= 0, L <= 4, z3.Not(ok))
+            if st == "unsat":
+                # and the monitor itself, on each kind of bad input
+                bad = self._fault_replay()
+                if bad:
+                    return Finding("property", "fault.override", REFUTED, bad)
+                return Finding("property", "fault.override", PROVED,
+                               f"missing/NaN/out-of-range/wrong-type/stale input => override "
+                               f"({self.spec.on_fault} or more), replayed for each input kind")
+            return Finding("property", "fault.override", UNKNOWN if st == "unknown" else REFUTED, why or "")
+        return self._timed(run)
+
+    def _fault_replay(self) -> str:
+        """Drive the real monitor with each kind of bad input for each signal; '' if all fail closed."""
+        good: dict[str, Any] = {}
+        for s in self.plan.signals:
+            good[s.name] = False if s.kind == "bool" else (s.lo if math.isfinite(s.lo) and abs(s.lo) < 1e300
+                                                          else 0.0)
+        good["risk"] = 0.0 if 0.0 < self.tau else None
+        if good["risk"] is None:
+            good.pop("risk")
+            good["p_unsafe"] = 0.0
+        if self.spec.risk.max_age_s is not None:
+            good["risk_age_s"] = 0.0
+        cases: list[tuple[str, dict]] = []
+        for s in self.plan.signals:
+            miss = dict(good)
+            miss.pop(s.name)
+            cases.append((f"{s.name} missing", miss))
+            cases.append((f"{s.name} wrong type", {**good, s.name: "x"}))
+            if s.kind == "number":
+                cases.append((f"{s.name} NaN", {**good, s.name: math.nan}))
+                if s.hi < 1.7e308:
+                    cases.append((f"{s.name} above range", {**good, s.name: s.hi + max(1.0, abs(s.hi))}))
+                if s.lo > -1.7e308:
+                    cases.append((f"{s.name} below range", {**good, s.name: s.lo - max(1.0, abs(s.lo))}))
+        no_risk = {k: v for k, v in good.items() if k not in ("risk", "p_unsafe", "p")}
+        cases.append(("risk missing", no_risk))
+        cases.append(("risk NaN", {**no_risk, "risk": math.nan}))
+        cases.append(("p_unsafe NaN", {**no_risk, "p_unsafe": math.nan}))
+        if self.spec.risk.max_age_s is not None:
+            cases.append(("risk stale", {**good, "risk_age_s": self.spec.risk.max_age_s * 2}))
+            cases.append(("risk age missing", {k: v for k, v in good.items() if k != "risk_age_s"}))
+        for label, frame in cases:
+            m = Monitor(self.spec)
+            d = m.step(frame)
+            if not (d.override and d.faults and d.response.severity >= self.fault_sev):
+                return f"{label}: the monitor did not fail closed ({d!r})"
+        return ""
+
+    def prop_defined(self, ob) -> Finding:
+        name = f"{ob.id}.defined"
+
+        def run() -> Finding:
+            k = min(self.need[ob.id], self.max_unroll)
+            enc = Unrolled(self.plan, k, prefix=f"{ob.id}.")
+            for t in range(k):
+                st, model, why = self.solve(*enc.constraints, z3.Not(enc.obligation_defined(ob, t)),
+                                            *[enc.obligation_defined(ob, j) for j in range(t)])
+                if st == "sat":
+                    cex = self.counterexample(
+                        name, model, enc, t, {"fault": False},
+                        lambda d: any(f.startswith("internal error") for f in d.faults))
+                    return Finding("property", name, REFUTED,
+                                   f"evaluation fails (division by zero or sqrt of a negative) on in-range "
+                                   f"input at cycle {t}: the monitor stops the arm with a fault", counterexample=cex)
+                if st == "unknown":
+                    return Finding("property", name, UNKNOWN, f"z3: {why}")
+            return Finding("property", name, PROVED,
+                           "no division by zero or sqrt of a negative for any in-range input")
+        return self._timed(run)
+
+    def prop_response(self, ob) -> Finding:
+        n = ob.within_cycles or 0
+        sev = ob.response.severity
+        name = f"{ob.id}.response"
+        if n >= self.k:
+            return Finding("property", name, UNKNOWN,
+                           f"within_cycles={n} needs more than --max-unroll {self.max_unroll} cycles")
+        i = self.plan.obligations.index(ob)
+
+        def bad(dt, t):
+            j = t - n
+            if j < 0:
+                return None
+            enc = dt.enc
+            when = z3.BoolVal(True) if ob.when is None else enc.ev(ob.when, j)
+            cond = z3.And([when] + [z3.Not(enc.ev(ob.require, m)) for m in range(j, t + 1)])
+            return z3.And(cond, z3.Not(z3.And(dt.override[t], dt.response[t] >= sev, dt.violated[t][i])))
+        what = "when & not require" if ob.when is not None else "not require"
+        bound = f" for {n + 1} cycles" if n else ""
+        return self._timed(lambda: self._decision_check(
+            name, bad, lambda t: {"final_override": True, "fired": [ob.id]},
+            lambda d, t: not (d.override and d.response.severity >= sev and ob.id in d.violations),
+            f"{what}{bound} => violation and override ({ob.response.value} or more)"
+            + (f" by {n} cycles after the trigger" if n else " in the same cycle")))
+
+    def prop_resume_explained(self) -> Finding:
+        def bad(dt, t):
+            return z3.And(z3.Not(dt.override[t]), z3.Or([dt.risk_fires[t], *dt.violated[t]]))
+        return self._timed(lambda: self._decision_check(
+            "resume.explained", bad, lambda t: {"final_override": True},
+            lambda d, t: not d.override,
+            "no override => every obligation holds and R_e < tau"))
+
+    def prop_release_rule(self) -> Finding:
+        rel = self.spec.risk.release
+        hold, auto = rel.hold_cycles, rel.mode == "auto"
+        below = real(self.below)
+
+        def bad(dt, t):
+            was = dt.L0 > 0 if t == 0 else dt.override[t - 1]
+            enc = dt.enc
+            if not auto:
+                allowed = z3.BoolVal(False)
+            else:
+                span = range(max(0, t - hold + 1), t + 1)
+                allowed = z3.And([z3.And(enc.R[m] < below, z3.Not(z3.Or(dt.violated[m])) if dt.violated[m]
+                                         else z3.BoolVal(True)) for m in span])
+                if t - hold + 1 < 0:  # the rest of the streak lies before the trace: the counter must cover it
+                    allowed = z3.And(allowed, dt.C0 >= hold - (t + 1))
+            return z3.And(was, z3.Not(dt.override[t]), z3.Not(allowed))
+        msg = (f"a latched override resumes only after {hold} consecutive cycles with R_e < tau - delta = "
+               f"{_fmt(self.below)} and no violation" if auto else
+               "a latched override is released only by Monitor.release()/reset() (manual mode)")
+        return self._timed(lambda: self._decision_check(
+            "release.rule", bad, lambda t: {"final_override": True},
+            lambda d, t: not d.override, msg))
+
+    # -- lints ---------------------------------------------------------------------------
+    def lints(self) -> list[Finding]:
+        out = [self._timed(self.lint_tau), self._timed(self.lint_release)]
+        out += self.lint_vacuous()
+        out += self.lint_contradictions()
+        out += self.lint_unbounded()
+        out += self.lint_fault_gap()
+        return out
+
+    def risk_range(self) -> tuple[float, float] | None:
+        """Reachable R_e over every probability vector (``None``: not computed)."""
+        r = self.spec.risk
+        if r.classes == 2:
+            return risk_bounds(r.alpha, r.beta, r.gamma, r.variance)
+        if r.classes > MAX_SYMBOLIC_CLASSES:
+            return None
+        K = r.classes
+        ps = [z3.Real(f"p{i}") for i in range(K)]
+        dom = [p >= 0 for p in ps] + [z3.Sum(ps) == 1]
+        top = ps[0]
+        for p in ps[1:]:
+            top = z3.If(p > top, p, top)
+        mean = z3.Sum(ps) / K
+        ss = z3.Sum([(p - mean) * (p - mean) for p in ps])
+        var = ss / (K - 1 if r.variance == "sample" else K)
+        R = real(r.alpha) * ps[r.unsafe_index] + real(r.beta) * (1 - top) + real(r.gamma) * var
+        o_lo, o_hi = z3.Optimize(), z3.Optimize()
+        for o in (o_lo, o_hi):
+            o.set("timeout", self.timeout_ms)
+            o.add(*dom)
+        h1, h2 = o_lo.minimize(R), o_hi.maximize(R)
+        if o_lo.check() != z3.sat or o_hi.check() != z3.sat:
+            return None
+        try:
+            lo = z3_value(o_lo.model(), R)
+            hi = z3_value(o_hi.model(), R)
+        except TypeError:
+            return None
+        _ = (h1, h2)
+        return float(lo), float(hi)
+
+    def lint_tau(self) -> Finding:
+        rr = self.risk_range()
+        if rr is None:
+            return Finding("lint", "lint.tau_range", SKIPPED, "reachable R_e range not computed for this many classes")
+        lo, hi = rr
+        tau = self.tau
+        if tau > hi:
+            return Finding("lint", "lint.tau_range", WARNING,
+                           f"tau={_fmt(tau)} is above the largest reachable R_e={_fmt(hi)}: "
+                           f"the risk rule can never fire")
+        if tau <= lo:
+            return Finding("lint", "lint.tau_range", WARNING,
+                           f"tau={_fmt(tau)} is at or below the smallest reachable R_e={_fmt(lo)}: "
+                           f"the risk rule fires every cycle")
+        return Finding("lint", "lint.tau_range", OK, f"tau={_fmt(tau)} inside reachable R_e [{_fmt(lo)}, {_fmt(hi)}]")
+
+    def lint_release(self) -> Finding:
+        rel = self.spec.risk.release
+        name = "lint.release"
+        if rel.mode == "manual":
+            return Finding("lint", name, WARNING, "release.mode is manual: a latched override never releases "
+                                                  "by itself (only Monitor.release() or reset())")
+        rr = self.risk_range()
+        if rr is not None and self.below <= rr[0]:
+            return Finding("lint", name, WARNING,
+                           f"release needs R_e < tau - delta = {_fmt(self.below)}, but the smallest reachable "
+                           f"R_e is {_fmt(rr[0])}: a latched override never auto-releases")
+        # every obligation can hold while R_e < tau - delta (at a cycle where windows are full)
+        enc = self.enc
+        t = self.k - 1
+        cons = list(enc.constraints) + [enc.R[t] < real(self.below)]
+        if rr is not None:
+            cons += [enc.R[t] >= real(rr[0]), enc.R[t] <= real(rr[1])]
+        cons += [z3.Not(enc.violated(ob, t)) for ob in self.plan.obligations]
+        cons.append(self.all_defined(enc, t))
+        st, _, why = self.solve(*cons)
+        if st == "unsat":
+            return Finding("lint", name, WARNING, f"no input satisfies every obligation with R_e < "
+                                                  f"{_fmt(self.below)}: a latched override never auto-releases")
+        if st == "unknown":
+            return Finding("lint", name, SKIPPED, f"z3: {why}")
+        return Finding("lint", name, OK, f"release reachable (R_e < {_fmt(self.below)} for "
+                                         f"{rel.hold_cycles} cycles with every obligation held)")
+
+    def lint_vacuous(self) -> list[Finding]:
+        t0 = time.perf_counter()
+        out = []
+        for ob in self.plan.obligations:
+            k = min(self.need[ob.id], self.max_unroll)
+            enc = Unrolled(self.plan, k, prefix=f"v.{ob.id}.")
+            dfn = [enc.obligation_defined(o, t) for t in range(k) for o in self.plan.obligations]
+            st, _, why = self.solve(*enc.constraints, *dfn, z3.Or([enc.violated(ob, t) for t in range(k)]))
+            if st == "unsat":
+                out.append(Finding("lint", f"lint.vacuous.{ob.id}", WARNING,
+                                   f"obligation {ob.id!r} can never be violated inside the declared ranges"))
+            elif st == "unknown":
+                out.append(Finding("lint", f"lint.vacuous.{ob.id}", SKIPPED, f"z3: {why}"))
+        if not any(f.status == WARNING for f in out):
+            out.append(Finding("lint", "lint.vacuous", OK, "every obligation can be violated inside the ranges"))
+        dt = time.perf_counter() - t0
+        for f in out:
+            f.seconds = dt / len(out)
+        return out
+
+    def lint_contradictions(self) -> list[Finding]:
+        t0 = time.perf_counter()
+        enc = self.enc
+        t = self.k - 1
+        base = list(enc.constraints) + [self.all_defined(enc, t)]
+        holds = {ob.id: z3.Not(enc.violated(ob, t)) for ob in self.plan.obligations}
+        out = []
+        alone_ok = []
+        for ob in self.plan.obligations:
+            st, _, why = self.solve(*base, holds[ob.id])
+            if st == "unsat":
+                out.append(Finding("lint", f"lint.unsatisfiable.{ob.id}", WARNING,
+                                   f"obligation {ob.id!r} is violated for every input inside the ranges "
+                                   f"(the monitor overrides every cycle)"))
+            elif st == "sat":
+                alone_ok.append(ob.id)
+        for a, b in itertools.combinations(alone_ok, 2):
+            st, _, why = self.solve(*base, holds[a], holds[b])
+            if st == "unsat":
+                out.append(Finding("lint", f"lint.contradiction.{a}.{b}", WARNING,
+                                   f"obligations {a!r} and {b!r} contradict: no input inside the ranges "
+                                   f"satisfies both (the monitor overrides every cycle)"))
+        if len(alone_ok) > 2 and not out:
+            st, _, _ = self.solve(*base, *holds.values())
+            if st == "unsat":
+                out.append(Finding("lint", "lint.contradiction.all", WARNING,
+                                   "no input satisfies all obligations together"))
+        if not out:
+            out.append(Finding("lint", "lint.contradiction", OK,
+                               "the obligations can all hold together" if self.plan.obligations
+                               else "no obligations"))
+        dt = time.perf_counter() - t0
+        for f in out:
+            f.seconds = dt / len(out)
+        return out
+
+    def lint_unbounded(self) -> list[Finding]:
+        out = [Finding("lint", f"lint.unbounded.{s.name}", WARNING,
+                       f"signal {s.name!r} has no range: only NaN/infinity fail closed, any other value is trusted")
+               for s in self.plan.signals if s.kind == "number" and s.name in self.spec.signals
+               and self.spec.signals[s.name].range is None]
+        return out or [Finding("lint", "lint.unbounded", OK, "every numeric signal has a declared range")]
+
+    def lint_fault_gap(self) -> list[Finding]:
+        rel = self.spec.risk.release
+        out = []
+        if rel.mode == "auto":
+            for ob in self.plan.obligations:
+                need = self.need[ob.id]
+                if need > 1 and rel.hold_cycles < need:
+                    out.append(Finding(
+                        "lint", f"lint.fault_gap.{ob.id}", WARNING,
+                        f"after a fault clears the history, {ob.id!r} needs {need} cycles to fire again but "
+                        f"release.hold_cycles={rel.hold_cycles}: the arm can resume while it is still violated"))
+        return out or [Finding("lint", "lint.fault_gap", OK,
+                               "hold_cycles covers every obligation's window after a fault")]

@@ -1,0 +1,339 @@
+"""Translate a compiled :class:`~ethimon.compiler.Plan` into z3, unrolled over k cycles.
+
+This module imports z3 at import time; :mod:`ethimon.verify` only imports it
+after checking that z3 is installed.
+
+The encoding follows the semantics documented in
+:mod:`ethimon.runtime._reference` (the definition both the compiled monitor and
+the reference interpreter implement), over the same checked ASTs, windows and
+types that :func:`~ethimon.compiler.build_machine` compiles:
+
+* every cycle ``t`` of a trace that starts at a reset (or just after a fault,
+  which clears the history) gets one z3 variable per declared signal, bounded
+  by its declared range, and one real ``R_t`` for R_e, bounded by the range
+  the monitor accepts as a ``risk`` input (which contains every R_e the
+  formula can produce, see the ``risk.bounds`` property);
+* temporal operators are unrolled from their definitions (``held``, ``once``,
+  ``since``, ``prev`` look back over the trace; windows are not full at its
+  start);
+* ``defined(node, t)`` is the condition under which evaluating ``node`` at
+  ``t`` raises nothing (no division by zero, no ``sqrt`` of a negative),
+  honouring the short-circuit order of ``and``/``or``/``implies`` that both
+  implementations use;
+* :func:`decision_trace` encodes the decision logic of ``Monitor.step``
+  (severity, latch, hysteresis release) from a symbolic initial latch state.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+import z3
+
+from ..compiler._check import RISK_NAME, Plan
+from ..risk._formula import risk_bounds
+from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary, walk
+from ..spec._model import Response
+
+__all__ = ["Unrolled", "DecisionTrace", "decision_trace", "lookback", "real", "risk_input_range",
+           "z3_value"]
+
+
+def real(x: float) -> z3.ArithRef:
+    """The exact rational value of a Python float as a z3 real."""
+    f = Fraction(x)
+    return z3.RealVal(f"{f.numerator}/{f.denominator}") if f.denominator != 1 else z3.RealVal(f.numerator)
+
+
+def z3_value(model: z3.ModelRef, expr) -> float | bool:
+    """A concrete Python value of ``expr`` under ``model`` (reals become floats)."""
+    v = model.eval(expr, model_completion=True)
+    if z3.is_bool(v):
+        return bool(z3.is_true(v))
+    if z3.is_rational_value(v):
+        f = v.as_fraction()
+        return float(Fraction(f.numerator, f.denominator))
+    if z3.is_algebraic_value(v):
+        return float(Fraction(v.approx(20).as_fraction()))
+    if z3.is_int_value(v):
+        return float(v.as_long())
+    raise TypeError(f"cannot read z3 value {v}")  # pragma: no cover
+
+
+def risk_input_range(plan: Plan) -> tuple[float, float]:
+    """The interval of ``risk`` inputs the monitor accepts (as ``Monitor`` computes it)."""
+    r = plan.spec.risk
+    lo, hi = risk_bounds(r.alpha, r.beta, r.gamma, r.variance) if r.classes == 2 else (0.0, 1.0)
+    return min(0.0, lo), max(1.0, hi)
+
+
+def lookback(plan: Plan, node: Node) -> int:
+    """Extra past cycles ``node`` reads (``None`` windows count as 1: their state is one bit)."""
+    if isinstance(node, Call):
+        inner = max((lookback(plan, a) for a in node.args), default=0)
+        if node.func == "prev":
+            return 1 + inner
+        if node.func in ("held", "once", "since"):
+            n = plan.windows.get(id(node))
+            return (n - 1 if n is not None else 1) + inner
+        return inner
+    if isinstance(node, Unary):
+        return lookback(plan, node.operand)
+    if isinstance(node, Binary):
+        return max(lookback(plan, node.left), lookback(plan, node.right))
+    return 0
+
+
+class Unrolled:
+    """z3 variables and expressions of one k-cycle trace of a plan (all inputs valid).
+
+    Args:
+        plan: the compiled plan (the same object the runtime builds its closures from).
+        k: number of cycles to unroll.
+        prefix: variable-name prefix (to put several traces in one solver).
+    """
+
+    def __init__(self, plan: Plan, k: int, prefix: str = "") -> None:
+        self.plan = plan
+        self.k = k
+        self.prefix = prefix
+        self.sig: list[dict[str, z3.ExprRef]] = []
+        self.R: list[z3.ArithRef] = []
+        self.domain: list[z3.BoolRef] = []
+        self._ev: dict[tuple[int, int], z3.ExprRef] = {}
+        self._df: dict[tuple[int, int], z3.BoolRef] = {}
+        self._aux: list[z3.BoolRef] = []
+        rlo, rhi = risk_input_range(plan)
+        for t in range(k):
+            row: dict[str, z3.ExprRef] = {}
+            for s in plan.signals:
+                name = f"{prefix}{s.name}@{t}"
+                if s.kind == "bool":
+                    row[s.name] = z3.Bool(name)
+                else:
+                    v = z3.Real(name)
+                    row[s.name] = v
+                    self.domain += [v >= real(s.lo), v <= real(s.hi)]
+            self.sig.append(row)
+            r = z3.Real(f"{prefix}R_e@{t}")
+            self.R.append(r)
+            self.domain += [r >= real(rlo), r <= real(rhi)]
+
+    @property
+    def constraints(self) -> list[z3.BoolRef]:
+        """Domain constraints plus definitions of auxiliary variables (``sqrt``)."""
+        return self.domain + self._aux
+
+    # -- values -------------------------------------------------------------------
+    def ev(self, node: Node, t: int) -> z3.ExprRef:
+        """The value of ``node`` at cycle ``t`` (``0 <= t < k``)."""
+        key = (id(node), t)
+        got = self._ev.get(key)
+        if got is None:
+            got = self._ev[key] = self._ev_new(node, t)
+        return got
+
+    def _ev_new(self, node: Node, t: int) -> z3.ExprRef:
+        plan = self.plan
+        if isinstance(node, Num):
+            return real(node.value)
+        if isinstance(node, BoolLit):
+            return z3.BoolVal(node.value)
+        if isinstance(node, Name):
+            if node.id in plan.constants:
+                return real(plan.constants[node.id])
+            if node.id == RISK_NAME:
+                return self.R[t]
+            return self.sig[t][node.id]
+        if isinstance(node, Unary):
+            v = self.ev(node.operand, t)
+            return z3.Not(v) if node.op == "not" else -v
+        if isinstance(node, Binary):
+            a, b = self.ev(node.left, t), self.ev(node.right, t)
+            op = node.op
+            if op == "and":
+                return z3.And(a, b)
+            if op == "or":
+                return z3.Or(a, b)
+            if op == "implies":
+                return z3.Implies(a, b)
+            return {
+                "<": lambda: a < b, "<=": lambda: a <= b, ">": lambda: a > b, ">=": lambda: a >= b,
+                "==": lambda: a == b, "!=": lambda: a != b, "+": lambda: a + b, "-": lambda: a - b,
+                "*": lambda: a * b, "/": lambda: a / b,
+            }[op]()
+        if isinstance(node, Call):
+            f, args = node.func, node.args
+            if f == "abs":
+                v = self.ev(args[0], t)
+                return z3.If(v >= 0, v, -v)
+            if f == "sqrt":
+                v = self.ev(args[0], t)
+                s = z3.Real(f"{self.prefix}sqrt#{id(node)}@{t}")
+                # s = sqrt(v) where defined; unconstrained otherwise (that case is a fault)
+                self._aux.append(z3.Implies(v >= 0, z3.And(s >= 0, s * s == v)))
+                return s
+            if f in ("min", "max"):
+                vals = [self.ev(a, t) for a in args]
+                out = vals[0]
+                for v in vals[1:]:
+                    # Python's min/max keep the first of equal values; equal reals are equal
+                    out = z3.If(v < out, v, out) if f == "min" else z3.If(v > out, v, out)
+                return out
+            n = plan.windows.get(id(node))
+            if f == "prev":
+                if t == 0:
+                    if len(args) == 2:
+                        return self.ev(args[1], 0)
+                    return z3.BoolVal(False) if plan.type_of(node).kind == "bool" else self.ev(args[0], 0)
+                return self.ev(args[0], t - 1)
+            if f == "held":
+                if t + 1 < n:
+                    return z3.BoolVal(False)
+                return z3.And([self.ev(args[0], j) for j in range(t - n + 1, t + 1)])
+            if f == "once":
+                return z3.Or([self.ev(args[0], j) for j in range(max(0, t - n + 1), t + 1)])
+            if f == "since":
+                first = 0 if n is None else max(0, t - n + 1)
+                terms = []
+                for j in range(first, t + 1):
+                    terms.append(z3.And([self.ev(args[1], j)] + [self.ev(args[0], m) for m in range(j + 1, t + 1)]))
+                return z3.Or(terms)
+        raise TypeError(f"cannot encode {node!r}")  # pragma: no cover
+
+    # -- definedness ---------------------------------------------------------------
+    def defined(self, node: Node, t: int) -> z3.BoolRef:
+        """Evaluating ``node`` at ``t`` raises nothing (temporal nodes read stored state)."""
+        key = (id(node), t)
+        got = self._df.get(key)
+        if got is None:
+            got = self._df[key] = z3.simplify(self._df_new(node, t))
+        return got
+
+    def _df_new(self, node: Node, t: int) -> z3.BoolRef:
+        if isinstance(node, (Num, BoolLit, Name)):
+            return z3.BoolVal(True)
+        if isinstance(node, Unary):
+            return self.defined(node.operand, t)
+        if isinstance(node, Binary):
+            da, db = self.defined(node.left, t), self.defined(node.right, t)
+            op = node.op
+            if op == "and" or op == "implies":
+                return z3.And(da, z3.Implies(self.ev(node.left, t), db))
+            if op == "or":
+                return z3.And(da, z3.Implies(z3.Not(self.ev(node.left, t)), db))
+            if op == "/":
+                return z3.And(da, db, self.ev(node.right, t) != 0)
+            return z3.And(da, db)
+        if isinstance(node, Call):
+            if node.func in ("prev", "held", "once", "since"):
+                return z3.BoolVal(True)
+            ds = [self.defined(a, t) for a in node.args]
+            if node.func == "sqrt":
+                ds.append(self.ev(node.args[0], t) >= 0)
+            return z3.And(ds)
+        raise TypeError(f"cannot encode {node!r}")  # pragma: no cover
+
+    def temporal_nodes(self, root: Node) -> list[Call]:
+        """Temporal calls inside ``root`` (each has its arguments evaluated every cycle)."""
+        return [n for n in walk(root) if isinstance(n, Call) and n.func in ("prev", "held", "once", "since")]
+
+    def obligation_defined(self, ob, t: int) -> z3.BoolRef:
+        """Evaluating obligation ``ob`` at ``t`` raises nothing (its temporal updates included)."""
+        parts = []
+        for root in (ob.when, ob.require):
+            if root is None:
+                continue
+            for call in self.temporal_nodes(root):
+                parts += [self.defined(a, t) for a in call.args]
+        if ob.when is None:
+            parts.append(self.defined(ob.require, t))
+        elif ob.within_cycles:
+            parts += [self.defined(ob.when, t), self.defined(ob.require, t)]
+        else:
+            parts += [self.defined(ob.when, t), z3.Implies(self.ev(ob.when, t), self.defined(ob.require, t))]
+        return z3.And(parts)
+
+    # -- obligations ------------------------------------------------------------------
+    def violated(self, ob, t: int) -> z3.BoolRef:
+        """Obligation ``ob`` is violated at ``t`` (documented semantics, bounded response included)."""
+        n = ob.within_cycles
+        when = (lambda j: z3.BoolVal(True)) if ob.when is None else (lambda j: self.ev(ob.when, j))
+        if not n:
+            return z3.And(when(t), z3.Not(self.ev(ob.require, t)))
+        terms = []
+        for j in range(0, t - n + 1):
+            terms.append(z3.And([when(j)] + [z3.Not(self.ev(ob.require, m)) for m in range(j, t + 1)]))
+        return z3.Or(terms) if terms else z3.BoolVal(False)
+
+
+@dataclass
+class DecisionTrace:
+    """The decision of every cycle of an unrolled trace, as z3 terms."""
+
+    enc: Unrolled
+    L0: z3.ArithRef
+    C0: z3.ArithRef
+    init: list[z3.BoolRef]
+    violated: list[list[z3.BoolRef]]  # [t][obligation]
+    risk_fires: list[z3.BoolRef]
+    sev: list[z3.ArithRef]
+    override: list[z3.BoolRef]
+    response: list[z3.ArithRef]  # severity of the response (0 = none)
+    latched_after: list[z3.ArithRef]
+    clean_after: list[z3.ArithRef]
+
+
+def _max(a, b):
+    return z3.If(a >= b, a, b)
+
+
+def decision_trace(enc: Unrolled, *, fresh: bool = False, prefix: str = "") -> DecisionTrace:
+    """Encode ``Monitor.step``'s decision logic over ``enc``'s cycles.
+
+    The trace starts with a symbolic latch state (``L0`` severity, ``C0``
+    clean-cycle count), which covers a fresh monitor (``fresh=True`` pins it to
+    0, 0) and the state right after any fault (a fault clears the temporal
+    history but keeps the latch).
+    """
+    plan = enc.plan
+    spec = plan.spec
+    rel = spec.risk.release
+    tau = real(spec.risk.threshold)
+    below = real(spec.risk.threshold - rel.hysteresis)
+    hold = rel.hold_cycles
+    auto = rel.mode == "auto"
+    risk_sev = Response(spec.risk.response).severity
+    L0, C0 = z3.Int(f"{prefix}latched@start"), z3.Int(f"{prefix}clean@start")
+    if fresh:
+        init = [L0 == 0, C0 == 0]
+    else:
+        init = [L0 >= 0, L0 <= 4, C0 >= 0, C0 < hold, z3.Implies(L0 == 0, C0 == 0)]
+    L, C = L0, C0
+    out = DecisionTrace(enc, L0, C0, init, [], [], [], [], [], [], [])
+    zero = z3.IntVal(0)
+    for t in range(enc.k):
+        viol = [enc.violated(ob, t) for ob in plan.obligations]
+        fires = enc.R[t] >= tau
+        sev: z3.ArithRef = zero
+        for ob, v in zip(plan.obligations, viol):
+            sev = _max(sev, z3.If(v, z3.IntVal(ob.response.severity), zero))
+        sev = _max(sev, z3.If(fires, z3.IntVal(risk_sev), zero))
+        active = sev > 0
+        L_hi = _max(L, sev)
+        releasing = z3.And(L > 0, z3.BoolVal(auto), enc.R[t] < below)
+        released = z3.And(releasing, C + 1 >= hold)
+        override = z3.Or(active, z3.And(L > 0, z3.Not(released)))
+        L_next = z3.If(active, L_hi, z3.If(released, zero, L))
+        C_next = z3.If(active, zero, z3.If(released, zero, z3.If(releasing, C + 1, zero)))
+        response = z3.If(override, L_next, zero)
+        out.violated.append(viol)
+        out.risk_fires.append(fires)
+        out.sev.append(sev)
+        out.override.append(override)
+        out.response.append(response)
+        out.latched_after.append(L_next)
+        out.clean_after.append(C_next)
+        L, C = L_next, C_next
+    return out

@@ -1,0 +1,123 @@
+"""Proofs and lints over a spec's compiled :class:`~ethimon.compiler.Plan`, with z3.
+
+Nothing here imports z3 at module import time: :func:`verify_spec` imports it
+(and :mod:`._encode`) on first use and raises
+:class:`~ethimon.errors.DependencyNotInstalled` if it is missing.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Iterable
+from typing import Any
+
+from ..errors import DependencyNotInstalled, SpecError
+from ..spec._model import Spec
+from ._report import WARNING, Finding, SpecReport
+
+__all__ = ["verify_spec", "verify_paths", "find_specs", "require_z3", "DEFAULT_TIMEOUT_S", "DEFAULT_MAX_UNROLL"]
+
+DEFAULT_TIMEOUT_S = 20.0
+DEFAULT_MAX_UNROLL = 32
+#: most classes for which the K-class R_e range is computed symbolically
+MAX_SYMBOLIC_CLASSES = 6
+
+
+def require_z3():
+    """Import z3, or raise :class:`DependencyNotInstalled` naming the pip command."""
+    try:
+        import z3  # noqa: F401
+    except ImportError:
+        raise DependencyNotInstalled(
+            'ethimon verify needs the z3 SMT solver: pip install "ethimon[verify]"') from None
+    return z3
+
+
+def find_specs(paths: Iterable[str]) -> list[str]:
+    """Expand files and folders into a sorted list of ``*.yaml``/``*.yml`` files.
+
+    Raises:
+        SpecError: a path that does not exist, or a folder without YAML files.
+    """
+    out: list[str] = []
+    for p in paths:
+        if os.path.isdir(p):
+            found = []
+            for root, dirs, files in os.walk(p):
+                dirs.sort()
+                found += [os.path.join(root, f) for f in sorted(files) if f.endswith((".yaml", ".yml"))]
+            if not found:
+                raise SpecError("no spec files (*.yaml, *.yml) in this folder", path=p)
+            out += found
+        elif os.path.exists(p):
+            out.append(p)
+        else:
+            raise SpecError("no such file or folder", path=p)
+    return out
+
+
+def verify_paths(paths: Iterable[str], **kw: Any) -> list[SpecReport]:
+    """:func:`verify_spec` for every spec file under ``paths`` (see :func:`find_specs`)."""
+    return [verify_spec(p, **kw) for p in find_specs(paths)]
+
+
+def _is_unit_error(exc: SpecError) -> bool:
+    m = exc.message
+    return "unit mismatch" in m or m.startswith("unit ") or "[" in m and "unit" in m
+
+
+def verify_spec(spec: str | os.PathLike | Spec, *, timeout_s: float = DEFAULT_TIMEOUT_S,
+                max_unroll: int = DEFAULT_MAX_UNROLL, lints: bool = True,
+                counterexamples: str | os.PathLike | None = None) -> SpecReport:
+    """Prove the decision-logic invariants of one spec, lint it, and replay counterexamples.
+
+    Args:
+        spec: a spec file, or a :class:`Spec` from :func:`ethimon.load_spec`.
+        timeout_s: z3 time limit per check (a check that runs out is ``unknown``).
+        max_unroll: most cycles of symbolic state to unroll.
+        lints: also run the lints.
+        counterexamples: a folder to write each counterexample into as a scenario file.
+
+    Returns:
+        A :class:`SpecReport`; a spec that cannot be read has ``error`` set (and a
+        ``lint.unit_mismatch`` warning when the reason is a unit error).
+
+    Raises:
+        DependencyNotInstalled: z3 is missing.
+
+    Example:
+        >>> report = verify_spec("specs/governor.yaml")  # doctest: +SKIP
+        >>> report.finding("risk.override").status  # doctest: +SKIP
+        'proved'
+    """
+    require_z3()
+    from ._checks import Verifier  # imports z3
+
+    t0 = time.perf_counter()
+    if isinstance(spec, Spec):
+        path = spec.path or "<spec>"
+    else:
+        path = os.fspath(spec)
+        from .._api import load_spec
+        try:
+            spec = load_spec(path)
+        except SpecError as exc:
+            rep = SpecReport(path=path, error=str(exc))
+            if _is_unit_error(exc):
+                rep.findings.append(Finding("lint", "lint.unit_mismatch", WARNING, str(exc)))
+            rep.seconds = time.perf_counter() - t0
+            return rep
+    v = Verifier(spec, path=path, timeout_s=timeout_s, max_unroll=max_unroll)
+    rep = SpecReport(path=path, name=spec.name, unroll=v.k)
+    rep.findings += v.properties()
+    if lints:
+        rep.findings += v.lints()
+    if counterexamples is not None:
+        from ._scenario import write_counterexample
+        for f in rep.findings:
+            if f.counterexample is not None and spec.path:
+                f.scenario = write_counterexample(f.counterexample, spec, counterexamples)
+    rep.seconds = time.perf_counter() - t0
+    return rep
+
