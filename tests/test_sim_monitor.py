@@ -145,3 +145,51 @@ obligations:
     res = run_sim(block, ethimon.Monitor(spec), p_unsafe=0.0)
     assert res.first_override_cycle == 0 and res.fired == ("keep_away",)
     assert np.isfinite(res.min_separation_m) and res.min_separation_m < 0.5
+
+
+@pytest.mark.parametrize("control_hz", [30, 120, 240])
+def test_control_rate_is_configurable(control_hz):
+    from ethimon.sim import SimBlock, run_sim
+    spec = ethimon.load_spec(str(SPEC))
+    block = SimBlock.model_validate({"control_hz": control_hz, "duration_s": 1.6,
+                                     "start_xyz_m": [0.5, -0.25, 0.3]})
+    res = run_sim(block, ethimon.Monitor(spec), p_unsafe=0.95)
+    assert len(res.trace) == round(1.6 * control_hz)
+    assert res.first_override_cycle == 0 and res.override_reaction_cycles == 0
+    assert res.time_to_safe_pose_s is not None and res.time_to_safe_pose_s <= 1.5
+    assert res.max_joint_speed_safe_pose_rad_s <= spec.safe_pose.max_joint_speed_rad_s
+
+
+def test_missing_signal_dropout_and_hazard_distance():
+    from ethimon.sim import SimBlock, run_sim
+    spec = ethimon.load_spec_text("""
+ethimon: 1
+name: hazards
+on_fault: stop_2
+signals: {hazard_distance: {unit: m, range: [0, 10]}}
+obligations:
+  - {id: hot_away, require: "hazard_distance >= 0.5", response: safe_pose}
+""")
+    block = SimBlock.model_validate({
+        "duration_s": 1.0,
+        "objects": [{"name": "kettle", "xyz_m": [0.5, 0.0, 0.05], "hazard": "hot", "fixed": True}],
+        "humans": [{"name": "h", "radius_m": 0.2,
+                    "waypoints": [{"t_s": 0, "xy_m": [1.5, 0.0]}, {"t_s": 0.5, "xy_m": [0.9, 0.0]}]}],
+        "dropouts": [{"signal": "hazard_distance", "from_s": 0.1, "to_s": 0.2, "mode": "missing"}]})
+    res = run_sim(block, ethimon.Monitor(spec), p_unsafe=0.0)
+    first = res.trace[0]
+    assert first.signals["hazard_distance"] == pytest.approx(1.5 - 0.2 - 0.5 - 0.03, abs=0.01)
+    dropped = [r for r in res.trace if 0.1 <= r.t_s < 0.2]
+    assert dropped and all("hazard_distance" not in r.signals and r.faults for r in dropped)
+    assert dropped[0].controller == "stop_2"
+
+
+def test_safe_pose_with_wrong_joint_count_is_a_spec_error():
+    from ethimon.sim import ArmSim, GovernedArm
+    spec = ethimon.load_spec_text("""
+ethimon: 1
+name: six_joints
+safe_pose: {joints_rad: [0, 0, 0, 0, 0, 0]}
+""")
+    with ArmSim() as sim, pytest.raises(ethimon.SpecError, match="needs 7"):
+        GovernedArm(sim, ethimon.Monitor(spec))

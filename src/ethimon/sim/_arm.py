@@ -84,7 +84,7 @@ class ArmSim:
     Example:
         >>> sim = ArmSim(control_hz=60)              # doctest: +SKIP
         >>> sim.step(); sorted(sim.signals())         # doctest: +SKIP
-        ['contact_force', 'ee_speed', 'human_distance', 'joint_speed_max']
+        ['contact_force', 'ee_speed', 'hazard_distance', 'human_distance', 'joint_speed_max']
         >>> sim.close()                               # doctest: +SKIP
     """
 
@@ -306,12 +306,22 @@ class ArmSim:
                         best = c[9]
         return float(best)
 
+    def hazard_distance(self) -> float:
+        """Minimum distance between any hazard-tagged object and any human (m)."""
+        best = _NO_HUMAN_M
+        for name, spec in self.object_specs.items():
+            if spec.hazard:
+                for hb in self.humans.values():
+                    best = min(best, self.distance(self.objects[name], hb.body, best))
+        return best
+
     def signals(self) -> dict[str, float]:
         """The monitor's inputs from the current physics state.
 
         Returns:
             ``human_distance`` (m), ``ee_speed`` (m/s), ``contact_force`` (N),
-            ``joint_speed_max`` (rad/s).
+            ``joint_speed_max`` (rad/s) and ``hazard_distance`` (m, hazardous
+            object to nearest human; 10 m when there is none).
         """
         _, qd = self.joint_state()
         return {
@@ -319,6 +329,7 @@ class ArmSim:
             "ee_speed": float(np.linalg.norm(self.ee_velocity())),
             "contact_force": self.contact_force(),
             "joint_speed_max": float(np.max(np.abs(qd))),
+            "hazard_distance": float(self.hazard_distance()),
         }
 
     # ------------------------------------------------------------ commands

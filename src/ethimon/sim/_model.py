@@ -45,7 +45,7 @@ __all__ = [
 PHYSICS_HZ = 240
 
 #: Signals the simulation produces each control cycle.
-SIGNAL_NAMES = ("human_distance", "ee_speed", "contact_force", "joint_speed_max")
+SIGNAL_NAMES = ("human_distance", "ee_speed", "contact_force", "joint_speed_max", "hazard_distance")
 
 Vec3 = tuple[float, float, float]
 Vec2 = tuple[float, float]

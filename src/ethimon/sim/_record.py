@@ -11,7 +11,7 @@ from typing import Any
 
 __all__ = ["Recorder", "plot_trace"]
 
-_SIGNALS = ("human_distance", "ee_speed", "contact_force", "joint_speed_max")
+_SIGNALS = ("human_distance", "ee_speed", "contact_force", "joint_speed_max", "hazard_distance")
 
 
 def _clean(v: Any) -> Any:

@@ -160,7 +160,9 @@ class GovernedArm:
             self.safe_speed = float(sp.max_joint_speed_rad_s)
             self.safe_tol = float(sp.tolerance_rad)
         if self.safe_joints.shape != (7,):
-            raise ValueError(f"the Panda safe pose needs 7 joint values, got {len(self.safe_joints)}")
+            from ..errors import SpecError
+            raise SpecError(f"safe_pose.joints_rad has {len(self.safe_joints)} values; the Panda arm "
+                            "needs 7", hint="give 7 joint angles in the spec's safe_pose")
         self.inputs = dict(inputs or {})
         self.signal_filter = signal_filter
         self.stop_ramp_s = stop_ramp_s
