@@ -1,0 +1,46 @@
+"""``ethimon simulate`` and ``ethimon check --sim`` as a user runs them."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from ethimon.cli import main
+
+pytest.importorskip("pybullet")
+pytestmark = pytest.mark.sim
+
+
+def test_simulate_records_and_passes(tmp_path, capsys, root):
+    rc = main(["simulate", str(root / "scenarios/sim/knife_handover_child.yaml"),
+               "--record", str(tmp_path), "--json", str(tmp_path / "out.json")])
+    out = capsys.readouterr().out
+    assert rc == 0, out
+    assert "knife_handover_child" in out and "PASS" in out
+    rec = tmp_path / "knife_handover_child"
+    assert (rec / "trace.csv").is_file() and (rec / "plot.png").is_file()
+    assert any(p.name.endswith("_safe_pose.png") for p in rec.iterdir())
+    doc = json.loads((tmp_path / "out.json").read_text())
+    r = doc["results"][0]
+    assert r["override_reaction_cycles"] == 0 and r["time_to_safe_pose_s"] <= 1.5
+
+
+def test_simulate_bad_input_is_one_line(tmp_path, capsys, root):
+    assert main(["simulate", str(tmp_path / "nope.yaml")]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1
+    bad = tmp_path / "bad.yaml"
+    bad.write_text((root / "scenarios/sim/routine_wipe.yaml").read_text()
+                   .replace("../../specs/cobot_cell.yaml", str(root / "specs/cobot_cell.yaml"))
+                   .replace("passes: 3", "passes: 3, speeed: 2"))
+    assert main(["simulate", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "speeed" in err and "Traceback" not in err
+
+
+def test_simulate_needs_a_display_for_gui(monkeypatch, capsys, root):
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    assert main(["simulate", str(root / "scenarios/sim/routine_wipe.yaml"), "--gui"]) == 2
+    assert "display" in capsys.readouterr().err
