@@ -1,7 +1,9 @@
 """Stage 3 of 3: the runtime monitor (and its reference interpreter)."""
 
 from ._decision import Decision
+from ._loop import AsyncRiskSource, GovernedLoop, LoopStats, ProbEstimator, ReloadResult, RiskReading, Watchdog
 from ._monitor import Monitor, plan_of
 from ._reference import ReferenceMonitor
 
-__all__ = ["Decision", "Monitor", "ReferenceMonitor", "plan_of"]
+__all__ = ["AsyncRiskSource", "Decision", "GovernedLoop", "LoopStats", "Monitor", "ProbEstimator",
+           "ReferenceMonitor", "ReloadResult", "RiskReading", "Watchdog", "plan_of"]
