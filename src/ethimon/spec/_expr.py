@@ -351,6 +351,8 @@ def to_source(node: Node) -> str:
         if node.op in ("and", "or", "implies"):
             wrap = lambda n, s: s if not isinstance(n, Binary) or n.op not in ("and", "or", "implies") else f"({s})"  # noqa: E731
             if node.op == "implies":
+                if isinstance(node.left, Binary) and node.left.op == "implies":
+                    left = f"({left})"  # implies is right-associative
                 return f"{left} implies {right}"
             return f"{wrap(node.left, left)} {node.op} {wrap(node.right, right)}"
         return f"({left} {node.op} {right})"
