@@ -76,14 +76,23 @@ def main() -> int:
             time_steps(m, frames, 5000)  # warm-up
             m.reset()
             samples = sorted(time_steps(m, frames, args.cycles))
+            # batched: one clock read per 10k steps, so the clock's own cost is not counted
+            m.reset()
+            step, n = m.step, len(frames)
+            t0 = time.perf_counter()
+            for i in range(args.cycles):
+                step(frames[i % n])
+            batched = (time.perf_counter() - t0) / args.cycles * 1e6
             rows.append({"spec": os.path.basename(path), "obligations": len(spec.obligations),
                          "margins": margins, "cycles": args.cycles, "median_us": round(pct(samples, 0.5), 3),
                          "p99_us": round(pct(samples, 0.99), 3), "p999_us": round(pct(samples, 0.999), 3),
-                         "mean_us": round(sum(samples) / len(samples), 3)})
-    print(f"{'spec':<18} {'obl':>4} {'margins':>8} {'median µs':>10} {'p99 µs':>8} {'p99.9 µs':>9}")
+                         "mean_us": round(sum(samples) / len(samples), 3),
+                         "batched_mean_us": round(batched, 3)})
+    print(f"{'spec':<18} {'obl':>4} {'margins':>8} {'median µs':>10} {'p99 µs':>8} {'p99.9 µs':>9} "
+          f"{'batched µs':>11}")
     for r in rows:
         print(f"{r['spec']:<18} {r['obligations']:>4} {str(r['margins']):>8} {r['median_us']:>10.2f} "
-              f"{r['p99_us']:>8.2f} {r['p999_us']:>9.2f}")
+              f"{r['p99_us']:>8.2f} {r['p999_us']:>9.2f} {r['batched_mean_us']:>11.2f}")
     os.makedirs(os.path.dirname(args.json), exist_ok=True)
     with open(args.json, "w", encoding="utf-8") as fh:
         json.dump({"benchmark": "monitor_step", "machine": machine_facts(), "results": rows}, fh, indent=2)
