@@ -199,7 +199,7 @@ class SafePoseController:
     name = "safe_pose"
 
     def __init__(self, q_now: np.ndarray, q_safe: Sequence[float], max_joint_speed_rad_s: float,
-                 *, margin: float = 0.95, accel_rad_s2: float = 6.0) -> None:
+                 *, margin: float = 0.98, accel_rad_s2: float = 8.0) -> None:
         self.q0 = np.asarray(q_now, dtype=float)
         self.q_safe = np.asarray(q_safe, dtype=float)
         self.v_limit = float(max_joint_speed_rad_s)
