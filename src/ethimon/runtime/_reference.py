@@ -161,9 +161,12 @@ class ReferenceMonitor:
                 return risk_from_p_unsafe(q, r.alpha, r.beta, r.gamma, r.variance), None
             return None, "bad p_unsafe"
         if signals.get("p") is not None:
-            p = list(signals["p"])
-            if len(p) == r.classes and all(0 <= v <= 1 for v in p) and abs(sum(p) - 1) <= 1e-3:
-                return risk_from_probs(p, r.alpha, r.beta, r.gamma, r.variance, r.unsafe_index), None
+            try:  # not a sequence, or entries that are not numbers: bad input, never an exception
+                p = list(signals["p"])
+                if len(p) == r.classes and all(0 <= v <= 1 for v in p) and abs(sum(p) - 1) <= 1e-3:
+                    return risk_from_probs(p, r.alpha, r.beta, r.gamma, r.variance, r.unsafe_index), None
+            except TypeError:
+                pass
             return None, "bad p"
         return None, "no risk"
 

@@ -1,0 +1,211 @@
+"""Hypothesis strategies: random typed expression ASTs, random specs, random input traces.
+
+Expressions are built as ASTs over a few signals (numbers ``x``, ``y``, ``z``,
+boolean ``b`` and ``risk``), with every operator and every temporal operator
+(``prev`` with and without an initial value, ``held``, ``once``, bounded and
+unbounded ``since``), rendered with :func:`~ethimon.spec._expr.to_source` and
+compiled through :func:`ethimon.load_spec_text`, exactly like a user's file.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import yaml
+from hypothesis import strategies as st
+
+import ethimon
+from ethimon.spec._expr import Binary, BoolLit, Call, Name, Num, Unary, to_source
+
+NUM_SIGNALS = {"x": (-5.0, 5.0), "y": (0.0, 10.0), "z": (-1.0, 1.0)}
+BOOL_SIGNALS = ("b",)
+RESPONSES = ("safe_pose", "stop_2", "stop_1", "stop_0")
+NUMBERS = (0.0, 1.0, 2.0, 0.5, -1.0, 3.25, 10.0, -0.1, 0.45)
+WINDOWS = (1, 2, 3, 4)
+
+
+def _n(cls, *args):
+    return cls(0, 0, *args)
+
+
+num_leaf = st.one_of(st.sampled_from(sorted(NUM_SIGNALS) + ["risk"]).map(lambda s: _n(Name, s)),
+                     st.sampled_from(NUMBERS).map(lambda v: _n(Num, v)))
+bool_leaf = st.one_of(st.sampled_from(BOOL_SIGNALS).map(lambda s: _n(Name, s)),
+                      st.booleans().map(lambda v: _n(BoolLit, v)))
+
+
+def _nonzero(node):
+    return _n(Num, 1.0) if isinstance(node, Num) and node.value == 0 else node
+
+
+def num_expr(depth: int) -> st.SearchStrategy:
+    """Number-valued ASTs of nesting depth <= ``depth``."""
+    if depth <= 0:
+        return num_leaf
+    sub = num_expr(depth - 1)
+    bsub = bool_expr(depth - 1)
+    return st.one_of(
+        num_leaf,
+        sub.map(lambda a: _n(Unary, "-", a)),
+        st.builds(lambda op, a, b: _n(Binary, op, a, _nonzero(b) if op == "/" else b),
+                  st.sampled_from(("+", "-", "*", "/")), sub, sub),
+        sub.map(lambda a: _n(Call, "abs", (a,))),
+        sub.map(lambda a: _n(Call, "sqrt", (a,))),
+        st.builds(lambda f, args: _n(Call, f, tuple(args)), st.sampled_from(("min", "max")),
+                  st.lists(sub, min_size=2, max_size=3)),
+        sub.map(lambda a: _n(Call, "prev", (a,))),
+        st.builds(lambda a, i: _n(Call, "prev", (a, i)), sub, num_leaf),
+        # a number that depends on a condition, through prev of a comparison's operands
+        st.builds(lambda c, a: _n(Binary, "*", a, _n(Call, "prev", (a,))) if c else a, bsub.map(bool), sub),
+    )
+
+
+def bool_expr(depth: int) -> st.SearchStrategy:
+    """Condition ASTs of nesting depth <= ``depth``."""
+    if depth <= 0:
+        return st.one_of(bool_leaf, st.builds(lambda op, a, b: _n(Binary, op, a, b),
+                                              st.sampled_from(("<", "<=", ">", ">=", "==", "!=")),
+                                              num_leaf, num_leaf))
+    sub = bool_expr(depth - 1)
+    nsub = num_expr(depth - 1)
+    win = st.sampled_from(WINDOWS).map(lambda n: _n(Num, float(n)))
+    return st.one_of(
+        bool_leaf,
+        st.builds(lambda op, a, b: _n(Binary, op, a, b),
+                  st.sampled_from(("<", "<=", ">", ">=", "==", "!=")), nsub, nsub),
+        sub.map(lambda a: _n(Unary, "not", a)),
+        st.builds(lambda op, a, b: _n(Binary, op, a, b),
+                  st.sampled_from(("and", "or", "implies", "==", "!=")), sub, sub),
+        st.builds(lambda f, a, n: _n(Call, f, (a, n)), st.sampled_from(("held", "once")), sub, win),
+        st.builds(lambda a, b: _n(Call, "since", (a, b)), sub, sub),
+        st.builds(lambda a, b, n: _n(Call, "since", (a, b, n)), sub, sub, win),
+        sub.map(lambda a: _n(Call, "prev", (a,))),
+        st.builds(lambda a, i: _n(Call, "prev", (a, i)), sub, bool_leaf),
+    )
+
+
+@dataclass
+class GenSpec:
+    """A generated spec: its YAML text and the loaded, compiled :class:`ethimon.Spec`."""
+
+    text: str
+    spec: ethimon.Spec = field(repr=False)
+    doc: dict = field(repr=False, default_factory=dict)
+
+    @property
+    def tau(self) -> float:
+        return self.spec.risk.threshold
+
+
+def spec_doc(draw, *, max_obligations: int = 3, depth: int = 3) -> dict:
+    obligations = []
+    for i in range(draw(st.integers(0, max_obligations))):
+        ob: dict[str, Any] = {"id": f"ob{i}", "require": to_source(draw(bool_expr(depth)))}
+        if draw(st.booleans()):
+            ob["when"] = to_source(draw(bool_expr(depth - 1)))
+        w = draw(st.sampled_from((None, None, 0, 1, 2, 3)))
+        if w is not None:
+            ob["within_cycles"] = w
+        ob["response"] = draw(st.sampled_from(RESPONSES))
+        obligations.append(ob)
+    weights = draw(st.one_of(st.just((0.6, 0.2, 0.2)),
+                             st.tuples(*[st.sampled_from((0.0, 0.1, 0.3, 0.5, 0.8, 1.0))] * 3)))
+    risk: dict[str, Any] = {
+        "alpha": weights[0], "beta": weights[1], "gamma": weights[2],
+        "variance": draw(st.sampled_from(("sample", "population"))),
+        "threshold": draw(st.sampled_from((0.3, 0.4, 0.5, 0.55, 0.6))),
+        "response": draw(st.sampled_from(RESPONSES)),
+        "release": {"mode": draw(st.sampled_from(("auto", "auto", "manual"))),
+                    "hysteresis": draw(st.sampled_from((0.0, 0.05, 0.1))),
+                    "hold_cycles": draw(st.integers(1, 4))},
+    }
+    if draw(st.booleans()):
+        risk["max_age_s"] = 0.5
+    signals: dict[str, Any] = {n: {"range": [lo, hi]} for n, (lo, hi) in NUM_SIGNALS.items()}
+    signals.update({n: {"type": "bool"} for n in BOOL_SIGNALS})
+    return {"ethimon": 1, "name": "generated", "signals": signals, "risk": risk,
+            "on_fault": draw(st.sampled_from(RESPONSES)), "obligations": obligations}
+
+
+@st.composite
+def specs(draw, max_obligations: int = 3, depth: int = 3) -> GenSpec:
+    """Random specs that compile (the generator is typed, so any SpecError is a bug)."""
+    doc = spec_doc(draw, max_obligations=max_obligations, depth=depth)
+    text = yaml.safe_dump(doc, sort_keys=False)
+    return GenSpec(text, ethimon.load_spec_text(text, "<generated>"), doc)
+
+
+# -- traces ------------------------------------------------------------------------------------------
+
+def _num_value(lo: float, hi: float) -> st.SearchStrategy:
+    mid = (lo + hi) / 2
+    return st.one_of(st.sampled_from((lo, hi, 0.0 if lo <= 0 <= hi else lo, mid, 1.0 if lo <= 1 <= hi else hi)),
+                     st.floats(lo, hi, allow_nan=False))
+
+
+BAD_NUMBERS = (math.nan, math.inf, -math.inf, 1e9, -1e9, "0.5", True, None)
+BAD_BOOLS = ("yes", 2, None, math.nan, 0.5)
+
+
+@st.composite
+def frame(draw, spec: ethimon.Spec, *, p_bad: float = 0.05, late_risk: bool = True) -> dict[str, Any]:
+    """One cycle's inputs: mostly valid, sometimes a missing/NaN/out-of-range/wrong-type value."""
+    f: dict[str, Any] = {}
+    bad = lambda: draw(st.floats(0, 1)) < p_bad  # noqa: E731
+    for name, sig in spec.signals.items():
+        if sig.type == "bool":
+            v = draw(st.sampled_from(BAD_BOOLS)) if bad() else draw(st.sampled_from((True, False, 0, 1)))
+        else:
+            lo, hi = sig.range if sig.range is not None else (-100.0, 100.0)
+            v = draw(st.sampled_from(BAD_NUMBERS)) if bad() else draw(_num_value(lo, hi))
+        if v is not None:
+            f[name] = v
+    kind = draw(st.sampled_from(("risk", "p_unsafe", "p_unsafe", "p")))
+    if bad():
+        f[kind] = draw(st.sampled_from((math.nan, -0.5, 1.5, None, "high")))
+        if f[kind] is None:
+            del f[kind]
+    else:
+        q = draw(st.one_of(st.sampled_from((0.0, 0.5, 1.0, 0.55, 0.7, 0.9)), st.floats(0, 1)))
+        if kind == "p":
+            f["p"] = (1.0 - q, q)
+        elif kind == "risk":
+            f["risk"] = draw(st.one_of(st.floats(0, 1), st.sampled_from((0.1, 0.45, 0.5, 0.6, 0.7))))
+        else:
+            f["p_unsafe"] = q
+    if spec.risk.max_age_s is not None:
+        if late_risk and bad():
+            f["risk_age_s"] = draw(st.sampled_from((spec.risk.max_age_s * 2, math.nan, -1.0, None)))
+            if f["risk_age_s"] is None:
+                del f["risk_age_s"]
+        else:
+            f["risk_age_s"] = draw(st.floats(0, spec.risk.max_age_s))
+    return f
+
+
+@st.composite
+def ops(draw, spec: ethimon.Spec, *, min_size: int = 1, max_size: int = 30, p_bad: float = 0.05):
+    """A trace: mostly ``("step", frame)``, sometimes ``("reset",)`` or ``("release",)``."""
+    n = draw(st.integers(min_size, max_size))
+    out = []
+    for _ in range(n):
+        r = draw(st.integers(0, 39))
+        if r == 0:
+            out.append(("reset",))
+        elif r == 1:
+            out.append(("release",))
+        else:
+            out.append(("step", draw(frame(spec, p_bad=p_bad))))
+    return out
+
+
+def valid_frames(spec: ethimon.Spec, min_size: int = 1, max_size: int = 20):
+    """Traces of valid inputs only."""
+    return st.lists(frame(spec, p_bad=0.0), min_size=min_size, max_size=max_size)
+
+
+def decision_key(d) -> tuple:
+    """What must agree between two monitors (fault reasons are worded differently)."""
+    return (d.cycle, d.override, d.response, tuple(d.violations), d.risk, d.latched, bool(d.faults))
