@@ -302,6 +302,16 @@ def test_reload_verification_hook_can_reject(tmp_path):
     assert not res.ok and "vacuous" in res.error
 
 
+def test_reload_smt_verification_rejects_a_refuted_spec(tmp_path):
+    pytest.importorskip("z3")
+    loop, _ = _loop(verify="smt")
+    assert loop.reload(ethimon.load_spec_text(CELL)).ok
+    res = loop.reload(ROOT / "tests" / "verify_fixtures" / "refuted_division.yaml")
+    assert not res.ok and "verification failed" in res.error and "refuted" in res.error
+    with pytest.raises(ValueError):
+        _loop(verify="z4")
+
+
 def test_reload_carries_a_latched_override_over(tmp_path):
     loop, clock = _loop()
     d = loop.cycle({"human_distance": 0.1})

@@ -88,16 +88,19 @@ def verify_log(path: str | os.PathLike, *, key: bytes | None = None, require_clo
         'ok: 1204 records, chain intact, closed; head 3f9c0a1b2c3d4e5f'
     """
     path = os.fspath(path)
+    if os.path.isdir(path):
+        raise AuditFormatError(f"{path}: is a directory, not an audit log")
     try:
-        if os.path.isdir(path):
-            raise AuditFormatError(f"{path}: is a directory, not an audit log")
-        lines = list(_lines(path))
-    except AuditFormatError:
-        raise
+        fh = open(path, "rb")  # noqa: SIM115 - closed below
     except OSError as exc:
         raise AuditFormatError(f"{path}: cannot read: {exc.strerror or exc}") from None
-    if not lines:
-        raise AuditFormatError(f"{path}: empty file, not an audit log")
+    with fh:
+        return _verify_stream(path, fh, key, require_closed, expect_head)
+
+
+def _verify_stream(path: str, fh, key: bytes | None, require_closed: bool,
+                   expect_head: str | None) -> AuditReport:
+    """Stream the lines (constant memory): a line without its newline can only be the last."""
     prev = GENESIS
     count = 0
     closed = False
@@ -108,8 +111,9 @@ def verify_log(path: str | os.PathLike, *, key: bytes | None = None, require_clo
     def bad(msg: str, line: int) -> AuditReport:
         return AuditReport(False, count, closed, torn, msg, line, prev, log_id, kinds)
 
-    for lineno, raw, complete in lines:
-        if not complete:
+    lineno = 0
+    for lineno, raw in enumerate(fh, start=1):
+        if not raw.endswith(b"\n"):
             torn = True
             break
         try:
@@ -155,6 +159,10 @@ def verify_log(path: str | os.PathLike, *, key: bytes | None = None, require_clo
         kinds[kind] = kinds.get(kind, 0) + 1
         if kind == "close":
             closed = True
+    if lineno == 0:
+        raise AuditFormatError(f"{path}: empty file, not an audit log")
+    if count == 0 and torn:
+        raise AuditFormatError(f"{path}: only a partial first line; not a complete audit log")
     if expect_head is not None and prev != expect_head:
         return bad(f"log ends at {prev[:16]}…, expected head {expect_head[:16]}… (truncated or rewritten)",
                    None)

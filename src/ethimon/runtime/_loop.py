@@ -403,6 +403,16 @@ class LoopStats:
         return dict(self.__dict__)
 
 
+def _verify_smt(spec: Spec) -> None:
+    """Reject a spec unless every decision-logic property is proved (``ethimon.verify``, z3)."""
+    from ..verify import verify_spec
+    rep = verify_spec(spec, lints=False)
+    if rep.exit_code != 0:
+        bad = [f"{f.name}: {f.status}" for f in rep.findings if f.kind == "property"
+               and f.status in ("refuted", "unknown")]
+        raise EthimonError("verification failed: " + ("; ".join(bad) if bad else str(rep.error)))
+
+
 _NUM = re.compile(r"[-+]?(?:\d+\.?\d*(?:e[-+]?\d+)?|nan|inf)", re.IGNORECASE)
 
 
@@ -427,8 +437,10 @@ class GovernedLoop:
             (when it has one, the monitor enforces that). ``None``: no limit here.
         audit: an :class:`~ethimon.audit.AuditLog`; state changes are always logged.
         audit_every_cycle: log every cycle, not just state changes.
-        verify: optional ``verify(spec)`` run on a reloaded spec before the swap;
-            raising or returning ``False`` rejects it.
+        verify: check run on a reloaded spec before the swap: a callable
+            ``verify(spec)`` (raising or returning ``False`` rejects it), or ``"smt"``
+            for :func:`ethimon.verify.verify_spec` (z3; any refuted or unproved
+            property rejects the spec). ``None``: compile only.
         watchdog_s: if set, a :class:`Watchdog` thread calls ``on_stall`` (and logs a
             fault) when no cycle completes for this long.
         on_stall: the watchdog callback (e.g. trigger the hardware stop).
@@ -455,7 +467,7 @@ class GovernedLoop:
     def __init__(self, monitor: Monitor | Spec, *, signals: Callable[[], Mapping[str, Any]] | None = None,
                  risk: AsyncRiskSource | None = None, period_s: float = 0.001, deadline_s: float | None = None,
                  max_risk_age_s: float | None = 0.5, audit: Any = None, audit_every_cycle: bool = False,
-                 verify: Callable[[Spec], Any] | None = None, watchdog_s: float | None = None,
+                 verify: Callable[[Spec], Any] | str | None = None, watchdog_s: float | None = None,
                  on_stall: Callable[[str], None] | None = None,
                  on_decision: Callable[[Decision], None] | None = None,
                  clock: Callable[[], float] = time.perf_counter, sleep: Callable[[float], None] = time.sleep
@@ -478,6 +490,10 @@ class GovernedLoop:
         self.stats = LoopStats()
         self.last_decision: Decision | None = None
         self._signals = signals
+        if verify == "smt":
+            verify = _verify_smt
+        elif verify is not None and not callable(verify):
+            raise ValueError(f"verify={verify!r}; expected None, 'smt' or a callable verify(spec)")
         self._verify = verify
         self._on_decision = on_decision
         self._clock = clock
