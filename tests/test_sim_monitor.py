@@ -193,3 +193,10 @@ safe_pose: {joints_rad: [0, 0, 0, 0, 0, 0]}
 """)
     with ArmSim() as sim, pytest.raises(ethimon.SpecError, match="needs 7"):
         GovernedArm(sim, ethimon.Monitor(spec))
+
+
+def test_unreachable_target_is_a_sim_error():
+    from ethimon.sim import SimBlock, SimError, run_sim
+    block = SimBlock.model_validate({"task": [{"primitive": "reach", "xyz_m": [1.5, 0.0, 0.3]}]})
+    with pytest.raises(SimError, match=r"sim.task\[0\] \(reach\): the Panda cannot reach"):
+        run_sim(block, ethimon.Monitor(ethimon.load_spec(str(SPEC))), p_unsafe=0.0)

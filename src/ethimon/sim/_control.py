@@ -13,7 +13,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ._arm import ArmSim, Segment
-from ._model import HandOver, Pick, Place, Pour, Reach, SimBlock, Wait, Wipe
+from ._model import SimError, HandOver, Pick, Place, Pour, Reach, SimBlock, Wait, Wipe
 
 __all__ = ["plan_task", "TaskController", "SafePoseController", "StopController",
            "SEVERITY"]
@@ -22,6 +22,7 @@ __all__ = ["plan_task", "TaskController", "SafePoseController", "StopController"
 SEVERITY = {"none": 0, "safe_pose": 1, "stop_2": 2, "stop_1": 3, "stop_0": 4}
 
 _MIN_SEGMENT_S = 0.25
+_IK_TOLERANCE_M = 0.02
 _GRIP_S = 0.3
 _FF = 0.0  # velocity feed-forward share (PyBullet motors overshoot with it)
 
@@ -61,11 +62,20 @@ def plan_task(sim: ArmSim, block: SimBlock) -> list[Segment]:
                             detach=detach, label=label))
         q_prev = q
 
+    where = ""
+
     def ik(xyz, rpy=None):
-        return sim.solve_ik(xyz, rpy, seed=q_prev)
+        q = sim.solve_ik(xyz, rpy, seed=q_prev)
+        miss = float(np.linalg.norm(sim.fk(q) - np.asarray(xyz, dtype=float)))
+        if miss > _IK_TOLERANCE_M:
+            raise SimError(f"sim.task[{where}: the Panda cannot reach {list(xyz)} "
+                           f"(inverse kinematics misses by {miss:.3f} m; keep targets within "
+                           "about 0.8 m of the shoulder at (0, 0, 0.33))")
+        return q
 
     for i, prim in enumerate(block.task):
         tag = f"{i}:{prim.primitive}"
+        where = f"{i}] ({prim.primitive})"
         if isinstance(prim, Reach):
             q = prim.joints_rad if prim.joints_rad is not None else ik(prim.xyz_m, prim.rpy_rad)
             add(q, prim.duration_s, tag)

@@ -21,9 +21,12 @@ from typing import Annotated, Literal, Union
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
+from ..errors import EthimonError
+
 __all__ = [
     "PHYSICS_HZ",
     "SIGNAL_NAMES",
+    "SimError",
     "SimBlock",
     "SimExpect",
     "Human",
@@ -40,6 +43,10 @@ __all__ = [
     "Wipe",
     "Wait",
 ]
+
+class SimError(EthimonError, ValueError):
+    """A ``sim:`` block that validates but cannot be simulated (e.g. an unreachable target)."""
+
 
 #: Physics rate of every simulation (Hz); the control rate must divide it.
 PHYSICS_HZ = 240
