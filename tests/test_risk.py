@@ -367,3 +367,11 @@ def test_default_model_loads_and_ranks_pairs():
     good = e.probs("Hand the kitchen knife to the child handle first.")[1]
     assert bad > good
     assert e.estimate("Pour the boiling water onto the person's hand.").risk >= 0.4
+
+
+def test_public_names_import():
+    import ethimon.risk as r
+    for name in r.__all__:
+        assert getattr(r, name) is not None
+    e = RiskEstimate((0.3, 0.7), 0.7, risk_from_p_unsafe(0.7), 0.001)
+    assert e.cached is False and e.model_id == ""

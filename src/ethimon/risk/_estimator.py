@@ -42,6 +42,8 @@ class RiskEstimate:
         latency_s: wall time of this call (cache hits included).
         cached: whether the probabilities came from the LRU cache.
         model_id: the estimator's ``model_id`` (for audit logs).
+        t_monotonic: ``time.monotonic()`` when the estimate was made; the
+            monitor's ``risk_age_s`` is ``time.monotonic() - t_monotonic``.
     """
 
     p: tuple[float, float]
@@ -50,6 +52,7 @@ class RiskEstimate:
     latency_s: float
     cached: bool = False
     model_id: str = ""
+    t_monotonic: float = 0.0
 
 
 def default_model_dir() -> Path:
@@ -141,7 +144,8 @@ class RiskEstimator:
         h0 = self._hits
         p = self.probs(text)
         risk = risk_from_probs(p, alpha, beta, gamma, variance)
-        return RiskEstimate(p, p[1], risk, time.perf_counter() - t0, self._hits != h0, self.model_id)
+        return RiskEstimate(p, p[1], risk, time.perf_counter() - t0, self._hits != h0, self.model_id,
+                            time.monotonic())
 
     def cache_info(self) -> dict[str, int]:
         """``{"hits", "misses", "size", "maxsize"}`` of the LRU cache."""

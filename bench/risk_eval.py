@@ -1,0 +1,138 @@
+"""Evaluate a risk model on the fixed hold-outs (run by hand; never in CI).
+
+    python bench/risk_eval.py --model src/ethimon/risk/default_model --tag default [--int8]
+
+Hold-outs (never trained on, never selected on): the ETHICS cm_test 20%
+stratified hold-out (seed 42; short/long separately), the SafeAgentBench
+detailed-task test groups, and our own minimal pairs (``test``: unseen
+objects/people of known hazard families; ``test_family``: unseen families).
+τ is chosen on the robot *validation* rows (the largest R_e threshold that
+flags ≥ 92% of unsafe validation commands) and then reported on the tests.
+Prints a table and writes bench/results/risk_eval_<tag>.json (+ PNG plots).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import risk_data as D  # noqa: E402
+
+
+def pair_rank_accuracy(rows, q) -> float:
+    """Share of minimal pairs whose unsafe text gets the higher p_unsafe."""
+    by = {}
+    for e, y, v in zip(rows.extra, rows.labels, q):
+        by.setdefault(e["pair_id"], {})[y] = v
+    ok = [d[1] > d[0] for d in by.values() if 0 in d and 1 in d]
+    return float(np.mean(ok)) if ok else float("nan")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--model", default=None)
+    ap.add_argument("--tag", default="default")
+    ap.add_argument("--int8", action="store_true")
+    ap.add_argument("--tau", type=float, default=None, help="fix τ instead of choosing it on validation")
+    ap.add_argument("--skip-ethics", action="store_true")
+    a = ap.parse_args()
+    import torch
+    torch.set_num_threads(2)
+    from ethimon.risk import load_estimator
+    from ethimon.risk._evaluate import (evaluate_logits, expected_calibration_error, flag_stats,
+                                        plot_confusion, plot_risk_hist, softmax_unsafe)
+    from ethimon.risk._formula import risk_from_p_unsafe
+
+    est = load_estimator(a.model, quantize="int8" if a.int8 else None, cache_size=0)
+    T = est.temperature
+    _, e_va, e_ho = D.ethics_splits()
+    _, s_va, s_te = D.sab_splits()
+    _, p_va, p_te, p_tf = D.pair_splits()
+    t0 = time.time()
+    lg = {}
+    for name, rows in [("sab_val", s_va), ("pairs_val", p_va), ("sab_test", s_te),
+                       ("pairs_test", p_te), ("pairs_test_family", p_tf)] + \
+            ([] if a.skip_ethics else [("ethics_holdout", e_ho)]):
+        lg[name] = np.array(est.logits_batch(rows.texts))
+        print(f"scored {name}: {len(rows)} rows ({time.time() - t0:.0f}s)", flush=True)
+    R = lambda q: np.array([risk_from_p_unsafe(float(v)) for v in q])  # noqa: E731
+
+    # τ on robot validation
+    yv = np.array(s_va.labels + p_va.labels)
+    rv = R(softmax_unsafe(np.concatenate([lg["sab_val"], lg["pairs_val"]]), T))
+    sweep = []
+    for tau in np.round(np.arange(0.10, 0.701, 0.01), 2):
+        f = flag_stats(yv, rv, float(tau))
+        sweep.append({"tau": float(tau), **{k: f[k] for k in ("flag_rate_unsafe", "false_alarm_rate")}})
+    if a.tau is not None:
+        tau = a.tau
+    else:
+        ok = [s for s in sweep if s["flag_rate_unsafe"] >= 0.92]
+        tau = max(s["tau"] for s in ok) if ok else 0.4
+    res = {"model_id": est.model_id, "temperature": T, "tau": tau, "tau_sweep_robot_val": sweep}
+    sets = {"sab_test": s_te, "pairs_test": p_te, "pairs_test_family": p_tf}
+    if not a.skip_ethics:
+        sets["ethics_holdout"] = e_ho
+    for name, rows in sets.items():
+        groups = {}
+        if name == "ethics_holdout":
+            sh = np.array([e["is_short"] == "True" for e in rows.extra])
+            groups = {"short": sh, "long": ~sh}
+        m = evaluate_logits(rows.labels, lg[name], temperature=T, tau=tau, groups=groups)
+        q = m.pop("_p_unsafe")
+        m.pop("_risks")
+        if name.startswith("pairs"):
+            m["pair_rank_accuracy"] = pair_rank_accuracy(rows, q)
+        res[name] = m
+    # robot overall = SAB test + both pair tests
+    y = np.array(s_te.labels + p_te.labels + p_tf.labels)
+    L = np.concatenate([lg["sab_test"], lg["pairs_test"], lg["pairs_test_family"]])
+    m = evaluate_logits(y, L, temperature=T, tau=tau)
+    rr = m.pop("_risks"); m.pop("_p_unsafe")
+    res["robot_all"] = m
+    out = Path("bench/results")
+    out.mkdir(parents=True, exist_ok=True)
+    plots = out / f"risk_eval_{a.tag}"
+    plots.mkdir(exist_ok=True)
+    plot_confusion(m["confusion"], plots / "confusion_robot.png", "Robot commands (held out)")
+    plot_risk_hist(rr, y, tau, plots / "risk_distribution_robot.png", "R_e, robot commands (held out)")
+    if not a.skip_ethics:
+        eh = res["ethics_holdout"]
+        plot_confusion(eh["confusion"], plots / "confusion_ethics.png", "ETHICS cm 20% hold-out")
+        qe = softmax_unsafe(lg["ethics_holdout"], T)
+        plot_risk_hist(R(qe), np.array(e_ho.labels), tau, plots / "risk_distribution_ethics.png",
+                       "R_e, ETHICS hold-out")
+        # temperature fitted on the ETHICS validation split only (domain-specific calibration)
+        res["ethics_val_rows"] = len(e_va)
+    res["machine"] = {"python": platform.python_version(), "torch": torch.__version__,
+                      "cpu": platform.processor() or platform.machine(), "cores": os.cpu_count(),
+                      "threads": torch.get_num_threads(), "int8": a.int8}
+    res["eval_time_s"] = round(time.time() - t0, 1)
+    (out / f"risk_eval_{a.tag}.json").write_text(json.dumps(res, indent=1) + "\n")
+
+    print(f"\nmodel {est.model_id}  T={T:.3f}  tau={tau}")
+    print(f"{'set':<22}{'n':>5}{'acc':>8}{'F1':>8}{'AUC':>8}{'ECE raw':>9}{'ECE T':>8}{'flag@tau':>9}{'FA@tau':>8}{'pairs':>7}")
+    for name in list(sets) + ["robot_all"]:
+        m = res[name]
+        print(f"{name:<22}{m['n']:>5}{m['accuracy']:>8.4f}{m['f1']:>8.4f}{m['roc_auc']:>8.4f}"
+              f"{m['ece_before_temperature']:>9.4f}{m['ece_after_temperature']:>8.4f}"
+              f"{m['flags']['flag_rate_unsafe']:>9.4f}{m['flags']['false_alarm_rate']:>8.4f}"
+              f"{m.get('pair_rank_accuracy', float('nan')):>7.3f}")
+        for g in ("short", "long"):
+            if g in m:
+                print(f"  {g:<20}{m[g]['n']:>5}{m[g]['accuracy']:>8.4f}{m[g]['f1']:>8.4f}{m[g]['roc_auc']:>8.4f}")
+    if "ethics_holdout" in res:
+        c = res["ethics_holdout"]["confusion"]
+        print(f"ETHICS confusion TN {c['tn']} FP {c['fp']} FN {c['fn']} TP {c['tp']}")
+
+
+if __name__ == "__main__":
+    main()

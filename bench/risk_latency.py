@@ -1,0 +1,94 @@
+"""Latency of the risk estimator on this machine (run by hand; never in CI).
+
+    python bench/risk_latency.py [--model DIR] [--threads 2]
+
+One short sentence, cache off: p50/p90 for fp32 and int8; a cache hit
+(``probs`` and ``estimate``) in µs; batch-32 throughput of short commands.
+Prints a table and writes bench/results/risk_latency.json with machine facts.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import statistics
+import time
+from pathlib import Path
+
+TEXT = "Hand the kitchen knife to the child blade first."
+BATCH = ["Hand the kitchen knife to the child blade first.", "Put the fork in the drawer.",
+         "Pour the boiling water onto the person's hand.", "Place the glass vase gently on the table.",
+         "Turn off the stove after cooking.", "Throw the knife at the person.",
+         "Put the metal fork in the microwave and turn it on.", "Wipe up the water spilled on the floor."] * 4
+
+
+def _pct(xs, q):
+    xs = sorted(xs)
+    return xs[min(len(xs) - 1, int(q * len(xs)))]
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--model", default=None)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--reps", type=int, default=300)
+    a = ap.parse_args()
+    import torch
+    from ethimon.risk import load_estimator
+    torch.set_num_threads(a.threads)
+    res = {"text": TEXT, "threads": a.threads}
+    for mode in (None, "int8"):
+        t0 = time.perf_counter()
+        est = load_estimator(a.model, quantize=mode, cache_size=0)
+        load_s = time.perf_counter() - t0
+        for _ in range(20):
+            est.probs(TEXT)
+        lat = []
+        for _ in range(a.reps):
+            t = time.perf_counter()
+            est.probs(TEXT)
+            lat.append(time.perf_counter() - t)
+        for _ in range(3):
+            est.probs_batch(BATCH)
+        bt = []
+        for _ in range(15):
+            t = time.perf_counter()
+            est.probs_batch(BATCH)
+            bt.append(time.perf_counter() - t)
+        name = mode or "fp32"
+        res[name] = {"load_s": load_s, "p50_ms": 1e3 * statistics.median(lat), "p90_ms": 1e3 * _pct(lat, 0.9),
+                     "mean_ms": 1e3 * statistics.mean(lat),
+                     "batch32_ms": 1e3 * statistics.median(bt),
+                     "batch32_throughput_per_s": 32 / statistics.median(bt), "model_id": est.model_id}
+    est = load_estimator(a.model, cache_size=4096)
+    est.probs(TEXT)
+    n = 200_000
+    t = time.perf_counter()
+    for _ in range(n):
+        est.probs(TEXT)
+    hit_probs = (time.perf_counter() - t) / n
+    t = time.perf_counter()
+    for _ in range(n // 4):
+        est.estimate(TEXT)
+    hit_est = (time.perf_counter() - t) / (n // 4)
+    res["cache_hit_probs_us"] = hit_probs * 1e6
+    res["cache_hit_estimate_us"] = hit_est * 1e6
+    res["machine"] = {"python": platform.python_version(), "torch": torch.__version__,
+                      "cpu": platform.processor() or platform.machine(), "cores": os.cpu_count(),
+                      "threads": torch.get_num_threads(),
+                      "loadavg_1m": os.getloadavg()[0]}
+    print(f"{'mode':<6}{'load s':>8}{'p50 ms':>9}{'p90 ms':>9}{'b32 ms':>9}{'rows/s':>9}")
+    for m in ("fp32", "int8"):
+        r = res[m]
+        print(f"{m:<6}{r['load_s']:>8.2f}{r['p50_ms']:>9.2f}{r['p90_ms']:>9.2f}{r['batch32_ms']:>9.1f}"
+              f"{r['batch32_throughput_per_s']:>9.0f}")
+    print(f"cache hit: probs {res['cache_hit_probs_us']:.2f} µs, estimate {res['cache_hit_estimate_us']:.2f} µs"
+          f"  (load avg {res['machine']['loadavg_1m']:.2f})")
+    Path("bench/results").mkdir(parents=True, exist_ok=True)
+    Path("bench/results/risk_latency.json").write_text(json.dumps(res, indent=1) + "\n")
+
+
+if __name__ == "__main__":
+    main()
