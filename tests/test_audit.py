@@ -208,6 +208,15 @@ def test_kill_loses_no_record_reported_written(tmp_path):
     assert [r["cycle"] for r in recs[1:last_seq + 1]] == list(range(last_seq))
 
 
+def test_log_left_open_is_closed_at_exit(tmp_path):
+    p = tmp_path / "exit.jsonl"
+    code = ("import sys\nfrom ethimon.audit import AuditLog\nlog = AuditLog(sys.argv[1])\n"
+            "for i in range(500):\n    log.append('decision', cycle=i)\n")
+    subprocess.run([sys.executable, "-c", code, str(p)], check=True, timeout=60, cwd=ROOT)
+    rep = verify_log(p, require_closed=True)
+    assert rep.ok and rep.kinds["decision"] == 500
+
+
 def _cli(*args: str) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "ethimon.cli._audit_cmds", *args], capture_output=True,
                           text=True, timeout=60, cwd=ROOT)

@@ -10,7 +10,7 @@ import pytest
 import ethimon
 from ethimon import Response
 from ethimon.audit import AuditLog, read_log, spec_hash, verify_log
-from ethimon.runtime import AsyncRiskSource, GovernedLoop, Watchdog
+from ethimon.runtime import AsyncRiskSource, GovernedLoop, ProcessEstimator, Watchdog
 
 from _estimators import FakeClock, ScriptedEstimator, wait_for
 
@@ -103,6 +103,25 @@ def test_source_detects_dead_thread():
         assert wait_for(lambda: src.fault is None)
     finally:
         src.stop()
+
+
+def test_process_estimator_kills_a_hung_child_and_respawns():
+    env = {"PYTHONPATH": str(ROOT / "tests")}
+    est = ProcessEstimator("_estimators:ScriptedEstimator", {"probs": [0.8, 0.2]}, timeout_s=2.0, env=env)
+    try:
+        assert est.probs("t") == (0.8, 0.2) and est.model_id == "scripted-fake@0"
+    finally:
+        est.close()
+    hung = ProcessEstimator("_estimators:ScriptedEstimator", {"mode": "hang"}, timeout_s=0.3, env=env)
+    src = AsyncRiskSource(hung, text="t", clock=FakeClock(), start=False)
+    src.poll_once()
+    assert "did not answer within 0.3 s: killed" in src.fault and hung.kills == 1
+    bad = ProcessEstimator("_estimators:NoSuchThing", timeout_s=1.0, env=env)
+    src = AsyncRiskSource(bad, text="t", start=False)
+    src.poll_once()
+    assert "failed to start: AttributeError" in src.fault
+    with pytest.raises(ValueError):
+        ProcessEstimator("no_colon")
 
 
 def test_source_rejects_bad_arguments():

@@ -25,6 +25,7 @@ never silent.
 
 from __future__ import annotations
 
+import atexit
 import hashlib
 import hmac
 import json
@@ -157,6 +158,14 @@ class AuditLog:
                       "pid": os.getpid(), "fsync": fsync, "keyed": bool(key), **jsonable(dict(meta or {}))}])
         self._thread = threading.Thread(target=self._run, name="ethimon-audit-writer", daemon=True)
         self._thread.start()
+        atexit.register(self._at_exit)
+
+    def _at_exit(self) -> None:
+        """A log left open at interpreter exit still gets its queue written and closed."""
+        try:
+            self.close(timeout=5.0)
+        except Exception:  # noqa: BLE001 - never raise at exit
+            pass
 
     # ------------------------------------------------------------------ caller side
     def append(self, kind: str, **fields: Any) -> bool:
@@ -237,6 +246,7 @@ class AuditLog:
         if self._closed:
             return
         self._closed = True
+        atexit.unregister(self._at_exit)
         self._q.put(_STOP)  # blocks only if full, which the writer is draining
         self._thread.join(timeout)
         if self._thread.is_alive():  # pragma: no cover
