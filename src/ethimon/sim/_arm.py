@@ -7,7 +7,10 @@ process; with the same inputs a DIRECT simulation is bit-for-bit repeatable.
 
 from __future__ import annotations
 
+import contextlib
 import math
+import os
+import sys
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -35,12 +38,36 @@ _KP, _KD = 0.2, 1.0  # PyBullet position-motor gains  # distance reported when n
 def import_pybullet():
     """Import PyBullet (and pybullet_data) or raise :class:`DependencyNotInstalled`."""
     try:
-        import pybullet
+        if "pybullet" in sys.modules:
+            import pybullet
+        else:
+            with _quiet_fd(2):  # PyBullet's C code prints its build time to stderr
+                import pybullet
         import pybullet_data
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise DependencyNotInstalled(
             'the simulator needs PyBullet: pip install "ethimon[sim]"') from exc
     return pybullet, pybullet_data
+
+
+@contextlib.contextmanager
+def _quiet_fd(fd: int):
+    """Silence a file descriptor (C-level prints) for the duration of the block."""
+    try:
+        (sys.stdout if fd == 1 else sys.stderr).flush()
+        saved = os.dup(fd)
+    except (OSError, ValueError, AttributeError):  # no real fd 1 (e.g. captured)
+        yield
+        return
+    try:
+        with open(os.devnull, "w") as null:
+            os.dup2(null.fileno(), fd)
+            try:
+                yield
+            finally:
+                os.dup2(saved, fd)
+    finally:
+        os.close(saved)
 
 
 @dataclass
