@@ -151,6 +151,7 @@ class ArmSim:
         self.max_velocity: float | None = None
         self.powered = True
         self.graspable: set[str] = set()
+        self._status_id: int | None = None
         self.time_s = 0.0
         self.cycle = 0
         self.max_joint_speed_substep = 0.0  # max |qdot| over the last step's physics substeps
@@ -515,6 +516,15 @@ class ArmSim:
         return pos
 
     # ------------------------------------------------------------ rendering
+
+    def show_status(self, text: str) -> None:
+        """GUI only: show ``text`` above the arm (replaces the previous status)."""
+        if not self.gui:
+            return
+        p = self._p
+        kw = {"replaceItemUniqueId": self._status_id} if self._status_id is not None else {}
+        self._status_id = p.addUserDebugText(text, (0.0, 0.0, 1.2), textColorRGB=(0.8, 0.1, 0.1),
+                                             textSize=1.6, physicsClientId=self.cid, **kw)
 
     def render(self, width: int = 480, height: int = 360) -> np.ndarray:
         """An RGB frame (H×W×3 uint8) from PyBullet's software TinyRenderer (headless)."""

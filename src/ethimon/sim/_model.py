@@ -247,6 +247,9 @@ class SimBlock(_Model):
     objects: tuple[SimObject, ...] = ()
     dropouts: tuple[Dropout, ...] = ()
     inputs_at: tuple[InputChange, ...] = ()
+    record_at_s: tuple[float, ...] = Field(
+        (), description="extra PNG frames at these simulated times (with --record); start, "
+        "override, safe pose reached, release and end are always recorded")
     expect: SimExpect = SimExpect()
 
     @field_validator("control_hz")

@@ -305,6 +305,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         t_override: float | None = None
         max_sp = None
         overridden_before = False
+        extra_frames = sorted(block.record_at_s)
+        shown = None
         loop0 = time.perf_counter()
         rec_s0 = recorder.seconds if recorder else 0.0
         for _ in range(n_cycles):
@@ -323,6 +325,14 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
                 overridden_before = True
             elif overridden_before and not res.released:
                 res.released = True
+                if recorder:
+                    recorder.frame("release", rec.cycle)
+            if recorder and extra_frames and rec.t_s + 1e-9 >= extra_frames[0]:
+                recorder.frame(f"t{extra_frames.pop(0):g}s", rec.cycle)
+            if gui and rec.controller != shown:
+                shown = rec.controller
+                sim.show_status(f"{shown}" + (f"  ({', '.join(rec.violations or rec.faults)})"
+                                               if rec.override else ""))
             if rec.controller != "task" and first_cmd is None:
                 first_cmd = rec.cycle
             if SEVERITY[rec.controller if rec.controller in SEVERITY else "none"] > \
