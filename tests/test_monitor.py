@@ -213,3 +213,22 @@ def test_shipped_specs_load_and_step(root):
         d = m.step({"p_unsafe": 0.02, "human_distance": 5.0, "ee_speed": 0.1, "contact_force": 0.0,
                     "joint_speed_max": 0.2})
         assert not d.override, d
+
+
+def test_fault_does_not_hide_a_more_severe_stateless_violation(root):
+    spec = ethimon.load_spec(root / "specs" / "cobot_cell.yaml")  # on_fault: stop_1
+    for monitor in (ethimon.Monitor(spec), ethimon.ReferenceMonitor(spec)):
+        d = monitor.step({"human_distance": 5.0, "ee_speed": 0.1, "contact_force": 300.0,
+                          "joint_speed_max": 0.2})  # no risk input: a fault
+        assert d.override and d.faults
+        assert d.violations == ("transient_contact",) and d.response is Response.STOP_0
+        # an obligation that reads the bad input is not judged on stale values
+        d = monitor.step({"p_unsafe": 0.1, "human_distance": math.nan, "ee_speed": 0.1,
+                          "contact_force": 0.0, "joint_speed_max": 0.2})
+        assert "separation" not in d.violations
+
+
+def test_fault_with_risk_over_threshold_reports_risk():
+    m = mon("  - {id: a, require: 'v < 1', response: stop_2}\n")
+    d = m.step(inp(d=math.nan, v=2.0, p_unsafe=0.99))
+    assert d.violations == ("a", "risk") and d.response is Response.STOP_2

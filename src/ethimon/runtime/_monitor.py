@@ -13,7 +13,8 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from ..compiler._check import Plan
+from ..compiler._check import RISK_NAME, Plan
+from ..spec._expr import TEMPORAL, Call, Name, walk
 from ..compiler._codegen import build_machine
 from ..spec._model import Response, Spec
 from ..risk._formula import risk_bounds, risk_from_probs
@@ -23,6 +24,28 @@ __all__ = ["Monitor", "plan_of"]
 
 _RESPONSES = (Response.NONE, Response.SAFE_POSE, Response.STOP_2, Response.STOP_1, Response.STOP_0)
 _EMPTY: tuple = ()
+
+
+def stateless_slots(plan: Plan, ob) -> frozenset[int] | None:
+    """Input slots an obligation reads, or ``None`` if it keeps state across cycles.
+
+    Stateless obligations (no temporal operator, no ``within_cycles``) can be
+    judged on a fault cycle from the inputs that are valid.
+    """
+    if ob.within_cycles:
+        return None
+    slots = {s.name: s.slot for s in plan.signals}
+    slots[RISK_NAME] = plan.risk_slot
+    used = set()
+    for root in (ob.when, ob.require):
+        if root is None:
+            continue
+        for node in walk(root):
+            if isinstance(node, Call) and node.func in TEMPORAL:
+                return None
+            if isinstance(node, Name) and node.id in slots:
+                used.add(slots[node.id])
+    return frozenset(used)
 
 
 def plan_of(spec: Spec | Plan) -> Plan:
@@ -72,7 +95,7 @@ class Monitor:
     __slots__ = ("spec", "plan", "obligation_ids", "_m", "_sig", "_vals", "_rslot", "_updates", "_obs",
                  "_margin_fns", "_nan_margins", "_tau", "_risk_sev", "_fault_sev", "_auto", "_below",
                  "_hold", "_alpha", "_beta", "_gamma", "_sample", "_k", "_uidx", "_rlo", "_rhi",
-                 "_max_age", "_cycle", "_latched", "_clean", "_margins_on")
+                 "_max_age", "_cycle", "_latched", "_clean", "_margins_on", "_stateless")
 
     def __init__(self, spec: Spec | Plan, *, margins: bool = True) -> None:
         plan = plan_of(spec)
@@ -85,6 +108,9 @@ class Monitor:
         self._rslot = plan.risk_slot
         self._updates = m.updates
         self._obs = tuple((fn, ob.id, ob.response.severity) for fn, ob in zip(m.violated, plan.obligations))
+        self._stateless = tuple((fn, ob.id, ob.response.severity, stateless_slots(plan, ob))
+                                for fn, ob in zip(m.violated, plan.obligations)
+                                if stateless_slots(plan, ob) is not None)
         self.obligation_ids: tuple[str, ...] = tuple(ob.id for ob in plan.obligations)
         self._margins_on = margins
         self._margin_fns = m.margins
@@ -187,10 +213,12 @@ class Monitor:
             get = signals.get
             vals = self._vals
             faults = None
+            bad = None  # slots whose input is unusable this cycle (fault path only)
             for name, slot, is_bool, lo, hi in self._sig:
                 v = get(name)
                 if v is None:
                     (faults := faults or []).append(f"signal {name!r} is missing")
+                    (bad := bad or []).append(slot)
                 elif is_bool:
                     if v is True or v is False:
                         vals[slot] = v
@@ -198,25 +226,31 @@ class Monitor:
                         vals[slot] = bool(v)
                     else:
                         (faults := faults or []).append(f"signal {name!r} must be true/false, got {v!r}")
+                        (bad := bad or []).append(slot)
                 elif v.__class__ is bool or v.__class__ is str:
                     (faults := faults or []).append(f"signal {name!r} must be a number, got {v!r}")
+                    (bad := bad or []).append(slot)
                 elif lo <= v <= hi:
                     vals[slot] = v
                 else:
                     (faults := faults or []).append(
                         f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]")
+                    (bad := bad or []).append(slot)
             r, why = self._risk(get)
             if why is not None:
                 (faults := faults or []).append(why)
+                (bad := bad or []).append(self._rslot)
             if self._max_age is not None:
                 age = get("risk_age_s")
                 if age is None:
                     (faults := faults or []).append("risk_age_s is missing (the spec sets risk.max_age_s)")
+                    (bad := bad or []).append(self._rslot)
                 elif not (0.0 <= age <= self._max_age):
                     (faults := faults or []).append(
                         f"risk estimate is stale or its age is invalid: {age!r} s > max_age_s {self._max_age:g}")
+                    (bad := bad or []).append(self._rslot)
             if faults is not None:
-                return self._fault(cycle, tuple(faults), r)
+                return self._fault(cycle, tuple(faults), r, bad)
             vals[self._rslot] = r
             for u in self._updates:
                 u()
@@ -296,18 +330,39 @@ class Monitor:
         return Decision(True, _RESPONSES[sev], decision.violations, decision.margins, decision.risk,
                         decision.cycle, decision.latched, decision.faults + reasons)
 
-    def _fault(self, cycle: int, reasons: tuple[str, ...], r: float | None) -> Decision:
-        """Fail closed: override with the spec's fault response; history is invalid."""
+    def _fault(self, cycle: int, reasons: tuple[str, ...], r: float | None,
+               bad: list[int] | None = None) -> Decision:
+        """Fail closed: override with the spec's fault response; history is invalid.
+
+        With ``bad`` (the slots of the unusable inputs), the stateless obligations
+        whose inputs are all valid are still evaluated, so a more severe response
+        they demand (e.g. a stop 0 on a contact force) is not hidden by the fault.
+        """
         try:
             self._m.reset()
         except Exception:  # pragma: no cover
             pass
         sev = self._fault_sev
-        violations = _EMPTY
+        found: list[str] = []
+        if bad is not None and self._stateless:
+            badset = set(bad)
+            if r is not None and self._rslot not in badset:
+                self._vals[self._rslot] = r
+            for fn, oid, s, slots in self._stateless:
+                if badset.isdisjoint(slots):
+                    try:
+                        hit = fn()
+                    except Exception:
+                        continue  # this cycle fails closed anyway
+                    if hit:
+                        found.append(oid)
+                        if s > sev:
+                            sev = s
         if r is not None and r >= self._tau:
-            violations = ("risk",)
+            found.append("risk")
             if self._risk_sev > sev:
                 sev = self._risk_sev
+        violations = tuple(found) if found else _EMPTY
         if sev > self._latched:
             self._latched = sev
         self._clean = 0

@@ -24,6 +24,10 @@ Semantics (the definition both implementations follow), for a history
   and ``require`` was false at every cycle of ``j .. t``.
 * A bad input or an evaluation error makes a fault cycle: override with
   ``on_fault`` (or the risk response if R_e ≥ τ and more severe), history cleared.
+  On a bad-input cycle the *stateless* obligations (no temporal operator, no
+  ``within_cycles``) whose inputs are all valid are still judged, and a more
+  severe response they demand wins (a stale risk estimate must not hide a
+  stop 0 on a contact force); one that raises is skipped.
 * Override latches at the most severe response seen; with ``release.mode: auto``
   it releases at the cycle that completes ``hold_cycles`` consecutive cycles
   with no violation and R_e < τ − δ.
@@ -35,7 +39,7 @@ import math
 from typing import Any
 
 from ..compiler._check import RISK_NAME, Plan
-from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary
+from ..spec._expr import TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
 from ..spec._model import Response, Spec
 from ..risk._formula import risk_bounds, risk_from_p_unsafe, risk_from_probs
 from ._decision import Decision
@@ -124,6 +128,15 @@ class ReferenceMonitor:
                 return False
         raise TypeError(node)  # pragma: no cover
 
+    def _names(self, ob) -> set[str]:
+        names = {s.name for s in self.plan.signals} | {RISK_NAME}
+        return {n.id for root in (ob.when, ob.require) if root is not None
+                for n in walk(root) if isinstance(n, Name) and n.id in names}
+
+    def _has_temporal(self, ob) -> bool:
+        return any(isinstance(n, Call) and n.func in TEMPORAL
+                   for root in (ob.when, ob.require) if root is not None for n in walk(root))
+
     def _touch_temporal(self, t: int) -> None:
         for node in self.plan.temporal:
             for a in node.args:
@@ -185,10 +198,12 @@ class ReferenceMonitor:
         spec = self.spec
         tau = spec.risk.threshold
         r, why = self._risk(signals)
-        ok = why is None and all(self._valid_signal(s, signals.get(s.name)) for s in self.plan.signals)
+        risk_ok = why is None
         if spec.risk.max_age_s is not None:
             age = signals.get("risk_age_s")
-            ok = ok and age is not None and 0 <= age <= spec.risk.max_age_s
+            risk_ok = risk_ok and age is not None and 0 <= age <= spec.risk.max_age_s
+        ok = risk_ok and all(self._valid_signal(s, signals.get(s.name)) for s in self.plan.signals)
+        bad_input = not ok
         violations: list[str] = []
         sev = 0
         if ok:
@@ -208,10 +223,30 @@ class ReferenceMonitor:
         if not ok:
             self.history = []
             fsev = Response(spec.on_fault).severity
-            v: tuple[str, ...] = ()
+            found = []
+            if bad_input:
+                # stateless obligations whose inputs are all valid are still judged
+                valid = {s.name: (bool(signals[s.name]) if s.kind == "bool" else signals[s.name])
+                         for s in self.plan.signals if self._valid_signal(s, signals.get(s.name))}
+                if risk_ok:
+                    valid[RISK_NAME] = r
+                for ob in self.plan.obligations:
+                    if ob.within_cycles or not self._names(ob) <= set(valid) or self._has_temporal(ob):
+                        continue
+                    self.history = [valid]
+                    try:
+                        hit = self._violated(ob, 0)
+                    except Exception:
+                        hit = False
+                    finally:
+                        self.history = []
+                    if hit:
+                        found.append(ob.id)
+                        fsev = max(fsev, ob.response.severity)
             if r is not None and r >= tau:
-                v = ("risk",)
+                found.append("risk")
                 fsev = max(fsev, Response(spec.risk.response).severity)
+            v: tuple[str, ...] = tuple(found)
             self.latched = max(self.latched, fsev)
             self.clean = 0
             return Decision(True, _BY_SEV[self.latched], v, (), r, cycle, False, ("fault",))
