@@ -77,10 +77,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         parser = _build_parser()
         args = parser.parse_args(argv)
-        if not getattr(args, "handler", None):
-            parser.print_help()
+        handler = getattr(args, "handler", None) or getattr(args, "func", None)
+        if handler is None:
+            parser.print_help(sys.stderr)
             return 2
-        return int(args.handler(args) or 0)
+        return int(handler(args) or 0)
     except SpecError as exc:
         print(str(exc), file=sys.stderr)
         return 2
