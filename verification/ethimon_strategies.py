@@ -153,7 +153,8 @@ BAD_BOOLS = ("yes", 2, None, math.nan, 0.5)
 def frame(draw, spec: ethimon.Spec, *, p_bad: float = 0.05, late_risk: bool = True) -> dict[str, Any]:
     """One cycle's inputs: mostly valid, sometimes a missing/NaN/out-of-range/wrong-type value."""
     f: dict[str, Any] = {}
-    bad = lambda: draw(st.floats(0, 1)) < p_bad  # noqa: E731
+    cut = 1000 - int(p_bad * 1000)
+    bad = lambda: draw(st.integers(0, 999)) >= cut  # noqa: E731  (shrinks towards valid input)
     for name, sig in spec.signals.items():
         if sig.type == "bool":
             v = draw(st.sampled_from(BAD_BOOLS)) if bad() else draw(st.sampled_from((True, False, 0, 1)))
@@ -190,14 +191,27 @@ def ops(draw, spec: ethimon.Spec, *, min_size: int = 1, max_size: int = 30, p_ba
     """A trace: mostly ``("step", frame)``, sometimes ``("reset",)`` or ``("release",)``."""
     n = draw(st.integers(min_size, max_size))
     out = []
+    last = None
     for _ in range(n):
         r = draw(st.integers(0, 39))
-        if r == 0:
+        if r == 38:
             out.append(("reset",))
-        elif r == 1:
+        elif r == 39:
             out.append(("release",))
+        elif last is not None and r < 20:
+            # hold the previous inputs, changing one: conditions persist across windows
+            f = dict(last)
+            fresh = draw(frame(spec, p_bad=p_bad))
+            if fresh:
+                key = draw(st.sampled_from(sorted(fresh)))
+                f[key] = fresh[key]
+            else:
+                f = fresh
+            out.append(("step", f))
+            last = f
         else:
-            out.append(("step", draw(frame(spec, p_bad=p_bad))))
+            last = draw(frame(spec, p_bad=p_bad))
+            out.append(("step", last))
     return out
 
 
