@@ -201,7 +201,8 @@ class ReferenceMonitor:
         risk_ok = why is None
         if spec.risk.max_age_s is not None:
             age = signals.get("risk_age_s")
-            risk_ok = risk_ok and age is not None and 0 <= age <= spec.risk.max_age_s
+            risk_ok = (risk_ok and isinstance(age, (int, float)) and not isinstance(age, bool)
+                       and 0 <= age <= spec.risk.max_age_s)
         ok = risk_ok and all(self._valid_signal(s, signals.get(s.name)) for s in self.plan.signals)
         bad_input = not ok
         violations: list[str] = []
