@@ -172,14 +172,22 @@ class Monitor:
     def _risk(self, get) -> tuple[float | None, str | None]:
         r = get("risk")
         if r is not None:
-            if r.__class__ is bool or r.__class__ is str or not _within(r, self._rlo, self._rhi):
+            try:
+                ok = r.__class__ is not bool and self._rlo <= r <= self._rhi
+            except TypeError:  # not a number: bad input, not an internal error
+                ok = False
+            if not ok:
                 return None, f"risk input R_e={r!r} is NaN, not a number or outside [{self._rlo:g}, {self._rhi:g}]"
             return float(r), None
         q = get("p_unsafe")
         if q is not None:
             if self._k != 2:
                 return None, f"p_unsafe alone needs a 2-class spec (risk.classes is {self._k}); pass p"
-            if q.__class__ is bool or q.__class__ is str or not _within(q, 0.0, 1.0):
+            try:
+                ok = q.__class__ is not bool and 0.0 <= q <= 1.0
+            except TypeError:
+                ok = False
+            if not ok:
                 return None, f"p_unsafe={q!r} is NaN, not a number or outside [0, 1]"
             d = q - 0.5
             var = 2.0 * d * d if self._sample else d * d
@@ -253,7 +261,7 @@ class Monitor:
                 if age is None:
                     (faults := faults or []).append("risk_age_s is missing (the spec sets risk.max_age_s)")
                     (bad := bad or []).append(self._rslot)
-                elif age.__class__ is bool or age.__class__ is str or not _within(age, 0.0, self._max_age):
+                elif age.__class__ is bool or not _within(age, 0.0, self._max_age):
                     (faults := faults or []).append(
                         f"risk estimate is stale or its age is invalid: {age!r} s > max_age_s {self._max_age:g}")
                     (bad := bad or []).append(self._rslot)
