@@ -203,6 +203,14 @@ def parse_yaml_text(text: str, path: str = "<string>", *, what: str = "file") ->
             raise SpecError(f"invalid YAML: {msg}", path=path, line=mark.line + 1,
                             column=mark.column + 1, hint=_yaml_hint(msg)) from None
         raise SpecError(f"invalid YAML: {msg}", path=path) from None
+    except yaml.reader.ReaderError as exc:  # a control character: unmarked, but its offset is known
+        idx = min(max(int(exc.position), 0), len(text))
+        line = text.count("\n", 0, idx) + 1
+        col = idx - (text.rfind("\n", 0, idx) + 1) + 1
+        ch = exc.character
+        shown = f"U+{ch:04X}" if isinstance(ch, int) else repr(ch)
+        raise SpecError(f"invalid YAML: control character {shown} is not allowed", path=path, line=line,
+                        column=col, hint="remove it; ethimon reads printable UTF-8 text") from None
     except yaml.YAMLError as exc:
         raise SpecError(f"invalid YAML: {exc}", path=path) from None
     except RecursionError:
