@@ -14,3 +14,14 @@ def test_left_nested_implies_keeps_its_parentheses():
 
 def test_right_nested_implies_needs_none():
     assert to_source(parse_expr("a implies (b implies c)")) == "a implies b implies c"
+
+
+def test_boolean_operands_of_equality_keep_their_parentheses():
+    # found by the verification suite: '(b == not b)' does not parse, and
+    # '(a and b == c)' parses as 'a and (b == c)'
+    for text in ("b == (not b)", "(a and b) == c", "c != (a or b)", "(a implies b) == c"):
+        tree = parse_expr(text)
+        again = parse_expr(to_source(tree))
+        assert isinstance(again, Binary) and again.op == tree.op
+        assert to_source(again) == to_source(tree)
+    assert to_source(parse_expr("(a and b) == c")) == "((a and b) == c)"

@@ -355,7 +355,10 @@ def to_source(node: Node) -> str:
                     left = f"({left})"  # implies is right-associative
                 return f"{left} implies {right}"
             return f"{wrap(node.left, left)} {node.op} {wrap(node.right, right)}"
-        return f"({left} {node.op} {right})"
+        # a boolean operand of ==/!= binds looser than the comparison: keep its parentheses
+        loose = lambda n, s: f"({s})" if (isinstance(n, Unary) and n.op == "not") or (  # noqa: E731
+            isinstance(n, Binary) and n.op in ("and", "or", "implies")) else s
+        return f"({loose(node.left, left)} {node.op} {loose(node.right, right)})"
     if isinstance(node, Call):
         return f"{node.func}({', '.join(to_source(a) for a in node.args)})"
     raise TypeError(node)  # pragma: no cover
