@@ -343,7 +343,8 @@ def to_source(node: Node) -> str:
         return node.id
     if isinstance(node, Unary):
         inner = to_source(node.operand)
-        if not isinstance(node.operand, (Num, Name, Call, BoolLit)):
+        self_paren = isinstance(node.operand, Binary) and node.operand.op not in ("and", "or", "implies")
+        if not isinstance(node.operand, (Num, Name, Call, BoolLit)) and not self_paren:
             inner = f"({inner})"
         return f"not {inner}" if node.op == "not" else f"-{inner}"
     if isinstance(node, Binary):
