@@ -56,6 +56,18 @@ def _within(v: Any, lo: float, hi: float) -> bool:
         return False
 
 
+def _margins_or_nan(fns) -> tuple[float, ...]:
+    """Margins one by one; NaN where evaluating one raises (robustness ignores short-circuits,
+    so ``y <= 0 or x / y < 2`` can divide by zero in its margin but not in its verdict)."""
+    out = []
+    for f in fns:
+        try:
+            out.append(f())
+        except Exception:
+            out.append(math.nan)
+    return tuple(out)
+
+
 def plan_of(spec: Spec | Plan) -> Plan:
     """The compiled :class:`Plan` of a spec (compiled once and cached on the spec)."""
     if isinstance(spec, Plan):
@@ -287,7 +299,12 @@ class Monitor:
                     violations.append("risk")
                 if self._risk_sev > sev:
                     sev = self._risk_sev
-            margins = tuple([f() for f in self._margin_fns]) if self._margins_on else _EMPTY
+            margins = _EMPTY
+            if self._margins_on:
+                try:
+                    margins = tuple([f() for f in self._margin_fns])
+                except Exception:  # a margin (diagnostic) that cannot be computed is NaN, never a fault
+                    margins = _margins_or_nan(self._margin_fns)
             if sev:
                 if sev > self._latched:
                     self._latched = sev
