@@ -78,6 +78,7 @@ def test_cobot_cell_has_one_proof_per_obligation(cobot):
     ("unit_mismatch.yaml", "lint.unit_mismatch"),
     ("unbounded.yaml", "lint.unbounded.torque"),
     ("fault_gap.yaml", "lint.fault_gap.clamping"),
+    ("risk_not_monotone.yaml", "lint.risk_monotone"),
 ])
 def test_each_lint_fires_on_its_fixture(file, lint):
     rep = verify_spec(fixture(file))

@@ -55,6 +55,9 @@ class Verifier:
         """``sat`` (with a model), ``unsat`` or ``unknown`` (with the reason)."""
         s = z3.Solver()
         s.set("timeout", self.timeout_ms)
+        # incremental mode (push first): z3's SMT core with its nonlinear arithmetic module, which is
+        # ~20x faster here than the one-shot tactic the default solver picks for these problems
+        s.push()
         for c in constraints:
             s.add(c)
         r = s.check()
@@ -348,7 +351,7 @@ class Verifier:
 
     # -- lints ---------------------------------------------------------------------------
     def lints(self) -> list[Finding]:
-        out = [self._timed(self.lint_tau), self._timed(self.lint_release)]
+        out = [self._timed(self.lint_tau), self._timed(self.lint_monotone), self._timed(self.lint_release)]
         out += self.lint_vacuous()
         out += self.lint_contradictions()
         out += self.lint_unbounded()
@@ -402,6 +405,31 @@ class Verifier:
                            f"tau={_fmt(tau)} is at or below the smallest reachable R_e={_fmt(lo)}: "
                            f"the risk rule fires every cycle")
         return Finding("lint", "lint.tau_range", OK, f"tau={_fmt(tau)} inside reachable R_e [{_fmt(lo)}, {_fmt(hi)}]")
+
+    def lint_monotone(self) -> Finding:
+        """R_e should not fall when the classifier grows more sure the task is unsafe."""
+        name = "lint.risk_monotone"
+        r = self.spec.risk
+        if r.classes != 2:
+            return Finding("lint", name, SKIPPED, f"checked for two classes only (K={r.classes})")
+        q1, q2 = z3.Real("q1"), z3.Real("q2")
+
+        def R(q):
+            d = q - z3.RealVal("1/2")
+            top = z3.If(q >= z3.RealVal("1/2"), q, 1 - q)
+            return real(r.alpha) * q + real(r.beta) * (1 - top) + real(r.gamma) * (2 if r.variance == "sample" else 1) * d * d
+        st, model, why = self.solve(q1 >= 0, q2 <= 1, q1 < q2, R(q1) > R(q2))
+        if st == "sat":
+            a, b = z3_value(model, q1), z3_value(model, q2)
+            ra = risk_from_p_unsafe(a, r.alpha, r.beta, r.gamma, r.variance)
+            rb = risk_from_p_unsafe(b, r.alpha, r.beta, r.gamma, r.variance)
+            return Finding("lint", name, WARNING,
+                           f"R_e falls as p_unsafe grows: p_unsafe {a:.4g} -> R_e {ra:.4g}, p_unsafe {b:.4g} -> "
+                           f"R_e {rb:.4g} (monotone needs alpha >= beta and alpha + beta >= "
+                           f"{2 if r.variance == 'sample' else 1}*gamma)")
+        if st == "unknown":
+            return Finding("lint", name, SKIPPED, f"z3: {why}")
+        return Finding("lint", name, OK, "R_e never falls as p_unsafe grows")
 
     def lint_release(self) -> Finding:
         rel = self.spec.risk.release
