@@ -173,3 +173,22 @@ def test_counterexample_scenario_roundtrips_nan_free_values(tmp_path):
     cex = rep.finding("time_to_contact.defined").counterexample
     assert all(isinstance(v, (float, bool)) and not (isinstance(v, float) and math.isnan(v))
                for fr in cex.frames for v in fr.values())
+
+
+def test_three_classes_and_long_windows():
+    spec = ethimon.load_spec_text("""
+ethimon: 1
+name: k3
+signals: {x: {range: [0, 10]}}
+risk: {classes: 3, threshold: 0.7}
+obligations:
+  - {id: slow, when: once(x > 5, 3), require: x < 8, within_cycles: 40}
+""")
+    rep = verify_spec(spec, max_unroll=8)
+    assert rep.finding("risk.bounds").status == "skipped"
+    # K = 3, paper weights: R_e in [0.2/3, 0.6 + 0.2/3]; tau = 0.7 is above it
+    tau = rep.finding("lint.tau_range")
+    assert tau.status == "warning" and "never fire" in tau.message
+    # a bounded response longer than the unrolling is not claimed as proved
+    assert rep.finding("slow.response").status == "unknown" and rep.exit_code == 1
+    assert rep.finding("risk.override").status == "proved"

@@ -20,6 +20,8 @@ from ._report import OK, PROVED, REFUTED, SKIPPED, UNKNOWN, WARNING, Counterexam
 __all__ = ["Verifier"]
 
 _SEV_NAME = {r.severity: r.value for r in Response}
+#: most classes for which the K-class R_e range is computed symbolically
+MAX_SYMBOLIC_CLASSES = 6
 
 
 def _fmt(x: float) -> str:

@@ -20,8 +20,6 @@ __all__ = ["verify_spec", "verify_paths", "find_specs", "require_z3", "DEFAULT_T
 
 DEFAULT_TIMEOUT_S = 20.0
 DEFAULT_MAX_UNROLL = 32
-#: most classes for which the K-class R_e range is computed symbolically
-MAX_SYMBOLIC_CLASSES = 6
 
 
 def require_z3():
