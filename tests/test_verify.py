@@ -182,7 +182,7 @@ name: k3
 signals: {x: {range: [0, 10]}}
 risk: {classes: 3, threshold: 0.7}
 obligations:
-  - {id: slow, when: once(x > 5, 3), require: x < 8, within_cycles: 40}
+  - {id: slow, when: "once(x > 5, 3)", require: x < 8, within_cycles: 40}
 """)
     rep = verify_spec(spec, max_unroll=8)
     assert rep.finding("risk.bounds").status == "skipped"
