@@ -60,8 +60,11 @@ def test_compiled_equals_reference_on_shipped_specs(data):
 
 def shape(node):
     """Structure of an AST, with ``-<number>`` folded the way the parser folds it."""
-    if isinstance(node, Unary) and node.op == "-" and isinstance(node.operand, Num):
-        return ("num", -node.operand.value + 0.0)
+    if isinstance(node, Unary) and node.op == "-":
+        inner = shape(node.operand)
+        if inner[0] == "num":  # the parser folds '-' into a literal (also through parentheses)
+            return ("num", -inner[1] + 0.0)
+        return ("-", inner)
     if isinstance(node, Num):
         return ("num", node.value + 0.0)
     if isinstance(node, BoolLit):
