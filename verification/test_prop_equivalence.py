@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 
-from hypothesis import given, note
+from hypothesis import given, note, settings
 from hypothesis import strategies as st
 
 import ethimon
@@ -37,6 +37,7 @@ def run_both(spec, trace):
         assert m.latched == (ref.latched > 0)
 
 
+@settings(max_examples=2 * settings.default.max_examples)  # the core differential check
 @given(st.data())
 def test_compiled_equals_reference_on_random_specs(data):
     gen = data.draw(specs())

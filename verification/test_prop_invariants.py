@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 import os
 
-from hypothesis import given, note
+from hypothesis import given, note, settings
 from hypothesis import strategies as st
 
 import ethimon
@@ -176,6 +176,7 @@ def test_invariants_on_shipped_specs(data):
     check_trace(spec, data.draw(ops(spec, max_size=40, p_bad=0.03)))
 
 
+@settings(max_examples=2 * settings.default.max_examples)  # the core differential check
 @given(st.data())
 def test_invariants_on_random_specs(data):
     gen = data.draw(specs())
