@@ -192,3 +192,21 @@ obligations:
     # a bounded response longer than the unrolling is not claimed as proved
     assert rep.finding("slow.response").status == "unknown" and rep.exit_code == 1
     assert rep.finding("risk.override").status == "proved"
+
+
+def test_sqrt_is_encoded_exactly():
+    spec = ethimon.load_spec_text("""
+ethimon: 1
+name: roots
+signals: {x: {range: [0, 10]}}
+obligations:
+  - {id: guarded, require: "x <= 0 or x / sqrt(x) < 3"}
+  - {id: unguarded, require: "sqrt(x - 1) < 2", response: stop_2}
+""")
+    rep = verify_spec(spec)
+    assert rep.finding("guarded.defined").status == "proved"
+    assert rep.finding("lint.vacuous").status == "ok"  # x >= 9 violates 'guarded': sqrt(x) >= 3
+    f = rep.finding("unguarded.defined")
+    assert f.status == "refuted" and f.counterexample.confirmed
+    assert f.counterexample.frames[-1]["x"] < 1
+    assert "ValueError" in " ".join(f.counterexample.replay[-1]["faults"])

@@ -121,6 +121,8 @@ def test_definedness_matches_the_monitors_internal_errors(gen, frames):
     plan = m.plan
     # the first error ends the comparison (a fault clears the history, the unrolled trace does not)
     enc = Unrolled(plan, len(frames))
+    ob = plan.obligations[0]
+    defined = [enc.obligation_defined(ob, t) for t in range(len(frames))]  # before reading constraints
     s = z3.Solver()
     s.add(*enc.constraints)
     for t, f in enumerate(frames):
@@ -130,12 +132,11 @@ def test_definedness_matches_the_monitors_internal_errors(gen, frames):
         s.add(enc.R[t] == real(f["risk"]))
     assert s.check() == z3.sat
     model = s.model()
-    ob = plan.obligations[0]
     for t, f in enumerate(frames):
         d = m.step(f)
         error = any(x.startswith("internal error") for x in d.faults)
-        defined = z3.is_true(model.eval(enc.obligation_defined(ob, t), model_completion=True))
-        note(f"cycle {t}: {f} -> {d!r}; defined={defined}")
-        assert defined == (not error)
+        ok = z3.is_true(model.eval(defined[t], model_completion=True))
+        note(f"cycle {t}: {f} -> {d!r}; defined={ok}")
+        assert ok == (not error)
         if error:
             break

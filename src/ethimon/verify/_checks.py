@@ -53,8 +53,12 @@ class Verifier:
         self._dt: DecisionTrace | None = None
 
     # -- solver helpers ----------------------------------------------------------------
-    def solve(self, *constraints) -> tuple[str, z3.ModelRef | None, str]:
-        """``sat`` (with a model), ``unsat`` or ``unknown`` (with the reason)."""
+    def solve(self, *constraints, enc: Unrolled | None = None) -> tuple[str, z3.ModelRef | None, str]:
+        """``sat`` (with a model), ``unsat`` or ``unknown`` (with the reason).
+
+        ``enc``'s domain and auxiliary constraints are added last, after every goal term
+        was built (building a term can define an auxiliary variable, e.g. for ``sqrt``).
+        """
         s = z3.Solver()
         s.set("timeout", self.timeout_ms)
         # incremental mode (push first): z3's SMT core with its nonlinear arithmetic module, which is
@@ -62,6 +66,8 @@ class Verifier:
         s.push()
         for c in constraints:
             s.add(c)
+        if enc is not None:
+            s.add(*enc.constraints)
         r = s.check()
         if r == z3.sat:
             return "sat", s.model(), ""
@@ -174,7 +180,7 @@ class Verifier:
                         assume_defined: bool = True) -> Finding:
         """Search for a cycle ``t`` where ``bad_at(dt, t)`` holds; refute with a replayed trace."""
         enc, dt = self.enc, self.dt
-        base = enc.constraints + dt.init
+        base = list(dt.init)
         terms = {}
         for t in range(self.k):
             bad = bad_at(dt, t)
@@ -182,14 +188,14 @@ class Verifier:
                 terms[t] = z3.And(self.all_defined(enc, t), bad) if assume_defined else bad
         if not terms:
             return Finding("property", name, PROVED, proved_msg + self._bound_note())
-        st, model, why = self.solve(*base, z3.Or(list(terms.values())))
+        st, model, why = self.solve(*base, z3.Or(list(terms.values())), enc=enc)
         if st == "unknown":
             return Finding("property", name, UNKNOWN, f"z3: {why}")
         if st == "unsat":
             return Finding("property", name, PROVED, proved_msg + self._bound_note())
         t = next(t for t, term in terms.items() if z3.is_true(model.eval(term, model_completion=True)))
         for pref in self._state_prefs(dt):  # most replayable start state first
-            st2, m2, _ = self.solve(*base, terms[t], *pref)
+            st2, m2, _ = self.solve(*base, terms[t], *pref, enc=enc)
             if st2 == "sat":
                 model = m2
                 break
@@ -279,8 +285,8 @@ class Verifier:
             k = min(self.need[ob.id], self.max_unroll)
             enc = Unrolled(self.plan, k, prefix=f"{ob.id}.")
             for t in range(k):
-                st, model, why = self.solve(*enc.constraints, z3.Not(enc.obligation_defined(ob, t)),
-                                            *[enc.obligation_defined(ob, j) for j in range(t)])
+                st, model, why = self.solve(z3.Not(enc.obligation_defined(ob, t)),
+                                            *[enc.obligation_defined(ob, j) for j in range(t)], enc=enc)
                 if st == "sat":
                     cex = self.counterexample(
                         name, model, enc, t, {"fault": False},
@@ -447,12 +453,12 @@ class Verifier:
         # every obligation can hold while R_e < tau - delta (at a cycle where windows are full)
         enc = self.enc
         t = self.k - 1
-        cons = list(enc.constraints) + [enc.R[t] < real(self.below)]
+        cons = [enc.R[t] < real(self.below)]
         if rr is not None:
             cons += [enc.R[t] >= real(rr[0]), enc.R[t] <= real(rr[1])]
         cons += [z3.Not(enc.violated(ob, t)) for ob in self.plan.obligations]
         cons.append(self.all_defined(enc, t))
-        st, _, why = self.solve(*cons)
+        st, _, why = self.solve(*cons, enc=enc)
         if st == "unsat":
             return Finding("lint", name, WARNING, f"no input satisfies every obligation with R_e < "
                                                   f"{_fmt(self.below)}: a latched override never auto-releases")
@@ -468,7 +474,7 @@ class Verifier:
             k = min(self.need[ob.id], self.max_unroll)
             enc = Unrolled(self.plan, k, prefix=f"v.{ob.id}.")
             dfn = [enc.obligation_defined(o, t) for t in range(k) for o in self.plan.obligations]
-            st, _, why = self.solve(*enc.constraints, *dfn, z3.Or([enc.violated(ob, t) for t in range(k)]))
+            st, _, why = self.solve(*dfn, z3.Or([enc.violated(ob, t) for t in range(k)]), enc=enc)
             if st == "unsat":
                 out.append(Finding("lint", f"lint.vacuous.{ob.id}", WARNING,
                                    f"obligation {ob.id!r} can never be violated inside the declared ranges"))
@@ -485,12 +491,12 @@ class Verifier:
         t0 = time.perf_counter()
         enc = self.enc
         t = self.k - 1
-        base = list(enc.constraints) + [self.all_defined(enc, t)]
+        base = [self.all_defined(enc, t)]
         holds = {ob.id: z3.Not(enc.violated(ob, t)) for ob in self.plan.obligations}
         out = []
         alone_ok = []
         for ob in self.plan.obligations:
-            st, _, why = self.solve(*base, holds[ob.id])
+            st, _, why = self.solve(*base, holds[ob.id], enc=enc)
             if st == "unsat":
                 out.append(Finding("lint", f"lint.unsatisfiable.{ob.id}", WARNING,
                                    f"obligation {ob.id!r} is violated for every input inside the ranges "
@@ -498,13 +504,13 @@ class Verifier:
             elif st == "sat":
                 alone_ok.append(ob.id)
         for a, b in itertools.combinations(alone_ok, 2):
-            st, _, why = self.solve(*base, holds[a], holds[b])
+            st, _, why = self.solve(*base, holds[a], holds[b], enc=enc)
             if st == "unsat":
                 out.append(Finding("lint", f"lint.contradiction.{a}.{b}", WARNING,
                                    f"obligations {a!r} and {b!r} contradict: no input inside the ranges "
                                    f"satisfies both (the monitor overrides every cycle)"))
         if len(alone_ok) > 2 and not out:
-            st, _, _ = self.solve(*base, *holds.values())
+            st, _, _ = self.solve(*base, *holds.values(), enc=enc)
             if st == "unsat":
                 out.append(Finding("lint", "lint.contradiction.all", WARNING,
                                    "no input satisfies all obligations together"))
