@@ -210,3 +210,22 @@ obligations:
     assert f.status == "refuted" and f.counterexample.confirmed
     assert f.counterexample.frames[-1]["x"] < 1
     assert "ValueError" in " ".join(f.counterexample.replay[-1]["faults"])
+
+
+def test_a_wrong_model_is_caught_by_the_replay(monkeypatch):
+    """If the z3 model of the decision logic were wrong, its counterexample would not replay."""
+    from ethimon.verify import _checks, _encode
+
+    real_trace = _encode.decision_trace
+
+    def broken(enc, **kw):  # a model that forgets the risk rule
+        dt = real_trace(enc, **kw)
+        dt.override = [z3.And(o, z3.Not(f)) for o, f in zip(dt.override, dt.risk_fires)]
+        return dt
+    import z3
+    monkeypatch.setattr(_checks, "decision_trace", broken)
+    rep = verify_spec(os.path.join(SPECS, "governor.yaml"))
+    f = rep.finding("risk.override")
+    assert f.status == "refuted"
+    assert not f.counterexample.confirmed  # the real Monitor overrides: the model, not the spec, is wrong
+    assert "NOT confirmed" in format_table(rep)
