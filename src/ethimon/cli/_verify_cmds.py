@@ -55,7 +55,11 @@ def cmd_verify(args: argparse.Namespace) -> int:
     print(f"{len(reports)} spec(s): {n_prop} properties proved, {n_ref} refuted, {n_warn} lint warnings, "
           f"{n_err} unusable", file=out)
     if args.json:
-        doc = reports_to_json(reports)
+        import z3
+
+        from .. import __version__
+        doc = reports_to_json(reports, {"ethimon": __version__, "z3": z3.get_version_string(),
+                                        "timeout_s": timeout, "max_unroll": unroll})
         text = json.dumps(doc, indent=2)
         if to_stdout:
             print(text)

@@ -387,7 +387,8 @@ class Verifier:
         for o in (o_lo, o_hi):
             o.set("timeout", self.timeout_ms)
             o.add(*dom)
-        h1, h2 = o_lo.minimize(R), o_hi.maximize(R)
+        o_lo.minimize(R)
+        o_hi.maximize(R)
         if o_lo.check() != z3.sat or o_hi.check() != z3.sat:
             return None
         try:
@@ -395,7 +396,6 @@ class Verifier:
             hi = z3_value(o_hi.model(), R)
         except TypeError:
             return None
-        _ = (h1, h2)
         return float(lo), float(hi)
 
     def lint_tau(self) -> Finding:

@@ -141,12 +141,12 @@ def _jsonable(x: Any) -> Any:
     return x
 
 
-def reports_to_json(reports: list[SpecReport], machine: dict[str, Any] | None = None) -> dict[str, Any]:
-    """The ``--json`` document."""
+def reports_to_json(reports: list[SpecReport], settings: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The ``--json`` document (``settings``: versions and limits the run used)."""
     out: dict[str, Any] = {"ethimon_verify": 1, "exit_code": exit_code(reports),
                            "specs": [r.as_dict() for r in reports]}
-    if machine:
-        out["machine"] = machine
+    if settings:
+        out["settings"] = settings
     return out
 
 
