@@ -58,7 +58,7 @@ def main() -> None:
     _, p_va, p_te, p_tf = D.pair_splits()
     t0 = time.time()
     lg = {}
-    for name, rows in [("sab_val", s_va), ("pairs_val", p_va), ("sab_test", s_te),
+    for name, rows in [("sab_val", s_va), ("pairs_val", p_va), ("ethics_val", e_va), ("sab_test", s_te),
                        ("pairs_test", p_te), ("pairs_test_family", p_tf)] + \
             ([] if a.skip_ethics else [("ethics_holdout", e_ho)]):
         lg[name] = np.array(est.logits_batch(rows.texts))
@@ -110,8 +110,15 @@ def main() -> None:
         qe = softmax_unsafe(lg["ethics_holdout"], T)
         plot_risk_hist(R(qe), np.array(e_ho.labels), tau, plots / "risk_distribution_ethics.png",
                        "R_e, ETHICS hold-out")
-        # temperature fitted on the ETHICS validation split only (domain-specific calibration)
-        res["ethics_val_rows"] = len(e_va)
+    # domain-specific temperatures, each fitted on that domain's validation rows only
+    from ethimon.risk._train import fit_temperature
+    t_eth = fit_temperature(lg["ethics_val"], e_va.labels)
+    t_rob = fit_temperature(np.concatenate([lg["sab_val"], lg["pairs_val"]]), s_va.labels + p_va.labels)
+    res["domain_temperature"] = {"ethics": t_eth, "robot": t_rob}
+    if not a.skip_ethics:
+        res["ethics_holdout"]["ece_domain_temperature"] = expected_calibration_error(
+            e_ho.labels, softmax_unsafe(lg["ethics_holdout"], t_eth))
+    res["robot_all"]["ece_domain_temperature"] = expected_calibration_error(y, softmax_unsafe(L, t_rob))
     res["machine"] = {"python": platform.python_version(), "torch": torch.__version__,
                       "cpu": platform.processor() or platform.machine(), "cores": os.cpu_count(),
                       "threads": torch.get_num_threads(), "int8": a.int8}
@@ -129,6 +136,9 @@ def main() -> None:
         for g in ("short", "long"):
             if g in m:
                 print(f"  {g:<20}{m[g]['n']:>5}{m[g]['accuracy']:>8.4f}{m[g]['f1']:>8.4f}{m[g]['roc_auc']:>8.4f}")
+    print(f"domain temperatures: ethics T={t_eth:.3f} -> hold-out ECE "
+          f"{res.get('ethics_holdout', {}).get('ece_domain_temperature', float('nan')):.4f}; "
+          f"robot T={t_rob:.3f} -> robot ECE {res['robot_all']['ece_domain_temperature']:.4f}")
     if "ethics_holdout" in res:
         c = res["ethics_holdout"]["confusion"]
         print(f"ETHICS confusion TN {c['tn']} FP {c['fp']} FN {c['fn']} TP {c['tp']}")
