@@ -28,7 +28,7 @@ def risk_config(spec_path: str | None) -> dict:
     if not spec_path:
         return dict(DEFAULT_RISK)
     if not Path(spec_path).is_file():
-        raise SpecError(f"spec file {spec_path!r} does not exist", path=spec_path)
+        raise SpecError("spec file does not exist", path=spec_path)
     try:
         from .. import load_spec
     except ImportError:  # spec loader not available: defaults

@@ -40,7 +40,7 @@ def load_labelled_csv(path: str | Path) -> LabelledRows:
     """
     p = Path(path)
     if not p.is_file():
-        raise SpecError(f"data file {str(p)!r} does not exist", path=str(p))
+        raise SpecError("data file does not exist", path=str(p))
     csv.field_size_limit(1 << 24)
     try:
         with p.open(encoding="utf-8", newline="") as f:
