@@ -17,7 +17,7 @@ import yaml
 from hypothesis import strategies as st
 
 import ethimon
-from ethimon.spec._expr import Binary, BoolLit, Call, Name, Num, Unary, to_source
+from ethimon.spec._expr import Binary, BoolLit, Call, Name, Num, Unary, parse_expr, to_source
 
 NUM_SIGNALS = {"x": (-5.0, 5.0), "y": (0.0, 10.0), "z": (-1.0, 1.0)}
 BOOL_SIGNALS = ("b",)
@@ -37,7 +37,9 @@ bool_leaf = st.one_of(st.sampled_from(BOOL_SIGNALS).map(lambda s: _n(Name, s)),
 
 
 def _nonzero(node):
-    return _n(Num, 1.0) if isinstance(node, Num) and node.value == 0 else node
+    """A divisor the compiler accepts: not a literal zero (also not ``-0`` or ``-(-0)``, which fold to one)."""
+    folded = parse_expr(to_source(node))
+    return _n(Num, 1.0) if isinstance(folded, Num) and folded.value == 0 else node
 
 
 def num_expr(depth: int) -> st.SearchStrategy:

@@ -21,9 +21,9 @@ z3 = pytest.importorskip("z3")
 
 import yaml  # noqa: E402
 
-from ethimon.spec._expr import Binary, Call, Name, Num, to_source  # noqa: E402
+from ethimon.spec._expr import Binary, Call, Num, to_source  # noqa: E402
 from ethimon.verify._encode import Unrolled, decision_trace, real  # noqa: E402
-from ethimon_strategies import NUM_SIGNALS, GenSpec, _n, bool_expr, num_expr, spec_doc, specs  # noqa: E402
+from ethimon_strategies import NUM_SIGNALS, GenSpec, _n, _nonzero, bool_expr, num_expr, spec_doc, specs  # noqa: E402
 
 
 def dyadic(lo: float, hi: float) -> st.SearchStrategy:
@@ -89,7 +89,7 @@ def partial_specs(draw):
     """Specs whose one obligation divides or takes a square root somewhere (maybe under a short circuit)."""
     a, b = draw(num_expr(1)), draw(num_expr(1))
     risky = draw(st.sampled_from((
-        _n(Binary, "/", a, b if not isinstance(b, Num) or b.value else _n(Name, "x")),
+        _n(Binary, "/", a, _nonzero(b)),
         _n(Call, "sqrt", (a,)))))
     cond = _n(Binary, draw(st.sampled_from(("<", ">=", "=="))), risky, draw(num_expr(0)))
     other = draw(bool_expr(1))
