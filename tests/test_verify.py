@@ -67,6 +67,7 @@ def test_cobot_cell_has_one_proof_per_obligation(cobot):
     assert cobot.finding("risk.override").status == "proved"
     assert cobot.finding("risk.bounds").message.startswith("R_e in [0.1, 0.7]")
     assert cobot.unroll == 5  # held(…, 5): 4 cycles of look-back + the current one
+    assert cobot.finding("model.agrees").status == "ok"
 
 
 @pytest.mark.parametrize("file, lint", [
@@ -229,3 +230,6 @@ def test_a_wrong_model_is_caught_by_the_replay(monkeypatch):
     assert f.status == "refuted"
     assert not f.counterexample.confirmed  # the real Monitor overrides: the model, not the spec, is wrong
     assert "NOT confirmed" in format_table(rep)
+    # and the sampled comparison of model and Monitor flags the model itself
+    agree = rep.finding("model.agrees")
+    assert agree.status == "refuted" and "disagrees with the Monitor" in agree.message
