@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 import os
 
+import yaml
+
 from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, initialize, invariant, precondition, rule
 
@@ -20,10 +22,12 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def _cobot_with_max_age() -> str:
+    """The shipped cobot cell, with a risk age limit and a short release hold."""
     with open(os.path.join(ROOT, "specs", "cobot_cell.yaml"), encoding="utf-8") as fh:
-        text = fh.read()
-    return text.replace("  release: {mode: auto, hysteresis: 0.05, hold_cycles: 10}",
-                        "  release: {mode: auto, hysteresis: 0.05, hold_cycles: 3}\n  max_age_s: 0.2")
+        doc = yaml.safe_load(fh)
+    doc["risk"]["max_age_s"] = 0.2
+    doc["risk"].setdefault("release", {})["hold_cycles"] = 3
+    return yaml.safe_dump(doc, sort_keys=False)
 
 
 COBOT = _cobot_with_max_age()
