@@ -29,7 +29,12 @@ def _run(name: str):
         doc = yaml.safe_load((ROOT / "scenarios" / "sim" / f"{name}.yaml").read_text())
         block = SimBlock.model_validate(doc["sim"])
         spec = ethimon.load_spec(str(SPEC))
-        res = run_sim(block, ethimon.Monitor(spec), p_unsafe=doc["inputs"]["p_unsafe"])
+        # scenarios scored by the risk model in `ethimon check` get a fixed stand-in here,
+        # so these sim tests stay model-free: unsafe if the scenario expects the risk rule
+        p_unsafe = doc["inputs"].get("p_unsafe")
+        if p_unsafe is None:
+            p_unsafe = 0.95 if "risk" in doc["expect"].get("fired", ()) else 0.03
+        res = run_sim(block, ethimon.Monitor(spec), p_unsafe=p_unsafe)
         _cache[name] = (block, res, spec)
     return _cache[name]
 
