@@ -382,7 +382,13 @@ def build_machine(plan: Plan) -> Machine:
         updates.append(u)
         resets.append(r)
     violated, margins = [], []
-    for ob in plan.obligations:
+    mbuf = [math.nan] * len(plan.obligations)
+    for k, ob in enumerate(plan.obligations):
+        fused = _fused_comparison(g, ob, mbuf, k)
+        if fused is not None:  # verdict and margin from one evaluation of both sides
+            violated.append(fused)
+            margins.append(lambda k=k: mbuf[k])
+            continue
         v, r = g.obligation(ob)
         violated.append(v)
         if r is not None:
@@ -393,3 +399,55 @@ def build_machine(plan: Plan) -> Machine:
         else:
             margins.append(g.rob(ob.require))
     return Machine(g.vals, g.tv, tuple(updates), tuple(resets), tuple(violated), tuple(margins))
+
+
+def _fused_comparison(g: _Gen, ob, mbuf: list, k: int):
+    """For ``require: <num> <cmp> <num>`` (no ``when``, no ``within_cycles``): one closure
+    that evaluates both sides once, stores the margin in ``mbuf[k]`` and returns the verdict.
+
+    The margin is read by the monitor after every obligation was judged in the cycle.
+    """
+    req = ob.require
+    if ob.when is not None or ob.within_cycles or not isinstance(req, Binary):
+        return None
+    op = req.op
+    if op not in ("<", "<=", ">", ">=", "==", "!=") or g.plan.type_of(req.left).kind != "num":
+        return None
+    f, h = g.fn(req.left), g.fn(req.right)
+    if op == "<":
+        def violated() -> bool:
+            a = f()
+            b = h()
+            mbuf[k] = b - a
+            return not a < b
+    elif op == "<=":
+        def violated() -> bool:
+            a = f()
+            b = h()
+            mbuf[k] = b - a
+            return not a <= b
+    elif op == ">":
+        def violated() -> bool:
+            a = f()
+            b = h()
+            mbuf[k] = a - b
+            return not a > b
+    elif op == ">=":
+        def violated() -> bool:
+            a = f()
+            b = h()
+            mbuf[k] = a - b
+            return not a >= b
+    elif op == "==":
+        def violated() -> bool:
+            a = f()
+            b = h()
+            mbuf[k] = -abs(a - b)
+            return not a == b
+    else:
+        def violated() -> bool:
+            a = f()
+            b = h()
+            mbuf[k] = abs(a - b)
+            return not a != b
+    return violated
