@@ -189,8 +189,7 @@ class _Checker:
                 else:
                     hint = "declare it under 'signals:' or 'constants:'" + (
                         f"; known names: {', '.join(known)}" if len(known) <= 12 else "")
-                what = "signal"
-                raise self.err(node, f"unknown {what} {node.id!r}", hint=hint)
+                raise self.err(node, f"unknown signal {node.id!r}", hint=hint)
             return ty
         if isinstance(node, Unary):
             if node.op == "not":
