@@ -375,3 +375,22 @@ def test_public_names_import():
         assert getattr(r, name) is not None
     e = RiskEstimate((0.3, 0.7), 0.7, risk_from_p_unsafe(0.7), 0.001)
     assert e.cached is False and e.model_id == ""
+
+
+def test_edited_default_manifest_is_refused(tmp_path, monkeypatch):
+    """The shipped model's manifest (adapter/base sha256, temperature) is pinned in code."""
+    import shutil
+
+    from ethimon.errors import ModelError
+    from ethimon.risk import _estimator
+    src = _estimator.default_model_dir()
+    if not (src / "ethimon_model.json").is_file():
+        pytest.skip("no shipped default model in this checkout")
+    _estimator.check_default_manifest(src)  # the shipped one passes
+    copy = tmp_path / "default_model"
+    shutil.copytree(src, copy)
+    manifest = copy / "ethimon_model.json"
+    manifest.write_text(manifest.read_text().replace('"temperature": 1.338075', '"temperature": 9.0'))
+    monkeypatch.setattr(_estimator, "default_model_dir", lambda: copy)
+    with pytest.raises(ModelError, match="does not match the pinned default model"):
+        _estimator.load_estimator()

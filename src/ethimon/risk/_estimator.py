@@ -60,6 +60,27 @@ def default_model_dir() -> Path:
     return Path(__file__).resolve().parent / "default_model"
 
 
+#: sha256 of the shipped ``default_model/ethimon_model.json``. The manifest pins the
+#: adapter and base weights by sha256, and carries the temperature; pinning the
+#: manifest itself here means an edited shipped model (weights, T, labels) is refused.
+DEFAULT_MANIFEST_SHA256 = "de75171f60fc21938dfec5d7a088a045fdc04e979eb5e3d2b58295a6457c0fed"
+
+
+def check_default_manifest(d: Path) -> None:
+    """Refuse a shipped default model whose manifest is not the one this code pins."""
+    import hashlib
+
+    from ..errors import ModelError
+    p = d / "ethimon_model.json"
+    try:
+        digest = hashlib.sha256(p.read_bytes()).hexdigest()
+    except OSError as exc:
+        raise ModelError(f"{p}: cannot read the default model's manifest: {exc.strerror or exc}") from None
+    if digest != DEFAULT_MANIFEST_SHA256:
+        raise ModelError(f"{p}: sha256 {digest[:12]}… does not match the pinned default model "
+                         f"({DEFAULT_MANIFEST_SHA256[:12]}…); the shipped model was modified — reinstall ethimon")
+
+
 def normalize_text(text: str) -> str:
     """Cache key of a task text: NFKC, surrounding/duplicate whitespace removed."""
     if not text.isascii():
@@ -248,8 +269,10 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
     from . import _backend as B
     if num_threads is not None:
         B.torch.set_num_threads(int(num_threads))
-    loaded = B.load_model(default_model_dir() if model_dir is None else model_dir,
-                          max_length=max_length)
+    if model_dir is None:
+        model_dir = default_model_dir()
+        check_default_manifest(Path(model_dir))
+    loaded = B.load_model(model_dir, max_length=max_length)
     if quantize == "int8":
         import warnings
         with warnings.catch_warnings():
