@@ -56,6 +56,8 @@ def test_risk_input_priority_risk_then_p_unsafe_then_p():
     ({"d": math.inf}, "outside"),
     ({"d": "3"}, "must be a number"),
     ({"d": True}, "must be a number"),
+    ({"d": [1.0]}, "not a number"),
+    ({"d": np.float32(11.0)}, "outside"),
     ({"ok": 2}, "true/false"),
     ({"ok": "yes"}, "true/false"),
     ({"p_unsafe": None}, "no risk input"),
@@ -232,3 +234,12 @@ def test_fault_with_risk_over_threshold_reports_risk():
     m = mon("  - {id: a, require: 'v < 1', response: stop_2}\n")
     d = m.step(inp(d=math.nan, v=2.0, p_unsafe=0.99))
     assert d.violations == ("a", "risk") and d.response is Response.STOP_2
+
+
+def test_wrong_type_signal_still_judges_other_stateless_rules():
+    m = mon("  - {id: near, require: 'd > 0.5'}\n  - {id: fast, require: 'v < 1', response: stop_0}\n")
+    d = m.step(inp(d=[1.0], v=2.0))  # a list is bad input (not an internal error)
+    assert d.override and d.violations == ("fast",) and d.response is Response.STOP_0
+    ref = ethimon.ReferenceMonitor(m.spec)
+    r = ref.step(inp(d=[1.0], v=2.0))
+    assert r.violations == d.violations and r.response is d.response

@@ -255,14 +255,21 @@ class Monitor:
                     else:
                         (faults := faults or []).append(f"signal {name!r} must be true/false, got {v!r}")
                         (bad := bad or []).append(slot)
+                elif v.__class__ is float:  # the common case first
+                    if lo <= v <= hi:
+                        vals[slot] = v
+                    else:
+                        (faults := faults or []).append(
+                            f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]")
+                        (bad := bad or []).append(slot)
                 elif v.__class__ is bool or v.__class__ is str:
                     (faults := faults or []).append(f"signal {name!r} must be a number, got {v!r}")
                     (bad := bad or []).append(slot)
-                elif lo <= v <= hi:
+                elif _within(v, lo, hi):  # int, numpy scalars; a list or None-like is bad input
                     vals[slot] = v
                 else:
                     (faults := faults or []).append(
-                        f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]")
+                        f"signal {name!r} = {v!r} is NaN, not a number or outside its range [{lo:g}, {hi:g}]")
                     (bad := bad or []).append(slot)
             r, why = self._risk(get)
             if why is not None:

@@ -190,7 +190,10 @@ class ReferenceMonitor:
             return v is True or v is False or (not isinstance(v, str) and (v == 0 or v == 1))
         if isinstance(v, (bool, str)):
             return False
-        return sig.lo <= v <= sig.hi
+        try:
+            return bool(sig.lo <= v <= sig.hi)
+        except TypeError:
+            return False
 
     def step(self, signals: dict[str, Any]) -> Decision:
         cycle = self.cycle
