@@ -101,17 +101,33 @@ def test_stop_0_leaves_motors_unpowered(sim):
         stop.command(sim)
         sim.step()
     q2, _ = sim.joint_state()
-    assert np.max(np.abs(q2 - q)) > 0.05  # nothing holds the arm up against gravity
-    # the same start state, motors disabled by hand, evolves identically
+    assert np.max(np.abs(q2 - q)) < 0.02  # motors off, the holding brakes keep the arm up
+    # the same start state, motors replaced by the brake torque by hand, evolves identically
     from ethimon.sim import ArmSim
+    from ethimon.sim._arm import BRAKE_TORQUE_N_M
     with ArmSim(control_hz=60) as ref:
         p = ref._p
         p.setJointMotorControlArray(ref.robot, list(range(7)), p.VELOCITY_CONTROL,
-                                    forces=[0.0] * 7, physicsClientId=ref.cid)
+                                    targetVelocities=[0.0] * 7, forces=list(BRAKE_TORQUE_N_M),
+                                    physicsClientId=ref.cid)
         ref.powered = False
         for _ in range(31):
             ref.step()
         assert np.allclose(ref.joint_state()[0], q2, atol=1e-9)
+
+
+@pytest.mark.sim
+def test_stop_0_without_brakes_sags():
+    from ethimon.sim import ArmSim
+    from ethimon.sim._control import StopController
+    with ArmSim(control_hz=60, brakes=False) as s:
+        q, qd = s.joint_state()
+        stop = StopController(0, q, qd, 0.25)
+        for _ in range(31):
+            stop.command(s)
+            s.step()
+        assert not s.powered
+        assert np.max(np.abs(s.joint_state()[0] - q)) > 0.05  # nothing holds the arm up
 
 
 @pytest.mark.sim
@@ -147,4 +163,23 @@ def test_controlled_stops(sim, category):
         for _ in range(30):
             stop.command(sim)
             sim.step()
-        assert np.max(np.abs(sim.joint_state()[0] - q_end)) > 0.02  # unpowered: it sags
+        assert np.max(np.abs(sim.joint_state()[0] - q_end)) < 0.02  # unpowered, held by the brakes
+
+
+@pytest.mark.sim
+def test_stop_0_brakes_a_moving_arm_to_rest(sim):
+    from ethimon.sim._arm import Segment
+    from ethimon.sim._control import StopController, TaskController
+    target = np.array(SAFE) + np.array([0.8, 0.3, 0.0, 0.3, 0.0, 0.0, 0.0])
+    q0, _ = sim.joint_state()
+    task = TaskController([Segment(q=target, duration_s=2.0)], q0, 0.8)
+    for _ in range(60):  # mid-motion
+        task.command(sim)
+        sim.step()
+    q, qd = sim.joint_state()
+    assert np.max(np.abs(qd)) > 0.3
+    stop = StopController(0, q, qd, 0.25)
+    for _ in range(30):  # 0.5 s after power off
+        stop.command(sim)
+        sim.step()
+    assert not sim.powered and np.max(np.abs(sim.joint_state()[1])) < 0.05

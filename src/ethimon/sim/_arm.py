@@ -30,6 +30,10 @@ EE_LINK = 11
 #: A comfortable start pose (the Panda "ready" pose).
 HOME_JOINTS_RAD = (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785)
 ARM_MAX_FORCE_N_M = (87.0, 87.0, 87.0, 87.0, 12.0, 12.0, 12.0)
+#: holding-brake torque per joint when motor power is removed (a friction brake: it
+#: holds the arm against gravity and brings a moving joint to rest; a larger external
+#: torque still slips it). Below the motor limits, above the Panda's gravity loads.
+BRAKE_TORQUE_N_M = (60.0, 60.0, 60.0, 60.0, 10.0, 10.0, 10.0)
 _DOWN_RPY = (math.pi, 0.0, 0.0)
 _NO_HUMAN_M = 10.0
 _KP, _KD = 0.2, 1.0  # PyBullet position-motor gains  # distance reported when no human is within range
@@ -117,7 +121,8 @@ class ArmSim:
 
     def __init__(self, *, control_hz: int = 60, gui: bool = False,
                  start_joints_rad: Sequence[float] | None = None,
-                 humans: Sequence[Human] = (), objects: Sequence[SimObject] = ()) -> None:
+                 humans: Sequence[Human] = (), objects: Sequence[SimObject] = (),
+                 brakes: bool = True) -> None:
         if control_hz <= 0 or PHYSICS_HZ % control_hz:
             raise ValueError(f"control_hz={control_hz} must divide {PHYSICS_HZ}")
         p, pd = import_pybullet()
@@ -150,6 +155,7 @@ class ArmSim:
         self.gripper_cmd = 0.04
         self.max_velocity: float | None = None
         self.powered = True
+        self.brakes = brakes
         self.graspable: set[str] = set()
         self._status_id: int | None = None
         self.time_s = 0.0
@@ -172,7 +178,7 @@ class ArmSim:
     def from_block(cls, block: SimBlock, *, gui: bool = False) -> ArmSim:
         """Build the cell a scenario's ``sim:`` block describes."""
         sim = cls(control_hz=block.control_hz, gui=gui, start_joints_rad=block.start_joints_rad,
-                  humans=block.humans, objects=block.objects)
+                  humans=block.humans, objects=block.objects, brakes=block.brakes)
         if block.start_xyz_m is not None:
             q = sim.solve_ik(block.start_xyz_m, seed=HOME_JOINTS_RAD)
             sim.reset_joints(q)
@@ -381,13 +387,17 @@ class ArmSim:
     def command_torque_off(self) -> None:
         """Stop category 0 style: remove motor power at once.
 
-        The arm's velocity motors get a zero force budget, so they apply no
-        torque at all; gravity and contacts act freely (no brakes are modelled).
+        The motors apply no torque any more. With ``brakes`` (the default, as on a
+        real Panda) the holding brakes engage at once: a friction torque of at most
+        :data:`BRAKE_TORQUE_N_M` per joint against any motion, so the arm comes to
+        rest and holds against gravity. Without brakes, gravity and contacts act
+        freely and the arm sags.
         """
         p, cid = self._p, self.cid
         self.powered = False
+        forces = list(BRAKE_TORQUE_N_M) if self.brakes else [0.0] * 7
         p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
-                                    targetVelocities=[0.0] * 7, forces=[0.0] * 7,
+                                    targetVelocities=[0.0] * 7, forces=forces,
                                     physicsClientId=cid)
 
     def _apply_command(self, q: np.ndarray | None = None) -> None:

@@ -242,6 +242,8 @@ class SimBlock(_Model):
     task_joint_speed_rad_s: float = Field(
         0.8, gt=0.0, description="peak joint speed of task motions (auto-timing)")
     stop_ramp_s: float = Field(0.25, gt=0.0, description="deceleration time of stop_1/stop_2")
+    brakes: bool = Field(True, description="holding brakes engage when motor power is removed "
+                                           "(stop_0 at once, stop_1 after its ramp)")
     task: tuple[Primitive, ...] = ()
     humans: tuple[Human, ...] = ()
     objects: tuple[SimObject, ...] = ()
