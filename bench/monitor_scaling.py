@@ -22,6 +22,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from _machine import machine_facts  # noqa: E402
+from monitor_step import pct, time_steps  # noqa: E402
 
 import ethimon  # noqa: E402
 
@@ -63,27 +64,6 @@ def make_frames(n: int, seed: int = 0) -> list[dict]:
             f[f"s{i}"] = 9.6 if u < 0.02 else (0.03 if u < 0.03 else 1.0 + 8.0 * rng.random())
         frames.append(f)
     return frames
-
-
-def time_steps(monitor, frames, cycles: int) -> list[float]:
-    step = monitor.step
-    n = len(frames)
-    out = [0.0] * cycles
-    clock = time.perf_counter_ns
-    gc.disable()
-    try:
-        for i in range(cycles):
-            f = frames[i % n]
-            t0 = clock()
-            step(f)
-            out[i] = (clock() - t0) / 1000.0
-    finally:
-        gc.enable()
-    return out
-
-
-def pct(sorted_vals: list[float], q: float) -> float:
-    return sorted_vals[min(len(sorted_vals) - 1, int(q * len(sorted_vals)))]
 
 
 def main() -> int:

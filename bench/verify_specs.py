@@ -15,32 +15,23 @@ import argparse
 import datetime as _dt
 import json
 import os
-import platform
 import statistics
 import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "src"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from _machine import machine_facts  # noqa: E402
 
 
 def machine() -> dict:
     import z3
 
-    import ethimon
-    cpu = platform.processor() or ""
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as fh:
-            for line in fh:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    return {"python": platform.python_version(), "implementation": platform.python_implementation(),
-            "platform": platform.platform(), "cpu": cpu, "cpu_count": os.cpu_count(),
-            "z3": z3.get_version_string(), "ethimon": ethimon.__version__,
-            "date_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")}
+    facts = machine_facts()
+    facts["z3"] = z3.get_version_string()
+    facts["date_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    return facts
 
 
 def main(argv=None) -> int:

@@ -130,11 +130,10 @@ def test_stop_0_without_brakes_sags():
         assert np.max(np.abs(s.joint_state()[0] - q)) > 0.05  # nothing holds the arm up
 
 
-@pytest.mark.sim
-@pytest.mark.parametrize("category", [1, 2])
-def test_controlled_stops(sim, category):
-    from ethimon.sim._control import StopController, TaskController
+def _mid_motion(sim):
+    """Drive the arm for 1 s of a 2 s joint move; returns the joint state mid-motion."""
     from ethimon.sim._arm import Segment
+    from ethimon.sim._control import TaskController
     target = np.array(SAFE) + np.array([0.8, 0.3, 0.0, 0.3, 0.0, 0.0, 0.0])
     q0, _ = sim.joint_state()
     task = TaskController([Segment(q=target, duration_s=2.0)], q0, 0.8)
@@ -142,6 +141,14 @@ def test_controlled_stops(sim, category):
         task.command(sim)
         sim.step()
     q, qd = sim.joint_state()
+    return q, qd
+
+
+@pytest.mark.sim
+@pytest.mark.parametrize("category", [1, 2])
+def test_controlled_stops(sim, category):
+    from ethimon.sim._control import StopController
+    q, qd = _mid_motion(sim)
     assert np.max(np.abs(qd)) > 0.3
     stop = StopController(category, q, qd, 0.25)
     for _ in range(15):  # the 0.25 s ramp
@@ -168,15 +175,8 @@ def test_controlled_stops(sim, category):
 
 @pytest.mark.sim
 def test_stop_0_brakes_a_moving_arm_to_rest(sim):
-    from ethimon.sim._arm import Segment
-    from ethimon.sim._control import StopController, TaskController
-    target = np.array(SAFE) + np.array([0.8, 0.3, 0.0, 0.3, 0.0, 0.0, 0.0])
-    q0, _ = sim.joint_state()
-    task = TaskController([Segment(q=target, duration_s=2.0)], q0, 0.8)
-    for _ in range(60):  # mid-motion
-        task.command(sim)
-        sim.step()
-    q, qd = sim.joint_state()
+    from ethimon.sim._control import StopController
+    q, qd = _mid_motion(sim)
     assert np.max(np.abs(qd)) > 0.3
     stop = StopController(0, q, qd, 0.25)
     for _ in range(30):  # 0.5 s after power off

@@ -140,13 +140,13 @@ def _run_sim(sc, spec, est, path):
     except ImportError as exc:
         raise DependencyNotInstalled(f"--sim needs the simulator: {exc}") from None
     from ..runtime import Monitor
-    from ..scenario._run import needs_text_risk
+    from ..scenario._run import RISK_KEYS, needs_text_risk
     block = SimBlock.model_validate(sc.sim)
     kwargs = {}
     if needs_text_risk(sc):
         kwargs["probs"] = tuple(est.probs(sc.task))
     else:
-        for key in ("risk", "p_unsafe", "p"):
+        for key in RISK_KEYS:
             if key in sc.inputs:
                 kwargs[key] = sc.inputs[key]
                 break

@@ -128,9 +128,9 @@ class Monitor:
         self._rslot = plan.risk_slot
         self._updates = m.updates
         self._obs = tuple((fn, ob.id, ob.response.severity) for fn, ob in zip(m.violated, plan.obligations))
-        self._stateless = tuple((fn, ob.id, ob.response.severity, stateless_slots(plan, ob))
+        self._stateless = tuple((fn, ob.id, ob.response.severity, slots)
                                 for fn, ob in zip(m.violated, plan.obligations)
-                                if stateless_slots(plan, ob) is not None)
+                                if (slots := stateless_slots(plan, ob)) is not None)
         self.obligation_ids: tuple[str, ...] = tuple(ob.id for ob in plan.obligations)
         self._margins_on = margins
         self._margin_fns = m.margins
