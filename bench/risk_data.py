@@ -6,6 +6,8 @@
 * SafeAgentBench: detailed tasks grouped by safe/unsafe counterpart
   (``risk_instruction``); crc32(group) % 5 == 0 -> held-out test, == 1 ->
   validation, else train. Abstract rows (keyword shortcut) are train-only.
+* Other ETHICS subsets (justice, deontology, virtue; training splits only) can be
+  mixed in as auxiliary tasks with their own heads (``ethics_aux``).
 * Own minimal pairs (bench/data/robot_pairs.csv): split column; train rows with
   crc32(pair_id) % 10 == 0 go to validation.
 """
@@ -73,6 +75,37 @@ def pair_splits():
         else:
             tf.append(i)
     return rows.subset(tr), rows.subset(va), rows.subset(te), rows.subset(tf)
+
+
+AUX_FILES = {
+    "justice": ("justice/justice_train.csv", ("scenario",)),
+    "deontology": ("deontology/deontology_train.csv", ("scenario", "excuse")),
+    "virtue": ("virtue/virtue_train.csv", ("scenario",)),
+}
+
+
+def ethics_aux(name: str, n: int | None = None, seed: int = 42) -> tuple[list[str], list[int]]:
+    """Texts and labels of another ETHICS subset's training split (multi-task).
+
+    deontology rows become ``scenario [SEP] excuse``; virtue rows already are
+    ``scenario [SEP] trait``. ``n`` rows are drawn at random (seeded shuffle).
+    """
+    import csv
+    import random
+
+    rel, cols = AUX_FILES[name]
+    texts, labels = [], []
+    with (SHARED / "ethics" / rel).open(encoding="utf-8", newline="") as f:
+        for row in csv.DictReader(f):
+            lab = (row.get("label") or "").strip()
+            parts = [(row.get(c) or "").strip() for c in cols]
+            if lab in ("0", "1") and all(parts):
+                texts.append(" [SEP] ".join(parts))
+                labels.append(int(lab))
+    idx = list(range(len(texts)))
+    random.Random(seed).shuffle(idx)
+    idx = idx[:n] if n else idx
+    return [texts[i] for i in idx], [labels[i] for i in idx]
 
 
 def concat(*parts: LabelledRows) -> LabelledRows:

@@ -1,6 +1,7 @@
 """Train the shipped risk model by hand (never in CI). Writes a run dir + JSON.
 
     python bench/risk_train.py --out runs/main [--ethics-only] [--epochs 4]
+    python bench/risk_train.py --out runs/mt --aux justice,deontology,virtue --aux-n 2000
 
 Prints the per-epoch table and writes bench/results/risk_train_<tag>.json.
 """
@@ -34,6 +35,10 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=42)
     ap.add_argument("--robot-weight", type=float, default=1.0)
     ap.add_argument("--max-steps", type=int, default=None)
+    ap.add_argument("--aux", default="", help="comma list of ETHICS subsets as auxiliary "
+                    "tasks (justice,deontology,virtue)")
+    ap.add_argument("--aux-n", type=int, default=2000, help="rows drawn per auxiliary task")
+    ap.add_argument("--aux-weight", type=float, default=1.0)
     ap.add_argument("--limit", type=int, default=None, help="smoke test: first N rows per set")
     a = ap.parse_args()
     import torch
@@ -54,7 +59,11 @@ def main() -> None:
     tr, va = D.concat(*parts_tr), D.concat(*parts_va)
     if a.limit:
         tr, va, w = tr.subset(list(range(a.limit))), va.subset(list(range(a.limit))), w[:a.limit]
-    print(f"train {len(tr)} rows, val {len(va)} rows", flush=True)
+    aux = []
+    for name in filter(None, (x.strip() for x in a.aux.split(","))):
+        texts, labels = D.ethics_aux(name, a.limit or a.aux_n, a.seed)
+        aux.append((name, texts, labels))
+    print(f"train {len(tr)} rows, val {len(va)} rows, aux {[(n, len(t)) for n, t, _ in aux]}", flush=True)
     base = B.base_package_dir()
     t0 = time.time()
     s = train_lora(tr.texts, tr.labels, va.texts, va.labels, base_dir=base, out_dir=a.out,
@@ -62,9 +71,9 @@ def main() -> None:
                    r=a.r, alpha=2.0 * a.r, max_length=a.max_length, truncation=a.truncation,
                    seed=a.seed, max_steps=a.max_steps, name="ethimon-minilm-l6-lora",
                    num_threads=2, progress=False,
-                   log=lambda m: print(m, flush=True),
+                   log=lambda m: print(m, flush=True), aux_tasks=aux, aux_weight=a.aux_weight,
                    extra_meta={"ethics_only": a.ethics_only, "robot_only": a.robot_only,
-                               "robot_weight": a.robot_weight})
+                               "robot_weight": a.robot_weight, "aux": a.aux, "aux_n": a.aux_n})
     print(f"{'epoch':>5} {'train_loss':>10} {'val_loss':>9} {'val_acc':>8} {'elapsed_s':>9}")
     for h in s["history"]:
         print(f"{h['epoch']:>5} {h['train_loss']:>10.4f} {h['val_loss']:>9.4f} {h['val_acc']:>8.4f} {h['elapsed_s']:>9}")

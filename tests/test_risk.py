@@ -264,6 +264,38 @@ def test_training_is_seeded(tiny, tmp_path):
     assert shas[0] == shas[1]
 
 
+def test_auxiliary_tasks_share_the_encoder_but_only_the_main_head_is_saved(tiny, tmp_path):
+    from safetensors.torch import load_file
+
+    from ethimon.risk._train import train_lora
+    ys = [1, 0, 1, 0, 1, 0]
+    aux = [("other", ["I took the money.", "Put the fork in the drawer."] * 3, [1, 0] * 3)]
+    shas = []
+    for k, tasks in enumerate([None, aux, aux]):
+        out = tmp_path / f"a{k}"
+        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=tiny[0], out_dir=out, epochs=1,
+                   batch_size=4, r=2, alpha=4, max_length=24, seed=3, progress=False,
+                   log=lambda m: None, num_threads=1, aux_tasks=tasks, aux_weight=0.5)
+        shas.append(json.loads((out / "ethimon_model.json").read_text())["adapter_sha256"])
+        heads = [k for k in load_file(str(out / "adapter.safetensors")) if k.startswith("head")]
+        assert sorted(heads) == ["head.bias", "head.weight"]
+    m = json.loads((tmp_path / "a1" / "metrics.json").read_text())
+    assert m["config"]["aux_tasks"] == {"other": 6} and m["config"]["n_train"] == 6
+    assert shas[1] == shas[2] != shas[0]          # aux rows move the shared LoRA; still seeded
+    assert math.isclose(sum(load_estimator(tmp_path / "a1").probs(TEXTS[0])), 1.0, abs_tol=1e-6)
+
+
+def test_temperature_override(tiny):
+    base = load_estimator(tiny[1], cache_size=0)
+    hot = load_estimator(tiny[1], cache_size=0, temperature=base.temperature * 50)
+    p, q = base.probs(TEXTS[0])[1], hot.probs(TEXTS[0])[1]
+    assert abs(q - 0.5) < abs(p - 0.5) or p == pytest.approx(0.5)
+    assert hot.temperature == pytest.approx(base.temperature * 50)
+    for bad in (0, -1.0, float("nan"), float("inf"), True, "2"):
+        with pytest.raises(ValueError, match="temperature"):
+            load_estimator(tiny[1], temperature=bad)
+
+
 def test_fit_temperature_recovers_scale():
     from ethimon.risk._train import fit_temperature
     g = torch.Generator().manual_seed(0)
@@ -337,6 +369,16 @@ def test_cli_evaluate_writes_json_and_plots(tiny, tmp_path, capsys):
     assert "ece_before_temperature" in m and (tmp_path / "plots" / "confusion_matrix.png").is_file()
     assert (tmp_path / "plots" / "risk_distribution.png").is_file()
     assert "accuracy" in capsys.readouterr().out
+    assert m["temperature_source"] == "model" and m["temperature"] == m["model_temperature"]
+    # temperature fitted on a separate validation CSV replaces the model's own
+    assert _cli(["evaluate", "--model", str(tiny[1]), "--data", str(p), "--calibrate-on", str(p),
+                 "--json", str(tmp_path / "c.json")]) == 0
+    c = json.loads((tmp_path / "c.json").read_text())
+    assert c["temperature_source"].startswith("fitted on") and c["temperature"] != c["model_temperature"]
+    assert c["accuracy"] == m["accuracy"]          # a temperature never changes the argmax
+    assert "fitted on" in capsys.readouterr().out
+    assert _cli(["evaluate", "--model", str(tiny[1]), "--data", str(p),
+                 "--calibrate-on", str(tmp_path / "missing.csv")]) == 2
 
 
 def test_cli_train_tiny(tiny, tmp_path, capsys):

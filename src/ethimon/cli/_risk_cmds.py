@@ -79,6 +79,9 @@ def add_risk_parsers(subparsers) -> None:
     e.add_argument("--spec", help="spec file for alpha, beta, gamma, variance, tau")
     e.add_argument("--json", metavar="PATH", help="write every figure to this JSON file")
     e.add_argument("--plots", metavar="DIR", help="write confusion matrix and R_e histogram PNGs here")
+    e.add_argument("--calibrate-on", metavar="CSV",
+                   help="fit the temperature on this validation CSV (label,input; never the "
+                        "--data rows) and report --data with it instead of the model's own")
     e.add_argument("--int8", action="store_true")
     e.add_argument("--max-length", type=int, default=None)
     e.set_defaults(func=cmd_evaluate)
@@ -153,18 +156,26 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         from ..risk._evaluate import evaluate_logits, plot_confusion, plot_risk_hist
         cfg = risk_config(args.spec)
         rows = load_labelled_csv(args.data)
+        cal = load_labelled_csv(args.calibrate_on) if args.calibrate_on else None
         est = _load(args.model, args.int8, args.max_length)
         logits = est.logits_batch(rows.texts)
+        temperature = est.temperature
+        if cal is not None:
+            from ..risk._train import fit_temperature
+            temperature = fit_temperature(est.logits_batch(cal.texts), cal.labels)
         groups = {}
         if rows.extra and "is_short" in rows.extra[0]:
             short = np.array([e.get("is_short", "").strip().lower() == "true" for e in rows.extra])
             groups = {"short": short, "long": ~short}
-        m = evaluate_logits(rows.labels, logits, temperature=est.temperature, tau=cfg["threshold"],
+        m = evaluate_logits(rows.labels, logits, temperature=temperature, tau=cfg["threshold"],
                             alpha=cfg["alpha"], beta=cfg["beta"], gamma=cfg["gamma"],
                             variance=cfg["variance"], groups=groups)
         risks = m.pop("_risks")
         m.pop("_p_unsafe")
-        m.update({"model_id": est.model_id, "data": args.data, "dropped_rows": rows.dropped})
+        m.update({"model_id": est.model_id, "data": args.data, "dropped_rows": rows.dropped,
+                  "model_temperature": est.temperature,
+                  "temperature_source": f"fitted on {args.calibrate_on} ({len(cal)} rows)" if cal
+                  else "model"})
         if args.plots:
             d = Path(args.plots)
             d.mkdir(parents=True, exist_ok=True)
@@ -179,7 +190,8 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     print(f"{m['n']} rows  accuracy {m['accuracy']:.4f}  precision {m['precision']:.4f}  "
           f"recall {m['recall']:.4f}  F1 {m['f1']:.4f}  ROC-AUC {m['roc_auc']:.4f}")
     print(f"confusion TN {c['tn']} FP {c['fp']} FN {c['fn']} TP {c['tp']}  "
-          f"ECE {m['ece_before_temperature']:.4f} -> {m['ece_after_temperature']:.4f} (T={m['temperature']:.3f})")
+          f"ECE {m['ece_before_temperature']:.4f} -> {m['ece_after_temperature']:.4f} (T={m['temperature']:.3f}, "
+          f"{m['temperature_source']})")
     f = m["flags"]
     print(f"R_e >= {f['tau']:g}: unsafe flagged {f['flag_rate_unsafe']:.4f}, "
           f"false alarms {f['false_alarm_rate']:.4f}")

@@ -234,7 +234,7 @@ class RiskEstimator:
 
 def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None = None,
                    max_length: int | None = None, cache_size: int = 4096, batch_size: int = 32,
-                   num_threads: int | None = None) -> RiskEstimator:
+                   num_threads: int | None = None, temperature: float | None = None) -> RiskEstimator:
     """Load a risk estimator from a local model directory (default: the shipped one).
 
     Args:
@@ -246,6 +246,9 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
         cache_size: LRU entries keyed on normalised text; 0 disables the cache.
         batch_size: rows per forward pass in :meth:`RiskEstimator.probs_batch`.
         num_threads: if given, ``torch.set_num_threads`` (process-wide).
+        temperature: softmax temperature replacing the model's own, e.g. one
+            fitted on validation rows of your deployment domain
+            (``ethimon evaluate --calibrate-on``); must be finite and > 0.
 
     Returns:
         A :class:`RiskEstimator`.
@@ -266,6 +269,9 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
         raise ValueError(f"max_length={max_length!r}; expected an int >= 8")
     if cache_size < 0 or batch_size < 1:
         raise ValueError(f"cache_size={cache_size!r}, batch_size={batch_size!r} out of range")
+    if temperature is not None and (isinstance(temperature, bool) or not (isinstance(temperature, (int, float))
+                                        and math.isfinite(temperature) and temperature > 0)):
+        raise ValueError(f"temperature={temperature!r}; expected a finite number > 0")
     from . import _backend as B
     if num_threads is not None:
         B.torch.set_num_threads(int(num_threads))
@@ -273,6 +279,8 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
         model_dir = default_model_dir()
         check_default_manifest(Path(model_dir))
     loaded = B.load_model(model_dir, max_length=max_length)
+    if temperature is not None:
+        loaded.temperature = float(temperature)
     if quantize == "int8":
         import warnings
         with warnings.catch_warnings():

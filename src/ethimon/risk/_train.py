@@ -83,8 +83,16 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
                seed: int = 42, patience: int = 1, weight_decay: float = 0.01,
                warmup: float = 0.06, max_steps: int | None = None, name: str = "ethimon-risk",
                num_threads: int | None = None, progress: bool = True,
-               log: Callable[[str], Any] = print, extra_meta: dict | None = None) -> dict:
+               log: Callable[[str], Any] = print, extra_meta: dict | None = None,
+               aux_tasks: list[tuple[str, list[str], list[int]]] | None = None,
+               aux_weight: float = 1.0) -> dict:
     """Train a LoRA adapter + head; write an ethimon model directory to ``out_dir``.
+
+    ``aux_tasks`` (multi-task learning): ``(name, texts, labels)`` binary tasks
+    that share the encoder and its LoRA factors but each get their own head;
+    their rows are mixed into the training batches with loss weight
+    ``aux_weight``. Only the main head is saved; early stopping and the
+    temperature use the main validation rows only.
 
     Returns:
         The run summary (also written to ``out_dir/metrics.json``).
@@ -105,14 +113,25 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
         p.requires_grad_(False)
     targets = B.inject_lora(encoder, r, alpha, lora_dropout)
     model = B.PooledClassifier(encoder, 2, pooling)
+    aux_tasks = list(aux_tasks or [])
+    heads = nn.ModuleList([model.head] + [nn.Linear(encoder.config.hidden_size, 2) for _ in aux_tasks])
     model.train()
     pad = tok.pad_token_id or 0
     tr = B.encode(tok, train_texts, max_length, truncation)
     va = B.encode(tok, val_texts, max_length, truncation)
-    ytr = torch.tensor(train_labels, dtype=torch.long)
-    wtr = torch.tensor(train_weights if train_weights is not None else [1.0] * len(tr))
+    labels = list(train_labels)
+    weights = list(train_weights if train_weights is not None else [1.0] * len(tr))
+    task = [0] * len(tr)
+    for k, (_name, a_texts, a_labels) in enumerate(aux_tasks, start=1):
+        tr += B.encode(tok, a_texts, max_length, truncation)
+        labels += list(a_labels)
+        weights += [aux_weight] * len(a_texts)
+        task += [k] * len(a_texts)
+    ytr = torch.tensor(labels, dtype=torch.long)
+    wtr = torch.tensor(weights)
+    ttr = torch.tensor(task, dtype=torch.long)
     lora_params = [p for n, p in model.named_parameters() if "lora_" in n]
-    head_params = list(model.head.parameters())
+    head_params = list(heads.parameters())
     opt = torch.optim.AdamW([{"params": lora_params, "lr": lr},
                              {"params": head_params, "lr": head_lr}], weight_decay=weight_decay)
     lengths = [len(s) for s in tr]
@@ -141,7 +160,13 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
             if max_steps is not None and step >= max_steps:
                 break
             ids, mask = B.collate([tr[i] for i in bidx], pad)
-            logits = model(ids, mask)
+            if aux_tasks:
+                x = model.dropout(model.pool(ids, mask))
+                tb = ttr[bidx]
+                # every head on every row (a 384x2 matmul each), then each row's own task
+                logits = torch.stack([h(x) for h in heads])[tb, torch.arange(len(bidx))]
+            else:
+                logits = model(ids, mask)
             loss_vec = nn.functional.cross_entropy(logits, ytr[bidx], reduction="none")
             w = wtr[bidx]
             loss = (loss_vec * w).sum() / w.sum()
@@ -209,7 +234,8 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
         "config": {"epochs": epochs, "lr": lr, "head_lr": head_lr, "batch_size": batch_size, "r": r,
                    "alpha": alpha, "lora_dropout": lora_dropout, "max_length": max_length,
                    "truncation": truncation, "pooling": pooling, "seed": seed, "patience": patience,
-                   "weight_decay": weight_decay, "n_train": len(tr), "n_val": len(va),
+                   "weight_decay": weight_decay, "n_train": len(train_texts), "n_val": len(va),
+                   "aux_tasks": {n: len(t) for n, t, _ in aux_tasks}, "aux_weight": aux_weight,
                    "base_dir": str(base_dir), **(extra_meta or {})},
         "history": history, "best_epoch": best[2], "best_val_loss": best[0],
         "temperature": temperature, "train_loss_curve": train_curve,
