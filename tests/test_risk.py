@@ -285,6 +285,36 @@ def test_auxiliary_tasks_share_the_encoder_but_only_the_main_head_is_saved(tiny,
     assert math.isclose(sum(load_estimator(tmp_path / "a1").probs(TEXTS[0])), 1.0, abs_tol=1e-6)
 
 
+def test_jit_matches_eager_and_falls_back(tiny, monkeypatch):
+    from ethimon.risk import _backend as B
+    fast, slow = load_estimator(tiny[1], cache_size=0), load_estimator(tiny[1], cache_size=0, jit=False)
+    assert fast.jit is True and slow.jit is False
+    for a, b in zip(fast.probs_batch(TEXTS), slow.probs_batch(TEXTS)):
+        assert a == pytest.approx(b, abs=1e-5)
+    assert load_estimator(tiny[1], quantize="int8").jit is False
+
+    def boom(*a, **k):
+        raise RuntimeError("no tracing here")
+
+    monkeypatch.setattr(B, "trace_for_inference", boom)
+    e = load_estimator(tiny[1], cache_size=0)
+    assert e.jit is False and e.probs(TEXTS[0]) == pytest.approx(slow.probs(TEXTS[0]), abs=1e-6)
+
+
+def test_trace_check_rejects_shape_dependent_python(tiny):
+    """A module whose Python branches on the input length traces wrongly; the check catches it."""
+    from ethimon.risk import _backend as B
+    tok = B.load_tokenizer(tiny[0])
+
+    class Branchy(torch.nn.Module):
+        def forward(self, ids, mask):
+            x = torch.stack([ids.float().mean(1), mask.float().sum(1)], 1)
+            return x * 2 if ids.shape[0] == 2 else x      # baked in at trace time (batch of 2)
+
+    with pytest.raises(RuntimeError, match="disagrees"):
+        B.trace_for_inference(Branchy(), tok, 32, "head")
+
+
 def test_temperature_override(tiny):
     base = load_estimator(tiny[1], cache_size=0)
     hot = load_estimator(tiny[1], cache_size=0, temperature=base.temperature * 50)

