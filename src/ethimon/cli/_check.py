@@ -140,7 +140,7 @@ def _run_sim(sc, spec, est, path):
     except ImportError as exc:
         raise DependencyNotInstalled(f"--sim needs the simulator: {exc}") from None
     from ..runtime import Monitor
-    from ..scenario._run import RISK_KEYS, needs_text_risk
+    from ..scenario._run import RISK_KEYS, needs_text_risk, override_expectations
     block = SimBlock.model_validate(sc.sim)
     kwargs = {}
     if needs_text_risk(sc):
@@ -152,7 +152,7 @@ def _run_sim(sc, spec, est, path):
                 break
     res = run_sim(block, Monitor(spec), **kwargs)
     problems = check_sim_expectations(block, res)
-    problems += _sim_expect(sc, res)
+    problems += override_expectations(sc.expect, res.first_override_cycle)
     first = "-" if res.first_override_cycle is None else str(res.first_override_cycle)
     got = "no override" if res.first_override_cycle is None else "override"
     row = (f"{sc.name} [sim]", "sim expectations", got, first, "FAIL" if problems else "PASS")
@@ -162,18 +162,6 @@ def _run_sim(sc, spec, est, path):
            "min_separation_m": getattr(res, "min_separation_m", None),
            "realtime_factor": getattr(res, "realtime_factor", None)}
     return row, out, [f"{path}: {sc.name} [sim]: {p}" for p in problems]
-
-
-def _sim_expect(sc, res) -> list[str]:
-    """The scenario's generic expectations that make sense in the sim."""
-    e = sc.expect
-    out = []
-    first = res.first_override_cycle
-    if e.override is True and first is None:
-        out.append("expected an override, none happened")
-    if e.override is False and first is not None:
-        out.append(f"expected no override, got one at cycle {first}")
-    return out
 
 
 def _print_table(rows) -> None:

@@ -216,18 +216,22 @@ def describe_got(decisions: list[Decision]) -> str:
     return out
 
 
+def override_expectations(e, first: int | None, why: str = "") -> list[str]:
+    """The ``expect.override`` check alone, given the first override cycle (shared with the sim)."""
+    if e.override is True and first is None:
+        return ["expected an override, none happened"]
+    if e.override is False and first is not None:
+        return [f"expected no override, got one at cycle {first}" + (f" ({why})" if why else "")]
+    return []
+
+
 def check_expectations(sc: Scenario, decisions: list[Decision]) -> list[str]:
     """Compare a run with ``sc.expect``; returns the failed expectations (empty: pass)."""
     e = sc.expect
-    fails: list[str] = []
     overrides = [d.cycle for d in decisions if d.override]
     first = overrides[0] if overrides else None
     fired = {v for d in decisions for v in d.violations}
-    if e.override is True and first is None:
-        fails.append("expected an override, none happened")
-    if e.override is False and first is not None:
-        d = decisions[first]
-        fails.append(f"expected no override, got one at cycle {first} ({'; '.join(d.reasons)})")
+    fails = override_expectations(e, first, "; ".join(decisions[first].reasons) if first is not None else "")
     if e.override_by_cycle is not None and (first is None or first > e.override_by_cycle):
         fails.append(f"expected the first override by cycle {e.override_by_cycle}, got "
                      f"{'none' if first is None else first}")
