@@ -232,6 +232,39 @@ def test_hf_sequence_classification_dir(tmp_path):
         load_estimator(d)
 
 
+def _write_tiny_distilbert(d: Path, cls=None) -> Path:
+    """A tiny randomly initialised DistilBERT (the paper's architecture) with a BERT vocab."""
+    d.mkdir(parents=True, exist_ok=True)
+    vocab = ["[PAD]", "[UNK]", "[CLS]", "[SEP]", "[MASK]"] + sorted(set(WORDS))
+    (d / "vocab.txt").write_text("\n".join(vocab) + "\n", encoding="utf-8")
+    transformers.DistilBertTokenizer(vocab=str(d / "vocab.txt"), do_lower_case=True).save_pretrained(str(d))
+    cfg = transformers.DistilBertConfig(vocab_size=len(vocab), dim=32, n_layers=2, n_heads=2,
+                                        hidden_dim=64, max_position_embeddings=128, num_labels=2)
+    torch.manual_seed(2)
+    (cls or transformers.DistilBertModel)(cfg).save_pretrained(str(d), safe_serialization=True)
+    return d
+
+
+def test_distilbert_is_first_class(tmp_path):
+    """DistilBERT as in the paper: a fine-tuned classification dir loads; LoRA training on a base works."""
+    from ethimon.risk._train import train_lora
+    hf = _write_tiny_distilbert(tmp_path / "clf", transformers.DistilBertForSequenceClassification)
+    e = load_estimator(hf, max_length=32, cache_size=0)
+    assert e.jit is True and math.isclose(sum(e.probs(TEXTS[0])), 1.0, abs_tol=1e-6)
+    eager = load_estimator(hf, max_length=32, cache_size=0, jit=False)
+    assert e.probs(TEXTS[1]) == pytest.approx(eager.probs(TEXTS[1]), abs=1e-5)
+    base = _write_tiny_distilbert(tmp_path / "base")
+    ys = [1, 0, 1, 0, 1, 0]
+    s = train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=base, out_dir=tmp_path / "ad", epochs=1,
+                   batch_size=3, r=2, alpha=4, max_length=24, seed=0, progress=False,
+                   log=lambda m: None, num_threads=1)
+    man = json.loads((tmp_path / "ad" / "ethimon_model.json").read_text())
+    assert len(man["lora"]["targets"]) == 2 * 6 and all(".layer." in t for t in man["lora"]["targets"])
+    assert s["best_epoch"] == 1
+    a = load_estimator(tmp_path / "ad")
+    assert math.isclose(sum(a.probs(TEXTS[2])), 1.0, abs_tol=1e-6)
+
+
 def test_bad_model_dirs(tmp_path):
     with pytest.raises(ModelError, match="does not exist"):
         load_estimator(tmp_path / "nope")
