@@ -77,35 +77,24 @@ def pair_splits():
     return rows.subset(tr), rows.subset(va), rows.subset(te), rows.subset(tf)
 
 
-AUX_FILES = {
-    "justice": ("justice/justice_train.csv", ("scenario",)),
-    "deontology": ("deontology/deontology_train.csv", ("scenario", "excuse")),
-    "virtue": ("virtue/virtue_train.csv", ("scenario",)),
-}
+AUX_FILES = {"justice": "justice/justice_train.csv", "deontology": "deontology/deontology_train.csv",
+             "virtue": "virtue/virtue_train.csv"}
 
 
 def ethics_aux(name: str, n: int | None = None, seed: int = 42) -> tuple[list[str], list[int]]:
     """Texts and labels of another ETHICS subset's training split (multi-task).
 
     deontology rows become ``scenario [SEP] excuse``; virtue rows already are
-    ``scenario [SEP] trait``. ``n`` rows are drawn at random (seeded shuffle).
+    ``scenario [SEP] trait``. ``n`` rows are drawn at random (seeded shuffle), the
+    same draw as ``ethimon train --aux CSV --aux-rows n --seed seed``.
     """
-    import csv
     import random
 
-    rel, cols = AUX_FILES[name]
-    texts, labels = [], []
-    with (SHARED / "ethics" / rel).open(encoding="utf-8", newline="") as f:
-        for row in csv.DictReader(f):
-            lab = (row.get("label") or "").strip()
-            parts = [(row.get(c) or "").strip() for c in cols]
-            if lab in ("0", "1") and all(parts):
-                texts.append(" [SEP] ".join(parts))
-                labels.append(int(lab))
-    idx = list(range(len(texts)))
+    rows = load_labelled_csv(SHARED / "ethics" / AUX_FILES[name], any_ethics_layout=True)
+    idx = list(range(len(rows)))
     random.Random(seed).shuffle(idx)
     idx = idx[:n] if n else idx
-    return [texts[i] for i in idx], [labels[i] for i in idx]
+    return [rows.texts[i] for i in idx], [rows.labels[i] for i in idx]
 
 
 def concat(*parts: LabelledRows) -> LabelledRows:

@@ -378,6 +378,23 @@ def test_metrics_and_ece():
     assert f["flag_rate_unsafe"] == 0.5 and f["false_alarm_rate"] == 0.5
 
 
+def test_csv_other_ethics_layouts(tmp_path):
+    from ethimon.risk._data import load_labelled_csv
+    d = tmp_path / "d.csv"
+    d.write_text("label,scenario,excuse\n1,Aren't you supposed to cook?,No because I ate.\n0,x,\n",
+                 encoding="utf-8")
+    rows = load_labelled_csv(d, any_ethics_layout=True)
+    assert rows.texts == ["Aren't you supposed to cook? [SEP] No because I ate."] and rows.dropped == 1
+    with pytest.raises(SpecError, match="'input'"):
+        load_labelled_csv(d)                       # only label,input without the flag
+    j = tmp_path / "j.csv"
+    j.write_text("label,scenario\n0,I deserve a raise because I work hard.\n", encoding="utf-8")
+    assert load_labelled_csv(j, any_ethics_layout=True).texts == ["I deserve a raise because I work hard."]
+    (tmp_path / "bad.csv").write_text("label,text\n1,x\n", encoding="utf-8")
+    with pytest.raises(SpecError, match="scenario"):
+        load_labelled_csv(tmp_path / "bad.csv", any_ethics_layout=True)
+
+
 def test_csv_loading_and_split(tmp_path):
     from ethimon.risk._data import load_labelled_csv, stratified_split
     p = tmp_path / "d.csv"
@@ -452,6 +469,19 @@ def test_cli_train_tiny(tiny, tmp_path, capsys):
                  "--val-frac", "0.25", "--threads", "1"]) == 0
     e = load_estimator(tmp_path / "m")
     assert math.isclose(sum(e.probs(TEXTS[0])), 1.0, abs_tol=1e-6)
+    # another ETHICS subset's layout as an auxiliary task (deontology: scenario + excuse)
+    aux = tmp_path / "deontology_train.csv"
+    aux.write_text("label,scenario,excuse\n1,I took the money.,I helped the old lady.\n"
+                   "0,Put the fork in the drawer.,Drop it on the floor.\n", encoding="utf-8")
+    capsys.readouterr()
+    assert _cli(["train", "--data", str(p), "--base", str(tiny[0]), "--out", str(tmp_path / "m2"),
+                 "--epochs", "1", "--batch-size", "4", "--lora-r", "2", "--max-length", "24",
+                 "--val-frac", "0.25", "--threads", "1", "--aux", str(aux)]) == 0
+    assert "aux deontology_train: 2 rows" in capsys.readouterr().out
+    m = json.loads((tmp_path / "m2" / "metrics.json").read_text())
+    assert m["config"]["aux_tasks"] == {"deontology_train": 2}
+    assert _cli(["train", "--data", str(p), "--out", str(tmp_path / "m3"), "--aux", str(p),
+                 "--aux-rows", "-1"]) == 2
 
 
 # ---------------------------------------------------------------- real model

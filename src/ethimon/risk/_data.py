@@ -11,6 +11,10 @@ from ..errors import SpecError
 
 __all__ = ["LabelledRows", "load_labelled_csv", "stratified_split"]
 
+#: text columns accepted besides ``input``: the other ETHICS subsets' layouts
+#: (justice/virtue ``scenario``; deontology ``scenario`` + ``excuse``, joined by `` [SEP] ``).
+TEXT_COLUMNS = (("input",), ("scenario", "excuse"), ("scenario",))
+
 
 @dataclass
 class LabelledRows:
@@ -30,10 +34,12 @@ class LabelledRows:
                             [self.extra[i] for i in idx], 0, self.path)
 
 
-def load_labelled_csv(path: str | Path) -> LabelledRows:
+def load_labelled_csv(path: str | Path, *, any_ethics_layout: bool = False) -> LabelledRows:
     """Read an ETHICS-format CSV (``label``, ``input``; other columns kept in ``extra``).
 
     Rows with a missing/non-0/1 label or an empty input are dropped and counted.
+    With ``any_ethics_layout`` the text may instead come from ``scenario`` (justice,
+    virtue) or ``scenario`` + ``excuse`` (deontology, joined by `` [SEP] ``).
 
     Raises:
         SpecError: the file is missing, unreadable, or lacks the two columns.
@@ -46,18 +52,22 @@ def load_labelled_csv(path: str | Path) -> LabelledRows:
         with p.open(encoding="utf-8", newline="") as f:
             reader = csv.DictReader(f)
             cols = reader.fieldnames or []
-            if "label" not in cols or "input" not in cols:
-                raise SpecError(f"needs columns 'label' and 'input', found {cols}", path=str(p), line=1)
+            layouts = TEXT_COLUMNS if any_ethics_layout else TEXT_COLUMNS[:1]
+            text_cols = next((c for c in layouts if all(x in cols for x in c)), None)
+            if "label" not in cols or text_cols is None:
+                want = " or ".join("+".join(f"'{x}'" for x in c) for c in layouts)
+                raise SpecError(f"needs columns 'label' and {want}, found {cols}", path=str(p), line=1)
             texts, labels, extra, dropped = [], [], [], 0
             for row in reader:
                 lab = (row.get("label") or "").strip()
-                text = (row.get("input") or "").strip()
+                parts = [(row.get(c) or "").strip() for c in text_cols]
+                text = " [SEP] ".join(parts) if all(parts) else ""
                 if lab not in ("0", "1") or not text:
                     dropped += 1
                     continue
                 texts.append(text)
                 labels.append(int(lab))
-                extra.append({k: v for k, v in row.items() if k not in ("label", "input")})
+                extra.append({k: v for k, v in row.items() if k != "label" and k not in text_cols})
     except (OSError, UnicodeDecodeError, csv.Error) as exc:
         raise SpecError(f"cannot read CSV: {exc}", path=str(p)) from exc
     if not texts:
