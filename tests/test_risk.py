@@ -428,6 +428,43 @@ def test_cli_risk_json(tiny, capsys):
     assert out["tau"] == 0.26 and out["flagged"] == (out["risk"] >= 0.26)
 
 
+def test_spec_estimator_block(tiny, tmp_path, capsys):
+    """risk.estimator in a spec picks the model (relative to the spec), int8 and the temperature."""
+    import shutil
+
+    from ethimon import load_spec
+    from ethimon.risk import estimator_kwargs, load_estimator_for
+    shutil.copytree(tiny[1], tmp_path / "models" / "m")
+    spec_p = tmp_path / "specs" / "s.yaml"
+    spec_p.parent.mkdir()
+    spec_p.write_text("ethimon: 1\nname: s\nrisk:\n  threshold: 0.3\n  estimator:\n"
+                      "    model: ../models/m\n    quantize: int8\n    temperature: 2.5\n", encoding="utf-8")
+    spec = load_spec(spec_p)
+    kw = estimator_kwargs(spec)
+    assert kw["model_dir"] == str((tmp_path / "models" / "m").resolve()) and kw["quantize"] == "int8"
+    e = load_estimator_for(spec)
+    assert e.quantized == "int8" and e.temperature == 2.5
+    assert load_estimator_for(spec, quantize=None).quantized == "int8"     # None = keep the spec's
+    assert _cli(["risk", TEXTS[0], "--spec", str(spec_p), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["temperature"] == 2.5 and out["tau"] == 0.3 and "+int8" in out["model_id"]
+    # a scenario scored through `ethimon check` uses the spec's model (no --model given)
+    sc = tmp_path / "sc.yaml"
+    sc.write_text(f"ethimon: 1\nname: t\nspec: specs/s.yaml\ntask: {TEXTS[0]}\ncycles: 3\nexpect: {{}}\n",
+                  encoding="utf-8")
+    from ethimon.cli import main as cli_main
+    assert cli_main(["check", str(sc), "--json", str(tmp_path / "r.json")]) == 0
+    r = json.loads((tmp_path / "r.json").read_text())
+    row = r["results"][0]
+    assert row["passed"] is True and row["task_probs"] == pytest.approx(list(e.probs(TEXTS[0])), abs=1e-4)
+    # a spec naming a missing model: a clear error, not a traceback
+    spec_p.write_text("ethimon: 1\nname: s\nrisk:\n  estimator: {model: nowhere}\n", encoding="utf-8")
+    with pytest.raises(ModelError, match="risk.estimator.model"):
+        load_estimator_for(load_spec(spec_p))
+    assert _cli(["risk", "x", "--spec", str(spec_p)]) == 2
+    assert "risk.estimator.model" in capsys.readouterr().err
+
+
 def test_cli_bad_input_exit_2(tiny, tmp_path, capsys):
     assert _cli(["risk", "x", "--model", str(tmp_path / "nope")]) == 2
     err = capsys.readouterr().err

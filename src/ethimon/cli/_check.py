@@ -20,23 +20,31 @@ def add_check_parser(sub) -> None:
     p.add_argument("--json", metavar="FILE", help="write results as JSON ('-' for stdout)")
     p.add_argument("--junit", metavar="FILE", help="write a JUnit XML report")
     p.add_argument("--sim", action="store_true", help="also run scenarios with a 'sim:' block in PyBullet")
-    p.add_argument("--model", metavar="DIR", help="risk model directory (default: the shipped model)")
+    p.add_argument("--model", metavar="DIR", help="risk model directory for every scenario "
+                   "(default: each spec's risk.estimator.model, else the shipped model)")
     p.add_argument("--quiet", "-q", action="store_true", help="print only problems and the summary")
     p.set_defaults(handler=cmd_check)
 
 
-class _LazyEstimator:
-    """Loads the risk model on first use, once for all scenarios."""
+class _Estimators:
+    """Risk models loaded on first use, one per distinct ``risk.estimator`` block (``--model`` wins)."""
 
     def __init__(self, model_dir: str | None) -> None:
         self.model_dir = model_dir
-        self.est = None
+        self.loaded: dict[tuple, object] = {}
 
-    def probs(self, text: str):
-        if self.est is None:
-            from ..risk import load_estimator
-            self.est = load_estimator(self.model_dir) if self.model_dir else load_estimator()
-        return self.est.probs(text)
+    def for_spec(self, spec):
+        """A zero-argument factory (what ``run_scenario`` accepts) of the spec's estimator."""
+        def factory():
+            from ..risk import estimator_kwargs, load_estimator_for
+            kw = estimator_kwargs(spec)
+            if self.model_dir:
+                kw["model_dir"] = self.model_dir
+            key = tuple(sorted(kw.items()))
+            if key not in self.loaded:
+                self.loaded[key] = load_estimator_for(spec, model_dir=kw["model_dir"])
+            return self.loaded[key]
+        return factory
 
 
 def _expect_line(sc) -> int | None:
@@ -50,7 +58,7 @@ def cmd_check(args: argparse.Namespace) -> int:
     from ..scenario import find_scenarios, load_scenario, run_scenario
 
     files = find_scenarios(args.paths)
-    est = _LazyEstimator(args.model)
+    ests = _Estimators(args.model)
     rows, results, problems = [], [], []
     bad_input = failed = False
     specs: dict[str, object] = {}
@@ -79,13 +87,13 @@ def cmd_check(args: argparse.Namespace) -> int:
                 results.append({"name": sc.name, "path": path, "passed": None, "skipped": "needs --sim"})
                 continue
             if sim_only:
-                sim_row, sim_res, sim_problems = _run_sim(sc, spec, est, path)
+                sim_row, sim_res, sim_problems = _run_sim(sc, spec, ests.for_spec(spec), path)
                 rows.append(sim_row)
                 results.append(sim_res)
                 problems.extend(sim_problems)
                 failed = failed or bool(sim_problems)
                 continue
-            res = run_scenario(sc, spec=spec, estimator=est)
+            res = run_scenario(sc, spec=spec, estimator=ests.for_spec(spec))
             first = "-" if res.first_override_cycle is None else str(res.first_override_cycle)
             rows.append((res.name, res.expected, res.got, first, "PASS" if res.passed else "FAIL"))
             results.append({**res.as_dict(), "path": path})
@@ -95,7 +103,7 @@ def cmd_check(args: argparse.Namespace) -> int:
                 for f in res.failures:
                     problems.append(f"{path}:{line}: {res.name}: {f}" if line else f"{path}: {res.name}: {f}")
             if args.sim and sc.sim is not None:
-                sim_row, sim_res, sim_problems = _run_sim(sc, spec, est, path)
+                sim_row, sim_res, sim_problems = _run_sim(sc, spec, ests.for_spec(spec), path)
                 rows.append(sim_row)
                 results.append(sim_res)
                 problems.extend(sim_problems)
@@ -133,7 +141,7 @@ def cmd_check(args: argparse.Namespace) -> int:
     return 2 if bad_input else (1 if failed else 0)
 
 
-def _run_sim(sc, spec, est, path):
+def _run_sim(sc, spec, estimator, path):
     try:
         from ..sim import check_sim_expectations, run_sim
         from ..sim._model import SimBlock
@@ -144,7 +152,7 @@ def _run_sim(sc, spec, est, path):
     block = SimBlock.model_validate(sc.sim)
     kwargs = {}
     if needs_text_risk(sc):
-        kwargs["probs"] = tuple(est.probs(sc.task))
+        kwargs["probs"] = tuple(estimator().probs(sc.task))
     else:
         for key in RISK_KEYS:
             if key in sc.inputs:

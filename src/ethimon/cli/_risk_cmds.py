@@ -27,18 +27,16 @@ def _err(msg: str) -> int:
 
 
 def risk_config(spec_path: str | None) -> dict:
-    """α, β, γ, variance and τ from a spec file (defaults without one)."""
+    """α, β, γ, variance, τ (and the ``spec`` itself) from a spec file (defaults without one)."""
     if not spec_path:
-        return dict(DEFAULT_RISK)
+        return dict(DEFAULT_RISK, spec=None)
     if not Path(spec_path).is_file():
         raise SpecError("spec file does not exist", path=spec_path)
-    try:
-        from .. import load_spec
-    except ImportError:  # spec loader not available: defaults
-        return dict(DEFAULT_RISK)
-    r = load_spec(spec_path).risk
+    from .. import load_spec
+    spec = load_spec(spec_path)
+    r = spec.risk
     return {"alpha": r.alpha, "beta": r.beta, "gamma": r.gamma, "variance": r.variance,
-            "threshold": r.threshold}
+            "threshold": r.threshold, "spec": spec}
 
 
 def add_risk_parsers(subparsers) -> None:
@@ -93,10 +91,14 @@ def add_risk_parsers(subparsers) -> None:
     e.set_defaults(func=cmd_evaluate)
 
 
-def _load(model: str | None, int8: bool, max_length: int | None = None):
-    from ..risk import load_estimator
+def _load(model: str | None, int8: bool, max_length: int | None = None, spec=None):
+    """The estimator: command-line options win over the spec's ``risk.estimator`` block."""
+    from ..risk import load_estimator, load_estimator_for
     if model is not None and not Path(model).is_dir():
         raise ModelError(f"model directory {model!r} does not exist")
+    if spec is not None:
+        return load_estimator_for(spec, model_dir=model, quantize="int8" if int8 else None,
+                                  max_length=max_length)
     return load_estimator(model, quantize="int8" if int8 else None, max_length=max_length)
 
 
@@ -105,7 +107,7 @@ def cmd_risk(args: argparse.Namespace) -> int:
         return _err("empty text")
     try:
         cfg = risk_config(args.spec)
-        est = _load(args.model, args.int8)
+        est = _load(args.model, args.int8, spec=cfg["spec"])
         r = est.estimate(args.text, cfg["alpha"], cfg["beta"], cfg["gamma"], cfg["variance"])
     except (EthimonError, ValueError, OSError) as exc:
         return _err(str(exc))
@@ -113,6 +115,7 @@ def cmd_risk(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps({"text": args.text, "p": list(r.p), "p_unsafe": r.p_unsafe, "risk": r.risk,
                           "tau": cfg["threshold"], "flagged": flagged, "model_id": est.model_id,
+                          "temperature": est.temperature,
                           "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")}}))
     else:
         verdict = "UNSAFE (R_e >= tau: override)" if flagged else "ok (R_e < tau)"
@@ -173,7 +176,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         cfg = risk_config(args.spec)
         rows = load_labelled_csv(args.data)
         cal = load_labelled_csv(args.calibrate_on) if args.calibrate_on else None
-        est = _load(args.model, args.int8, args.max_length)
+        est = _load(args.model, args.int8, args.max_length, spec=cfg["spec"])
         logits = est.logits_batch(rows.texts)
         temperature = est.temperature
         if cal is not None:
@@ -191,7 +194,8 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         m.update({"model_id": est.model_id, "data": args.data, "dropped_rows": rows.dropped,
                   "model_temperature": est.temperature,
                   "temperature_source": f"fitted on {args.calibrate_on} ({len(cal)} rows)" if cal
-                  else "model"})
+                  else "spec risk.estimator" if cfg["spec"] is not None
+                  and cfg["spec"].risk.estimator.temperature is not None else "model"})
         if args.plots:
             d = Path(args.plots)
             d.mkdir(parents=True, exist_ok=True)

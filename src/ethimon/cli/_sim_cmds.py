@@ -30,7 +30,8 @@ def add_sim_parsers(subparsers) -> None:
     p.add_argument("--record", metavar="DIR",
                    help="write PNG frames (start, override, safe pose, end), trace.jsonl/.csv, "
                         "summary.json and plot.png to DIR/<scenario name>/")
-    p.add_argument("--model", metavar="DIR", help="risk model directory (default: the shipped model)")
+    p.add_argument("--model", metavar="DIR", help="risk model directory (default: the spec's "
+                   "risk.estimator.model, else the shipped model)")
     p.add_argument("--json", metavar="FILE", help="write the results as JSON ('-' for stdout)")
     p.set_defaults(handler=cmd_simulate)
 
@@ -46,7 +47,7 @@ def _has_display() -> bool:
     return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
 
 
-def _risk_kwargs(sc, model_dir: str | None) -> dict:
+def _risk_kwargs(sc, spec, model_dir: str | None) -> dict:
     """The constant risk input of a sim run: the scenario's own, else the task text's."""
     from ..scenario._run import needs_text_risk
 
@@ -62,10 +63,9 @@ def _risk_kwargs(sc, model_dir: str | None) -> dict:
     if not sc.task:
         raise SpecError("the scenario gives no risk input and no task text to score",
                         path=sc.path, hint="add 'inputs: {p_unsafe: ...}' or 'task: ...'")
-    from ..risk import load_estimator
+    from ..risk import load_estimator_for
 
-    est = load_estimator(model_dir) if model_dir else load_estimator()
-    return {"probs": tuple(est.probs(sc.task))}
+    return {"probs": tuple(load_estimator_for(spec, model_dir=model_dir).probs(sc.task))}
 
 
 def _fmt(v, unit: str = "", nd: int = 2) -> str:
@@ -106,7 +106,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
             block = SimBlock.model_validate(sc.sim)  # already validated with positions by the loader
             rec = os.path.join(args.record, sc.name) if args.record else None
             res = run_sim(block, Monitor(spec), record_dir=rec, gui=args.gui,
-                          **_risk_kwargs(sc, args.model))
+                          **_risk_kwargs(sc, spec, args.model))
         except SpecError as exc:
             print(str(exc), file=sys.stderr)
             bad = True

@@ -304,3 +304,30 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
     est = RiskEstimator(loaded, cache_size=cache_size, batch_size=batch_size, quantized=quantize)
     est.jit = traced
     return est
+
+
+def estimator_kwargs(spec: Any) -> dict[str, Any]:
+    """:func:`load_estimator` keyword arguments from a spec's ``risk.estimator`` block.
+
+    A relative ``model`` is resolved against the spec file's folder.
+    """
+    cfg = spec.risk.estimator
+    model = cfg.model
+    if model is not None and not Path(model).is_absolute() and spec.path:
+        model = str((Path(spec.path).resolve().parent / model).resolve())
+    return {"model_dir": model, "quantize": cfg.quantize, "temperature": cfg.temperature,
+            "max_length": cfg.max_length}
+
+
+def load_estimator_for(spec: Any, **overrides: Any) -> RiskEstimator:
+    """The estimator a spec asks for (``risk.estimator``); ``overrides`` win over the spec.
+
+    Example:
+        >>> est = load_estimator_for(load_spec("specs/cobot_cell.yaml"))   # doctest: +SKIP
+    """
+    kwargs = {**estimator_kwargs(spec), **{k: v for k, v in overrides.items() if v is not None}}
+    if kwargs.get("model_dir") is not None and not Path(kwargs["model_dir"]).is_dir():
+        from ..errors import ModelError
+        raise ModelError(f"model directory {kwargs['model_dir']} (risk.estimator.model of "
+                         f"{spec.path or spec.name}) does not exist")
+    return load_estimator(**kwargs)

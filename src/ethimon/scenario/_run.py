@@ -140,7 +140,8 @@ def run_scenario(sc: Scenario, *, spec: Spec | None = None,
         spec: the spec to use (default: load ``sc.spec_path``).
         estimator: scores ``sc.task`` when the scenario gives no explicit risk
             input (an object with ``probs(text)``, or a zero-argument factory).
-            Default: the shipped offline model (``ethimon.risk.load_estimator``).
+            Default: the model the spec's ``risk.estimator`` block names
+            (``ethimon.risk.load_estimator_for``; the shipped offline model if none).
 
     Raises:
         SpecError: the spec is missing or invalid, or the scenario needs a task
@@ -157,8 +158,8 @@ def run_scenario(sc: Scenario, *, spec: Spec | None = None,
                    if sc._source is not None else SpecError("scenario gives no risk input and no task text"))
         est = estimator
         if est is None:
-            from ..risk import load_estimator  # lazy: torch only when a text must be scored
-            est = load_estimator()
+            from ..risk import load_estimator_for  # lazy: torch only when a text must be scored
+            est = load_estimator_for(spec)
         elif callable(est) and not hasattr(est, "probs"):
             est = est()
         probs = tuple(float(x) for x in est.probs(sc.task))

@@ -104,6 +104,20 @@ class Release(BaseModel):
                              description="N: the release condition must hold N consecutive cycles")
 
 
+class EstimatorConfig(BaseModel):
+    """Which learned model scores task texts for this spec, and how (used by the CLI and
+    :func:`ethimon.risk.load_estimator_for`; a :class:`Monitor` itself only reads inputs)."""
+
+    model_config = _CFG
+    model: str | None = Field(
+        None, min_length=1, description="model directory, relative to the spec file; null: the shipped default")
+    quantize: Literal["int8"] | None = Field(None, description="null: fp32; int8: dynamic int8 Linear layers")
+    temperature: FiniteFloat | None = Field(
+        None, gt=0.0, le=100.0, description="softmax temperature replacing the model's own, e.g. fitted on "
+        "your domain's validation rows with `ethimon evaluate --calibrate-on`")
+    max_length: int | None = Field(None, ge=8, le=4096, description="token budget (default: the model's)")
+
+
 class RiskConfig(BaseModel):
     """How R_e is formed and judged. The rule R_e ≥ τ ⇒ override is always present."""
 
@@ -120,6 +134,7 @@ class RiskConfig(BaseModel):
     release: Release = Field(default_factory=Release)
     max_age_s: FiniteFloat | None = Field(
         None, gt=0.0, description="estimates older than this (input risk_age_s) fail closed")
+    estimator: EstimatorConfig = Field(default_factory=EstimatorConfig)
 
     @model_validator(mode="after")
     def _check(self) -> "RiskConfig":
