@@ -2,7 +2,8 @@
 
     python bench/risk_latency.py [--model DIR] [--threads 2]
 
-One short sentence, cache off: p50/p90 for fp32 and int8; a cache hit
+One short sentence, cache off: p50/p90 for fp32 (TorchScript-frozen, the
+default), fp32 eager, int8 and int8 eager; a cache hit
 (``probs`` and ``estimate``) in µs; batch-32 throughput of short commands.
 Prints a table and writes bench/results/risk_latency.json with machine facts.
 """
@@ -39,9 +40,11 @@ def main() -> None:
     from ethimon.risk import load_estimator
     torch.set_num_threads(a.threads)
     res = {"text": TEXT, "threads": a.threads}
-    for mode in (None, "int8"):
+    modes = {"fp32": (None, True), "fp32_eager": (None, False), "int8": ("int8", True),
+             "int8_eager": ("int8", False)}
+    for name, (mode, jit) in modes.items():
         t0 = time.perf_counter()
-        est = load_estimator(a.model, quantize=mode, cache_size=0)
+        est = load_estimator(a.model, quantize=mode, cache_size=0, jit=jit)
         load_s = time.perf_counter() - t0
         for _ in range(20):
             est.probs(TEXT)
@@ -57,8 +60,7 @@ def main() -> None:
             t = time.perf_counter()
             est.probs_batch(BATCH)
             bt.append(time.perf_counter() - t)
-        name = mode or "fp32"
-        res[name] = {"load_s": load_s, "p50_ms": 1e3 * statistics.median(lat), "p90_ms": 1e3 * _pct(lat, 0.9),
+        res[name] = {"load_s": load_s, "jit": est.jit, "p50_ms": 1e3 * statistics.median(lat), "p90_ms": 1e3 * _pct(lat, 0.9),
                      "mean_ms": 1e3 * statistics.mean(lat),
                      "batch32_ms": 1e3 * statistics.median(bt),
                      "batch32_throughput_per_s": 32 / statistics.median(bt), "model_id": est.model_id}
@@ -79,10 +81,10 @@ def main() -> None:
                       "cpu": platform.processor() or platform.machine(), "cores": os.cpu_count(),
                       "threads": torch.get_num_threads(),
                       "loadavg_1m": os.getloadavg()[0]}
-    print(f"{'mode':<6}{'load s':>8}{'p50 ms':>9}{'p90 ms':>9}{'b32 ms':>9}{'rows/s':>9}")
-    for m in ("fp32", "int8"):
+    print(f"{'mode':<11}{'jit':>4}{'load s':>8}{'p50 ms':>9}{'p90 ms':>9}{'b32 ms':>9}{'rows/s':>9}")
+    for m in modes:
         r = res[m]
-        print(f"{m:<6}{r['load_s']:>8.2f}{r['p50_ms']:>9.2f}{r['p90_ms']:>9.2f}{r['batch32_ms']:>9.1f}"
+        print(f"{m:<11}{'y' if r['jit'] else 'n':>4}{r['load_s']:>8.2f}{r['p50_ms']:>9.2f}{r['p90_ms']:>9.2f}{r['batch32_ms']:>9.1f}"
               f"{r['batch32_throughput_per_s']:>9.0f}")
     print(f"cache hit: probs {res['cache_hit_probs_us']:.2f} µs, estimate {res['cache_hit_estimate_us']:.2f} µs"
           f"  (load avg {res['machine']['loadavg_1m']:.2f})")

@@ -324,7 +324,8 @@ def test_jit_matches_eager_and_falls_back(tiny, monkeypatch):
     assert fast.jit is True and slow.jit is False
     for a, b in zip(fast.probs_batch(TEXTS), slow.probs_batch(TEXTS)):
         assert a == pytest.approx(b, abs=1e-5)
-    assert load_estimator(tiny[1], quantize="int8").jit is False
+    q, q_eager = load_estimator(tiny[1], quantize="int8"), load_estimator(tiny[1], quantize="int8", jit=False)
+    assert q.jit is True and q.probs(TEXTS[3]) == pytest.approx(q_eager.probs(TEXTS[3]), abs=1e-5)
 
     def boom(*a, **k):
         raise RuntimeError("no tracing here")

@@ -251,10 +251,10 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
         temperature: softmax temperature replacing the model's own, e.g. one
             fitted on validation rows of your deployment domain
             (``ethimon evaluate --calibrate-on``); must be finite and > 0.
-        jit: run a TorchScript-frozen copy of the fp32 model (checked against
-            the eager one at load; ~25 % faster per sentence on 2 CPU cores).
+        jit: run a TorchScript-frozen copy of the model (checked against the
+            eager one at load; ~25 % faster per sentence on 2 CPU cores for fp32).
             If tracing fails or disagrees, the eager model is used and
-            ``RiskEstimator.jit`` is ``False``. Ignored for int8.
+            ``RiskEstimator.jit`` is ``False``.
 
     Returns:
         A :class:`RiskEstimator`.
@@ -294,7 +294,7 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
             loaded.module = B.torch.ao.quantization.quantize_dynamic(
                 loaded.module, {B.nn.Linear}, dtype=B.torch.qint8)
     traced = False
-    if jit and quantize is None:
+    if jit:
         try:
             loaded.module = B.trace_for_inference(loaded.module, loaded.tokenizer, loaded.max_length,
                                                   loaded.truncation)
