@@ -426,7 +426,7 @@ def test_cli_risk_json(tiny, capsys):
     assert _cli(["risk", TEXTS[0], "--model", str(tiny[1]), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["risk"] == pytest.approx(risk_from_p_unsafe(out["p_unsafe"]))
-    assert out["tau"] == 0.26 and out["flagged"] == (out["risk"] >= 0.26)
+    assert out["tau"] == 0.27 and out["flagged"] == (out["risk"] >= 0.27)
 
 
 def test_spec_estimator_block(tiny, tmp_path, capsys):
@@ -563,7 +563,9 @@ def test_edited_default_manifest_is_refused(tmp_path, monkeypatch):
     copy = tmp_path / "default_model"
     shutil.copytree(src, copy)
     manifest = copy / "ethimon_model.json"
-    manifest.write_text(manifest.read_text().replace('"temperature": 1.338075', '"temperature": 9.0'))
+    doc = json.loads(manifest.read_text())
+    doc["temperature"] = 9.0
+    manifest.write_text(json.dumps(doc, indent=2) + "\n")
     monkeypatch.setattr(_estimator, "default_model_dir", lambda: copy)
     with pytest.raises(ModelError, match="does not match the pinned default model"):
         _estimator.load_estimator()

@@ -1,0 +1,50 @@
+"""Compare risk-model runs from their saved results (no model is loaded; run by hand).
+
+    python bench/risk_compare.py mix_r16 mt_jdv mt_jdv_256
+
+Reads bench/results/risk_train_<tag>.json (best validation loss, the number runs
+are chosen by) and risk_eval_<tag>.json (held-out figures, reported, never used
+to choose), prints one row per run and writes bench/results/risk_compare.json.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+RES = Path(__file__).resolve().parent / "results"
+
+
+def row(tag: str) -> dict:
+    tr = json.loads((RES / f"risk_train_{tag}.json").read_text())
+    ev = json.loads((RES / f"risk_eval_{tag}.json").read_text())
+    cfg = tr["config"]
+    eh, ra, sab = ev["ethics_holdout"], ev["robot_all"], ev["sab_test"]
+    return {"tag": tag, "max_length": cfg["max_length"], "aux": cfg.get("aux_tasks") or {},
+            "best_epoch": tr["best_epoch"], "best_val_loss": tr["best_val_loss"],
+            "ethics": eh["accuracy"], "ethics_short": eh["short"]["accuracy"],
+            "ethics_long": eh["long"]["accuracy"], "ethics_auc": eh["roc_auc"],
+            "ethics_ece_T": eh["ece_after_temperature"], "robot": ra["accuracy"], "sab": sab["accuracy"],
+            "tau": ev["tau"], "robot_flagged": ra["flags"]["flag_rate_unsafe"],
+            "robot_false_alarms": ra["flags"]["false_alarm_rate"], "robot_ece_T": ra["ece_after_temperature"],
+            "train_time_s": tr["train_time_s"]}
+
+
+def main() -> None:
+    tags = sys.argv[1:] or sorted(p.stem[len("risk_eval_"):] for p in RES.glob("risk_eval_*.json")
+                                  if (RES / f"risk_train_{p.stem[len('risk_eval_'):]}.json").is_file())
+    rows = [row(t) for t in tags]
+    print(f"{'run':<14}{'len':>4}{'aux rows':>9}{'ep':>3}{'val loss':>9}{'ETHICS':>8}{'short':>7}{'long':>7}"
+          f"{'AUC':>7}{'robot':>7}{'SAB':>7}{'tau':>6}{'flag':>7}{'FA':>7}{'min':>5}")
+    for r in rows:
+        print(f"{r['tag']:<14}{r['max_length']:>4}{sum(r['aux'].values()):>9}{r['best_epoch']:>3}"
+              f"{r['best_val_loss']:>9.4f}{100 * r['ethics']:>8.1f}{100 * r['ethics_short']:>7.1f}"
+              f"{100 * r['ethics_long']:>7.1f}{r['ethics_auc']:>7.3f}{100 * r['robot']:>7.1f}{100 * r['sab']:>7.1f}"
+              f"{r['tau']:>6.2f}{100 * r['robot_flagged']:>7.1f}{100 * r['robot_false_alarms']:>7.1f}"
+              f"{r['train_time_s'] / 60:>5.0f}")
+    (RES / "risk_compare.json").write_text(json.dumps(rows, indent=1) + "\n")
+
+
+if __name__ == "__main__":
+    main()
