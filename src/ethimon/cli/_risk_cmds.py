@@ -69,7 +69,8 @@ def add_risk_parsers(subparsers) -> None:
     t.add_argument("--lr", type=float, default=5e-4, help="LoRA learning rate (head: 4x)")
     t.add_argument("--batch-size", type=int, default=32)
     t.add_argument("--lora-r", type=int, default=16)
-    t.add_argument("--max-length", type=int, default=128)
+    t.add_argument("--max-length", type=int, default=256,
+                   help="token budget; long texts keep head and tail (default 256, as the shipped model)")
     t.add_argument("--truncation", choices=["head", "head_tail"], default="head_tail")
     t.add_argument("--val-frac", type=float, default=0.2)
     t.add_argument("--patience", type=int, default=1)
