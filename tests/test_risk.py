@@ -331,7 +331,8 @@ def test_jit_matches_eager_and_falls_back(tiny, monkeypatch):
         raise RuntimeError("no tracing here")
 
     monkeypatch.setattr(B, "trace_for_inference", boom)
-    e = load_estimator(tiny[1], cache_size=0)
+    with pytest.warns(RuntimeWarning, match="no tracing here"):
+        e = load_estimator(tiny[1], cache_size=0)
     assert e.jit is False and e.probs(TEXTS[0]) == pytest.approx(slow.probs(TEXTS[0]), abs=1e-6)
 
 

@@ -299,8 +299,10 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
             loaded.module = B.trace_for_inference(loaded.module, loaded.tokenizer, loaded.max_length,
                                                   loaded.truncation)
             traced = True
-        except Exception:  # noqa: BLE001 - any tracing failure: keep the (checked) eager model
-            traced = False
+        except Exception as exc:  # noqa: BLE001 - any tracing failure: keep the eager model
+            import warnings
+            warnings.warn(f"TorchScript tracing of the risk model failed ({type(exc).__name__}: {exc}); "
+                          "using the eager model (same results, slower)", RuntimeWarning, stacklevel=2)
     est = RiskEstimator(loaded, cache_size=cache_size, batch_size=batch_size, quantized=quantize)
     est.jit = traced
     return est
