@@ -252,7 +252,8 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
             fitted on validation rows of your deployment domain
             (``ethimon evaluate --calibrate-on``); must be finite and > 0.
         jit: run a TorchScript-frozen copy of the model (checked against the
-            eager one at load; ~25 % faster per sentence on 2 CPU cores for fp32).
+            eager one at load; per sentence on 2 CPU cores fp32 8.7 → 7.2 ms,
+            int8 3.9 → 1.7 ms).
             If tracing fails or disagrees, the eager model is used and
             ``RiskEstimator.jit`` is ``False``.
 
