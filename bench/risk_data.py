@@ -88,13 +88,8 @@ def ethics_aux(name: str, n: int | None = None, seed: int = 42) -> tuple[list[st
     ``scenario [SEP] trait``. ``n`` rows are drawn at random (seeded shuffle), the
     same draw as ``ethimon train --aux CSV --aux-rows n --seed seed``.
     """
-    import random
-
-    rows = load_labelled_csv(SHARED / "ethics" / AUX_FILES[name], any_ethics_layout=True)
-    idx = list(range(len(rows)))
-    random.Random(seed).shuffle(idx)
-    idx = idx[:n] if n else idx
-    return [rows.texts[i] for i in idx], [rows.labels[i] for i in idx]
+    rows = load_labelled_csv(SHARED / "ethics" / AUX_FILES[name], any_ethics_layout=True).sample(n, seed)
+    return rows.texts, rows.labels
 
 
 def concat(*parts: LabelledRows) -> LabelledRows:

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import random
 import sys
 from pathlib import Path
 
@@ -138,10 +137,7 @@ def cmd_train(args: argparse.Namespace) -> int:
             raise ValueError(f"--aux-rows {args.aux_rows} must be >= 0")
         aux = []
         for path in args.aux:
-            rows = load_labelled_csv(path, any_ethics_layout=True)
-            idx = list(range(len(rows)))
-            random.Random(args.seed).shuffle(idx)
-            rows = rows.subset(idx[:args.aux_rows] if args.aux_rows else idx)
+            rows = load_labelled_csv(path, any_ethics_layout=True).sample(args.aux_rows, args.seed)
             aux.append((Path(path).stem, rows.texts, rows.labels))
         tr_idx, va_idx = stratified_split(data.labels, args.val_frac, args.seed)
         tr, va = data.subset(tr_idx), data.subset(va_idx)

@@ -33,6 +33,12 @@ class LabelledRows:
         return LabelledRows([self.texts[i] for i in idx], [self.labels[i] for i in idx],
                             [self.extra[i] for i in idx], 0, self.path)
 
+    def sample(self, n: int | None, seed: int) -> "LabelledRows":
+        """``n`` rows drawn at random (seeded shuffle of the row order); all rows if ``n`` is falsy."""
+        idx = list(range(len(self.texts)))
+        random.Random(seed).shuffle(idx)
+        return self.subset(idx[:n] if n else idx)
+
 
 def load_labelled_csv(path: str | Path, *, any_ethics_layout: bool = False) -> LabelledRows:
     """Read an ETHICS-format CSV (``label``, ``input``; other columns kept in ``extra``).
