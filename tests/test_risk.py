@@ -523,6 +523,102 @@ def test_cli_train_tiny(tiny, tmp_path, capsys):
                  "--aux-rows", "-1"]) == 2
 
 
+# ---------------------------------------------------------------- averaging runs
+def _two_runs(tiny, root):
+    from ethimon.risk._train import train_lora
+    ys = [1, 0, 1, 0, 1, 0]
+    for seed, r in ((11, 4), (12, 2)):  # different seeds and ranks
+        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=tiny[0], out_dir=root / f"s{seed}", epochs=2,
+                   batch_size=2, r=r, alpha=3.0 * r, max_length=32, seed=seed, progress=False,
+                   log=lambda m: None, num_threads=1, lr=5e-3)
+    return root / "s11", root / "s12"
+
+
+def test_average_is_exactly_the_weight_average(tiny, tmp_path):
+    from ethimon.risk import _backend as B
+    from ethimon.risk._soup import average_runs
+    a, b = _two_runs(tiny, tmp_path)
+    m = average_runs([a, b], tmp_path / "avg", weights=[1.0, 3.0], temperature=1.5)
+    assert m["lora"]["r"] == 6 and m["temperature"] == 1.5
+    assert [x["weight"] for x in m["averaged_from"]] == [0.25, 0.75]
+    sa, sb, sv = (B.load_model(d).module.state_dict() for d in (a, b, tmp_path / "avg"))
+    base = B.load_model(tiny[1]).module.state_dict()  # another adapter: only for the key list
+    moved = 0
+    for k in base:
+        want = 0.25 * sa[k].float() + 0.75 * sb[k].float()
+        assert torch.allclose(sv[k].float(), want, atol=2e-4), k
+        moved += int(not torch.allclose(sa[k].float(), sb[k].float()))
+    assert moved > 10  # the two runs really differ, in the LoRA layers and the head
+    est = load_estimator(tmp_path / "avg", cache_size=0)
+    assert est.temperature == 1.5 and math.isclose(sum(est.probs(TEXTS[0])), 1.0, abs_tol=1e-6)
+
+
+def test_average_of_a_run_with_itself_is_that_run(tiny, tmp_path):
+    from ethimon.risk._soup import average_runs
+    T = json.loads((tiny[1] / "ethimon_model.json").read_text())["temperature"]
+    average_runs([tiny[1], tiny[1], tiny[1]], tmp_path / "self", temperature=T)
+    one, avg = (load_estimator(d, cache_size=0, jit=False) for d in (tiny[1], tmp_path / "self"))
+    for t in TEXTS:
+        assert one.probs(t)[1] == pytest.approx(avg.probs(t)[1], abs=1e-5)
+
+
+def test_average_fits_temperature_on_calibration_rows(tiny, tmp_path):
+    from ethimon.risk._soup import average_runs
+    a, b = _two_runs(tiny, tmp_path)
+    m = average_runs([a, b], tmp_path / "avg", calibrate=(TEXTS, [1, 0, 1, 0, 1, 0]))
+    assert m["temperature"] > 0 and m["temperature"] != 1.0
+    assert json.loads((tmp_path / "avg" / "ethimon_model.json").read_text())["temperature"] == m["temperature"]
+
+
+def test_average_refuses_what_cannot_be_averaged(tiny, tmp_path):
+    from ethimon.risk._soup import average_runs
+    from ethimon.risk._train import train_lora
+    a, _ = _two_runs(tiny, tmp_path)
+    with pytest.raises(ModelError, match="at least two"):
+        average_runs([a], tmp_path / "x")
+    other_base = _write_tiny_base(tmp_path / "base2", seed=5)
+    ys = [1, 0, 1, 0, 1, 0]
+    train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=other_base, out_dir=tmp_path / "o", epochs=1,
+               batch_size=3, r=2, alpha=4, max_length=32, seed=0, progress=False, log=lambda m: None,
+               num_threads=1)
+    with pytest.raises(ModelError, match=r"o: base(_sha256)? .*differs"):
+        average_runs([a, tmp_path / "o"], tmp_path / "x")
+    train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=tiny[0], out_dir=tmp_path / "l", epochs=1,
+               batch_size=3, r=2, alpha=4, max_length=24, seed=0, progress=False, log=lambda m: None,
+               num_threads=1)
+    with pytest.raises(ModelError, match="max_length"):
+        average_runs([a, tmp_path / "l"], tmp_path / "x")
+    assert average_runs([a, tmp_path / "l"], tmp_path / "x", max_length=24)["max_length"] == 24
+    hf = tmp_path / "hf"
+    hf.mkdir()
+    (hf / "config.json").write_text("{}")
+    with pytest.raises(ModelError, match="only LoRA runs"):
+        average_runs([a, hf], tmp_path / "x")
+    with pytest.raises(ModelError, match="weights"):
+        average_runs([a, a], tmp_path / "x", weights=[1.0, -1.0])
+    ad = tmp_path / "tampered"
+    import shutil
+    shutil.copytree(a, ad)
+    with open(ad / "adapter.safetensors", "r+b") as f:
+        f.seek(-4, 2)
+        f.write(b"\x00\x01\x02\x03")
+    with pytest.raises(ModelError, match="sha256"):
+        average_runs([a, ad], tmp_path / "x")
+
+
+def test_cli_average(tiny, tmp_path, capsys):
+    a, b = _two_runs(tiny, tmp_path)
+    cal = tmp_path / "val.csv"
+    cal.write_text("label,input\n" + "".join(f'{1 - i % 2},"{t}"\n' for i, t in enumerate(TEXTS)))
+    assert _cli(["average", str(a), str(b), "--out", str(tmp_path / "avg"), "--calibrate-on", str(cal)]) == 0
+    assert "averaged 2 runs (LoRA rank 6)" in capsys.readouterr().out
+    assert "-avg2@" in load_estimator(tmp_path / "avg").model_id
+    assert _cli(["average", str(a), "--out", str(tmp_path / "x")]) == 2
+    assert "at least two" in capsys.readouterr().err
+    assert _cli(["average", str(a), str(tmp_path / "nope"), "--out", str(tmp_path / "x")]) == 2
+    assert _cli(["average", str(a), str(b), "--out", str(tmp_path / "x"), "--temperature", "0"]) == 2
+
+
 # ---------------------------------------------------------------- real model
 def _has_base():
     import importlib.util

@@ -1,4 +1,4 @@
-"""CLI sub-commands of the learned risk estimator: ``risk``, ``train``, ``evaluate``.
+"""CLI sub-commands of the learned risk estimator: ``risk``, ``train``, ``average``, ``evaluate``.
 
 Thin: every handler parses, calls the library and prints. Exit codes: 0 ok,
 1 ``risk --fail-on-flag`` and R_e ≥ τ, 2 bad input (one-line message, no traceback).
@@ -13,7 +13,7 @@ from pathlib import Path
 
 from ..errors import DependencyNotInstalled, EthimonError, ModelError, SpecError
 
-__all__ = ["add_risk_parsers", "cmd_risk", "cmd_train", "cmd_evaluate"]
+__all__ = ["add_risk_parsers", "cmd_risk", "cmd_train", "cmd_average", "cmd_evaluate"]
 
 # without --spec: the paper's weights and the tau of the shipped specs (specs/governor.yaml),
 # chosen for the shipped default model on held-out validation robot commands (MODEL_CARD.md)
@@ -39,7 +39,7 @@ def risk_config(spec_path: str | None) -> dict:
 
 
 def add_risk_parsers(subparsers) -> None:
-    """Register ``risk``, ``train`` and ``evaluate`` on an argparse subparsers object."""
+    """Register ``risk``, ``train``, ``average`` and ``evaluate`` on an argparse subparsers object."""
     p = subparsers.add_parser("risk", help="score a task text with the risk classifier",
                               description="Print p, p_unsafe, R_e and whether R_e >= tau under a spec.")
     p.add_argument("text", help="the task text, e.g. 'Hand the knife to the child blade first.'")
@@ -76,6 +76,20 @@ def add_risk_parsers(subparsers) -> None:
     t.add_argument("--seed", type=int, default=42)
     t.add_argument("--threads", type=int, default=None)
     t.set_defaults(func=cmd_train)
+
+    a = subparsers.add_parser("average", help="average trained LoRA runs into one model (same cost as one)",
+                              description="Weight-average runs of one recipe (e.g. several seeds): "
+                              "written exactly as one LoRA adapter of the summed rank, so inference "
+                              "costs what one run costs. Fit the temperature with --calibrate-on.")
+    a.add_argument("runs", nargs="+", metavar="RUN", help="run directories written by 'ethimon train'")
+    a.add_argument("--out", required=True, help="output model directory")
+    a.add_argument("--weights", type=float, nargs="+", metavar="W", help="one weight per run (default: equal)")
+    a.add_argument("--calibrate-on", metavar="CSV",
+                   help="fit the temperature of the average on this validation CSV (label,input)")
+    a.add_argument("--temperature", type=float, help="set the temperature instead of fitting it")
+    a.add_argument("--max-length", type=int, default=None,
+                   help="token budget of the average (needed when the runs differ)")
+    a.set_defaults(func=cmd_average)
 
     e = subparsers.add_parser("evaluate", help="evaluate a risk classifier on a label,input CSV")
     e.add_argument("--model", help="model directory (default: the shipped model)")
@@ -162,6 +176,28 @@ def cmd_train(args: argparse.Namespace) -> int:
         return _err(str(exc))
     print(f"best epoch {s['best_epoch']} (val loss {s['best_val_loss']:.4f}), "
           f"temperature {s['temperature']:.3f}; model written to {args.out}")
+    return 0
+
+
+def cmd_average(args: argparse.Namespace) -> int:
+    try:
+        if args.temperature is not None and args.calibrate_on:
+            raise ValueError("give --temperature or --calibrate-on, not both")
+        if args.temperature is not None and not args.temperature > 0:
+            raise ValueError(f"--temperature {args.temperature} must be > 0")
+        cal = None
+        if args.calibrate_on:
+            from ..risk._data import load_labelled_csv
+            rows = load_labelled_csv(args.calibrate_on)
+            cal = (rows.texts, rows.labels)
+        from ..risk._soup import average_runs
+        m = average_runs(args.runs, args.out, weights=args.weights, temperature=args.temperature,
+                         calibrate=cal, max_length=args.max_length)
+    except (EthimonError, ValueError, OSError) as exc:
+        return _err(str(exc))
+    src = "fitted on " + args.calibrate_on if cal else "given" if args.temperature else "none fitted: 1.0"
+    print(f"averaged {len(args.runs)} runs (LoRA rank {m['lora']['r']}), temperature "
+          f"{m['temperature']:.3f} ({src}); model written to {args.out}")
     return 0
 
 
