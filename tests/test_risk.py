@@ -450,6 +450,9 @@ def test_spec_estimator_block(tiny, tmp_path, capsys):
     assert _cli(["risk", TEXTS[0], "--spec", str(spec_p), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["temperature"] == 2.5 and out["tau"] == 0.3 and "+int8" in out["model_id"]
+    assert load_estimator_for(spec, quantize="fp32").quantized is None       # explicit fp32 wins
+    assert _cli(["risk", TEXTS[0], "--spec", str(spec_p), "--json", "--fp32"]) == 0
+    assert "+int8" not in json.loads(capsys.readouterr().out)["model_id"]
     # a scenario scored through `ethimon check` uses the spec's model (no --model given)
     sc = tmp_path / "sc.yaml"
     sc.write_text(f"ethimon: 1\nname: t\nspec: specs/s.yaml\ntask: {TEXTS[0]}\ncycles: 3\nexpect: {{}}\n",

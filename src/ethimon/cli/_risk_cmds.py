@@ -45,7 +45,7 @@ def add_risk_parsers(subparsers) -> None:
     p.add_argument("text", help="the task text, e.g. 'Hand the knife to the child blade first.'")
     p.add_argument("--spec", help="spec file whose risk block gives alpha, beta, gamma, variance, tau")
     p.add_argument("--model", help="model directory (default: the shipped MiniLM-L6 LoRA model)")
-    p.add_argument("--int8", action="store_true", help="dynamic int8 quantisation")
+    _precision_args(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--fail-on-flag", action="store_true", help="exit 1 when R_e >= tau")
     p.set_defaults(func=cmd_risk)
@@ -100,20 +100,31 @@ def add_risk_parsers(subparsers) -> None:
     e.add_argument("--calibrate-on", metavar="CSV",
                    help="fit the temperature on this validation CSV (label,input; never the "
                         "--data rows) and report --data with it instead of the model's own")
-    e.add_argument("--int8", action="store_true")
+    _precision_args(e)
     e.add_argument("--max-length", type=int, default=None)
     e.set_defaults(func=cmd_evaluate)
 
 
-def _load(model: str | None, int8: bool, max_length: int | None = None, spec=None):
-    """The estimator: command-line options win over the spec's ``risk.estimator`` block."""
+def _precision_args(parser) -> None:
+    g = parser.add_mutually_exclusive_group()
+    g.add_argument("--int8", dest="precision", action="store_const", const="int8",
+                   help="dynamic int8 quantisation")
+    g.add_argument("--fp32", dest="precision", action="store_const", const="fp32",
+                   help="full precision even where the spec's risk.estimator says quantize: int8")
+
+
+def _load(model: str | None, precision: str | None, max_length: int | None = None, spec=None):
+    """The estimator: command-line options win over the spec's ``risk.estimator`` block.
+
+    ``precision``: ``"int8"``, ``"fp32"`` or ``None`` (the spec's choice, fp32 without one).
+    """
     from ..risk import load_estimator, load_estimator_for
     if model is not None and not Path(model).is_dir():
         raise ModelError(f"model directory {model!r} does not exist")
+    quantize = precision  # None keeps the spec's choice; "fp32" overrides a spec's int8
     if spec is not None:
-        return load_estimator_for(spec, model_dir=model, quantize="int8" if int8 else None,
-                                  max_length=max_length)
-    return load_estimator(model, quantize="int8" if int8 else None, max_length=max_length)
+        return load_estimator_for(spec, model_dir=model, quantize=quantize, max_length=max_length)
+    return load_estimator(model, quantize=quantize, max_length=max_length)
 
 
 def cmd_risk(args: argparse.Namespace) -> int:
@@ -121,7 +132,7 @@ def cmd_risk(args: argparse.Namespace) -> int:
         return _err("empty text")
     try:
         cfg = risk_config(args.spec)
-        est = _load(args.model, args.int8, spec=cfg["spec"])
+        est = _load(args.model, args.precision, spec=cfg["spec"])
         r = est.estimate(args.text, cfg["alpha"], cfg["beta"], cfg["gamma"], cfg["variance"])
     except (EthimonError, ValueError, OSError) as exc:
         return _err(str(exc))
@@ -209,7 +220,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         cfg = risk_config(args.spec)
         rows = load_labelled_csv(args.data)
         cal = load_labelled_csv(args.calibrate_on) if args.calibrate_on else None
-        est = _load(args.model, args.int8, args.max_length, spec=cfg["spec"])
+        est = _load(args.model, args.precision, args.max_length, spec=cfg["spec"])
         logits = est.logits_batch(rows.texts)
         temperature = est.temperature
         if cal is not None:

@@ -24,7 +24,7 @@ from ._formula import VARIANCE_MODES, risk_from_probs
 __all__ = ["RiskEstimate", "RiskEstimator", "RiskInferenceError", "load_estimator",
            "default_model_dir", "normalize_text"]
 
-QUANTIZE_MODES = (None, "int8")
+QUANTIZE_MODES = (None, "fp32", "int8")
 
 
 class RiskInferenceError(EthimonError):
@@ -243,7 +243,9 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
         model_dir: an ethimon adapter directory (``ethimon_model.json``) or a
             Hugging Face sequence-classification directory (safetensors). ``None``
             loads the shipped default (MiniLM-L6 + LoRA).
-        quantize: ``None`` (fp32) or ``"int8"`` (dynamic int8 Linear layers).
+        quantize: ``None`` or ``"fp32"`` (full precision) or ``"int8"`` (dynamic
+            int8 Linear layers). ``"fp32"`` lets :func:`load_estimator_for`
+            override a spec that asks for int8.
         max_length: token budget, special tokens included (default: the model's).
         cache_size: LRU entries keyed on normalised text; 0 disables the cache.
         batch_size: rows per forward pass in :meth:`RiskEstimator.probs_batch`.
@@ -271,7 +273,9 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
         >>> p_safe, p_unsafe = est.probs("Hand the knife to the child blade first.")  # doctest: +SKIP
     """
     if quantize not in QUANTIZE_MODES:
-        raise ValueError(f"quantize={quantize!r}; expected None or 'int8'")
+        raise ValueError(f"quantize={quantize!r}; expected None, 'fp32' or 'int8'")
+    if quantize == "fp32":
+        quantize = None
     if max_length is not None and (not isinstance(max_length, int) or max_length < 8):
         raise ValueError(f"max_length={max_length!r}; expected an int >= 8")
     if cache_size < 0 or batch_size < 1:
