@@ -19,7 +19,7 @@ import re
 import zlib
 from pathlib import Path
 
-from ethimon.risk._data import LabelledRows, load_labelled_csv, stratified_split
+from ethimon.risk._data import LabelledRows, concat_rows, load_labelled_csv, stratified_split
 
 ROOT = Path(__file__).resolve().parents[1]
 SHARED = ROOT.parent / "shared" / "data"
@@ -93,9 +93,4 @@ def ethics_aux(name: str, n: int | None = None, seed: int = 42) -> tuple[list[st
 
 
 def concat(*parts: LabelledRows) -> LabelledRows:
-    out = LabelledRows([], [], [], 0, "+")
-    for p in parts:
-        out.texts += p.texts
-        out.labels += p.labels
-        out.extra += p.extra
-    return out
+    return concat_rows(list(parts))
