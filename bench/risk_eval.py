@@ -102,6 +102,8 @@ def main() -> None:
     out.mkdir(parents=True, exist_ok=True)
     plots = out / f"risk_eval_{a.tag}"
     plots.mkdir(exist_ok=True)
+    # raw logits per set (git-ignored): lets bench/risk_compare.py --ensemble average runs offline
+    np.savez_compressed(plots / "logits.npz", **{k: np.asarray(v, dtype=np.float32) for k, v in lg.items()})
     plot_confusion(m["confusion"], plots / "confusion_robot.png", "Robot commands (held out)")
     plot_risk_hist(rr, y, tau, plots / "risk_distribution_robot.png", "R_e, robot commands (held out)")
     if not a.skip_ethics:
