@@ -26,6 +26,7 @@ def main() -> None:
     ap.add_argument("--runs", required=True, help="comma list of run directories")
     ap.add_argument("--out", required=True)
     ap.add_argument("--max-length", type=int, default=None)
+    ap.add_argument("--rank", type=int, default=None, help="truncated-SVD rank (default: exact)")
     ap.add_argument("--tag", default=None, help="write bench/results/risk_average_<tag>.json")
     a = ap.parse_args()
     import torch
@@ -37,14 +38,17 @@ def main() -> None:
     _, p_va, _, _ = D.pair_splits()
     va = D.concat(e_va, s_va, p_va)
     runs = a.runs.split(",")
-    m = average_runs(runs, a.out, calibrate=(va.texts, va.labels), max_length=a.max_length)
+    m = average_runs(runs, a.out, calibrate=(va.texts, va.labels), max_length=a.max_length,
+                     rank=a.rank)
     # validation figures of the average (the rows its temperature was fitted on, the
     # rows runs are chosen by; never the hold-outs)
     from ethimon.risk import load_estimator
     est = load_estimator(a.out, cache_size=0)
     lg = torch.as_tensor(np.array(est.logits_batch(va.texts)), dtype=torch.float32)
     y = torch.as_tensor(va.labels)
-    res = {"runs": runs, "manifest": {k: m[k] for k in ("name", "max_length", "temperature", "averaged_from")},
+    res = {"runs": runs, "manifest": {k: m[k] for k in ("name", "max_length", "temperature", "averaged_from", "lora")
+                                          if k != "lora"} | {"r": m["lora"]["r"],
+                                                             "svd_rel_error": m.get("svd_rel_error")},
            "val_loss": float(torch.nn.functional.cross_entropy(lg, y)),  # T = 1, as runs record it
            "val_loss_T": float(torch.nn.functional.cross_entropy(lg / m["temperature"], y)),
            "val_acc": float((lg.argmax(1) == y).float().mean()), "n_val": len(va),

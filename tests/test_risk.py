@@ -565,6 +565,33 @@ def test_average_of_a_run_with_itself_is_that_run(tiny, tmp_path):
         assert one.probs(t)[1] == pytest.approx(avg.probs(t)[1], abs=1e-5)
 
 
+def test_average_rank_compression(tiny, tmp_path):
+    from ethimon.risk import _backend as B
+    from ethimon.risk._soup import average_runs
+    a, b = _two_runs(tiny, tmp_path)
+    average_runs([a, b], tmp_path / "e", temperature=1.0)
+    exact = B.load_model(tmp_path / "e").module.state_dict()
+    m = average_runs([a, b], tmp_path / "c", temperature=1.0, rank=3)
+    assert m["lora"]["r"] == 3 and 0.0 < m["svd_rel_error"] < 1.0
+    comp = B.load_model(tmp_path / "c").module.state_dict()
+    w0 = {f"encoder.{k}": v for k, v in B.load_encoder(tiny[0]).state_dict().items()}
+    errs = []
+    for name in m["lora"]["targets"]:
+        k = f"encoder.{name}.weight"
+        upd = (exact[k] - w0[k]).double()
+        errs.append(float((comp[k] - exact[k]).double().norm() / upd.norm()))
+    # the error of each layer is its truncated SVD tail; the manifest records the worst one
+    assert max(errs) == pytest.approx(m["svd_rel_error"], rel=0.05, abs=1e-3)
+    assert all(e <= m["svd_rel_error"] + 1e-3 for e in errs)
+    assert torch.equal(comp["head.weight"], exact["head.weight"])
+    assert any(not torch.allclose(comp[k], exact[k]) for k in exact)
+    # a rank at or above the summed rank is the exact average, and no error is recorded
+    assert "svd_rel_error" not in average_runs([a, b], tmp_path / "f", temperature=1.0, rank=99)
+    assert average_runs([a, b], tmp_path / "f", temperature=1.0, rank=99)["lora"]["r"] == 6
+    with pytest.raises(ModelError, match="rank"):
+        average_runs([a, b], tmp_path / "g", rank=0)
+
+
 def test_average_fits_temperature_on_calibration_rows(tiny, tmp_path):
     from ethimon.risk._soup import average_runs
     a, b = _two_runs(tiny, tmp_path)

@@ -89,6 +89,8 @@ def add_risk_parsers(subparsers) -> None:
     a.add_argument("--temperature", type=float, help="set the temperature instead of fitting it")
     a.add_argument("--max-length", type=int, default=None,
                    help="token budget of the average (needed when the runs differ)")
+    a.add_argument("--rank", type=int, default=None,
+                   help="compress the averaged update to this LoRA rank (truncated SVD; default: exact)")
     a.set_defaults(func=cmd_average)
 
     e = subparsers.add_parser("evaluate", help="evaluate a risk classifier on a label,input CSV")
@@ -203,11 +205,12 @@ def cmd_average(args: argparse.Namespace) -> int:
             cal = (rows.texts, rows.labels)
         from ..risk._soup import average_runs
         m = average_runs(args.runs, args.out, weights=args.weights, temperature=args.temperature,
-                         calibrate=cal, max_length=args.max_length)
+                         calibrate=cal, max_length=args.max_length, rank=args.rank)
     except (EthimonError, ValueError, OSError) as exc:
         return _err(str(exc))
     src = "fitted on " + args.calibrate_on if cal else "given" if args.temperature else "none fitted: 1.0"
-    print(f"averaged {len(args.runs)} runs (LoRA rank {m['lora']['r']}), temperature "
+    err = f", SVD relative error {m['svd_rel_error']:.2e}" if "svd_rel_error" in m else ""
+    print(f"averaged {len(args.runs)} runs (LoRA rank {m['lora']['r']}{err}), temperature "
           f"{m['temperature']:.3f} ({src}); model written to {args.out}")
     return 0
 

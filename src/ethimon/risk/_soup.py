@@ -49,14 +49,18 @@ def _read_run(d: Path) -> tuple[dict, dict]:
 def average_runs(run_dirs: Sequence[str | os.PathLike], out_dir: str | os.PathLike, *,
                  weights: Sequence[float] | None = None, temperature: float | None = None,
                  calibrate: tuple[list[str], list[int]] | None = None,
-                 name: str | None = None, max_length: int | None = None) -> dict:
+                 name: str | None = None, max_length: int | None = None,
+                 rank: int | None = None) -> dict:
     """Write the weight average of ``run_dirs`` to ``out_dir``; return its manifest.
 
     ``weights`` default to uniform and are normalised to sum to 1. The
     temperature is ``temperature`` if given, else fitted on ``calibrate``
     (texts, labels) with the averaged model, else 1.0. ``max_length`` lets runs
     trained at different truncation lengths be averaged (it is an inference
-    setting); without it they must agree.
+    setting); without it they must agree. ``rank`` (optional) compresses each
+    averaged update to its best rank-``rank`` approximation (truncated SVD) to
+    keep the adapter small; the largest relative Frobenius error over the layers
+    is recorded in the manifest (``svd_rel_error``). Without it the average is exact.
     """
     from safetensors.torch import save_file
 
@@ -82,8 +86,11 @@ def average_runs(run_dirs: Sequence[str | os.PathLike], out_dir: str | os.PathLi
                                    "only runs of one base and architecture can be averaged")
         if sorted(k for k in t if k.startswith("lora.")) != sorted(k for k in t0 if k.startswith("lora.")):
             raise B.ModelError(f"{d}: adapts other layers than {dirs[0]}")
+    if rank is not None and (isinstance(rank, bool) or not isinstance(rank, int) or rank < 1):
+        raise B.ModelError(f"rank={rank!r}: a positive integer expected")
     torch = B.torch
     out_t: dict = {}
+    svd_err = 0.0
     for tgt in targets:
         a_parts, b_parts = [], []
         for (m, t), w in zip(runs, ws):
@@ -93,14 +100,23 @@ def average_runs(run_dirs: Sequence[str | os.PathLike], out_dir: str | os.PathLi
                 b_parts.append(t[f"lora.{tgt}.B"].float() * (w * scale))
             except KeyError as exc:
                 raise B.ModelError(f"adapter tensors for {tgt!r} missing in one run: {exc}") from exc
-        out_t[f"lora.{tgt}.A"] = torch.cat(a_parts, 0).half().contiguous()
-        out_t[f"lora.{tgt}.B"] = torch.cat(b_parts, 1).half().contiguous()
+        a_cat, b_cat = torch.cat(a_parts, 0), torch.cat(b_parts, 1)
+        if rank is not None and rank < a_cat.shape[0]:
+            delta = b_cat.double() @ a_cat.double()
+            u, sv, vh = torch.linalg.svd(delta, full_matrices=False)
+            root = sv[:rank].sqrt()
+            b_cat, a_cat = (u[:, :rank] * root).float(), (root[:, None] * vh[:rank]).float()
+            lost = float((sv[rank:] ** 2).sum().sqrt() / (sv ** 2).sum().sqrt().clamp_min(1e-30))
+            svd_err = max(svd_err, lost)
+        out_t[f"lora.{tgt}.A"] = a_cat.half().contiguous()
+        out_t[f"lora.{tgt}.B"] = b_cat.half().contiguous()
     for key in ("head.weight", "head.bias"):
         try:
             out_t[key] = sum(t[key].float() * w for (_, t), w in zip(runs, ws)).contiguous()
         except (KeyError, RuntimeError) as exc:
             raise B.ModelError(f"head weights missing or of different shapes: {exc}") from exc
-    rank = sum(int(m["lora"]["r"]) for m, _ in runs)
+    total_rank = sum(int(m["lora"]["r"]) for m, _ in runs)
+    rank = min(rank, total_rank) if rank is not None else total_rank
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     save_file(out_t, str(out / "adapter.safetensors"), metadata={"format": B.ADAPTER_FORMAT})
@@ -112,6 +128,7 @@ def average_runs(run_dirs: Sequence[str | os.PathLike], out_dir: str | os.PathLi
         "lora": {"r": rank, "alpha": float(rank), "targets": targets},
         "max_length": int(max_length or m0.get("max_length", 128)),
         "temperature": 1.0,
+        **({"svd_rel_error": round(svd_err, 6)} if rank < total_rank else {}),
         "averaged_from": [{"run": d.name, "adapter_sha256": m["adapter_sha256"], "weight": round(w, 6)}
                           for d, (m, _), w in zip(dirs, runs, ws)],
     })
