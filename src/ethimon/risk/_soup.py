@@ -17,6 +17,7 @@ the average is not the average of temperatures: fit it on validation rows
 from __future__ import annotations
 
 import json
+import math
 import os
 from pathlib import Path
 from typing import Sequence
@@ -69,8 +70,10 @@ def average_runs(run_dirs: Sequence[str | os.PathLike], out_dir: str | os.PathLi
         raise B.ModelError("averaging needs at least two runs")
     if weights is None:
         weights = [1.0] * len(dirs)
-    if len(weights) != len(dirs) or any(not (w > 0) for w in weights):
-        raise B.ModelError("weights: one positive number per run expected")
+    if len(weights) != len(dirs) or any(not (math.isfinite(w) and w > 0) for w in weights):
+        raise B.ModelError("weights: one finite positive number per run expected")
+    if any(Path(out_dir).resolve() == d.resolve() for d in dirs):
+        raise B.ModelError(f"--out {out_dir} is one of the runs; write the average elsewhere")
     total = float(sum(weights))
     ws = [float(w) / total for w in weights]
     runs = [_read_run(d) for d in dirs]
