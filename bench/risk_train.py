@@ -33,6 +33,8 @@ def main() -> None:
     ap.add_argument("--max-length", type=int, default=128)
     ap.add_argument("--truncation", default="head_tail")
     ap.add_argument("--seed", type=int, default=42)
+    ap.add_argument("--init-seed", type=int, default=None,
+                    help="seed of the initial LoRA factors and heads only (runs to be averaged)")
     ap.add_argument("--robot-weight", type=float, default=1.0)
     ap.add_argument("--max-steps", type=int, default=None)
     ap.add_argument("--aux", default="", help="comma list of ETHICS subsets as auxiliary "
@@ -69,7 +71,7 @@ def main() -> None:
     s = train_lora(tr.texts, tr.labels, va.texts, va.labels, base_dir=base, out_dir=a.out,
                    base_ref={"package": B.BASE_PACKAGE}, train_weights=w, epochs=a.epochs, lr=a.lr,
                    r=a.r, alpha=2.0 * a.r, max_length=a.max_length, truncation=a.truncation,
-                   seed=a.seed, max_steps=a.max_steps, name="ethimon-minilm-l6-lora",
+                   seed=a.seed, init_seed=a.init_seed, max_steps=a.max_steps, name="ethimon-minilm-l6-lora",
                    num_threads=2, progress=False,
                    log=lambda m: print(m, flush=True), aux_tasks=aux, aux_weight=a.aux_weight,
                    extra_meta={"ethics_only": a.ethics_only, "robot_only": a.robot_only,

@@ -297,6 +297,23 @@ def test_training_is_seeded(tiny, tmp_path):
     assert shas[0] == shas[1]
 
 
+def test_init_seed_fixes_the_starting_point_only(tiny, tmp_path):
+    """lr 0: the saved adapter is the initial one. init_seed=42 starts where seed=42 starts."""
+    from safetensors.torch import load_file
+
+    from ethimon.risk._train import train_lora
+    ys = [1, 0, 1, 0, 1, 0]
+    aux = [("other", ["I took the money.", "Put the fork in the drawer."] * 3, [1, 0] * 3)]
+    got = {}
+    for tag, kw in {"s42": dict(seed=42), "i42s7": dict(seed=7, init_seed=42), "s7": dict(seed=7)}.items():
+        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=tiny[0], out_dir=tmp_path / tag, epochs=1,
+                   batch_size=3, r=2, alpha=4, max_length=24, lr=0.0, head_lr=0.0, progress=False,
+                   log=lambda m: None, num_threads=1, aux_tasks=aux, **kw)
+        got[tag] = load_file(str(tmp_path / tag / "adapter.safetensors"))
+    assert all(torch.equal(got["s42"][k], got["i42s7"][k]) for k in got["s42"])
+    assert not all(torch.equal(got["s42"][k], got["s7"][k]) for k in got["s42"])
+
+
 def test_auxiliary_tasks_share_the_encoder_but_only_the_main_head_is_saved(tiny, tmp_path):
     from safetensors.torch import load_file
 

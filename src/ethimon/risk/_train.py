@@ -85,7 +85,7 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
                num_threads: int | None = None, progress: bool = True,
                log: Callable[[str], Any] = print, extra_meta: dict | None = None,
                aux_tasks: list[tuple[str, list[str], list[int]]] | None = None,
-               aux_weight: float = 1.0) -> dict:
+               aux_weight: float = 1.0, init_seed: int | None = None) -> dict:
     """Train a LoRA adapter + head; write an ethimon model directory to ``out_dir``.
 
     ``aux_tasks`` (multi-task learning): ``(name, texts, labels)`` binary tasks
@@ -93,6 +93,11 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     their rows are mixed into the training batches with loss weight
     ``aux_weight``. Only the main head is saved; early stopping and the
     temperature use the main validation rows only.
+
+    ``seed`` drives everything; ``init_seed``, if given, drives only the
+    initial LoRA factors and heads, so runs that differ in ``seed`` start from
+    one point and differ in data order, dropout and auxiliary draw — the
+    setting in which their weights can be averaged (``ethimon average``).
 
     Returns:
         The run summary (also written to ``out_dir/metrics.json``).
@@ -102,7 +107,7 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     if num_threads:
         torch.set_num_threads(num_threads)
     random.seed(seed)
-    torch.manual_seed(seed)
+    torch.manual_seed(seed if init_seed is None else init_seed)
     rng = random.Random(seed)
     base_dir = Path(base_dir)
     out = Path(out_dir)
@@ -115,6 +120,8 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     model = B.PooledClassifier(encoder, 2, pooling)
     aux_tasks = list(aux_tasks or [])
     heads = nn.ModuleList([model.head] + [nn.Linear(encoder.config.hidden_size, 2) for _ in aux_tasks])
+    if init_seed is not None:
+        torch.manual_seed(seed)  # the rest (dropout) follows the run's own seed
     model.train()
     pad = tok.pad_token_id or 0
     tr = B.encode(tok, train_texts, max_length, truncation)
@@ -233,7 +240,8 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     summary = {
         "config": {"epochs": epochs, "lr": lr, "head_lr": head_lr, "batch_size": batch_size, "r": r,
                    "alpha": alpha, "lora_dropout": lora_dropout, "max_length": max_length,
-                   "truncation": truncation, "pooling": pooling, "seed": seed, "patience": patience,
+                   "truncation": truncation, "pooling": pooling, "seed": seed, "init_seed": init_seed,
+                   "patience": patience,
                    "weight_decay": weight_decay, "n_train": len(train_texts), "n_val": len(va),
                    "aux_tasks": {n: len(t) for n, t, _ in aux_tasks}, "aux_weight": aux_weight,
                    "base_dir": str(base_dir), **(extra_meta or {})},
