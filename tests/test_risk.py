@@ -538,7 +538,11 @@ def test_cli_train_tiny(tiny, tmp_path, capsys):
                  "--val-frac", "0.25", "--threads", "1", "--aux", str(aux)]) == 0
     assert "aux deontology_train: 2 rows" in capsys.readouterr().out
     m = json.loads((tmp_path / "m2" / "metrics.json").read_text())
-    assert m["config"]["aux_tasks"] == {"deontology_train": 2}
+    assert m["config"]["aux_tasks"] == {"deontology_train": 2} and m["config"]["init_seed"] is None
+    assert _cli(["train", "--data", str(p), "--base", str(tiny[0]), "--out", str(tmp_path / "m4"),
+                 "--epochs", "1", "--batch-size", "4", "--lora-r", "2", "--max-length", "24",
+                 "--val-frac", "0.25", "--threads", "1", "--seed", "3", "--init-seed", "42"]) == 0
+    assert json.loads((tmp_path / "m4" / "metrics.json").read_text())["config"]["init_seed"] == 42
     assert _cli(["train", "--data", str(p), "--out", str(tmp_path / "m3"), "--aux", str(p),
                  "--aux-rows", "-1"]) == 2
 

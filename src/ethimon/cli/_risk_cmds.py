@@ -74,6 +74,9 @@ def add_risk_parsers(subparsers) -> None:
     t.add_argument("--val-frac", type=float, default=0.2)
     t.add_argument("--patience", type=int, default=1)
     t.add_argument("--seed", type=int, default=42)
+    t.add_argument("--init-seed", type=int, default=None,
+                   help="seed of the starting LoRA factors and heads only; runs sharing it can be "
+                        "averaged with 'ethimon average'")
     t.add_argument("--threads", type=int, default=None)
     t.set_defaults(func=cmd_train)
 
@@ -184,7 +187,8 @@ def cmd_train(args: argparse.Namespace) -> int:
                        base_ref=ref, epochs=args.epochs, lr=args.lr, head_lr=4 * args.lr,
                        batch_size=args.batch_size, r=args.lora_r, alpha=2.0 * args.lora_r,
                        max_length=args.max_length, truncation=args.truncation, seed=args.seed,
-                       patience=args.patience, num_threads=args.threads, aux_tasks=aux)
+                       patience=args.patience, num_threads=args.threads, aux_tasks=aux,
+                       init_seed=args.init_seed)
     except (EthimonError, ValueError, OSError) as exc:
         return _err(str(exc))
     print(f"best epoch {s['best_epoch']} (val loss {s['best_val_loss']:.4f}), "
