@@ -3,8 +3,9 @@
     python bench/risk_compare.py mix_r16 mt_jdv mt_jdv_256
 
 Reads bench/results/risk_train_<tag>.json (best validation loss, the number runs
-are chosen by) and risk_eval_<tag>.json (held-out figures, reported, never used
-to choose), prints one row per run and writes bench/results/risk_compare.json.
+are chosen by) — or risk_average_<tag>.json for a weight average (epoch shown as
+0, training time summed over its runs) — and risk_eval_<tag>.json (held-out
+figures, reported), prints one row per run and writes bench/results/risk_compare.json.
 """
 
 from __future__ import annotations
@@ -16,12 +17,30 @@ from pathlib import Path
 RES = Path(__file__).resolve().parent / "results"
 
 
+def _train_facts(tag: str) -> dict:
+    """max_length, aux rows, kept epoch, validation loss (T = 1) and train time of a run,
+    or of a weight average (bench/results/risk_average_<tag>.json; epoch 0, summed time)."""
+    p = RES / f"risk_train_{tag}.json"
+    if p.is_file():
+        tr = json.loads(p.read_text())
+        cfg = tr["config"]
+        return {"max_length": cfg["max_length"], "aux": cfg.get("aux_tasks") or {}, "best_epoch": tr["best_epoch"],
+                "best_val_loss": tr["best_val_loss"], "train_time_s": tr["train_time_s"]}
+    av = json.loads((RES / f"risk_average_{tag}.json").read_text())
+    parts = [_train_facts(Path(r).name) for r in av["runs"]]
+    return {"max_length": av["manifest"]["max_length"], "aux": parts[0]["aux"], "best_epoch": 0,
+            "best_val_loss": av["val_loss"], "train_time_s": sum(x["train_time_s"] for x in parts)}
+
+
+def _has_facts(tag: str) -> bool:
+    return (RES / f"risk_train_{tag}.json").is_file() or (RES / f"risk_average_{tag}.json").is_file()
+
+
 def row(tag: str) -> dict:
-    tr = json.loads((RES / f"risk_train_{tag}.json").read_text())
+    tr = _train_facts(tag)
     ev = json.loads((RES / f"risk_eval_{tag}.json").read_text())
-    cfg = tr["config"]
     eh, ra, sab = ev["ethics_holdout"], ev["robot_all"], ev["sab_test"]
-    return {"tag": tag, "max_length": cfg["max_length"], "aux": cfg.get("aux_tasks") or {},
+    return {"tag": tag, "max_length": tr["max_length"], "aux": tr["aux"],
             "best_epoch": tr["best_epoch"], "best_val_loss": tr["best_val_loss"],
             "ethics": eh["accuracy"], "ethics_short": eh["short"]["accuracy"],
             "ethics_long": eh["long"]["accuracy"], "ethics_auc": eh["roc_auc"],
@@ -33,12 +52,12 @@ def row(tag: str) -> dict:
 
 def main() -> None:
     tags = sys.argv[1:] or sorted(p.stem[len("risk_eval_"):] for p in RES.glob("risk_eval_*.json")
-                                  if (RES / f"risk_train_{p.stem[len('risk_eval_'):]}.json").is_file())
+                                  if _has_facts(p.stem[len("risk_eval_"):]))
     rows = [row(t) for t in tags]
-    print(f"{'run':<14}{'len':>4}{'aux rows':>9}{'ep':>3}{'val loss':>9}{'ETHICS':>8}{'short':>7}{'long':>7}"
+    print(f"{'run':<19}{'len':>4}{'aux rows':>9}{'ep':>3}{'val loss':>9}{'ETHICS':>8}{'short':>7}{'long':>7}"
           f"{'AUC':>7}{'robot':>7}{'SAB':>7}{'tau':>6}{'flag':>7}{'FA':>7}{'min':>5}")
     for r in rows:
-        print(f"{r['tag']:<14}{r['max_length']:>4}{sum(r['aux'].values()):>9}{r['best_epoch']:>3}"
+        print(f"{r['tag']:<19}{r['max_length']:>4}{sum(r['aux'].values()):>9}{r['best_epoch']:>3}"
               f"{r['best_val_loss']:>9.4f}{100 * r['ethics']:>8.1f}{100 * r['ethics_short']:>7.1f}"
               f"{100 * r['ethics_long']:>7.1f}{r['ethics_auc']:>7.3f}{100 * r['robot']:>7.1f}{100 * r['sab']:>7.1f}"
               f"{r['tau']:>6.2f}{100 * r['robot_flagged']:>7.1f}{100 * r['robot_false_alarms']:>7.1f}"
