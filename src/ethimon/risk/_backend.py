@@ -331,6 +331,20 @@ def resolve_base(d: Path, manifest: dict) -> Path:
     raise ModelError(f"{d}/{MANIFEST}: 'base' must name a 'package' or a 'path'")
 
 
+def checked_adapter(d: Path, manifest: dict) -> tuple[Path, str]:
+    """The adapter file a manifest names and its sha256, refused unless it matches the manifest."""
+    adapter = d / manifest.get("adapter_file", "adapter.safetensors")
+    if not adapter.is_file():
+        check_no_pickle_only(d)
+        raise ModelError(f"{adapter} is missing")
+    want = manifest.get("adapter_sha256")
+    got = sha256_file(adapter)
+    if want != got:
+        raise ModelError(f"{adapter}: sha256 mismatch (manifest {str(want)[:12]}…, file {got[:12]}…); "
+                         "the adapter was modified or corrupted")
+    return adapter, got
+
+
 def load_model(model_dir: str | os.PathLike, *, max_length: int | None = None) -> LoadedModel:
     """Load an ethimon LoRA adapter dir or a plain HF sequence-classification dir."""
     from safetensors.torch import load_file
@@ -344,15 +358,7 @@ def load_model(model_dir: str | os.PathLike, *, max_length: int | None = None) -
     if manifest.get("format") != ADAPTER_FORMAT:
         raise ModelError(f"{d}/{MANIFEST}: unknown format {manifest.get('format')!r} "
                          f"(expected {ADAPTER_FORMAT!r})")
-    adapter = d / manifest.get("adapter_file", "adapter.safetensors")
-    if not adapter.is_file():
-        check_no_pickle_only(d)
-        raise ModelError(f"{adapter} is missing")
-    want = manifest.get("adapter_sha256")
-    got = sha256_file(adapter)
-    if want != got:
-        raise ModelError(f"{adapter}: sha256 mismatch (manifest {str(want)[:12]}…, file {got[:12]}…); "
-                         "the adapter was modified or corrupted")
+    adapter, got = checked_adapter(d, manifest)
     base_dir = resolve_base(d, manifest)
     base_w = base_dir / "model.safetensors"
     if not base_w.is_file():

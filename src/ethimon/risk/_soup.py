@@ -42,11 +42,7 @@ def _read_run(d: Path) -> tuple[dict, dict]:
     if manifest is None or manifest.get("format") != B.ADAPTER_FORMAT:
         raise B.ModelError(f"{d}: not an ethimon LoRA run ({B.MANIFEST} with format "
                            f"{B.ADAPTER_FORMAT!r} expected); only LoRA runs can be averaged")
-    adapter = d / manifest.get("adapter_file", "adapter.safetensors")
-    if not adapter.is_file():
-        raise B.ModelError(f"{adapter} is missing")
-    if B.sha256_file(adapter) != manifest.get("adapter_sha256"):
-        raise B.ModelError(f"{adapter}: sha256 mismatch with its manifest; the adapter was modified")
+    adapter, _ = B.checked_adapter(d, manifest)
     if not manifest.get("lora"):
         raise B.ModelError(f"{d}: manifest has no 'lora' block")
     return manifest, load_file(str(adapter))
