@@ -102,7 +102,7 @@ def main() -> None:
     out.mkdir(parents=True, exist_ok=True)
     plots = out / f"risk_eval_{a.tag}"
     plots.mkdir(exist_ok=True)
-    # raw logits per set (git-ignored): lets bench/risk_compare.py --ensemble average runs offline
+    # raw logits per set (git-ignored): bench/risk_ensemble.py averages runs offline from them
     np.savez_compressed(plots / "logits.npz", **{k: np.asarray(v, dtype=np.float32) for k, v in lg.items()})
     plot_confusion(m["confusion"], plots / "confusion_robot.png", "Robot commands (held out)")
     plot_risk_hist(rr, y, tau, plots / "risk_distribution_robot.png", "R_e, robot commands (held out)")

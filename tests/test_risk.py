@@ -649,6 +649,8 @@ def test_average_refuses_what_cannot_be_averaged(tiny, tmp_path):
         average_runs([a, a], tmp_path / "x", weights=[1.0, -1.0])
     with pytest.raises(ModelError, match="weights"):
         average_runs([a, a], tmp_path / "x", weights=[1.0, float("inf")])
+    with pytest.raises(ModelError, match="temperature"):
+        average_runs([a, a], tmp_path / "x", temperature=0.0)
     with pytest.raises(ModelError, match="one of the runs"):
         average_runs([a, tmp_path / "l"], tmp_path / "l", max_length=24)
     assert (tmp_path / "l" / "adapter.safetensors").is_file()

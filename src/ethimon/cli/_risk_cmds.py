@@ -126,10 +126,9 @@ def _load(model: str | None, precision: str | None, max_length: int | None = Non
     from ..risk import load_estimator, load_estimator_for
     if model is not None and not Path(model).is_dir():
         raise ModelError(f"model directory {model!r} does not exist")
-    quantize = precision  # None keeps the spec's choice; "fp32" overrides a spec's int8
-    if spec is not None:
-        return load_estimator_for(spec, model_dir=model, quantize=quantize, max_length=max_length)
-    return load_estimator(model, quantize=quantize, max_length=max_length)
+    if spec is not None:  # precision None keeps the spec's choice; "fp32" overrides a spec's int8
+        return load_estimator_for(spec, model_dir=model, quantize=precision, max_length=max_length)
+    return load_estimator(model, quantize=precision, max_length=max_length)
 
 
 def cmd_risk(args: argparse.Namespace) -> int:
@@ -200,8 +199,6 @@ def cmd_average(args: argparse.Namespace) -> int:
     try:
         if args.temperature is not None and args.calibrate_on:
             raise ValueError("give --temperature or --calibrate-on, not both")
-        if args.temperature is not None and not args.temperature > 0:
-            raise ValueError(f"--temperature {args.temperature} must be > 0")
         cal = None
         if args.calibrate_on:
             from ..risk._data import load_labelled_csv

@@ -73,6 +73,8 @@ def average_runs(run_dirs: Sequence[str | os.PathLike], out_dir: str | os.PathLi
         weights = [1.0] * len(dirs)
     if len(weights) != len(dirs) or any(not (math.isfinite(w) and w > 0) for w in weights):
         raise B.ModelError("weights: one finite positive number per run expected")
+    if temperature is not None and not (math.isfinite(temperature) and temperature > 0):
+        raise B.ModelError(f"temperature {temperature!r}: a finite number > 0 expected")
     if any(Path(out_dir).resolve() == d.resolve() for d in dirs):
         raise B.ModelError(f"--out {out_dir} is one of the runs; write the average elsewhere")
     total = float(sum(weights))
