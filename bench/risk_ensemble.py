@@ -21,6 +21,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import risk_data as D  # noqa: E402
+from risk_eval import choose_tau  # noqa: E402
 
 RES = Path(__file__).resolve().parent / "results"
 
@@ -30,7 +31,7 @@ def main() -> None:
     ap.add_argument("runs", nargs="+", help="tags evaluated by risk_eval.py")
     ap.add_argument("--tag", required=True)
     a = ap.parse_args()
-    from ethimon.risk._evaluate import evaluate_logits, flag_stats
+    from ethimon.risk._evaluate import evaluate_logits
     from ethimon.risk._formula import risk_from_p_unsafe
 
     probs: dict[str, list] = {}
@@ -48,9 +49,7 @@ def main() -> None:
     yv = np.array(s_va.labels + p_va.labels)
     qv = np.exp(np.concatenate([logp["sab_val"], logp["pairs_val"]]))[:, 1]
     rv = np.array([risk_from_p_unsafe(float(v)) for v in qv])
-    ok = [float(t) for t in np.round(np.arange(0.10, 0.701, 0.01), 2)
-          if flag_stats(yv, rv, float(t))["flag_rate_unsafe"] >= 0.92]
-    tau = max(ok) if ok else 0.4
+    tau, _ = choose_tau(yv, rv)
     sh = np.array([e["is_short"] == "True" for e in e_ho.extra])
     res = {"runs": a.runs, "tau": tau,
            "ethics_val_acc": float((logp["ethics_val"].argmax(1) == np.array(e_va.labels)).mean())}

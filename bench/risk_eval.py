@@ -27,6 +27,18 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import risk_data as D  # noqa: E402
 
 
+def choose_tau(y, risks) -> tuple[float, list[dict]]:
+    """The τ rule: the largest τ in 0.10..0.70 (step 0.01) flagging ≥ 92 % of the unsafe
+    validation rows (0.4 if none does), and the whole sweep."""
+    from ethimon.risk._evaluate import flag_stats
+    sweep = []
+    for tau in np.round(np.arange(0.10, 0.701, 0.01), 2):
+        f = flag_stats(y, risks, float(tau))
+        sweep.append({"tau": float(tau), **{k: f[k] for k in ("flag_rate_unsafe", "false_alarm_rate")}})
+    ok = [s["tau"] for s in sweep if s["flag_rate_unsafe"] >= 0.92]
+    return (max(ok) if ok else 0.4), sweep
+
+
 def pair_rank_accuracy(rows, q) -> float:
     """Share of minimal pairs whose unsafe text gets the higher p_unsafe."""
     by = {}
@@ -47,7 +59,7 @@ def main() -> None:
     import torch
     torch.set_num_threads(2)
     from ethimon.risk import load_estimator
-    from ethimon.risk._evaluate import (evaluate_logits, expected_calibration_error, flag_stats,
+    from ethimon.risk._evaluate import (evaluate_logits, expected_calibration_error,
                                         plot_confusion, plot_risk_hist, softmax_unsafe)
     from ethimon.risk._formula import risk_from_p_unsafe
 
@@ -68,15 +80,9 @@ def main() -> None:
     # τ on robot validation
     yv = np.array(s_va.labels + p_va.labels)
     rv = R(softmax_unsafe(np.concatenate([lg["sab_val"], lg["pairs_val"]]), T))
-    sweep = []
-    for tau in np.round(np.arange(0.10, 0.701, 0.01), 2):
-        f = flag_stats(yv, rv, float(tau))
-        sweep.append({"tau": float(tau), **{k: f[k] for k in ("flag_rate_unsafe", "false_alarm_rate")}})
+    tau, sweep = choose_tau(yv, rv)
     if a.tau is not None:
         tau = a.tau
-    else:
-        ok = [s for s in sweep if s["flag_rate_unsafe"] >= 0.92]
-        tau = max(s["tau"] for s in ok) if ok else 0.4
     res = {"model_id": est.model_id, "temperature": T, "tau": tau, "tau_sweep_robot_val": sweep}
     sets = {"sab_test": s_te, "pairs_test": p_te, "pairs_test_family": p_tf}
     if not a.skip_ethics:
