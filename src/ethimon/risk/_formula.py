@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from decimal import Decimal
+from fractions import Fraction
 
-__all__ = ["risk_from_p_unsafe", "risk_from_probs", "risk_bounds", "VARIANCE_MODES"]
+__all__ = ["risk_from_p_unsafe", "risk_from_probs", "risk_bounds", "release_bound", "VARIANCE_MODES"]
 
 VARIANCE_MODES = ("sample", "population")
 
@@ -102,3 +104,28 @@ def risk_bounds(alpha: float = 0.6, beta: float = 0.2, gamma: float = 0.2,
                 cands.add(q)
     vals = [risk_from_p_unsafe(q, alpha, beta, gamma, variance) for q in cands]
     return (min(vals), max(vals))
+
+
+def release_bound(threshold: float, hysteresis: float) -> tuple[Fraction, float]:
+    """The release bound ``τ − δ``, computed exactly as the spec writes it.
+
+    Float subtraction is not exact: ``0.27 - 0.05 == 0.22000000000000003``, so an
+    R_e of ``0.22`` would count as *below* the bound and release a latch that the
+    spec says must hold. Both numbers are taken as the decimals they print as
+    (the shortest repr, which is what a YAML spec says) and subtracted exactly.
+
+    Returns:
+        ``(exact, cut)``: the exact rational bound (for the z3 encoding) and a
+        float such that, for every float ``r``, ``r < cut`` holds exactly when
+        ``Fraction(r) < exact`` (what the monitor and the reference interpreter test).
+
+    Example:
+        >>> exact, cut = release_bound(0.27, 0.05)
+        >>> exact, 0.22 < cut, 0.21999999999999997 < cut
+        (Fraction(11, 50), False, True)
+    """
+    exact = Fraction(Decimal(repr(float(threshold)))) - Fraction(Decimal(repr(float(hysteresis))))
+    cut = float(exact)
+    if Fraction(cut) < exact:  # cut itself is below the bound: let r == cut pass too
+        cut = math.nextafter(cut, math.inf)
+    return exact, cut
