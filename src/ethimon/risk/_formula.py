@@ -6,12 +6,13 @@ must not import numpy arrays, torch or allocate more than a float.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from decimal import Decimal
 from fractions import Fraction
 
-__all__ = ["risk_from_p_unsafe", "risk_from_probs", "risk_bounds", "release_bound", "VARIANCE_MODES"]
+__all__ = ["risk_from_p_unsafe", "risk_from_probs", "risk_bounds", "release_bound", "risk_range", "VARIANCE_MODES"]
 
 VARIANCE_MODES = ("sample", "population")
 
@@ -129,3 +130,144 @@ def release_bound(threshold: float, hysteresis: float) -> tuple[Fraction, float]
     if Fraction(cut) < exact:  # cut itself is below the bound: let r == cut pass too
         cut = math.nextafter(cut, math.inf)
     return exact, cut
+
+
+def _segment_extremes(g, lo: Fraction, hi: Fraction) -> list[tuple[Fraction, Fraction]]:
+    """``(value, s)`` at the ends of ``[lo, hi]`` and at the stationary point of the quadratic ``g`` inside it."""
+    out = [(g(lo), lo), (g(hi), hi)]
+    if hi == lo:
+        return out
+    h0, hm, h1 = out[0][0], g((lo + hi) / 2), out[1][0]
+    a = 2 * h1 - 4 * hm + 2 * h0  # g(lo + u·(hi − lo)) = h0 + b·u + a·u²
+    b = h1 - h0 - a
+    if a != 0:
+        u = -b / (2 * a)
+        if 0 < u < 1:
+            s = lo + u * (hi - lo)
+            out.append((g(s), s))
+    return out
+
+
+def _risk_range_exact(alpha: float, beta: float, gamma: float, variance: str,
+                      classes: int) -> tuple[Fraction, tuple[Fraction, ...], Fraction, tuple[Fraction, ...]]:
+    """Exact ``(min, p_min, max, p_max)`` of R_e over the probability simplex (unsafe class last).
+
+    Derivation. With ``S = Σ p_i²`` the variance is ``c·(S − 1/K)``, ``c = 1/(K−1)``
+    (sample) or ``1/K`` (population), so on the region where class ``m`` holds the
+    largest probability, ``R = α·p_u + β·(1 − p_m) + γ·c·(S − 1/K)`` is linear plus
+    ``γ·c·S``: convex if ``γ ≥ 0``, concave if ``γ < 0``. Every point lies in such a
+    region (``m = u``, or ``m`` another class: all those are alike by symmetry).
+
+    * The extreme that convexity pushes to a corner (the maximum for ``γ ≥ 0``, the
+      minimum for ``γ < 0``, both for ``γ = 0``) is at a vertex of a region. The
+      vertices of ``{p ∈ simplex : p_m ≥ p_j ∀j}`` are the uniform distributions over
+      a set containing ``m``; R there depends only on the set's size ``s`` and on
+      whether it contains ``u``: at most ``2K − 1`` values.
+    * The other extreme: R is symmetric and convex (resp. concave) in the classes other
+      than ``u`` and ``m``, and the region is symmetric in them, so averaging over
+      their permutations does not make it worse: an optimum has them all equal. That
+      leaves ``p_u = x`` (region ``m = u``, one variable on ``[1/K, 1]``) or
+      ``p_m = x, p_u = y`` (two variables on a quadrilateral); a quadratic's
+      extremes on a segment or polygon lie at its vertices, at the stationary point
+      of an edge, or at its interior stationary point.
+
+    Every candidate is a point of the simplex, so both ends are attained exactly.
+    """
+    K = int(classes)
+    if K < 2 or K != classes:
+        raise ValueError(f"need an integer number of classes >= 2, got {classes!r}")
+    if variance not in VARIANCE_MODES:
+        raise ValueError(f"variance must be one of {VARIANCE_MODES}, got {variance!r}")
+    al, be, ga = Fraction(alpha), Fraction(beta), Fraction(gamma)  # ValueError on NaN / infinity
+    w = ga / (K - 1 if variance == "sample" else K)
+    one, inv_k = Fraction(1), Fraction(1, K)
+
+    def R(p: tuple[Fraction, ...], m: int) -> Fraction:  # p[-1] is the unsafe class, p[m] the largest
+        return al * p[-1] + be * (1 - p[m]) + w * (sum(v * v for v in p) - inv_k)
+
+    cands: list[tuple[Fraction, tuple[Fraction, ...]]] = []
+    # corners: uniform over s classes, with (last) or without (first) the unsafe class
+    for s in range(1, K + 1):
+        v = Fraction(1, s)
+        p = (Fraction(0),) * (K - s) + (v,) * s
+        cands.append((R(p, K - 1), p))
+        if s < K:
+            p = (v,) * s + (Fraction(0),) * (K - s)
+            cands.append((R(p, 0), p))
+
+    # region m = u: p_u = x, every other class (1 − x)/(K − 1)
+    def pa(x: Fraction) -> tuple[Fraction, ...]:
+        return ((1 - x) / (K - 1),) * (K - 1) + (x,)
+    cands += [(val, pa(x)) for val, x in _segment_extremes(lambda x: R(pa(x), K - 1), inv_k, one)]
+
+    # region m = 0 (not u): p_0 = x, p_u = y, the K − 2 others (1 − x − y)/(K − 2)
+    if K == 2:
+        def pb2(x: Fraction) -> tuple[Fraction, ...]:
+            return (x, 1 - x)
+        cands += [(val, pb2(x)) for val, x in _segment_extremes(lambda x: R(pb2(x), 0), Fraction(1, 2), one)]
+    else:
+        def pb(x: Fraction, y: Fraction) -> tuple[Fraction, ...]:
+            return (x,) + ((1 - x - y) / (K - 2),) * (K - 2) + (y,)
+
+        def f(x: Fraction, y: Fraction) -> Fraction:
+            return R(pb(x, y), 0)
+        # feasible set: cx·x + cy·y + c0 >= 0 for each row
+        rows = [(Fraction(0), one, Fraction(0)),         # y >= 0
+                (one, -one, Fraction(0)),                # y <= x
+                (-one, -one, one),                       # others >= 0
+                (Fraction(K - 1), one, -one)]            # others <= x
+
+        def feasible(x: Fraction, y: Fraction) -> bool:
+            return all(cx * x + cy * y + c0 >= 0 for cx, cy, c0 in rows)
+        verts = set()
+        for (a1, b1, c1), (a2, b2, c2) in itertools.combinations(rows, 2):
+            det = a1 * b2 - a2 * b1
+            if det != 0:
+                x, y = (b1 * c2 - b2 * c1) / det, (a2 * c1 - a1 * c2) / det
+                if feasible(x, y):
+                    verts.add((x, y))
+        for x, y in verts:
+            cands.append((f(x, y), pb(x, y)))
+        for cx, cy, c0 in rows:  # the stationary point of each edge
+            on = sorted(v for v in verts if cx * v[0] + cy * v[1] + c0 == 0)
+            if len(on) >= 2:
+                (x0, y0), (x1, y1) = on[0], on[-1]
+                for val, u in _segment_extremes(lambda u: f(x0 + u * (x1 - x0), y0 + u * (y1 - y0)),
+                                                Fraction(0), one):
+                    cands.append((val, pb(x0 + u * (x1 - x0), y0 + u * (y1 - y0))))
+        # the interior stationary point of f = A x² + B x y + C y² + D x + E y + F
+        F0 = f(Fraction(0), Fraction(0))
+        fx1, fxm, fy1, fym = f(one, Fraction(0)), f(-one, Fraction(0)), f(Fraction(0), one), f(Fraction(0), -one)
+        A, D = (fx1 + fxm) / 2 - F0, (fx1 - fxm) / 2
+        C, E = (fy1 + fym) / 2 - F0, (fy1 - fym) / 2
+        B = f(one, one) - A - C - D - E - F0
+        det = 4 * A * C - B * B
+        if det != 0:
+            x, y = (B * E - 2 * C * D) / det, (B * D - 2 * A * E) / det
+            if feasible(x, y):
+                cands.append((f(x, y), pb(x, y)))
+    lo = min(cands, key=lambda c: c[0])
+    hi = max(cands, key=lambda c: c[0])
+    return lo[0], lo[1], hi[0], hi[1]
+
+
+def risk_range(alpha: float = 0.6, beta: float = 0.2, gamma: float = 0.2, variance: str = "sample",
+               classes: int = 2) -> tuple[float, float]:
+    """Exact range of R_e over every probability vector of ``classes`` classes (any weights' signs).
+
+    No optimiser and no grid: the extremes of R_e on the simplex lie among a few
+    dozen candidate points (see :func:`_risk_range_exact` for the derivation), which
+    are evaluated in exact rational arithmetic; the ends are then rounded to the
+    nearest float. Which class is the unsafe one does not matter (symmetry).
+
+    Raises:
+        ValueError: fewer than two classes, an unknown variance mode, or a weight that is not finite.
+
+    Example:
+        >>> tuple(round(x, 6) for x in risk_range())
+        (0.1, 0.7)
+        >>> tuple(round(x, 6) for x in risk_range(classes=3))  # γ·c·(1 − 1/3) at a safe corner; α + that at the unsafe one
+        (0.066667, 0.666667)
+    """
+    lo, _, hi, _ = _risk_range_exact(alpha, beta, gamma, variance, classes)
+    return float(lo), float(hi)
