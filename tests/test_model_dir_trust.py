@@ -255,3 +255,58 @@ def test_every_transformers_call_in_the_source_says_trust_remote_code_false():
             if not (isinstance(v, ast.Constant) and v.value is False):
                 bad.append(f"{p.name}:{node.lineno}")
     assert not bad, f"transformers loads without trust_remote_code=False: {bad}"
+
+
+# ================================================================ 2. no invented heads
+def test_plain_encoder_dir_is_refused_not_given_a_random_head(tmp_path):
+    d = _bert_dir(tmp_path / "enc")  # BertModel: no classifier
+    with pytest.raises(ModelError, match=r"config\.json.*'architectures'.*BertModel.*classif"):
+        load_estimator(d, max_length=32)
+
+
+def test_classifier_whose_head_weights_are_missing_is_refused(tmp_path):
+    d = _bert_dir(tmp_path / "clf", transformers.BertForSequenceClassification, num_labels=2)
+    w = d / "model.safetensors"
+    tensors = {k: v for k, v in load_file(str(w)).items() if not k.startswith("classifier.")}
+    save_file(tensors, str(w), metadata={"format": "pt"})
+    with pytest.raises(ModelError, match=r"classifier\.(weight|bias).*randomly initiali[sz]ed"):
+        load_estimator(d, max_length=32)
+
+
+def test_classifier_with_architectures_field_removed_is_still_checked(tmp_path):
+    d = _bert_dir(tmp_path / "enc")
+    doc = json.loads((d / "config.json").read_text())
+    del doc["architectures"]
+    (d / "config.json").write_text(json.dumps(doc))
+    with pytest.raises(ModelError, match=r"classifier\.(weight|bias)"):
+        load_estimator(d, max_length=32)
+
+
+@pytest.mark.parametrize("num_labels", [1])
+def test_classifier_with_fewer_than_two_labels_is_refused(tmp_path, num_labels):
+    d = _bert_dir(tmp_path / "clf", transformers.BertForSequenceClassification, num_labels=num_labels)
+    with pytest.raises(ModelError, match=r"config\.json.*(id2label|num_labels).*2\.\.1000"):
+        load_estimator(d, max_length=32)
+
+
+def test_base_encoder_with_missing_layers_is_refused(tmp_path, base):
+    b = tmp_path / "base"
+    import shutil
+    shutil.copytree(base, b)
+    w = b / "model.safetensors"
+    tensors = {k: v for k, v in load_file(str(w)).items() if ".layer.1." not in k}
+    save_file(tensors, str(w), metadata={"format": "pt"})
+    a = _adapter_dir(tmp_path / "a", b)
+    with pytest.raises(ModelError, match=r"layer\.1\..*randomly initiali[sz]ed"):
+        load_estimator(a)
+
+
+def test_real_classifiers_still_load_and_are_deterministic(tmp_path, base):
+    clf = _distilbert_clf(tmp_path / "clf")
+    p1 = load_estimator(clf, max_length=32, cache_size=0).probs(TEXT)
+    p2 = load_estimator(clf, max_length=32, cache_size=0).probs(TEXT)
+    assert p1 == p2 and math.isclose(sum(p1), 1.0, abs_tol=1e-6)
+    bc = _bert_dir(tmp_path / "bc", transformers.BertForSequenceClassification, num_labels=2)
+    assert load_estimator(bc, max_length=32).probs(TEXT) == load_estimator(bc, max_length=32).probs(TEXT)
+    a = _adapter_dir(tmp_path / "a", base)
+    assert load_estimator(a).probs(TEXT) == load_estimator(a).probs(TEXT)

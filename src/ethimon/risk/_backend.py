@@ -59,6 +59,8 @@ CODE_KEYS = ("auto_map", "custom_pipelines")
 #: files that are code: none may be in a model directory
 CODE_SUFFIXES = (".py", ".pyc", ".pyo", ".pyw", ".pyd", ".so", ".dylib", ".dll")
 MAX_JSON_BYTES = 32 << 20
+#: most classes a classifier may have (as the spec's ``risk.classes``)
+MAX_LABELS = 1000
 #: every transformers load: local files only, never code from the directory
 NO_REMOTE = {"local_files_only": True}
 
@@ -186,17 +188,31 @@ def load_tokenizer(d: Path):
         raise ModelError(f"{d}: cannot load tokenizer: {exc}") from exc
 
 
+def _refuse_random_init(d: Path, info: dict, ignore: tuple[str, ...] = ()) -> None:
+    """Refuse a load in which transformers initialised weights randomly (missing or resized)."""
+    missing = sorted(k for k in (info.get("missing_keys") or ()) if not k.startswith(ignore))
+    mismatched = sorted(str(k[0] if isinstance(k, tuple) else k) for k in (info.get("mismatched_keys") or ()))
+    bad = missing + mismatched
+    if bad:
+        more = f" (+{len(bad) - 6} more)" if len(bad) > 6 else ""
+        raise ModelError(f"{d}: {', '.join(bad[:6])}{more} not in the weights file; transformers would have "
+                         "randomly initialised them, so every run would answer differently: refused")
+
+
 def load_encoder(d: Path):
+    """The bare encoder of ``d`` (a base for an adapter); every weight but the unused pooler must be in the file."""
     d = Path(d)
     check_model_dir(d)
     check_no_pickle_only(d)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            return transformers.AutoModel.from_pretrained(
-                str(d), use_safetensors=True, trust_remote_code=False, **NO_REMOTE)
+            encoder, info = transformers.AutoModel.from_pretrained(
+                str(d), use_safetensors=True, output_loading_info=True, trust_remote_code=False, **NO_REMOTE)
     except Exception as exc:  # noqa: BLE001
         raise ModelError(f"{d}: cannot load encoder weights: {exc}") from exc
+    _refuse_random_init(d, info, ignore=("pooler.",))  # PooledClassifier pools last_hidden_state itself
+    return encoder
 
 
 # ---------------------------------------------------------------- LoRA
@@ -486,20 +502,47 @@ def load_model(model_dir: str | os.PathLike, *, max_length: int | None = None) -
 def _load_hf_dir(d: Path, max_length: int | None) -> LoadedModel:
     if not (d / "config.json").is_file():
         raise ModelError(f"{d}: neither {MANIFEST} nor config.json found; not a model directory")
-    check_model_dir(d)
+    config = check_model_dir(d) or {}
+    _check_classifier_config(d / "config.json", config)
     check_no_pickle_only(d)
     tokenizer = load_tokenizer(d)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            model = transformers.AutoModelForSequenceClassification.from_pretrained(
-                str(d), use_safetensors=True, trust_remote_code=False, **NO_REMOTE)
+            model, info = transformers.AutoModelForSequenceClassification.from_pretrained(
+                str(d), use_safetensors=True, output_loading_info=True, trust_remote_code=False, **NO_REMOTE)
     except Exception as exc:  # noqa: BLE001
         raise ModelError(f"{d}: cannot load sequence-classification weights: {exc}") from exc
+    _refuse_random_init(d, info)
     model.eval()
     weights = sorted(d.glob("*.safetensors"))
     digest = sha256_file(weights[0])[:12] if weights else "unknown"
     n = int(model.config.num_labels)
+    if not 2 <= n <= MAX_LABELS:
+        raise ModelError(f"{d / 'config.json'}: 'num_labels' {n}: a classifier of 2..{MAX_LABELS} classes expected")
     limit = getattr(tokenizer, "model_max_length", 512)
     ml = int(max_length or min(512, limit if isinstance(limit, int) and limit < 100000 else 512))
     return LoadedModel(HFClassifier(model), tokenizer, ml, "head", 1.0, n - 1, f"{d.name}@{digest}")
+
+
+def _check_classifier_config(p: Path, config: dict) -> None:
+    """A plain HF directory must say it is a single-label sequence classifier of 2..MAX_LABELS classes."""
+    arch = config.get("architectures")
+    if arch is not None:
+        if not (isinstance(arch, list) and arch and all(isinstance(a, str) for a in arch)):
+            raise ModelError(f"{p}: 'architectures' must be a non-empty list of class names, got {arch!r}")
+        if not any(a.endswith("ForSequenceClassification") for a in arch):
+            raise ModelError(
+                f"{p}: 'architectures' {arch} is not a sequence classifier (…ForSequenceClassification): "
+                f"a plain encoder has no trained classification head, and loading it as a classifier would "
+                f"attach a randomly initialised one; train an adapter on it (ethimon train --base "
+                f"{p.parent}) or use a fine-tuned classifier")
+    pt = config.get("problem_type")
+    if pt not in (None, "single_label_classification"):
+        raise ModelError(f"{p}: 'problem_type' {pt!r}: only single_label_classification (softmax) is supported")
+    id2label = config.get("id2label")
+    n = len(id2label) if isinstance(id2label, dict) else config.get("num_labels", 2)
+    if isinstance(n, bool) or not isinstance(n, int) or not 2 <= n <= MAX_LABELS:
+        key = "id2label" if isinstance(id2label, dict) else "num_labels"
+        raise ModelError(f"{p}: {key!r} gives {n!r} classes; a classifier of 2..{MAX_LABELS} classes expected")
+
