@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import stat
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -16,6 +17,7 @@ from ..spec._yaml import parse_yaml_text, read_yaml
 from ._model import Scenario
 
 __all__ = ["load_scenario", "load_scenario_text", "run_scenario", "ScenarioResult", "find_scenarios",
+           "find_yaml_files", "scan_yaml_files", "require_regular_file", "check_input_names", "BUILTIN_INPUTS",
            "ProbsEstimator", "build_inputs"]
 
 RISK_KEYS = ("risk", "p_unsafe", "p")
@@ -43,30 +45,127 @@ def load_scenario_text(text: str, path: str = "<string>") -> Scenario:
     return validate_document(Scenario, data, smap, "scenario")
 
 
-def find_scenarios(paths: Iterable[str]) -> list[str]:
-    """Expand files and folders into a sorted list of scenario files.
+def file_kind(st: os.stat_result) -> str | None:
+    """``None`` for a regular file, else what the path is (``"a named pipe (FIFO)"``, ...)."""
+    mode = st.st_mode
+    if stat.S_ISREG(mode):
+        return None
+    return ("a folder" if stat.S_ISDIR(mode) else "a named pipe (FIFO)" if stat.S_ISFIFO(mode)
+            else "a socket" if stat.S_ISSOCK(mode) else "a character device" if stat.S_ISCHR(mode)
+            else "a block device" if stat.S_ISBLK(mode) else "not a regular file")
+
+
+def require_regular_file(path: str | os.PathLike, what: str = "file") -> None:
+    """Refuse, without opening it, a path that is a FIFO, socket or device (``/dev/stdin``).
+
+    Opening a FIFO blocks until a writer appears; ethimon never does that.
 
     Raises:
-        SpecError: a path that does not exist, or a folder with no ``*.yaml``/``*.yml``.
+        SpecError: the path is missing or not a regular file.
     """
-    out: list[str] = []
+    spath = os.fspath(path)
+    try:
+        st = os.stat(spath)
+    except FileNotFoundError:
+        raise SpecError("no such file or folder", path=spath) from None
+    except OSError as exc:
+        raise SpecError(f"cannot read this {what}: {exc.strerror or exc}", path=spath) from None
+    kind = file_kind(st)
+    if kind is not None:
+        raise SpecError(f"expected a {what} (a regular file), found {kind}", path=spath, hint=_NOT_REGULAR_HINT)
+
+
+_NOT_REGULAR_HINT = "ethimon reads files only, not pipes, devices or standard input; save it to a file first"
+
+
+def scan_yaml_files(paths: Iterable[str], *, what: str = "scenario",
+                    command: str = "ethimon check") -> list[tuple[str, str | None]]:
+    """Expand files and folders into ``(path, reason)`` pairs, in order, without opening any file.
+
+    ``reason`` is ``None`` for a file to read; for a FIFO, socket or device
+    found in a folder (never opened: a FIFO would block) it says why it is
+    passed over. A path named in ``paths`` must be a regular file or a folder.
+
+    Raises:
+        SpecError: a path that does not exist or is not a regular file or folder,
+            or a folder with no ``*.yaml``/``*.yml`` at all.
+    """
+    out: list[tuple[str, str | None]] = []
     for p in paths:
         if os.path.isdir(p):
-            found = []
+            found: list[tuple[str, str | None]] = []
             for root, dirs, files in os.walk(p):
                 dirs.sort()
                 for f in sorted(files):
-                    if f.endswith((".yaml", ".yml")):
-                        found.append(os.path.join(root, f))
+                    if not f.endswith((".yaml", ".yml")):
+                        continue
+                    full = os.path.join(root, f)
+                    try:
+                        kind = file_kind(os.stat(full))
+                    except OSError:  # a broken link or no permission: reading it gives the clean error
+                        kind = None
+                    found.append((full, None if kind is None else f"{kind}, not a regular file: not read"))
             if not found:
-                raise SpecError("no scenario files (*.yaml, *.yml) in this folder", path=p,
-                                hint="point ethimon check at scenario files or a folder that holds them")
+                raise SpecError(f"no {what} files (*.yaml, *.yml) in this folder", path=p,
+                                hint=f"point {command} at {what} files or a folder that holds them")
             out.extend(found)
-        elif os.path.exists(p):
-            out.append(p)
         else:
-            raise SpecError("no such file or folder", path=p)
+            require_regular_file(p, what)
+            out.append((p, None))
     return out
+
+
+def find_yaml_files(paths: Iterable[str], *, what: str = "scenario", command: str = "ethimon check",
+                    skipped: list[tuple[str, str]] | None = None) -> list[str]:
+    """The files of :func:`scan_yaml_files` to read; the passed-over ones go to ``skipped``."""
+    out = []
+    for path, reason in scan_yaml_files(paths, what=what, command=command):
+        if reason is None:
+            out.append(path)
+        elif skipped is not None:
+            skipped.append((path, reason))
+    return out
+
+
+def find_scenarios(paths: Iterable[str], *, skipped: list[tuple[str, str]] | None = None) -> list[str]:
+    """Expand files and folders into a sorted list of scenario files.
+
+    FIFOs, sockets and devices found in a folder are never opened; they are
+    appended to ``skipped`` as ``(path, reason)`` when a list is given.
+
+    Raises:
+        SpecError: a path that does not exist or is not a regular file or folder
+            (a FIFO, ``/dev/stdin``), or a folder with no ``*.yaml``/``*.yml``.
+    """
+    return find_yaml_files(paths, what="scenario", command="ethimon check", skipped=skipped)
+
+
+#: step() inputs with a built-in meaning, valid in every scenario besides the spec's signals
+BUILTIN_INPUTS = ("risk", "p_unsafe", "p", "risk_age_s")
+
+
+def check_input_names(sc: Scenario, spec: Spec) -> None:
+    """Every key of ``inputs`` and of each timeline ``set`` must be a signal of ``spec`` or a
+    built-in input (:data:`BUILTIN_INPUTS`): a typo would otherwise test nothing.
+
+    Raises:
+        SpecError: at the unknown key, with "did you mean ...?".
+    """
+    import difflib
+    known = set(spec.signals) | set(BUILTIN_INPUTS)
+    where = [(("inputs",), sc.inputs)] + [(("timeline", i, "set"), e.set) for i, e in enumerate(sc.timeline)]
+    for loc, mapping in where:
+        for key in mapping:
+            if key in known:
+                continue
+            close = difflib.get_close_matches(key, sorted(known), n=1, cutoff=0.6)
+            hint = (f"did you mean {close[0]!r}?" if close else
+                    "known inputs: " + ", ".join([*spec.signals, *BUILTIN_INPUTS]))
+            shown = key if len(key) <= 80 else key[:77] + "..."
+            msg = f"unknown input {shown!r}: spec {spec.name!r} has no signal of that name"
+            if sc._source is not None:
+                raise sc._source.error(msg, loc + (key,), key=True, hint=hint)
+            raise SpecError(msg, hint=hint)
 
 
 def build_inputs(sc: Scenario) -> list[dict[str, Any]]:
@@ -144,11 +243,13 @@ def run_scenario(sc: Scenario, *, spec: Spec | None = None,
             (``ethimon.risk.load_estimator_for``; the shipped offline model if none).
 
     Raises:
-        SpecError: the spec is missing or invalid, or the scenario needs a task
-            text it does not have.
+        SpecError: the spec is missing or invalid, an input name is not a signal
+            of the spec (nor a built-in input), or the scenario needs a task text
+            it does not have.
     """
     if spec is None:
         spec = load_spec(sc.spec_path)
+    check_input_names(sc, spec)
     frames = build_inputs(sc)
     probs = None
     if needs_text_risk(sc):
