@@ -59,15 +59,22 @@ def _cmd_schema(args: argparse.Namespace) -> int:
 
 
 def _cmd_lint(args: argparse.Namespace) -> int:
-    from .._api import load_spec
-    from ..scenario import find_scenarios
+    from .. import _api
+    from ..scenario._run import scan_yaml_files
+    from ._check import internal_error
     rc = 0
-    for path in find_scenarios(args.paths):
+    for path, skipped in scan_yaml_files(args.paths, what="spec", command="ethimon lint"):
+        if skipped is not None:  # a FIFO, socket or device in a folder: never opened
+            print(f"{path}: skipped: {skipped}")
+            continue
         try:
-            spec = load_spec(path)
+            spec = _api.load_spec(path)
             print(f"{path}: ok ({spec.name}, {len(spec.obligations)} obligations)")
         except SpecError as exc:
             print(str(exc), file=sys.stderr)
+            rc = 2
+        except Exception as exc:  # noqa: BLE001 - one bad file is one line; the others are still linted
+            print(internal_error(path, exc), file=sys.stderr)
             rc = 2
     return rc
 

@@ -54,65 +54,45 @@ def _expect_line(sc) -> int | None:
     return p.line if p else None
 
 
-def cmd_check(args: argparse.Namespace) -> int:
-    from ..scenario import find_scenarios, load_scenario, run_scenario
+def internal_error(where: str, exc: BaseException) -> str:
+    """One line for an unexpected exception from one file: ``where: internal error: Type: text``."""
+    text = str(exc)
+    if len(text) > 300:
+        text = text[:297] + "..."
+    what = f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+    return f"{where}: internal error: {what} (this file could not be checked; please report this)"
 
-    files = find_scenarios(args.paths)
+
+def cmd_check(args: argparse.Namespace) -> int:
+    from ..scenario._run import scan_yaml_files
+
+    files = scan_yaml_files(args.paths, what="scenario", command="ethimon check")
     ests = _Estimators(args.model)
     rows, results, problems = [], [], []
     bad_input = failed = False
-    specs: dict[str, object] = {}
+    specs: dict[str, object] = {}  # spec path -> Spec, or the exception that loading it raised
     t0 = time.perf_counter()
-    for path in files:
-        sc = None
+    for path, reason in files:
+        if reason is not None:  # a FIFO, socket or device in a folder: never opened
+            rows.append((path, "-", "skipped: not a regular file", "-", "SKIP"))
+            results.append({"name": path, "path": path, "passed": None, "skipped": reason})
+            print(f"{path}: skipped: {reason}", file=sys.stderr)
+            continue
+        ctx: dict[str, object] = {}
         try:
-            sc = load_scenario(path)
-            spec = specs.get(sc.spec_path)
-            if spec is None:
-                from .._api import load_spec
-                try:
-                    spec = load_spec(sc.spec_path)
-                except SpecError as exc:
-                    if exc.path == sc.spec_path and "not found" in exc.message:
-                        pos = sc._source.pos(("spec",))
-                        raise SpecError(f"spec {sc.spec!r} not found (looked at {sc.spec_path})", path=path,
-                                        line=pos.line if pos else None, column=pos.column if pos else None,
-                                        hint="'spec:' is relative to the scenario file") from None
-                    raise
-                specs[sc.spec_path] = spec
-            # a sim scenario whose signals come from the simulator cannot run as a timeline
-            sim_only = sc.sim is not None and any(name not in sc.inputs for name in spec.signals)
-            if sim_only and not args.sim:
-                rows.append((sc.name, "(sim only)", "skipped: needs --sim", "-", "SKIP"))
-                results.append({"name": sc.name, "path": path, "passed": None, "skipped": "needs --sim"})
-                continue
-            if sim_only:
-                sim_row, sim_res, sim_problems = _run_sim(sc, spec, ests.for_spec(spec), path)
-                rows.append(sim_row)
-                results.append(sim_res)
-                problems.extend(sim_problems)
-                failed = failed or bool(sim_problems)
-                continue
-            res = run_scenario(sc, spec=spec, estimator=ests.for_spec(spec))
-            first = "-" if res.first_override_cycle is None else str(res.first_override_cycle)
-            rows.append((res.name, res.expected, res.got, first, "PASS" if res.passed else "FAIL"))
-            results.append({**res.as_dict(), "path": path})
-            if not res.passed:
-                failed = True
-                line = _expect_line(sc)
-                for f in res.failures:
-                    problems.append(f"{path}:{line}: {res.name}: {f}" if line else f"{path}: {res.name}: {f}")
-            if args.sim and sc.sim is not None:
-                sim_row, sim_res, sim_problems = _run_sim(sc, spec, ests.for_spec(spec), path)
-                rows.append(sim_row)
-                results.append(sim_res)
-                problems.extend(sim_problems)
-                failed = failed or bool(sim_problems)
-        except (SpecError, DependencyNotInstalled, ModelError, EthimonError) as exc:
+            failed = _check_one(path, args, ests, specs, rows, results, problems, ctx) or failed
+        except Exception as exc:  # one unusable file is one ERROR row; the others still run
             bad_input = True
-            msg = str(exc) if isinstance(exc, SpecError) else f"{path}: {exc}"
+            if isinstance(exc, SpecError):
+                msg = str(exc)
+            elif isinstance(exc, (DependencyNotInstalled, ModelError, EthimonError)):
+                msg = f"{path}: {exc}"
+            else:
+                sc = ctx.get("scenario")
+                from_spec = sc is not None and specs.get(sc.spec_path) is exc
+                msg = internal_error(f"{sc.spec_path} (spec of {path})" if from_spec else path, exc)
             problems.append(msg)
-            name = sc.name if sc is not None else path
+            name = ctx["scenario"].name if "scenario" in ctx else path
             rows.append((name, "-", "bad input", "-", "ERROR"))
             results.append({"name": name, "path": path, "passed": False, "error": msg})
     elapsed = time.perf_counter() - t0
@@ -139,6 +119,68 @@ def cmd_check(args: argparse.Namespace) -> int:
     if args.junit:
         _write_junit(args.junit, results, elapsed)
     return 2 if bad_input else (1 if failed else 0)
+
+
+def _load_spec_for(sc, path, specs):
+    """The scenario's spec, read once per run (a spec that failed fails every scenario using it)."""
+    got = specs.get(sc.spec_path)
+    if got is None:
+        from .. import _api
+        from ..scenario import require_regular_file
+        try:
+            require_regular_file(sc.spec_path, "spec")  # a FIFO as spec must not block the run
+            got = _api.load_spec(sc.spec_path)
+        except SpecError as exc:
+            got = exc
+        except Exception as exc:  # noqa: BLE001 - an internal error of this spec, reported per scenario
+            got = exc
+        specs[sc.spec_path] = got
+    if isinstance(got, SpecError):
+        if got.path == sc.spec_path and ("not found" in got.message or "no such file" in got.message):
+            pos = sc._source.pos(("spec",))
+            raise SpecError(f"spec {sc.spec!r} not found (looked at {sc.spec_path})", path=path,
+                            line=pos.line if pos else None, column=pos.column if pos else None,
+                            hint="'spec:' is relative to the scenario file") from None
+        raise got
+    if isinstance(got, BaseException):
+        raise got
+    return got
+
+
+def _check_one(path, args, ests, specs, rows, results, problems, ctx) -> bool:
+    """Run one scenario file (timeline, and sim with ``--sim``); returns whether an expectation failed.
+
+    Adds its rows; ``ctx["scenario"]`` is the scenario once it is read (for the error row).
+    """
+    from ..scenario import check_input_names, load_scenario, run_scenario
+
+    sc = ctx["scenario"] = load_scenario(path)
+    spec = _load_spec_for(sc, path, specs)
+    check_input_names(sc, spec)
+    failed = False
+    # a sim scenario whose signals come from the simulator cannot run as a timeline
+    sim_only = sc.sim is not None and any(name not in sc.inputs for name in spec.signals)
+    if sim_only and not args.sim:
+        rows.append((sc.name, "(sim only)", "skipped: needs --sim", "-", "SKIP"))
+        results.append({"name": sc.name, "path": path, "passed": None, "skipped": "needs --sim"})
+        return False
+    if not sim_only:
+        res = run_scenario(sc, spec=spec, estimator=ests.for_spec(spec))
+        first = "-" if res.first_override_cycle is None else str(res.first_override_cycle)
+        rows.append((res.name, res.expected, res.got, first, "PASS" if res.passed else "FAIL"))
+        results.append({**res.as_dict(), "path": path})
+        if not res.passed:
+            failed = True
+            line = _expect_line(sc)
+            for f in res.failures:
+                problems.append(f"{path}:{line}: {res.name}: {f}" if line else f"{path}: {res.name}: {f}")
+    if args.sim and sc.sim is not None:
+        sim_row, sim_res, sim_problems = _run_sim(sc, spec, ests.for_spec(spec), path)
+        rows.append(sim_row)
+        results.append(sim_res)
+        problems.extend(sim_problems)
+        failed = failed or bool(sim_problems)
+    return failed
 
 
 def _run_sim(sc, spec, estimator, path):

@@ -80,14 +80,19 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         return _err("--gui needs a display (DISPLAY is not set); use --record DIR for frames instead")
     try:
         from .. import Monitor, load_spec
-        from ..scenario import find_scenarios, load_scenario
+        from ..scenario import check_input_names, load_scenario, require_regular_file
+        from ..scenario._run import scan_yaml_files
         from ..sim import SimBlock, check_sim_expectations, run_sim
     except ImportError as exc:  # pragma: no cover - packaging problem
         return _err(f"cannot load the simulator: {exc}")
     try:
-        files = find_scenarios(args.paths)
+        scanned = scan_yaml_files(args.paths, what="scenario", command="ethimon simulate")
     except (SpecError, EthimonError) as exc:
         return _err(str(exc))
+    for path, reason in scanned:
+        if reason is not None:  # a FIFO, socket or device in a folder: never opened
+            print(f"{path}: skipped: {reason}", file=sys.stderr)
+    files = [path for path, reason in scanned if reason is None]
     if not files:
         return _err(f"no scenario files under {' '.join(args.paths)}")
     rows, results = [], []
@@ -101,8 +106,11 @@ def cmd_simulate(args: argparse.Namespace) -> int:
                 if len(files) == 1:
                     return _err(f"{path}: the scenario has no 'sim:' block")
                 continue
-            spec = specs.get(sc.spec_path) or load_spec(sc.spec_path)
-            specs[sc.spec_path] = spec
+            spec = specs.get(sc.spec_path)
+            if spec is None:
+                require_regular_file(sc.spec_path, "spec")  # a FIFO as spec must not block the run
+                spec = specs[sc.spec_path] = load_spec(sc.spec_path)
+            check_input_names(sc, spec)
             block = SimBlock.model_validate(sc.sim)  # already validated with positions by the loader
             rec = os.path.join(args.record, sc.name) if args.record else None
             res = run_sim(block, Monitor(spec), record_dir=rec, gui=args.gui,
@@ -115,6 +123,11 @@ def cmd_simulate(args: argparse.Namespace) -> int:
             return _err(str(exc))
         except (EthimonError, OSError) as exc:
             print(f"{path}: {exc}", file=sys.stderr)
+            bad = True
+            continue
+        except Exception as exc:  # noqa: BLE001 - one unusable file is one line; the others still run
+            from ._check import internal_error
+            print(internal_error(path, exc), file=sys.stderr)
             bad = True
             continue
         problems = check_sim_expectations(block, res)

@@ -15,13 +15,19 @@ def add_verify_parsers(sub) -> None:
         "verify", help="prove spec invariants with an SMT solver and lint specs",
         description="Prove every spec's decision-logic invariants over all in-range inputs (z3, bounded "
                     "unrolling of the temporal windows), lint the spec, and replay counterexamples in the "
-                    "monitor. Exit 0 all proved, 1 a property refuted or unproved, 2 bad input.")
+                    "monitor. Each spec has a total time budget (--budget-s); checks it does not reach are "
+                    "reported as 'unknown (budget)'. Exit 0 every property proved and every check run; 1 a "
+                    "property refuted or unproved (solver or unrolling limit), or checks cut by the budget; "
+                    "2 bad input. Lint warnings alone do not change the exit code.")
     p.add_argument("paths", nargs="+", metavar="PATH", help="spec files or folders")
     p.add_argument("--json", metavar="FILE", help="write the report as JSON ('-' for stdout)")
     p.add_argument("--counterexamples", metavar="DIR",
                    help="write each counterexample as a scenario file that 'ethimon check' replays")
     p.add_argument("--timeout-s", type=float, default=None, metavar="S",
                    help="z3 time limit per check in seconds (default 20)")
+    p.add_argument("--budget-s", type=float, default=None, metavar="S",
+                   help="total time for all checks of one spec in seconds (default 120); what is not "
+                        "reached is reported as unknown and the exit code is 1")
     p.add_argument("--max-unroll", type=int, default=None, metavar="N",
                    help="most cycles of symbolic state to unroll (default 32)")
     p.add_argument("--no-lint", action="store_true", help="prove only, skip the lints")
@@ -29,22 +35,31 @@ def add_verify_parsers(sub) -> None:
 
 
 def cmd_verify(args: argparse.Namespace) -> int:
-    from ..errors import SpecError
-    from ..verify import (DEFAULT_MAX_UNROLL, DEFAULT_TIMEOUT_S, exit_code, find_specs, format_table,
-                          reports_to_json, require_z3, verify_spec)
+    from .. import verify
+    from ..errors import DependencyNotInstalled, SpecError
+    from ..verify import (DEFAULT_BUDGET_S, DEFAULT_MAX_UNROLL, DEFAULT_TIMEOUT_S, exit_code, find_specs,
+                          format_table, reports_to_json, require_z3)
 
     require_z3()  # DependencyNotInstalled -> one line, exit 2
     timeout = args.timeout_s if args.timeout_s is not None else DEFAULT_TIMEOUT_S
     unroll = args.max_unroll if args.max_unroll is not None else DEFAULT_MAX_UNROLL
-    if timeout <= 0 or unroll < 1:
-        raise SpecError("--timeout-s must be > 0 and --max-unroll >= 1", path="<command line>")
+    budget = args.budget_s if args.budget_s is not None else DEFAULT_BUDGET_S
+    if not timeout > 0 or unroll < 1 or not budget > 0:
+        raise SpecError("--timeout-s and --budget-s must be > 0 and --max-unroll >= 1", path="<command line>")
     paths = find_specs(args.paths)
     to_stdout = args.json == "-"
     out = sys.stderr if to_stdout else sys.stdout
     reports = []
     for path in paths:
-        rep = verify_spec(path, timeout_s=timeout, max_unroll=unroll, lints=not args.no_lint,
-                          counterexamples=args.counterexamples)
+        try:
+            rep = verify.verify_spec(path, timeout_s=timeout, max_unroll=unroll, lints=not args.no_lint,
+                                     counterexamples=args.counterexamples, budget_s=budget)
+        except DependencyNotInstalled:
+            raise
+        except Exception as exc:  # noqa: BLE001 - one unusable spec is one report; the others still run
+            from ._check import internal_error
+            rep = verify.SpecReport(path=path, error=str(exc) if isinstance(exc, SpecError)
+                                    else internal_error(path, exc))
         reports.append(rep)
         print(format_table(rep), file=out)
         print(file=out)
@@ -52,14 +67,17 @@ def cmd_verify(args: argparse.Namespace) -> int:
     n_warn = sum(len(r.warnings) for r in reports)
     n_err = sum(r.error is not None for r in reports)
     n_prop = sum(1 for r in reports for f in r.findings if f.kind == "property" and f.status == "proved")
-    print(f"{len(reports)} spec(s): {n_prop} properties proved, {n_ref} refuted, {n_warn} lint warnings, "
-          f"{n_err} unusable", file=out)
+    n_unk = sum(1 for r in reports for f in r.findings if f.kind == "property" and f.status == "unknown")
+    n_cut = sum(r.not_reached for r in reports)
+    print(f"{len(reports)} spec(s): {n_prop} properties proved, {n_ref} refuted, {n_unk} unknown, {n_warn} lint "
+          f"warnings, {n_err} unusable" + (f"; {n_cut} check(s) cut short or not reached by the budget "
+                                          f"(--budget-s {budget:g} per spec)" if n_cut else ""), file=out)
     if args.json:
         import z3
 
         from .. import __version__
         doc = reports_to_json(reports, {"ethimon": __version__, "z3": z3.get_version_string(),
-                                        "timeout_s": timeout, "max_unroll": unroll})
+                                        "timeout_s": timeout, "max_unroll": unroll, "budget_s": budget})
         text = json.dumps(doc, indent=2)
         if to_stdout:
             print(text)
