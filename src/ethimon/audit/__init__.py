@@ -8,12 +8,18 @@
     verify_log("run.jsonl").ok  # False if a record was edited, removed or reordered
 
 On the command line: ``ethimon audit verify run.jsonl`` (exit 0 ok, 1 tampered, 2 bad input).
+
+Bounds: one record line is at most :data:`MAX_RECORD_BYTES` (1 MiB; larger
+records lose their largest fields, marked ``"truncated"``); the writer's lag
+is bounded by ``AuditLog(max_pending=10_000, max_pending_bytes=32 MiB,
+max_lag_s=1.0)``, past which ``append`` refuses and ``AuditLog.fault`` is set;
+``verify_log`` reads only regular files and never more than one capped line.
 """
 
 from __future__ import annotations
 
-from ._log import FSYNC_POLICIES, AuditLog, jsonable, spec_hash
+from ._log import FSYNC_POLICIES, MAX_RECORD_BYTES, AuditLag, AuditLog, jsonable, spec_hash
 from ._verify import AuditFormatError, AuditReport, read_log, verify_log
 
-__all__ = ["AuditFormatError", "AuditLog", "AuditReport", "FSYNC_POLICIES", "jsonable", "read_log",
-           "spec_hash", "verify_log"]
+__all__ = ["AuditFormatError", "AuditLag", "AuditLog", "AuditReport", "FSYNC_POLICIES", "MAX_RECORD_BYTES",
+           "jsonable", "read_log", "spec_hash", "verify_log"]

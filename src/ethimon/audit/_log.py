@@ -16,11 +16,18 @@ flushes it to the OS and (by default) ``fsync``\\ s it, and only then advances
 sequence number is ``<= durable_seq`` (or :meth:`AuditLog.flush` returned after
 it was appended); a process killed after that point does not lose it.
 
-The control loop never blocks on the log: :meth:`AuditLog.append` is a
-non-blocking ``put`` into a bounded queue and returns ``False`` when the queue
-is full. The caller must treat that as a fault (``GovernedLoop`` overrides);
-the writer then appends a ``dropped`` record with the count, so a drop is
-never silent.
+The control loop never blocks on the log: :meth:`AuditLog.append` serialises
+the record (a snapshot of the fields, capped at ``max_record_bytes``) and puts
+it into a bounded queue without waiting. The writer's *lag* -- records
+accepted but not yet durable, their bytes, and the age of the oldest -- is
+bounded by ``max_pending``, ``max_pending_bytes`` and ``max_lag_s``:
+``append`` returns ``False`` when accepting the record would pass a bound (or
+the queue is full, or the log is closed or broken), and :attr:`AuditLog.fault`
+names the reason while the log is unusable (closed, writer dead or failed,
+oldest pending record too old). The caller must treat both as faults
+(``GovernedLoop`` checks :attr:`~AuditLog.fault` every cycle and overrides);
+the writer appends a ``dropped`` record with the count of refused records, so
+a drop is never silent.
 """
 
 from __future__ import annotations
@@ -35,10 +42,12 @@ import queue
 import threading
 import time
 import uuid
-from collections.abc import Mapping
-from typing import Any
+from collections import deque
+from collections.abc import Callable, Mapping
+from typing import Any, NamedTuple
 
-__all__ = ["AuditLog", "FSYNC_POLICIES", "GENESIS", "canonical", "record_hash", "spec_hash", "jsonable"]
+__all__ = ["AuditLag", "AuditLog", "FSYNC_POLICIES", "GENESIS", "MAX_RECORD_BYTES", "canonical", "record_hash",
+           "spec_hash", "jsonable"]
 
 #: ``prev`` of the first record
 GENESIS = "0" * 64
@@ -47,8 +56,29 @@ GENESIS = "0" * 64
 #: last interval); ``"never"``: flush to the OS only (survives a process kill).
 FSYNC_POLICIES = ("always", "interval", "never")
 FORMAT = "ethimon-audit/1"
+#: longest record line (newline included) that :class:`AuditLog` writes and
+#: :func:`~ethimon.audit.verify_log` reads: 1 MiB
+MAX_RECORD_BYTES = 1 << 20
 
 _STOP = object()
+_RESERVED = frozenset({"seq", "prev", "hash"})  # set by the writer
+_FIXED = ("kind", "t")                          # never omitted from a record
+_LINE_OVERHEAD = 200  # the "prev", "seq" and "hash" members, separators, braces and newline
+_BATCH_BYTES = 4 << 20
+
+
+class AuditLag(NamedTuple):
+    """How far the writer is behind (see :meth:`AuditLog.lag`).
+
+    Attributes:
+        records: records accepted by :meth:`AuditLog.append` and not yet durable.
+        bytes: their size as written.
+        age_s: age of the oldest of them (``0.0`` when none).
+    """
+
+    records: int
+    bytes: int
+    age_s: float
 
 
 def canonical(record: Mapping[str, Any]) -> bytes:
@@ -103,6 +133,34 @@ def jsonable(v: Any, _depth: int = 0) -> Any:
     return {"repr": text[:200]}
 
 
+_ENC = json.JSONEncoder(sort_keys=True, separators=(",", ":"), allow_nan=False, ensure_ascii=True)
+
+
+def _split(rec: Mapping[str, Any]) -> tuple[bytes, bytes, bytes]:
+    """Canonical JSON members of a record without ``seq``/``prev``/``hash``, in three runs:
+    the keys sorting before ``"prev"``, between ``"prev"`` and ``"seq"``, and after ``"seq"``.
+
+    The writer joins them with the ``prev`` and ``seq`` members in between, which is
+    byte for byte :func:`canonical` of the whole record (sorted keys, compact).
+    Raises ``ValueError``/``TypeError``/``RecursionError`` for what JSON cannot hold.
+    """
+    lo: dict = {}
+    mid: dict = {}
+    hi: dict = {}
+    for k, v in rec.items():
+        (lo if k < "prev" else mid if k < "seq" else hi)[k] = v
+    return (_ENC.encode(lo)[1:-1].encode("ascii"), _ENC.encode(mid)[1:-1].encode("ascii"),
+            _ENC.encode(hi)[1:-1].encode("ascii"))
+
+
+def _size(parts: tuple[bytes, bytes, bytes]) -> int:
+    return len(parts[0]) + len(parts[1]) + len(parts[2]) + _LINE_OVERHEAD
+
+
+def _omitted(nbytes: int) -> dict:
+    return {"omitted": "field too large for one audit record", "bytes": nbytes}
+
+
 class AuditLog:
     """Append-only, hash-chained JSONL audit log with a background writer.
 
@@ -115,10 +173,19 @@ class AuditLog:
         key: optional secret for HMAC-SHA256 chaining (then a forger without
             the key cannot rebuild the chain).
         meta: extra JSON-ready fields for the ``open`` record (spec hash, model id, host...).
+        max_pending: most records accepted but not yet durable (default 10,000).
+        max_pending_bytes: most bytes accepted but not yet durable (default 32 MiB).
+        max_lag_s: oldest age of a record accepted but not yet durable (default
+            1 s); past it, :attr:`fault` is set and :meth:`append` refuses.
+        max_record_bytes: cap of one record line (default and maximum
+            :data:`MAX_RECORD_BYTES`, 1 MiB). A larger record keeps its small
+            fields; its largest fields are replaced by ``{"omitted": ..., "bytes": n}``
+            and listed in ``"truncated"`` (counted in :attr:`oversize`).
+        clock: monotonic time source for the lag age (inject one in tests).
 
     Raises:
         FileExistsError: ``path`` exists.
-        ValueError: bad ``fsync``/``queue_size``.
+        ValueError: bad ``fsync``/``queue_size`` or bound.
 
     Example:
         >>> import tempfile, os
@@ -133,11 +200,27 @@ class AuditLog:
 
     def __init__(self, path: str | os.PathLike, *, queue_size: int = 65536, fsync: str = "always",
                  fsync_interval_s: float = 0.05, key: bytes | None = None,
-                 meta: Mapping[str, Any] | None = None) -> None:
+                 meta: Mapping[str, Any] | None = None, max_pending: int = 10_000,
+                 max_pending_bytes: int = 32 << 20, max_lag_s: float = 1.0,
+                 max_record_bytes: int = MAX_RECORD_BYTES, clock: Callable[[], float] = time.monotonic) -> None:
         if fsync not in FSYNC_POLICIES:
             raise ValueError(f"fsync={fsync!r}; expected one of {', '.join(FSYNC_POLICIES)}")
         if not isinstance(queue_size, int) or queue_size < 1:
             raise ValueError(f"queue_size={queue_size!r}; expected an int >= 1")
+        if not isinstance(max_pending, int) or max_pending < 1:
+            raise ValueError(f"max_pending={max_pending!r}; expected an int >= 1")
+        if not isinstance(max_record_bytes, int) or not 1024 <= max_record_bytes <= MAX_RECORD_BYTES:
+            raise ValueError(f"max_record_bytes={max_record_bytes!r}; expected an int in [1024, {MAX_RECORD_BYTES}]")
+        if not isinstance(max_pending_bytes, int) or max_pending_bytes < max_record_bytes:
+            raise ValueError(f"max_pending_bytes={max_pending_bytes!r}; expected an int >= max_record_bytes "
+                             f"({max_record_bytes})")
+        if not (isinstance(max_lag_s, (int, float)) and 0 < max_lag_s < math.inf):
+            raise ValueError(f"max_lag_s={max_lag_s!r}; expected a positive number of seconds")
+        self.max_pending = max_pending
+        self.max_pending_bytes = max_pending_bytes
+        self.max_lag_s = float(max_lag_s)
+        self.max_record_bytes = max_record_bytes
+        self._clock = clock
         self.path = os.fspath(path)
         self.fsync = fsync
         self.fsync_interval_s = float(fsync_interval_s)
@@ -150,12 +233,17 @@ class AuditLog:
         self._durable_seq = -1
         self._dropped_pending = 0
         self._dropped_total = 0
-        self._drop_lock = threading.Lock()
+        self._lock = threading.Lock()  # guards the lag counters, the drop counters and _closed
+        self._pending_n = 0
+        self._pending_bytes = 0
+        self._times: deque = deque()   # (clock time, bytes) of each record not yet durable, oldest first
+        self.oversize = 0
         self._closed = False
         self._error: BaseException | None = None
         self._last_fsync = 0.0
-        self._write([{"kind": "open", "format": FORMAT, "log_id": self.log_id, "t": time.time(),
-                      "pid": os.getpid(), "fsync": fsync, "keyed": bool(key), **jsonable(dict(meta or {}))}])
+        fields = {**jsonable(dict(meta or {})), "format": FORMAT, "log_id": self.log_id, "pid": os.getpid(),
+                  "fsync": fsync, "keyed": bool(key)}
+        self._write([self._encode("open", time.time(), fields)[0]])
         self._thread = threading.Thread(target=self._run, name="ethimon-audit-writer", daemon=True)
         self._thread.start()
         atexit.register(self._at_exit)
@@ -171,25 +259,116 @@ class AuditLog:
     def append(self, kind: str, **fields: Any) -> bool:
         """Queue one record without blocking.
 
+        The fields are serialised now (:func:`jsonable`, then canonical JSON), so
+        the record is a snapshot: changing a passed dict afterwards changes
+        nothing. A record longer than ``max_record_bytes`` keeps its small
+        fields and loses its largest ones (see the class doc).
+
         Args:
             kind: record kind (``decision``, ``fault``, ``reload``, ...).
-            fields: JSON-ready-ish fields (sanitised by the writer with :func:`jsonable`).
+            fields: JSON-ready-ish fields (``seq``, ``prev`` and ``hash`` are the writer's and ignored).
 
         Returns:
-            ``True`` if queued; ``False`` if the queue is full or the log is
-            closed or broken. A ``False`` is a fault for the caller; the writer
-            records the number of dropped records in a ``dropped`` record.
+            ``True`` if queued; ``False`` if accepting it would pass
+            ``max_pending`` or ``max_pending_bytes``, the oldest pending record
+            is older than ``max_lag_s``, the queue is full, or the log is closed
+            or broken. A ``False`` is a fault for the caller; the writer records
+            the number of refused records in a ``dropped`` record.
         """
-        if self._closed or self._error is not None:
+        if self._closed or self._error is not None or not self._thread.is_alive():
             return False
+        t = time.time()
         try:
-            self._q.put_nowait((kind, time.time(), fields))
-        except queue.Full:
-            with self._drop_lock:
+            parts, size, cut = self._encode(kind, t, fields)
+        except Exception as exc:  # noqa: BLE001 - recorded, never raised into the loop
+            parts, size, cut = self._encode(kind, t, {"unserialisable": f"{type(exc).__name__}: {exc}"[:500]})
+        now = self._clock()
+        with self._lock:
+            if self._closed:
+                return False
+            ok = (self._pending_n < self.max_pending and self._pending_bytes + size <= self.max_pending_bytes
+                  and not (self._times and now - self._times[0][0] > self.max_lag_s))
+            if ok:
+                try:
+                    self._q.put_nowait((parts, size))
+                except queue.Full:
+                    ok = False
+            if not ok:
                 self._dropped_pending += 1
                 self._dropped_total += 1
-            return False
+                return False
+            self._pending_n += 1
+            self._pending_bytes += size
+            self._times.append((now, size))
+            if cut:
+                self.oversize += 1
         return True
+
+    def lag(self) -> AuditLag:
+        """Records and bytes accepted but not yet durable, and the age of the oldest."""
+        with self._lock:
+            n, b = self._pending_n, self._pending_bytes
+            oldest = self._times[0][0] if self._times else None
+        return AuditLag(n, b, 0.0 if oldest is None else max(0.0, self._clock() - oldest))
+
+    @property
+    def fault(self) -> str | None:
+        """Why the log cannot be trusted to record the next decision now, or ``None``.
+
+        Set while the log is closed, its writer failed or died, or the writer is
+        behind past a bound (oldest record not yet durable older than
+        ``max_lag_s``). A caller that must not act unrecorded treats it as a
+        fault every cycle (``GovernedLoop`` does).
+        """
+        err = self._error
+        if err is not None:
+            return f"audit writer failed: {type(err).__name__}: {err}"[:300]
+        if self._closed:
+            return "audit log is closed: decisions are no longer recorded"
+        if not self._thread.is_alive():
+            return "audit writer thread died: decisions are no longer recorded"
+        times = self._times  # fast path (every control cycle): no lock, one clock read
+        if not times:
+            return None
+        try:
+            oldest = times[0][0]
+        except IndexError:  # emptied by the writer meanwhile
+            return None
+        if self._clock() - oldest <= self.max_lag_s:
+            return None
+        lag = self.lag()
+        if lag.age_s > self.max_lag_s:
+            return (f"audit log is behind: oldest record not yet durable is {lag.age_s:.3f} s old "
+                    f"(max_lag_s {self.max_lag_s:g}); {lag.records} records, {lag.bytes} bytes pending")
+        return None
+
+    def _encode(self, kind: str, t: float, fields: Mapping[str, Any]) -> tuple[tuple, int, bool]:
+        """The record's canonical member runs (see :func:`_split`), its line size, and whether
+        fields were cut to fit ``max_record_bytes``."""
+        # jsonable() always: it also makes every key a str (the encoder would sort int keys
+        # numerically, not as the text a verifier re-sorts)
+        rec = jsonable({k: v for k, v in fields.items() if k not in _RESERVED})
+        rec["kind"] = jsonable(kind)
+        rec["t"] = t
+        parts = _split(rec)
+        size = _size(parts)
+        if size <= self.max_record_bytes:
+            return parts, size, False
+        # too large: replace the largest fields (never kind/t) by a marker until it fits
+        lengths = {k: len(_ENC.encode({k: v})) for k, v in rec.items() if k not in _FIXED}
+        cut: list[str] = []
+        for k in sorted(lengths, key=lengths.__getitem__, reverse=True):
+            rec[k] = _omitted(lengths[k])
+            cut.append(k)
+            rec["truncated"] = sorted(cut)
+            parts = _split(rec)
+            size = _size(parts)
+            if size <= self.max_record_bytes:
+                return parts, size, True
+        # thousands of small fields: keep only kind and t
+        rec = {"kind": rec["kind"], "t": t, "omitted_fields": len(lengths)}
+        parts = _split(rec)
+        return parts, _size(parts), True
 
     @property
     def durable_seq(self) -> int:
@@ -212,7 +391,7 @@ class AuditLog:
         return self._prev
 
     def pending(self) -> int:
-        """Records queued but not yet written."""
+        """Records queued and not yet taken by the writer (see :meth:`lag` for those not yet durable)."""
         return self._q.qsize()
 
     def flush(self, timeout: float | None = 5.0) -> int:
@@ -243,14 +422,21 @@ class AuditLog:
 
     def close(self, timeout: float | None = 10.0) -> None:
         """Write everything queued, append a ``close`` record, sync and close the file."""
-        if self._closed:
-            return
-        self._closed = True
+        with self._lock:
+            if self._closed:
+                return
+            self._closed = True
         atexit.unregister(self._at_exit)
-        self._q.put(_STOP)  # blocks only if full, which the writer is draining
-        self._thread.join(timeout)
-        if self._thread.is_alive():  # pragma: no cover
-            raise TimeoutError("audit writer did not finish")
+        if self._thread.is_alive():
+            try:  # waits only while the queue is full, which a live writer is draining
+                self._q.put(_STOP, timeout=timeout)
+            except queue.Full:
+                pass
+            self._thread.join(timeout)
+        if self._thread.is_alive():
+            lag = self.lag()
+            raise TimeoutError(f"audit writer did not finish within {timeout} s ({lag.records} records, "
+                               f"{lag.bytes} bytes not yet durable)")
         if self._error is not None:
             raise OSError(f"audit writer failed: {self._error}") from self._error
 
@@ -272,28 +458,39 @@ class AuditLog:
                 item = q.get()
                 batch = []
                 waiters = []
+                n_user = 0
+                nbytes = 0
                 while True:
                     if item is _STOP:
                         stop = True
                     elif isinstance(item, threading.Event):
                         waiters.append(item)
                     else:
-                        kind, t, fields = item
-                        batch.append({"kind": kind, "t": t, **jsonable(fields)})
-                    if len(batch) >= 4096:
+                        parts, size = item
+                        batch.append(parts)
+                        n_user += 1
+                        nbytes += size
+                    if len(batch) >= 4096 or nbytes >= _BATCH_BYTES:
                         break
                     try:
                         item = q.get_nowait()
                     except queue.Empty:
                         break
-                with self._drop_lock:
+                with self._lock:
                     dropped, self._dropped_pending = self._dropped_pending, 0
                 if dropped:
-                    batch.append({"kind": "dropped", "t": time.time(), "count": dropped,
-                                  "reason": "audit queue full: records refused (the loop overrode)"})
+                    batch.append(self._encode("dropped", time.time(), {
+                        "count": dropped, "reason": "audit queue full or writer behind: records refused "
+                                                    "(the loop overrode)"})[0])
                 if stop:
-                    batch.append({"kind": "close", "t": time.time(), "dropped_total": self._dropped_total})
+                    batch.append(self._encode("close", time.time(), {"dropped_total": self._dropped_total})[0])
                 self._write(batch, force_sync=stop or bool(waiters))
+                if n_user:
+                    with self._lock:
+                        for _ in range(n_user):
+                            _, size = self._times.popleft()
+                            self._pending_bytes -= size
+                        self._pending_n -= n_user
                 for w in waiters:
                     w.set()
         except BaseException as exc:  # noqa: BLE001 - surfaced through .error / append() -> False
@@ -304,20 +501,17 @@ class AuditLog:
             except OSError:  # pragma: no cover
                 pass
 
-    def _write(self, records: list[dict], force_sync: bool = False) -> None:
+    def _write(self, records: list[tuple[bytes, bytes, bytes]], force_sync: bool = False) -> None:
+        """Chain, hash and write records given as member runs (see :func:`_split`)."""
         if not records:
             return
         out = []
         prev, seq, key = self._prev, self._seq, self._key
-        for rec in records:
-            rec["seq"] = seq
-            rec["prev"] = prev
-            try:
-                body = canonical(rec)
-            except (TypeError, ValueError):  # pragma: no cover - jsonable() makes this unreachable
-                rec = {"kind": rec.get("kind"), "seq": seq, "prev": prev, "t": rec.get("t"),
-                       "unserialisable": repr(rec)[:500]}
-                body = canonical(rec)
+        for lo, mid, hi in records:
+            # canonical JSON of the record: its members and seq/prev in sorted key order
+            members = [m for m in (lo, b'"prev":"' + prev.encode("ascii") + b'"', mid,
+                                   b'"seq":' + str(seq).encode("ascii"), hi) if m]
+            body = b"{" + b",".join(members) + b"}"
             h = hmac.new(key, body, hashlib.sha256).hexdigest() if key else hashlib.sha256(body).hexdigest()
             out.append(body[:-1] + b',"hash":"' + h.encode() + b'"}\n')
             prev = h

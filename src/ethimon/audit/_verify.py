@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import json
 import os
+import stat
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from typing import BinaryIO
 
-from ._log import FORMAT, GENESIS, canonical, record_hash
+from ._log import FORMAT, GENESIS, MAX_RECORD_BYTES, canonical, record_hash
 
 __all__ = ["AuditReport", "verify_log", "read_log", "AuditFormatError"]
 
@@ -53,9 +55,55 @@ class AuditReport:
         return f"ok: {self.records} records, chain intact, {state}{torn}; head {self.head[:16]}"
 
 
+def _open_regular(path: str) -> BinaryIO:
+    """Open ``path`` for reading without ever blocking: only a regular file is accepted.
+
+    A FIFO (or ``/dev/stdin`` on a pipe or terminal) would block ``open()`` or
+    ``read()`` forever; it is opened non-blocking, checked with ``fstat`` on the
+    open descriptor (no check-then-open race) and refused.
+    """
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
+    try:
+        fd = os.open(path, flags)
+    except IsADirectoryError:
+        raise AuditFormatError(f"{path}: is a directory, not an audit log") from None
+    except OSError as exc:
+        raise AuditFormatError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    try:
+        st = os.fstat(fd)
+        if stat.S_ISDIR(st.st_mode):
+            raise AuditFormatError(f"{path}: is a directory, not an audit log")
+        if not stat.S_ISREG(st.st_mode):
+            raise AuditFormatError(f"{path}: not a regular file (a pipe, FIFO, socket or device); "
+                                   "an audit log must be a file")
+        if hasattr(os, "set_blocking"):
+            os.set_blocking(fd, True)
+        return os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise
+
+
+def _read_lines(fh: BinaryIO) -> Iterator[tuple[int, bytes | None]]:
+    """``(line number, raw line)``; ``raw`` is ``None`` for a line longer than
+    :data:`MAX_RECORD_BYTES`; reading stops there (at most ``MAX_RECORD_BYTES + 1`` bytes are held)."""
+    lineno = 0
+    while True:
+        raw = fh.readline(MAX_RECORD_BYTES + 1)
+        if not raw:
+            return
+        lineno += 1
+        if len(raw) > MAX_RECORD_BYTES:
+            yield lineno, None
+            return  # nothing after an over-long line is looked at
+        yield lineno, raw
+
+
 def _lines(path: str) -> Iterator[tuple[int, bytes, bool]]:
-    with open(path, "rb") as fh:
-        for i, raw in enumerate(fh, start=1):
+    with _open_regular(path) as fh:
+        for i, raw in _read_lines(fh):
+            if raw is None:
+                return
             yield i, raw, raw.endswith(b"\n")
 
 
@@ -69,6 +117,13 @@ def verify_log(path: str | os.PathLike, *, key: bytes | None = None, require_clo
     final line without its newline is a torn write (a kill mid-write, never
     reported written) and is ignored.
 
+    Memory and time are bounded: only a regular file is read (a FIFO,
+    ``/dev/stdin`` on a pipe, a socket or a device is refused at once instead of
+    blocking), and no line longer than :data:`~ethimon.audit.MAX_RECORD_BYTES`
+    (1 MiB, newline included; :class:`~ethimon.audit.AuditLog` never writes a
+    longer one) is read into memory: such a line fails verification with its
+    line number.
+
     Args:
         path: the log file.
         key: the HMAC key, if the log was written with one.
@@ -81,20 +136,14 @@ def verify_log(path: str | os.PathLike, *, key: bytes | None = None, require_clo
         An :class:`AuditReport`; ``ok`` is ``False`` for tampering.
 
     Raises:
-        AuditFormatError: unreadable, empty, or not an ethimon audit log.
+        AuditFormatError: unreadable, not a regular file, empty, or not an ethimon audit log.
 
     Example:
         >>> verify_log("run.jsonl").summary()   # doctest: +SKIP
         'ok: 1204 records, chain intact, closed; head 3f9c0a1b2c3d4e5f'
     """
     path = os.fspath(path)
-    if os.path.isdir(path):
-        raise AuditFormatError(f"{path}: is a directory, not an audit log")
-    try:
-        fh = open(path, "rb")  # noqa: SIM115 - closed below
-    except OSError as exc:
-        raise AuditFormatError(f"{path}: cannot read: {exc.strerror or exc}") from None
-    with fh:
+    with _open_regular(path) as fh:
         return _verify_stream(path, fh, key, require_closed, expect_head)
 
 
@@ -112,7 +161,13 @@ def _verify_stream(path: str, fh, key: bytes | None, require_closed: bool,
         return AuditReport(False, count, closed, torn, msg, line, prev, log_id, kinds)
 
     lineno = 0
-    for lineno, raw in enumerate(fh, start=1):
+    for lineno, raw in _read_lines(fh):
+        if raw is None:
+            if count == 0:
+                raise AuditFormatError(f"{path}: line 1 is longer than {MAX_RECORD_BYTES} bytes (the audit record "
+                                       "size cap); not an ethimon audit log")
+            return bad(f"line longer than {MAX_RECORD_BYTES} bytes (the audit record size cap): not a record "
+                       "AuditLog writes (appended or corrupted)", lineno)
         if not raw.endswith(b"\n"):
             torn = True
             break
