@@ -226,6 +226,30 @@ def test_old_pending_record_is_a_fault_and_refuses_appends(tmp_path):
     log.close()
 
 
+def test_loop_overrides_every_cycle_while_the_writer_lags_without_a_full_queue(tmp_path):
+    alog_clock = FakeClock()
+    log = AuditLog(tmp_path / "d.jsonl", max_lag_s=0.5, clock=alog_clock)
+    loop, clock = _loop(audit=log)
+    assert not loop.cycle(SAFE).override
+    gate = _gate_writer(log)
+    try:
+        assert log.append("note", text="stuck in the writer")  # e.g. an fsync that takes seconds
+        alog_clock.advance(1.0)  # one record a second old; the queue is nearly empty
+        for _ in range(5):  # no state change, nothing appended: every cycle must still override
+            clock.advance(0.001)
+            d = loop.cycle(SAFE)
+            assert d.override and any("audit log is behind" in f for f in d.faults), d.faults
+    finally:
+        gate.set()
+    assert wait_for(lambda: log.fault is None)
+    for _ in range(3):  # the writer caught up: the override releases by the spec's release rule
+        clock.advance(0.001)
+        d = loop.cycle(SAFE)
+    assert not d.override
+    log.close()
+    assert verify_log(tmp_path / "d.jsonl", require_closed=True).ok
+
+
 def test_a_huge_record_is_capped_not_queued_whole(tmp_path):
     log = AuditLog(tmp_path / "e.jsonl")
     big = {f"s{i}": "v" * 1000 for i in range(3000)}  # ~3 MB of signals
@@ -260,3 +284,135 @@ def test_serialised_records_stay_canonical_with_odd_keys_and_values(tmp_path):
     assert verify_log(tmp_path / "k.jsonl", require_closed=True).ok
     rec = read_log(tmp_path / "k.jsonl")[1]
     assert rec["inputs"] == {"10": 1, "9": 2, "n": {"2": "nan", "1": "-inf"}} and rec["seq"] == 1
+
+
+def test_loop_overrides_every_cycle_after_the_log_is_closed_mid_run(tmp_path):
+    log = AuditLog(tmp_path / "g.jsonl")
+    loop, clock = _loop(audit=log)
+    for _ in range(3):
+        clock.advance(0.001)
+        assert not loop.cycle(SAFE).override
+    log.close()
+    for _ in range(10):  # same inputs, no state change: every cycle must still override
+        clock.advance(0.001)
+        d = loop.cycle(SAFE)
+        assert d.override and any("audit log is closed" in f for f in d.faults), d.faults
+
+
+def test_loop_overrides_every_cycle_after_the_writer_thread_died(tmp_path):
+    log = AuditLog(tmp_path / "h.jsonl")
+    loop, clock = _loop(audit=log)
+    assert not loop.cycle(SAFE).override
+
+    def boom(records, force_sync=False):
+        raise OSError(28, "No space left on device")
+
+    log._write = boom
+    assert log.append("note", text="the write of this record fails")
+    assert wait_for(lambda: not log._thread.is_alive())
+    for _ in range(10):
+        clock.advance(0.001)
+        d = loop.cycle(SAFE)
+        assert d.override and any("audit writer failed" in f for f in d.faults), d.faults
+
+
+# ================================================================ estimator holding the GIL
+def test_stall_between_cycles_is_a_fault_and_counted():
+    loop, clock = _loop(risk=None)
+    inputs = {**SAFE, "p_unsafe": 0.05, "risk_age_s": 0.0}
+    assert not loop.cycle(inputs).override
+    clock.advance(0.001)
+    assert not loop.cycle(inputs).override
+    clock.advance(9.6)  # the whole interpreter was frozen (e.g. a regex holding the GIL)
+    d = loop.cycle(inputs)
+    assert d.override and any("control loop stalled for 9600" in f for f in d.faults), d.faults
+    assert loop.stats.stalls == 1 and loop.stats.max_gap_s == pytest.approx(9.6, abs=0.01)
+
+
+def test_watchdog_reports_a_stall_it_could_not_see_when_the_loop_resumes():
+    clock = FakeClock()
+    fired = []
+    wd = Watchdog(0.02, fired.append, clock=clock)
+    wd.kick()
+    clock.advance(5.0)  # the watchdog thread was starved as well: it never checked
+    wd.kick()           # the loop resumes first
+    assert len(fired) == 1 and "detected after it ended" in fired[0] and wd.fired_count == 1
+    clock.advance(0.001)
+    wd.kick()
+    assert len(fired) == 1
+
+
+def _gil_hog_seconds(target: float = 0.15) -> int:
+    """Smallest n for which a catastrophic regex on 'a' * n + '!' takes >= target seconds here."""
+    n = 16
+    while True:
+        t0 = time.perf_counter()
+        re.match(r"(a+)+$", "a" * n + "!")
+        if time.perf_counter() - t0 >= target or n >= 30:
+            return n
+        n += 1
+
+
+class _RegexEstimator:
+    model_id = "regex-hog"
+
+    def __init__(self, n: int) -> None:
+        self.n = n
+        self.calls = 0
+
+    def probs(self, text):
+        self.calls += 1
+        if self.calls == 3:
+            re.match(r"(a+)+$", "a" * self.n + "!")  # holds the GIL for the whole match
+        return (0.95, 0.05)
+
+
+def test_an_estimator_holding_the_gil_is_reported_as_a_stall():
+    n = _gil_hog_seconds()
+    est = _RegexEstimator(n)
+    src = AsyncRiskSource(est, text="t", rate_hz=50.0)
+    stalls = []
+    try:
+        assert wait_for(lambda: src.fault is None)
+        loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(CELL)), risk=src, period_s=0.002,
+                            deadline_s=0.02, max_risk_age_s=None, watchdog_s=0.05, on_stall=stalls.append,
+                            signals=lambda: SAFE)
+        decisions = []
+        loop._on_decision = decisions.append
+        loop.start()
+        assert wait_for(lambda: est.calls >= 4, timeout=20.0)
+        time.sleep(0.05)
+        loop.stop()
+    finally:
+        src.stop()
+    assert loop.stats.stalls >= 1 and loop.stats.max_gap_s >= 0.1
+    assert any(any("control loop stalled for" in f for f in d.faults) for d in decisions if d.override)
+    assert stalls, "the on_stall callback (hardware stop) was never called"
+
+
+def test_a_factory_string_runs_the_estimator_in_a_child_process(tmp_path):
+    env = {"PYTHONPATH": str(ROOT / "tests")}
+    log = AuditLog(tmp_path / "p.jsonl")
+    loop = GovernedLoop(ethimon.load_spec_text(CELL), risk="_estimators:ScriptedEstimator",
+                        risk_kwargs={"probs": [0.9, 0.1]}, risk_env=env, period_s=0.001, audit=log)
+    try:
+        assert isinstance(loop.risk, AsyncRiskSource) and isinstance(loop.risk.estimator, ProcessEstimator)
+        assert loop.risk.isolated and loop.risk.text is None
+        d = loop.cycle(SAFE)  # no task text yet: fail closed
+        assert d.override and "no task text to score" in d.faults
+        loop.risk.set_text("wipe the table")
+        assert wait_for(lambda: loop.risk.fault is None, timeout=30.0)
+    finally:
+        loop.risk.stop()
+        loop.risk.estimator.close()
+        log.close()
+    start = read_log(tmp_path / "p.jsonl")[1]
+    assert start["kind"] == "start" and start["estimator_isolation"] == "process"
+
+
+def test_an_in_process_estimator_is_recorded_as_not_isolated(tmp_path):
+    log = AuditLog(tmp_path / "q.jsonl")
+    loop, _ = _loop(audit=log)
+    log.close()
+    assert not loop.risk.isolated
+    assert read_log(tmp_path / "q.jsonl")[1]["estimator_isolation"] == "thread"

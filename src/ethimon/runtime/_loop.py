@@ -9,8 +9,10 @@ on the current task text and publishes ``(probs, time)`` snapshots;
 Everything that can go wrong around the monitor ends in an override with the
 reason in ``Decision.faults``: an estimator that raises, returns NaN/inf or
 probabilities that do not sum to 1, hangs or dies; a stale estimate; a control
-cycle that misses its deadline; a signal source that raises; an audit log whose
-queue is full. The one loop::
+cycle that misses its deadline; a loop that stalled between two cycles (found
+when it resumes, even if the whole interpreter was frozen); a signal source that
+raises; an audit log that is closed, broken, full or behind its lag bounds.
+The one loop::
 
     loop = GovernedLoop(Monitor(load_spec("specs/governor.yaml")), signals=read_sensors,
                         risk=AsyncRiskSource(load_estimator(), text=task), period_s=0.001,
@@ -20,6 +22,19 @@ queue is full. The one loop::
 A spec is reloaded with :meth:`GovernedLoop.reload`: compiled (and optionally
 verified) in the caller's thread, swapped in between two cycles; an invalid
 spec is rejected and the running one stays.
+
+Estimator isolation. An estimator running in a thread of this interpreter
+(any plain object given to :class:`AsyncRiskSource`) shares the GIL with the
+loop and its watchdog: an estimator that holds the GIL (a C extension that
+does not release it, a catastrophic regular expression) freezes the loop, the
+watchdog *and* the hang detection until it returns. Nothing in the same
+interpreter can interrupt that; the loop only finds the stall afterwards and
+overrides then (``LoopStats.stalls``). Run the estimator in a child process
+(:class:`ProcessEstimator`: ``GovernedLoop(..., risk="ethimon.risk:load_estimator")``
+does that) so that the loop keeps its rate and a stuck child is killed. In-process
+estimators stay supported because a child process needs an importable
+``module:function`` factory with JSON arguments (no pickled objects cross the
+boundary), loads its own copy of the model and costs a process start.
 """
 
 from __future__ import annotations
@@ -161,6 +176,20 @@ class AsyncRiskSource:
     def text(self) -> str | None:
         """The task text being scored."""
         return self._text
+
+    @property
+    def estimator(self) -> ProbEstimator:
+        """The estimator being run."""
+        return self._est
+
+    @property
+    def isolated(self) -> bool:
+        """Whether the estimator runs outside this interpreter (a :class:`ProcessEstimator`).
+
+        ``False`` means it shares the GIL with the control loop: an estimator
+        that holds the GIL freezes the loop and its watchdog (see the module doc).
+        """
+        return bool(getattr(self._est, "isolated", False))
 
     def set_text(self, text: str | None) -> None:
         """Score a new task text; until its first estimate, readings carry a fault."""
@@ -317,6 +346,9 @@ class ProcessEstimator:
         >>> src = AsyncRiskSource(est, text="pour the water", rate_hz=20)               # doctest: +SKIP
     """
 
+    #: runs outside this interpreter: it cannot freeze the control loop by holding the GIL
+    isolated = True
+
     def __init__(self, factory: str = "ethimon.risk:load_estimator", kwargs: Mapping[str, Any] | None = None, *,
                  timeout_s: float = 1.0, start_timeout_s: float = 120.0, python: str | None = None,
                  env: Mapping[str, str] | None = None) -> None:
@@ -452,6 +484,12 @@ class Watchdog:
     so the watchdog is the only place left to trigger a stop (e.g. the robot's
     hardware stop). It fires once per stall.
 
+    The watchdog thread shares the interpreter: if another thread holds the GIL
+    (an in-process estimator stuck in C code), it is frozen too and cannot fire
+    while the stall lasts. :meth:`kick` therefore checks the gap itself: a
+    stall the thread did not report fires ``on_timeout`` when the loop resumes
+    (late, but never lost).
+
     Args:
         timeout_s: longest allowed gap between kicks.
         on_timeout: called with a one-line reason; it must be quick and must not raise.
@@ -471,10 +509,24 @@ class Watchdog:
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
 
-    def kick(self) -> None:
-        """The loop is alive."""
-        self._last = self._clock()
+    def kick(self) -> str | None:
+        """The loop is alive. Fires now (and returns the reason) for a stall the thread could not report."""
+        now = self._clock()
+        gap = now - self._last
+        reason = None
+        if gap > self.timeout_s and not self._fired:
+            self._fired = True
+            self.fired_count += 1
+            reason = (f"control loop stalled: no cycle for {gap * 1e3:.1f} ms (watchdog {self.timeout_s * 1e3:g} ms; "
+                      "detected after it ended: the watchdog thread could not run either, e.g. another "
+                      "thread held the GIL)")
+            try:
+                self._on_timeout(reason)
+            except Exception:  # noqa: BLE001
+                pass
+        self._last = now
         self._fired = False
+        return reason
 
     def check(self) -> str | None:
         """Fire if overdue; returns the reason when it fired now (also used by the thread)."""
@@ -546,10 +598,13 @@ class LoopStats:
     stale_overrides: int = 0
     audit_drops: int = 0
     audit_records: int = 0
+    audit_faults: int = 0
+    stalls: int = 0
     reloads_applied: int = 0
     reloads_rejected: int = 0
     max_cycle_s: float = 0.0
     max_late_s: float = 0.0
+    max_gap_s: float = 0.0
 
     def as_dict(self) -> dict:
         return dict(self.__dict__)
@@ -581,13 +636,25 @@ class GovernedLoop:
             also be passed to :meth:`cycle` directly. An exception from it is a fault.
         risk: an :class:`AsyncRiskSource`; each cycle feeds its latest ``p`` and
             ``risk_age_s`` (and drops any ``risk``/``p_unsafe`` keys from the signals).
+            A ``"module:function"`` string (or a :class:`ProcessEstimator`) builds one
+            around an estimator in a **child process** (the recommended form: an
+            estimator in a child cannot freeze the loop by holding the GIL); its task
+            text starts as ``None`` (fail closed) until ``loop.risk.set_text(...)``.
             Without it, the signals must carry the risk input themselves.
+        risk_kwargs: JSON-ready keyword arguments for a ``risk`` factory string.
+        risk_env: extra environment variables for that child process.
         period_s: control period (0.001 = 1 kHz).
         deadline_s: a decision ready later than ``scheduled start + deadline_s`` is a
             missed deadline, which is a fault (default: ``period_s``).
+        stall_s: a gap longer than this between the end of one cycle and the start
+            of the next (the loop, or the whole interpreter, was frozen) is a stall:
+            the resuming cycle overrides and ``stats.stalls`` counts it (default:
+            ``period_s + deadline_s``).
         max_risk_age_s: oldest usable estimate when the spec has no ``risk.max_age_s``
             (when it has one, the monitor enforces that). ``None``: no limit here.
         audit: an :class:`~ethimon.audit.AuditLog`; state changes are always logged.
+            Every cycle overrides while the log is unusable (its ``fault``: closed,
+            writer failed or dead, writer behind its lag bounds) or refused a record.
         audit_every_cycle: log every cycle, not just state changes.
         verify: check run on a reloaded spec before the swap: a callable
             ``verify(spec)`` (raising or returning ``False`` rejects it), or ``"smt"``
@@ -617,7 +684,9 @@ class GovernedLoop:
     """
 
     def __init__(self, monitor: Monitor | Spec, *, signals: Callable[[], Mapping[str, Any]] | None = None,
-                 risk: AsyncRiskSource | None = None, period_s: float = 0.001, deadline_s: float | None = None,
+                 risk: AsyncRiskSource | ProcessEstimator | str | None = None,
+                 risk_kwargs: Mapping[str, Any] | None = None, risk_env: Mapping[str, str] | None = None,
+                 period_s: float = 0.001, deadline_s: float | None = None, stall_s: float | None = None,
                  max_risk_age_s: float | None = 0.5, audit: Any = None, audit_every_cycle: bool = False,
                  verify: Callable[[Spec], Any] | str | None = None, watchdog_s: float | None = None,
                  on_stall: Callable[[str], None] | None = None,
@@ -635,7 +704,19 @@ class GovernedLoop:
         self.deadline_s = float(deadline_s) if deadline_s is not None else self.period_s
         if not self.deadline_s > 0:
             raise ValueError(f"deadline_s={deadline_s!r}; expected > 0")
+        self.stall_s = float(stall_s) if stall_s is not None else self.period_s + self.deadline_s
+        if not self.stall_s > 0:
+            raise ValueError(f"stall_s={stall_s!r}; expected > 0")
         self.max_risk_age_s = max_risk_age_s
+        if isinstance(risk, str):
+            risk = ProcessEstimator(risk, risk_kwargs, env=risk_env)
+        elif risk_kwargs is not None or risk_env is not None:
+            raise ValueError("risk_kwargs/risk_env need risk='module:function'")
+        if isinstance(risk, ProcessEstimator):
+            risk = AsyncRiskSource(risk, text=None, classes=monitor.spec.risk.classes)
+        if risk is not None and not callable(getattr(risk, "snapshot", None)):
+            raise TypeError(f"risk must be an AsyncRiskSource, a ProcessEstimator or 'module:function', "
+                            f"got {type(risk).__name__}")
         self.risk = risk
         self.audit = audit
         self.audit_every_cycle = bool(audit_every_cycle)
@@ -658,6 +739,7 @@ class GovernedLoop:
         self._state_key: tuple | None = None
         self._audit_failed = False
         self._stall_reason: str | None = None
+        self._last_end: float | None = None  # end of the previous cycle (stall detection)
         from ..audit._log import spec_hash
         self._spec_hash_fn = spec_hash
         self.spec_sha256 = spec_hash(monitor.spec)
@@ -667,9 +749,14 @@ class GovernedLoop:
         if watchdog_s is not None:
             self.watchdog = Watchdog(watchdog_s, self._stalled)
             self._user_on_stall = on_stall
+        isolation = None
+        if risk is not None:
+            isolation = "process" if getattr(risk, "isolated", False) else "thread"
+        self.estimator_isolation = isolation
         self._log("start", spec=monitor.spec.name, spec_sha256=self.spec_sha256,
                   model_id=risk.model_id if risk is not None else None, period_s=self.period_s,
-                  deadline_s=self.deadline_s, obligations=list(self._ids))
+                  deadline_s=self.deadline_s, stall_s=self.stall_s, obligations=list(self._ids),
+                  estimator_isolation=isolation)
 
     # ------------------------------------------------------------------ properties
     @property
@@ -684,8 +771,8 @@ class GovernedLoop:
         Reads the signals (argument, or the ``signals`` callable), adds the
         latest risk reading, steps the monitor and escalates to an override for
         any fault around it: risk reading fault or too old, signal source
-        error, missed deadline, audit queue full, an override carried over a
-        spec reload.
+        error, missed deadline, a stall before this cycle, an audit log that is
+        unusable or refused a record, an override carried over a spec reload.
         """
         clock = self._clock
         now = clock()
@@ -693,7 +780,27 @@ class GovernedLoop:
         if self._pending is not None:
             self._apply_reload()
         m = self.monitor
+        st = self.stats
         reasons: list[str] = []
+        if self.watchdog is not None:
+            # a stall its thread could not report (it was frozen too) fires now, into this cycle
+            self.watchdog.kick()
+        if self._last_end is not None:
+            gap = now - self._last_end
+            if gap > st.max_gap_s:
+                st.max_gap_s = gap
+            if gap > self.stall_s:
+                st.stalls += 1
+                reasons.append(f"control loop stalled for {gap * 1e3:.1f} ms before cycle {st.cycles} "
+                               f"(stall_s {self.stall_s * 1e3:g} ms): no decision was made meanwhile")
+        if self.audit is not None:
+            try:
+                afault = getattr(self.audit, "fault", None)
+            except Exception as exc:  # noqa: BLE001 - a broken log is a fault, not a crash
+                afault = f"audit log health check raised {type(exc).__name__}: {exc}"[:300]
+            if isinstance(afault, str) and afault:
+                reasons.append(afault)
+                st.audit_faults += 1
         try:
             if signals is None:
                 if self._signals is None:
@@ -737,7 +844,6 @@ class GovernedLoop:
             self.stats.deadline_misses += 1
         if reasons:
             d = m.fault(*reasons, decision=d)
-        st = self.stats
         st.cycles += 1
         if end - now > st.max_cycle_s:
             st.max_cycle_s = end - now
@@ -763,8 +869,7 @@ class GovernedLoop:
         self._next = nxt
         if self.audit is not None:
             self._audit(d, inputs, reading)
-        if self.watchdog is not None:
-            self.watchdog.kick()
+        self._last_end = clock()
         self.last_decision = d
         if self._on_decision is not None:
             try:
@@ -825,6 +930,7 @@ class GovernedLoop:
         if self.watchdog is not None:
             self.watchdog.start()
         self._next = None
+        self._last_end = None  # the time before run() is not a stall
         try:
             while not self._stop.is_set():
                 self.cycle()
