@@ -416,3 +416,68 @@ def test_an_in_process_estimator_is_recorded_as_not_isolated(tmp_path):
     log.close()
     assert not loop.risk.isolated
     assert read_log(tmp_path / "q.jsonl")[1]["estimator_isolation"] == "thread"
+
+
+# ================================================================ reload must not weaken silently
+WEAKER = [
+    ("no obligations and τ 0.99", lambda s: s.replace("threshold: 0.5", "threshold: 0.99")
+     .replace('  - {id: keep_away, require: "human_distance >= 0.5", response: stop_2}\n', "")
+     .replace("obligations:\n", "obligations: []\n"), ["keep_away removed", "threshold raised"]),
+    ("τ raised", lambda s: s.replace("threshold: 0.5", "threshold: 0.6"), ["threshold raised"]),
+    ("smaller hysteresis", lambda s: s.replace("hysteresis: 0.05", "hysteresis: 0.01"), ["release bound"]),
+    ("shorter hold", lambda s: s.replace("hold_cycles: 2", "hold_cycles: 1"), ["hold_cycles lowered"]),
+    ("weaker obligation response", lambda s: s.replace("response: stop_2", "response: safe_pose"),
+     ["keep_away: response stop_2 -> safe_pose"]),
+    ("max_age removed", lambda s: s.replace(", max_age_s: 0.2", ""), ["max_age_s"]),
+    ("max_age larger", lambda s: s.replace("max_age_s: 0.2", "max_age_s: 0.5"), ["max_age_s"]),
+    ("within added", lambda s: s.replace("response: stop_2}", "response: stop_2, within_cycles: 3}"),
+     ["within_cycles"]),
+    ("when added", lambda s: s.replace('require: "human_distance >= 0.5"',
+                                       'when: "human_distance < 5", require: "human_distance >= 0.5"'),
+     ["when"]),
+    ("range widened", lambda s: s.replace("range: [0, 10]", "range: [0, 100]"), ["range"]),
+    ("weight lowered", lambda s: s.replace("threshold: 0.5,", "threshold: 0.5, alpha: 0.3,"), ["alpha"]),
+]
+
+
+@pytest.mark.parametrize("name, edit, needles", WEAKER, ids=[w[0] for w in WEAKER])
+def test_a_weakening_reload_is_refused_unless_allowed(tmp_path, name, edit, needles):
+    log = AuditLog(tmp_path / "r.jsonl")
+    loop, clock = _loop(audit=log)
+    before = loop.spec_sha256
+    weak = ethimon.load_spec_text(edit(CELL))
+    res = loop.reload(weak)
+    assert not res.ok and "weakens monitoring" in res.error and "allow_weaker=True" in res.error
+    for needle in needles:
+        assert any(needle in w for w in res.weakened), (needle, res.weakened)
+    clock.advance(0.001)
+    d = loop.cycle({"human_distance": 0.1})
+    assert loop.spec_sha256 == before and d.violations == ("keep_away",)  # the old spec still runs
+    assert loop.stats.reloads_rejected == 1
+    ok = loop.reload(weak, allow_weaker=True)
+    assert ok.ok and ok.weakened == res.weakened
+    log.close()
+    recs = [r for r in read_log(tmp_path / "r.jsonl") if r["kind"] == "reload"]
+    assert recs[0]["status"] == "rejected" and recs[0]["weakened"] == list(res.weakened)
+    assert recs[1]["status"] == "accepted" and recs[1]["allow_weaker"] is True and recs[1]["weakened"]
+
+
+def test_weaker_responses_release_mode_and_on_fault_are_refused():
+    strict = CELL.replace("mode: auto", "mode: manual").replace("on_fault: safe_pose", "on_fault: stop_1") \
+        .replace("threshold: 0.5,", "threshold: 0.5, response: stop_2,")
+    loop, _ = _loop(spec=strict)
+    res = loop.reload(ethimon.load_spec_text(CELL))
+    assert not res.ok
+    text = " | ".join(res.weakened)
+    assert "release mode manual -> auto" in text and "on_fault stop_1 -> safe_pose" in text
+    assert "risk.response stop_2 -> safe_pose" in text
+
+
+def test_a_stronger_or_equal_reload_is_accepted_and_unjudged_changes_are_reported():
+    loop, _ = _loop()
+    stronger = CELL.replace("threshold: 0.5", "threshold: 0.4").replace("hold_cycles: 2", "hold_cycles: 5") \
+        .replace("response: stop_2}", "response: stop_0}")
+    res = loop.reload(ethimon.load_spec_text(stronger))
+    assert res.ok and res.weakened == ()
+    res = loop.reload(ethimon.load_spec_text(CELL.replace(">= 0.5", ">= 3.0")))
+    assert res.ok and res.weakened == () and any("keep_away: require changed" in u for u in res.unjudged)

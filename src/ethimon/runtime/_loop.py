@@ -21,7 +21,8 @@ The one loop::
 
 A spec is reloaded with :meth:`GovernedLoop.reload`: compiled (and optionally
 verified) in the caller's thread, swapped in between two cycles; an invalid
-spec is rejected and the running one stays.
+spec is rejected and the running one stays, and so is a spec that *weakens*
+monitoring (see :func:`weakenings`) unless ``allow_weaker=True`` is passed.
 
 Estimator isolation. An estimator running in a thread of this interpreter
 (any plain object given to :class:`AsyncRiskSource`) shares the GIL with the
@@ -55,7 +56,7 @@ from ._decision import Decision
 from ._monitor import Monitor
 
 __all__ = ["AsyncRiskSource", "GovernedLoop", "LoopStats", "ProbEstimator", "ProcessEstimator", "ReloadResult",
-           "RiskReading", "Watchdog"]
+           "RiskReading", "Watchdog", "weakenings"]
 
 
 @runtime_checkable
@@ -571,6 +572,11 @@ class ReloadResult:
         spec_sha256: hash of the new spec (``None`` if it did not load).
         error: why it was rejected.
         applied: set once the loop has swapped it in (``wait_applied``).
+        weakened: how the new spec weakens monitoring compared with the running
+            one (see :func:`weakenings`); non-empty only when refused for it or
+            accepted with ``allow_weaker=True``.
+        unjudged: changes whose direction is not judged (condition texts,
+            constants, ...): accepted, and listed in the audit record.
     """
 
     ok: bool
@@ -579,6 +585,8 @@ class ReloadResult:
     error: str | None = None
     applied: threading.Event = field(default_factory=threading.Event, repr=False)
     applied_at_cycle: int | None = None
+    weakened: tuple[str, ...] = ()
+    unjudged: tuple[str, ...] = ()
 
     def wait_applied(self, timeout: float | None = None) -> bool:
         """Block until the loop has swapped the new spec in (``False`` on timeout or rejection)."""
@@ -618,6 +626,114 @@ def _verify_smt(spec: Spec) -> None:
         bad = [f"{f.name}: {f.status}" for f in rep.findings if f.kind == "property"
                and f.status in ("refuted", "unknown")]
         raise EthimonError("verification failed: " + ("; ".join(bad) if bad else str(rep.error)))
+
+
+def _sev(response: Any) -> int:
+    from ..spec._model import Response
+    return Response(response).severity
+
+
+def _release_bound(threshold: float, hysteresis: float) -> Any:
+    try:
+        from ..risk._formula import release_bound
+        return release_bound(threshold, hysteresis)[0]
+    except Exception:  # noqa: BLE001 - fall back to exact decimal subtraction
+        from decimal import Decimal
+        return Decimal(repr(threshold)) - Decimal(repr(hysteresis))
+
+
+def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> tuple[list[str], list[str]]:
+    """How ``new`` weakens monitoring compared with ``old``, judged field by field.
+
+    Weaker (each one line in the first list): an obligation removed; an
+    obligation's response less severe, a ``when`` added where there was none,
+    ``within_cycles`` added or raised; τ raised; a risk weight (α, β, γ) lowered
+    or the variance changed from sample to population (R_e smaller); the unsafe
+    class or the number of classes changed; ``risk.response`` or ``on_fault``
+    less severe; release mode manual → auto; the release bound τ − δ raised
+    (hysteresis shrunk relative to τ) or ``hold_cycles`` lowered; the effective
+    estimate age limit removed or raised (``risk.max_age_s``, else the loop's
+    ``loop_max_age_s``); a signal's range widened or removed; the safe pose's
+    joint-speed limit or tolerance raised.
+
+    Not judged (second list; they may strengthen or weaken): the text of a
+    ``require`` or ``when`` that changed, a constant's value, a signal's type,
+    the safe pose's joints, the estimator settings.
+    """
+    weak: list[str] = []
+    unjudged: list[str] = []
+    old_obs = {o.id: o for o in old.obligations}
+    new_obs = {o.id: o for o in new.obligations}
+    for oid, o in old_obs.items():
+        n = new_obs.get(oid)
+        if n is None:
+            weak.append(f"obligation {oid} removed")
+            continue
+        if _sev(n.response) < _sev(o.response):
+            weak.append(f"obligation {oid}: response {o.response} -> {n.response} (less severe)")
+        if o.when is None and n.when is not None:
+            weak.append(f"obligation {oid}: when added ({n.when!r}): require is no longer checked every cycle")
+        elif o.when != n.when and n.when is not None:
+            unjudged.append(f"obligation {oid}: when changed ({o.when!r} -> {n.when!r})")
+        if o.require != n.require:
+            unjudged.append(f"obligation {oid}: require changed ({o.require!r} -> {n.require!r})")
+        ow, nw = o.within_cycles or 0, n.within_cycles or 0
+        if nw > ow:
+            weak.append(f"obligation {oid}: within_cycles {ow} -> {nw} (more cycles to respond)")
+    ro, rn = old.risk, new.risk
+    if rn.threshold > ro.threshold:
+        weak.append(f"risk.threshold raised {ro.threshold!r} -> {rn.threshold!r} (overrides fire at a higher R_e)")
+    for w in ("alpha", "beta", "gamma"):
+        if getattr(rn, w) < getattr(ro, w):
+            weak.append(f"risk.{w} lowered {getattr(ro, w)!r} -> {getattr(rn, w)!r} (R_e smaller)")
+    if ro.variance == "sample" and rn.variance == "population":
+        weak.append("risk.variance sample -> population (R_e smaller)")
+    if ro.classes != rn.classes or ro.unsafe_index % ro.classes != rn.unsafe_index % rn.classes:
+        weak.append(f"risk classes/unsafe_index changed ({ro.classes}/{ro.unsafe_index} -> "
+                    f"{rn.classes}/{rn.unsafe_index}): what counts as unsafe is redefined")
+    if _sev(rn.response) < _sev(ro.response):
+        weak.append(f"risk.response {ro.response} -> {rn.response} (less severe)")
+    if _sev(new.on_fault) < _sev(old.on_fault):
+        weak.append(f"on_fault {old.on_fault} -> {new.on_fault} (less severe)")
+    if ro.release.mode == "manual" and rn.release.mode == "auto":
+        weak.append("release mode manual -> auto (a latched override now releases by itself)")
+    elif rn.release.mode == "auto":
+        bo = _release_bound(ro.threshold, ro.release.hysteresis)
+        bn = _release_bound(rn.threshold, rn.release.hysteresis)
+        if bn > bo:
+            weak.append(f"release bound τ − δ raised {float(bo):g} -> {float(bn):g} (hysteresis "
+                        f"{ro.release.hysteresis!r} -> {rn.release.hysteresis!r}: a latch releases at a higher R_e)")
+        if rn.release.hold_cycles < ro.release.hold_cycles:
+            weak.append(f"release hold_cycles lowered {ro.release.hold_cycles} -> {rn.release.hold_cycles}")
+    ao = ro.max_age_s if ro.max_age_s is not None else loop_max_age_s
+    an = rn.max_age_s if rn.max_age_s is not None else loop_max_age_s
+    if ao is not None and (an is None or an > ao):
+        weak.append(f"risk.max_age_s {ao!r} -> {'none' if an is None else repr(an)} (older estimates accepted)")
+    for name, so in old.signals.items():
+        sn = new.signals.get(name)
+        if sn is None:
+            continue  # an obligation reading it changed or was removed, and is reported there
+        if sn.type != so.type:
+            unjudged.append(f"signal {name}: type {so.type} -> {sn.type}")
+        elif so.range is not None and (sn.range is None or sn.range[0] < so.range[0] or sn.range[1] > so.range[1]):
+            weak.append(f"signal {name}: range {list(so.range)} -> {list(sn.range) if sn.range else 'none'} "
+                        "(values that faulted are now accepted)")
+    for name, c in old.constants.items():
+        if new.constants.get(name) != c:
+            unjudged.append(f"constant {name} changed or removed")
+    po, pn = old.safe_pose, new.safe_pose
+    if pn.max_joint_speed_rad_s > po.max_joint_speed_rad_s:
+        weak.append(f"safe_pose.max_joint_speed_rad_s raised {po.max_joint_speed_rad_s!r} -> "
+                    f"{pn.max_joint_speed_rad_s!r}")
+    if pn.tolerance_rad > po.tolerance_rad:
+        weak.append(f"safe_pose.tolerance_rad raised {po.tolerance_rad!r} -> {pn.tolerance_rad!r}")
+    if pn.joints_rad != po.joints_rad:
+        unjudged.append("safe_pose.joints_rad changed")
+    if rn.estimator != ro.estimator:
+        unjudged.append("risk.estimator settings changed")
+    if getattr(rn, "allow", None) != getattr(ro, "allow", None):
+        unjudged.append("risk.allow opt-outs changed")
+    return weak, unjudged
 
 
 _NUM = re.compile(r"[-+]?(?:\d+\.?\d*(?:e[-+]?\d+)?|nan|inf)", re.IGNORECASE)
@@ -970,22 +1086,44 @@ class GovernedLoop:
             cb(reason)
 
     # ------------------------------------------------------------------ reload
-    def reload(self, source: str | os.PathLike | Spec) -> ReloadResult:
+    def reload(self, source: str | os.PathLike | Spec, *, allow_weaker: bool = False) -> ReloadResult:
         """Compile (and verify) a new spec in the calling thread, then swap it in between cycles.
+
+        Trust model: whoever can call ``reload`` can change what is monitored,
+        but not *silently weaken* it. A spec that weakens monitoring compared
+        with the running one (see :func:`weakenings`: an obligation removed, τ
+        raised, the release made easier, a response or ``on_fault`` made less
+        severe, ``max_age_s`` removed or raised, a signal range widened, ...) is
+        refused unless ``allow_weaker=True``; the refusal and an allowed
+        weakening are both recorded in the audit log with the list of
+        weakenings. Changes whose direction is not judged (the text of a
+        condition, a constant's value, the estimator settings) are accepted and
+        listed as ``unjudged``; use ``verify=`` for a semantic check.
 
         Args:
             source: a spec file path, or a loaded :class:`~ethimon.Spec`.
+            allow_weaker: accept a spec that weakens monitoring (a deliberate,
+                recorded decision).
 
         Returns:
             A :class:`ReloadResult`. Rejected (``ok=False``, old spec keeps
-            running) if it does not load, compile or verify. Both outcomes are
-            recorded in the audit log, and so is the swap itself.
+            running) if it does not load, compile or verify, or weakens
+            monitoring without ``allow_weaker``. Both outcomes are recorded in
+            the audit log, and so is the swap itself.
         """
         from .._api import load_spec
         label = "<Spec>" if isinstance(source, Spec) else os.fspath(source)
+        weak: tuple[str, ...] = ()
+        unjudged: tuple[str, ...] = ()
         try:
             spec = source if isinstance(source, Spec) else load_spec(source)
             new = Monitor(spec, margins=self.monitor._margins_on)
+            guard = self.max_risk_age_s if self.risk is not None else None
+            w, u = weakenings(self.monitor.spec, spec, loop_max_age_s=guard)
+            weak, unjudged = tuple(w), tuple(u)
+            if weak and not allow_weaker:
+                raise EthimonError("reload refused: the new spec weakens monitoring: " + "; ".join(weak)
+                                   + ". The running spec stays; pass allow_weaker=True to accept a weaker spec")
             if self._verify is not None:
                 verdict = self._verify(spec)
                 if verdict is False:
@@ -993,27 +1131,28 @@ class GovernedLoop:
             h = self._spec_hash_fn(spec)
         except Exception as exc:  # noqa: BLE001 - rejected, never raised into the loop's owner
             msg = str(exc) if isinstance(exc, EthimonError) else f"{type(exc).__name__}: {exc}"
-            res = ReloadResult(False, label, None, msg[:500])
+            res = ReloadResult(False, label, None, msg[:4000], weakened=weak, unjudged=unjudged)
             self.stats.reloads_rejected += 1
             self._log("reload", status="rejected", source=label, error=res.error,
-                      running_spec_sha256=self.spec_sha256)
+                      running_spec_sha256=self.spec_sha256, weakened=list(weak), unjudged=list(unjudged))
             return res
-        res = ReloadResult(True, label, h)
+        res = ReloadResult(True, label, h, weakened=weak, unjudged=unjudged)
         with self._reload_lock:
             old = self._pending
             self._pending = (new, res, label)
         if old is not None:
             self._log("reload", status="superseded", source=old[2], spec_sha256=old[1].spec_sha256)
-        self._log("reload", status="accepted", source=label, spec_sha256=h, running_spec_sha256=self.spec_sha256)
+        self._log("reload", status="accepted", source=label, spec_sha256=h, running_spec_sha256=self.spec_sha256,
+                  allow_weaker=bool(allow_weaker), weakened=list(weak), unjudged=list(unjudged))
         return res
 
-    def reload_async(self, source: str | os.PathLike | Spec) -> Future:
+    def reload_async(self, source: str | os.PathLike | Spec, *, allow_weaker: bool = False) -> Future:
         """:meth:`reload` in a helper thread; the future's result is the :class:`ReloadResult`."""
         fut: Future = Future()
 
         def work() -> None:
             try:
-                fut.set_result(self.reload(source))
+                fut.set_result(self.reload(source, allow_weaker=allow_weaker))
             except BaseException as exc:  # pragma: no cover - reload() catches everything
                 fut.set_exception(exc)
 
