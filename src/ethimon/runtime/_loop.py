@@ -948,7 +948,8 @@ class GovernedLoop:
             reasons.append(self._stall_reason)
             self._stall_reason = None
         if self._audit_failed:
-            reasons.append(f"audit log failed or its queue is full ({self.stats.audit_drops} records refused)")
+            reasons.append(f"audit log failed or its queue is full, or its writer is behind its lag bounds "
+                           f"({self.stats.audit_drops} records refused)")
         if self._carry_latch:
             reasons.append("override latched before the spec reload is carried over")
             self._carry_latch = False
