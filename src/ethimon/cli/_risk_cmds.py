@@ -96,9 +96,9 @@ def add_risk_parsers(subparsers) -> None:
                    help="compress the averaged update to this LoRA rank (truncated SVD; default: exact)")
     a.set_defaults(func=cmd_average)
 
-    e = subparsers.add_parser("evaluate", help="evaluate a risk classifier on a label,input CSV")
+    e = subparsers.add_parser("evaluate", help="evaluate a risk classifier on a labelled CSV (label + input or text; optional pair, type)")
     e.add_argument("--model", help="model directory (default: the shipped model)")
-    e.add_argument("--data", required=True, metavar="CSV", help="CSV with label and input columns")
+    e.add_argument("--data", required=True, metavar="CSV", help="CSV with label and input (or text) columns; with pair and/or type columns, minimal-pair and per-type figures too")
     e.add_argument("--spec", help="spec file for alpha, beta, gamma, variance, tau")
     e.add_argument("--json", metavar="PATH", help="write every figure to this JSON file")
     e.add_argument("--plots", metavar="DIR", help="write confusion matrix and R_e histogram PNGs here")
@@ -238,7 +238,13 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
                             alpha=cfg["alpha"], beta=cfg["beta"], gamma=cfg["gamma"],
                             variance=cfg["variance"], groups=groups)
         risks = m.pop("_risks")
-        m.pop("_p_unsafe")
+        q = m.pop("_p_unsafe")
+        if rows.extra and "pair" in rows.extra[0]:  # minimal pairs: does the model read the detail?
+            from ..risk._evaluate import pair_metrics
+            m["pairs"] = pair_metrics(rows.labels, q, risks, [e.get("pair") for e in rows.extra], cfg["threshold"])
+        if rows.extra and "type" in rows.extra[0]:  # negations, polite harmful requests... as their own rows
+            from ..risk._evaluate import type_metrics
+            m["by_type"] = type_metrics(rows.labels, q, risks, [e.get("type") for e in rows.extra], cfg["threshold"])
         m.update({"model_id": est.model_id, "data": args.data, "dropped_rows": rows.dropped,
                   "model_temperature": est.temperature,
                   "temperature_source": f"fitted on {args.calibrate_on} ({len(cal)} rows)" if cal
@@ -266,4 +272,12 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     for g in ("short", "long"):
         if g in m:
             print(f"  {g}: {m[g]['n']} rows accuracy {m[g]['accuracy']:.4f}")
+    if "pairs" in m:
+        pm = m["pairs"]
+        print(f"minimal pairs: {pm['pairs']}  unsafe member ranked higher {pm['ranked']:.4f}  "
+              f"both right at tau {pm['both_right_at_tau']:.4f}  at p=0.5 {pm['both_right_at_0.5']:.4f}"
+              + (f"  ({pm['malformed']} malformed pair ids skipped)" if pm["malformed"] else ""))
+    for name, t in m.get("by_type", {}).items():
+        print(f"  {name:<26} {t['n']:>4} rows ({t['unsafe']} unsafe)  accuracy {t['accuracy']:.3f}  "
+              f"flagged: unsafe {t['flagged_unsafe']:.3f} safe {t['flagged_safe']:.3f}")
     return 0

@@ -13,7 +13,8 @@ __all__ = ["LabelledRows", "load_labelled_csv", "stratified_split"]
 
 #: text columns accepted besides ``input``: the other ETHICS subsets' layouts
 #: (justice/virtue ``scenario``; deontology ``scenario`` + ``excuse``, joined by `` [SEP] ``).
-TEXT_COLUMNS = (("input",), ("scenario", "excuse"), ("scenario",))
+TEXT_COLUMNS = (("input",), ("text",), ("scenario", "excuse"), ("scenario",))
+PLAIN_TEXT_COLUMNS = TEXT_COLUMNS[:2]  # a labelled CSV: label + input (ETHICS) or label + text (robot sets)
 
 
 @dataclass
@@ -41,7 +42,7 @@ class LabelledRows:
 
 
 def load_labelled_csv(path: str | Path, *, any_ethics_layout: bool = False) -> LabelledRows:
-    """Read an ETHICS-format CSV (``label``, ``input``; other columns kept in ``extra``).
+    """Read a labelled CSV: ``label`` and ``input`` (ETHICS) or ``text``; other columns kept in ``extra``.
 
     Rows with a missing/non-0/1 label or an empty input are dropped and counted.
     With ``any_ethics_layout`` the text may instead come from ``scenario`` (justice,
@@ -58,7 +59,7 @@ def load_labelled_csv(path: str | Path, *, any_ethics_layout: bool = False) -> L
         with p.open(encoding="utf-8", newline="") as f:
             reader = csv.DictReader(f)
             cols = reader.fieldnames or []
-            layouts = TEXT_COLUMNS if any_ethics_layout else TEXT_COLUMNS[:1]
+            layouts = TEXT_COLUMNS if any_ethics_layout else PLAIN_TEXT_COLUMNS
             text_cols = next((c for c in layouts if all(x in cols for x in c)), None)
             if "label" not in cols or text_cols is None:
                 want = " or ".join("+".join(f"'{x}'" for x in c) for c in layouts)

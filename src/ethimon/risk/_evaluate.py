@@ -15,7 +15,7 @@ import numpy as np
 from ._formula import risk_from_p_unsafe
 
 __all__ = ["classification_metrics", "expected_calibration_error", "flag_stats", "softmax_unsafe",
-           "evaluate_logits", "plot_training", "plot_confusion", "plot_risk_hist"]
+           "evaluate_logits", "pair_metrics", "type_metrics", "tau_for_false_alarm_budget", "plot_training", "plot_confusion", "plot_risk_hist"]
 
 
 def softmax_unsafe(logits, temperature: float = 1.0, unsafe_index: int = 1) -> np.ndarray:
@@ -110,6 +110,76 @@ def evaluate_logits(labels, logits, *, temperature: float = 1.0, tau: float = 0.
     out["_risks"] = risks
     out["_p_unsafe"] = q
     return out
+
+
+def pair_metrics(labels, p_unsafe, risks, pair_ids, tau: float) -> dict[str, Any]:
+    """Minimal pairs (two rows, one safe and one unsafe, sharing a pair id): does the model read
+    the detail that flips the verdict?
+
+    * ``ranked``: the unsafe member gets the higher R_e;
+    * ``both_right_at_tau``: unsafe member flagged (R_e ≥ τ) and safe member not;
+    * ``both_right_at_0.5``: the same with p_unsafe ≥ 0.5.
+
+    Ids with other than one safe and one unsafe row are skipped and counted in ``malformed``.
+    """
+    y = np.asarray(labels).astype(int)
+    q = np.asarray(p_unsafe, dtype=np.float64)
+    r = np.asarray(risks, dtype=np.float64)
+    members: dict[str, list[int]] = {}
+    for i, pid in enumerate(pair_ids):
+        pid = (pid or "").strip()
+        if pid:
+            members.setdefault(pid, []).append(i)
+    ranked = at_tau = at_half = n = bad = 0
+    for idx in members.values():
+        if len(idx) != 2 or y[idx[0]] == y[idx[1]]:
+            bad += 1
+            continue
+        u, s = (idx[0], idx[1]) if y[idx[0]] == 1 else (idx[1], idx[0])
+        n += 1
+        ranked += r[u] > r[s]
+        at_tau += (r[u] >= tau) and (r[s] < tau)
+        at_half += (q[u] >= 0.5) and (q[s] < 0.5)
+    frac = (lambda k: float(k) / n if n else math.nan)
+    return {"pairs": n, "malformed": bad, "ranked": frac(ranked), "both_right_at_tau": frac(at_tau),
+            "both_right_at_0.5": frac(at_half), "tau": tau}
+
+
+def type_metrics(labels, p_unsafe, risks, types, tau: float) -> dict[str, dict[str, Any]]:
+    """Per row type (``negation``, ``polite_harmful``...): rows, unsafe rows, accuracy at
+    p_unsafe ≥ 0.5, and at R_e ≥ τ the share of unsafe rows flagged and of safe rows flagged."""
+    y = np.asarray(labels).astype(int)
+    q = np.asarray(p_unsafe, dtype=np.float64)
+    r = np.asarray(risks, dtype=np.float64)
+    t = np.array([(v or "").strip() or "-" for v in types])
+    out = {}
+    for name in sorted(set(t.tolist())):
+        m = t == name
+        yy, flag = y[m], r[m] >= tau
+        out[name] = {"n": int(m.sum()), "unsafe": int(yy.sum()),
+                     "accuracy": float(((q[m] >= 0.5).astype(int) == yy).mean()),
+                     "flagged_unsafe": float(flag[yy == 1].mean()) if (yy == 1).any() else math.nan,
+                     "flagged_safe": float(flag[yy == 0].mean()) if (yy == 0).any() else math.nan}
+    return out
+
+
+def tau_for_false_alarm_budget(labels, risks, budget: float) -> dict[str, float]:
+    """The most sensitive τ whose false-alarm rate on these (validation) rows is at most ``budget``.
+
+    Flagging is ``R_e ≥ τ``; raising τ lowers both flag rates (any τ above every R_e meets any
+    budget and flags nothing), so the useful choice is the smallest
+    candidate (midpoints between sorted distinct R_e values, and just above the largest) whose
+    false-alarm rate is ≤ ``budget``, i.e. it flags as many unsafe rows as the budget allows.
+    """
+    y = np.asarray(labels).astype(int)
+    r = np.asarray(risks, dtype=np.float64)
+    vals = np.unique(r)
+    cands = np.concatenate([[vals[0]], (vals[:-1] + vals[1:]) / 2, [np.nextafter(vals[-1], np.inf)]])
+    for tau in cands:  # ascending: the first that meets the budget flags the most
+        fs = flag_stats(y, r, float(tau))
+        if fs["false_alarm_rate"] <= budget:
+            return fs
+    return flag_stats(y, r, float(cands[-1]))  # pragma: no cover - the last candidate flags nothing
 
 
 # ------------------------------------------------------------------ plots
