@@ -56,7 +56,7 @@ def test_risk_input_priority_risk_then_p_unsafe_then_p():
     ({"d": math.inf}, "outside"),
     ({"d": "3"}, "must be a number"),
     ({"d": True}, "must be a number"),
-    ({"d": [1.0]}, "not a number"),
+    ({"d": [1.0]}, "must be a number"),
     ({"d": np.float32(11.0)}, "outside"),
     ({"ok": 2}, "true/false"),
     ({"ok": "yes"}, "true/false"),

@@ -393,12 +393,80 @@ def build_machine(plan: Plan) -> Machine:
         violated.append(v)
         if r is not None:
             resets.append(r)
-        if ob.when is not None:
-            rw, rr = g.rob(ob.when), g.rob(ob.require)
+        rw = g.rob(ob.when) if ob.when is not None else None
+        rr = g.rob(ob.require)
+        if ob.within_cycles:
+            mf, mr = _bounded_margin(rw, rr, ob.within_cycles)
+            margins.append(mf)
+            resets.append(mr)
+        elif rw is not None:
             margins.append(lambda rw=rw, rr=rr: max(-rw(), rr()))
         else:
-            margins.append(g.rob(ob.require))
+            margins.append(rr)
     return Machine(g.vals, g.tv, tuple(updates), tuple(resets), tuple(violated), tuple(margins))
+
+
+def _safe(f: Callable[[], float]) -> float:
+    try:
+        return f()
+    except Exception:  # a margin that cannot be computed is NaN (e.g. a division by zero that
+        return math.nan  # the verdict short-circuits past); it is a diagnostic, never a fault
+
+
+def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: int):
+    """Robustness of a bounded response ``when ⇒ require within n cycles``, O(1) amortised.
+
+    The obligation is violated at ``t`` iff some trigger ``s ≤ t − n`` saw ``require``
+    false at every cycle of ``s .. t``. Its robustness is therefore
+
+        M(t) = min over s ≤ t − n of  max(−rob(when)(s), max over u in s..t of rob(require)(u))
+
+    (+inf while no trigger is old enough), whose sign agrees with the verdict. Since
+    ``max(·, x)`` is monotone, ``M(t) = min(max(M(t−1), rr(t)), max(−rw(t−n), W(t)))``
+    with ``W(t)`` the maximum of ``rr`` over the last ``n + 1`` cycles, kept by a
+    monotone deque over a ring buffer (no per-cycle allocation beyond the deque's ints).
+
+    Must be called exactly once per valid cycle (the monitor computes every margin
+    once per cycle, and each call here never raises); the returned reset clears it.
+    """
+    from collections import deque
+    size = n + 1
+    ring_w = [0.0] * size  # −rob(when) of the last n + 1 cycles
+    ring_r = [0.0] * size  # rob(require) of the last n + 1 cycles
+    win: deque[int] = deque()  # cycle numbers whose ring_r is decreasing: the window max at win[0]
+    t = -1
+    m = INF
+
+    def margin() -> float:
+        nonlocal t, m
+        t += 1
+        a = -_safe(rw) if rw is not None else -INF
+        b = _safe(rr)
+        i = t % size
+        ring_w[i] = a
+        ring_r[i] = b
+        while win and not ring_r[win[-1] % size] > b:
+            win.pop()
+        win.append(t)
+        if win[0] < t - n:
+            win.popleft()
+        if b > m:
+            m = b
+        if t >= n:
+            cand = ring_w[(t - n) % size]
+            top = ring_r[win[0] % size]
+            if top > cand:
+                cand = top
+            if cand < m or cand != cand:
+                m = cand
+        return m
+
+    def reset() -> None:
+        nonlocal t, m
+        t = -1
+        m = INF
+        win.clear()
+    return margin, reset
 
 
 def _fused_comparison(g: _Gen, ob, mbuf: list, k: int):

@@ -10,6 +10,7 @@ fail-closed override: no exception escapes ``step``.
 from __future__ import annotations
 
 import math
+from math import isfinite as _isfinite
 from collections.abc import Mapping
 from typing import Any
 
@@ -17,8 +18,9 @@ from ..compiler._check import RISK_NAME, Plan
 from ..spec._expr import TEMPORAL, Call, Name, walk
 from ..compiler._codegen import build_machine
 from ..spec._model import Response, Spec
-from ..risk._formula import risk_bounds, risk_from_probs
+from ..risk._formula import release_bound, risk_bounds, risk_from_probs
 from ._decision import Decision
+from ._inputs import as_bool, as_number, as_probs
 
 __all__ = ["Monitor", "plan_of"]
 
@@ -48,23 +50,20 @@ def stateless_slots(plan: Plan, ob) -> frozenset[int] | None:
     return frozenset(used)
 
 
-def _within(v: Any, lo: float, hi: float) -> bool:
-    """``lo <= v <= hi``, False for values that do not compare with numbers (a bad input, not an error)."""
-    try:
-        return bool(lo <= v <= hi)
-    except TypeError:
-        return False
-
-
-def _margins_or_nan(fns) -> tuple[float, ...]:
-    """Margins one by one; NaN where evaluating one raises (robustness ignores short-circuits,
-    so ``y <= 0 or x / y < 2`` can divide by zero in its margin but not in its verdict)."""
+def _all_margins(fns: tuple) -> tuple[float, ...]:
+    """Every margin, each computed exactly once (bounded-response margins keep state); NaN
+    where one raises (robustness ignores short-circuits, so ``y <= 0 or x / y < 2`` can divide
+    by zero in its margin but not in its verdict)."""
     out = []
-    for f in fns:
+    i, n = 0, len(fns)
+    while i < n:
         try:
-            out.append(f())
+            while i < n:
+                out.append(fns[i]())
+                i += 1
         except Exception:
             out.append(math.nan)
+            i += 1
     return tuple(out)
 
 
@@ -140,7 +139,7 @@ class Monitor:
         self._risk_sev = Response(r.response).severity
         self._fault_sev = Response(plan.spec.on_fault).severity
         self._auto = r.release.mode == "auto"
-        self._below = float(r.threshold - r.release.hysteresis)
+        self._below = release_bound(r.threshold, r.release.hysteresis)[1]  # exact: 0.27 - 0.05 is 0.22
         self._hold = int(r.release.hold_cycles)
         self._alpha, self._beta, self._gamma = float(r.alpha), float(r.beta), float(r.gamma)
         self._sample = r.variance == "sample"
@@ -182,47 +181,32 @@ class Monitor:
 
     # -- the hot path --------------------------------------------------------------
     def _risk(self, get) -> tuple[float | None, str | None]:
+        """R_e from this cycle's risk input, converted once at the boundary (see ``_inputs``)."""
         r = get("risk")
         if r is not None:
-            try:
-                ok = r.__class__ is not bool and self._rlo <= r <= self._rhi
-            except TypeError:  # not a number: bad input, not an internal error
-                ok = False
-            if not ok:
+            f = r if r.__class__ is float else as_number(r)
+            if f is None or not self._rlo <= f <= self._rhi:
                 return None, f"risk input R_e={r!r} is NaN, not a number or outside [{self._rlo:g}, {self._rhi:g}]"
-            return float(r), None
+            return f, None
         q = get("p_unsafe")
         if q is not None:
             if self._k != 2:
                 return None, f"p_unsafe alone needs a 2-class spec (risk.classes is {self._k}); pass p"
-            try:
-                ok = q.__class__ is not bool and 0.0 <= q <= 1.0
-            except TypeError:
-                ok = False
-            if not ok:
+            f = q if q.__class__ is float else as_number(q)
+            if f is None or not 0.0 <= f <= 1.0:
                 return None, f"p_unsafe={q!r} is NaN, not a number or outside [0, 1]"
-            d = q - 0.5
+            d = f - 0.5
             var = 2.0 * d * d if self._sample else d * d
-            top = q if q >= 0.5 else 1.0 - q
-            return self._alpha * q + self._beta * (1.0 - top) + self._gamma * var, None
+            top = f if f >= 0.5 else 1.0 - f
+            return self._alpha * f + self._beta * (1.0 - top) + self._gamma * var, None
         p = get("p")
         if p is None:
             return None, "no risk input this cycle (give risk, p_unsafe or p)"
-        try:
-            n = len(p)
-            if n != self._k:
-                return None, f"p has {n} classes, the spec expects {self._k}"
-            s = 0.0
-            for v in p:
-                if not (0.0 <= v <= 1.0):
-                    return None, f"p contains {v!r} (NaN, not a number or outside [0, 1])"
-                s += v
-            if abs(s - 1.0) > 1e-3:
-                return None, f"p sums to {s:.6g}, not 1"
-            return risk_from_probs(p, self._alpha, self._beta, self._gamma,
-                                   "sample" if self._sample else "population", self._uidx), None
-        except TypeError:
-            return None, f"p must be a sequence of probabilities, got {type(p).__name__}"
+        probs, why = as_probs(p, self._k)
+        if why is not None:
+            return None, why
+        return risk_from_probs(probs, self._alpha, self._beta, self._gamma,
+                               "sample" if self._sample else "population", self._uidx), None
 
     def step(self, signals: Mapping[str, Any]) -> Decision:
         """Check one control cycle.
@@ -248,39 +232,39 @@ class Monitor:
                     (faults := faults or []).append(f"signal {name!r} is missing")
                     (bad := bad or []).append(slot)
                 elif is_bool:
-                    if v is True or v is False:
-                        vals[slot] = v
-                    elif v.__class__ is not str and (v == 0 or v == 1):
-                        vals[slot] = bool(v)
-                    else:
+                    b = v if (v is True or v is False) else as_bool(v)
+                    if b is None:
                         (faults := faults or []).append(f"signal {name!r} must be true/false, got {v!r}")
                         (bad := bad or []).append(slot)
-                elif v.__class__ is float:  # the common case first
-                    if lo <= v <= hi:
-                        vals[slot] = v
+                    else:
+                        vals[slot] = b
+                else:
+                    # the common case (a built-in float) first; anything else is converted once
+                    f = v if v.__class__ is float else as_number(v)
+                    if f is None:
+                        (faults := faults or []).append(
+                            f"signal {name!r} must be a number, got {v!r} (a finite int, float or numpy scalar; "
+                            f"not a bool, string or NaN)")
+                        (bad := bad or []).append(slot)
+                    elif lo <= f <= hi:
+                        vals[slot] = f
                     else:
                         (faults := faults or []).append(
                             f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]")
                         (bad := bad or []).append(slot)
-                elif v.__class__ is bool or v.__class__ is str:
-                    (faults := faults or []).append(f"signal {name!r} must be a number, got {v!r}")
-                    (bad := bad or []).append(slot)
-                elif _within(v, lo, hi):  # int, numpy scalars; a list or None-like is bad input
-                    vals[slot] = v
-                else:
-                    (faults := faults or []).append(
-                        f"signal {name!r} = {v!r} is NaN, not a number or outside its range [{lo:g}, {hi:g}]")
-                    (bad := bad or []).append(slot)
             r, why = self._risk(get)
+            if why is None and not _isfinite(r):  # weights and inputs are finite; never trust it blindly
+                r, why = None, f"R_e={r!r} is not finite"
             if why is not None:
                 (faults := faults or []).append(why)
                 (bad := bad or []).append(self._rslot)
             if self._max_age is not None:
                 age = get("risk_age_s")
+                a = None if age is None else as_number(age)
                 if age is None:
                     (faults := faults or []).append("risk_age_s is missing (the spec sets risk.max_age_s)")
                     (bad := bad or []).append(self._rslot)
-                elif age.__class__ is bool or not _within(age, 0.0, self._max_age):
+                elif a is None or not 0.0 <= a <= self._max_age:
                     (faults := faults or []).append(
                         f"risk estimate is stale or its age is invalid: {age!r} s > max_age_s {self._max_age:g}")
                     (bad := bad or []).append(self._rslot)
@@ -308,10 +292,7 @@ class Monitor:
                     sev = self._risk_sev
             margins = _EMPTY
             if self._margins_on:
-                try:
-                    margins = tuple([f() for f in self._margin_fns])
-                except Exception:  # a margin (diagnostic) that cannot be computed is NaN, never a fault
-                    margins = _margins_or_nan(self._margin_fns)
+                margins = _all_margins(self._margin_fns)  # a margin that cannot be computed is NaN
             if sev:
                 if sev > self._latched:
                     self._latched = sev
@@ -329,10 +310,11 @@ class Monitor:
                     self._clean = 0
                 return Decision(True, _RESPONSES[self._latched], _EMPTY, margins, r, cycle, True, _EMPTY)
             return Decision(False, Response.NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
-        except Exception as exc:  # fail closed: nothing escapes into the control loop
+        except BaseException as exc:  # fail closed: nothing escapes into the control loop, not even
+            # a KeyboardInterrupt raised by a hostile input's __float__: the arm is told to stop instead
             try:
                 reason = f"internal error: {type(exc).__name__}: {exc}"
-            except Exception:  # pragma: no cover - a broken __str__
+            except BaseException:  # pragma: no cover - a broken __str__
                 reason = "internal error"
             return self._fault(cycle, (reason,), r if r.__class__ is float else None)
 

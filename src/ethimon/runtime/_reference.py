@@ -30,19 +30,28 @@ Semantics (the definition both implementations follow), for a history
   stop 0 on a contact force); one that raises is skipped.
 * Override latches at the most severe response seen; with ``release.mode: auto``
   it releases at the cycle that completes ``hold_cycles`` consecutive cycles
-  with no violation and R_e < τ − δ.
+  with no violation and R_e < τ − δ, where τ − δ is exact (the decimals the
+  spec writes, so 0.27 − 0.05 is 0.22) and R_e is compared as a rational.
+* Inputs are read through :mod:`ethimon.runtime._inputs` (the one boundary rule:
+  a finite built-in float, or a bool for a bool signal, converted once).
+* Margins: robustness of ``require`` (``max(−when, require)`` with a ``when``);
+  with ``within_cycles = n`` the minimum over the triggers ``j ≤ t − n`` of
+  ``max(−when(j), max over k in j..t of require(k))``, +inf if there is none.
+  A margin whose evaluation raises is NaN.
 """
 
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 from typing import Any
 
 from ..compiler._check import RISK_NAME, Plan
 from ..spec._expr import TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
 from ..spec._model import Response, Spec
-from ..risk._formula import risk_bounds, risk_from_p_unsafe, risk_from_probs
+from ..risk._formula import release_bound, risk_bounds, risk_from_p_unsafe, risk_from_probs
 from ._decision import Decision
+from ._inputs import as_bool, as_number, as_probs
 from ._monitor import plan_of
 
 __all__ = ["ReferenceMonitor"]
@@ -128,6 +137,49 @@ class ReferenceMonitor:
                 return False
         raise TypeError(node)  # pragma: no cover
 
+    def rob(self, node: Node, t: int) -> float:
+        """Quantitative robustness of a condition at ``t`` (> 0 true, < 0 false, ±inf for boolean leaves)."""
+        if isinstance(node, Binary):
+            op = node.op
+            if op in ("<", "<=", ">", ">=", "==", "!=") and self.plan.type_of(node.left).kind == "num":
+                a, b = self.ev(node.left, t), self.ev(node.right, t)
+                return {"<": b - a, "<=": b - a, ">": a - b, ">=": a - b, "==": -abs(a - b),
+                        "!=": abs(a - b)}[op]
+            if op == "and":
+                return min(self.rob(node.left, t), self.rob(node.right, t))
+            if op == "or":
+                return max(self.rob(node.left, t), self.rob(node.right, t))
+            if op == "implies":
+                return max(-self.rob(node.left, t), self.rob(node.right, t))
+        if isinstance(node, Unary) and node.op == "not":
+            return -self.rob(node.operand, t)
+        return math.inf if self.ev(node, t) else -math.inf
+
+    def _rob_or_nan(self, node: Node, t: int) -> float:
+        try:
+            return self.rob(node, t)
+        except Exception:
+            return math.nan
+
+    def margin(self, ob, t: int) -> float:
+        """The obligation's margin at ``t`` (see the module docstring)."""
+        n = ob.within_cycles
+        if not n:
+            try:
+                r = self.rob(ob.require, t)
+                return r if ob.when is None else max(-self.rob(ob.when, t), r)
+            except Exception:
+                return math.nan
+        rr = [self._rob_or_nan(ob.require, k) for k in range(t + 1)]
+        best = math.inf
+        for j in range(0, t - n + 1):
+            w = -self._rob_or_nan(ob.when, j) if ob.when is not None else -math.inf
+            vals = [w] + rr[j:t + 1]
+            if any(v != v for v in vals):
+                return math.nan
+            best = min(best, max(vals))
+        return best
+
     def _names(self, ob) -> set[str]:
         names = {s.name for s in self.plan.signals} | {RISK_NAME}
         return {n.id for root in (ob.when, ob.require) if root is not None
@@ -164,36 +216,31 @@ class ReferenceMonitor:
         lo, hi = risk_bounds(r.alpha, r.beta, r.gamma, r.variance) if r.classes == 2 else (0.0, 1.0)
         lo, hi = min(0.0, lo), max(1.0, hi)
         if signals.get("risk") is not None:
-            v = signals["risk"]
-            if isinstance(v, (int, float)) and not isinstance(v, bool) and lo <= v <= hi:
-                return float(v), None
+            v = as_number(signals["risk"])
+            if v is not None and lo <= v <= hi:
+                return v, None
             return None, "bad risk"
         if signals.get("p_unsafe") is not None:
-            q = signals["p_unsafe"]
-            if r.classes == 2 and isinstance(q, (int, float)) and not isinstance(q, bool) and 0 <= q <= 1:
+            q = as_number(signals["p_unsafe"])
+            if r.classes == 2 and q is not None and 0 <= q <= 1:
                 return risk_from_p_unsafe(q, r.alpha, r.beta, r.gamma, r.variance), None
             return None, "bad p_unsafe"
         if signals.get("p") is not None:
-            try:  # not a sequence, or entries that are not numbers: bad input, never an exception
-                p = list(signals["p"])
-                if len(p) == r.classes and all(0 <= v <= 1 for v in p) and abs(sum(p) - 1) <= 1e-3:
-                    return risk_from_probs(p, r.alpha, r.beta, r.gamma, r.variance, r.unsafe_index), None
-            except TypeError:
-                pass
+            p, why = as_probs(signals["p"], r.classes)
+            if why is None:
+                re = risk_from_probs(p, r.alpha, r.beta, r.gamma, r.variance, r.unsafe_index)
+                return (re, None) if math.isfinite(re) else (None, "R_e not finite")
             return None, "bad p"
         return None, "no risk"
 
-    def _valid_signal(self, sig, v) -> bool:
+    def _value(self, sig, v) -> Any:
+        """The converted input, or ``None`` if it is unusable."""
         if v is None:
-            return False
+            return None
         if sig.kind == "bool":
-            return v is True or v is False or (not isinstance(v, str) and (v == 0 or v == 1))
-        if isinstance(v, (bool, str)):
-            return False
-        try:
-            return bool(sig.lo <= v <= sig.hi)
-        except TypeError:
-            return False
+            return as_bool(v)
+        f = as_number(v)
+        return f if f is not None and sig.lo <= f <= sig.hi else None
 
     def step(self, signals: dict[str, Any]) -> Decision:
         cycle = self.cycle
@@ -204,15 +251,16 @@ class ReferenceMonitor:
         risk_ok = why is None
         if spec.risk.max_age_s is not None:
             age = signals.get("risk_age_s")
-            risk_ok = (risk_ok and isinstance(age, (int, float)) and not isinstance(age, bool)
-                       and 0 <= age <= spec.risk.max_age_s)
-        ok = risk_ok and all(self._valid_signal(s, signals.get(s.name)) for s in self.plan.signals)
+            age = None if age is None else as_number(age)
+            risk_ok = risk_ok and age is not None and 0 <= age <= spec.risk.max_age_s
+        conv = {s.name: self._value(s, signals.get(s.name)) for s in self.plan.signals}
+        ok = risk_ok and all(v is not None for v in conv.values())
         bad_input = not ok
         violations: list[str] = []
+        margins: tuple[float, ...] = ()
         sev = 0
         if ok:
-            env = {s.name: (bool(signals[s.name]) if s.kind == "bool" else signals[s.name])
-                   for s in self.plan.signals}
+            env = dict(conv)
             env[RISK_NAME] = r
             self.history.append(env)
             t = len(self.history) - 1
@@ -222,6 +270,7 @@ class ReferenceMonitor:
                     if self._violated(ob, t):
                         violations.append(ob.id)
                         sev = max(sev, ob.response.severity)
+                margins = tuple(self.margin(ob, t) for ob in self.plan.obligations)
             except Exception:
                 ok = False
         if not ok:
@@ -230,8 +279,7 @@ class ReferenceMonitor:
             found = []
             if bad_input:
                 # stateless obligations whose inputs are all valid are still judged
-                valid = {s.name: (bool(signals[s.name]) if s.kind == "bool" else signals[s.name])
-                         for s in self.plan.signals if self._valid_signal(s, signals.get(s.name))}
+                valid = {name: v for name, v in conv.items() if v is not None}
                 if risk_ok:
                     valid[RISK_NAME] = r
                 for ob in self.plan.obligations:
@@ -260,16 +308,16 @@ class ReferenceMonitor:
         if sev:
             self.latched = max(self.latched, sev)
             self.clean = 0
-            return Decision(True, _BY_SEV[self.latched], tuple(violations), (), r, cycle, False, ())
+            return Decision(True, _BY_SEV[self.latched], tuple(violations), margins, r, cycle, False, ())
         if self.latched:
             rel = spec.risk.release
-            if rel.mode == "auto" and r < tau - rel.hysteresis:
+            if rel.mode == "auto" and Fraction(r) < release_bound(tau, rel.hysteresis)[0]:
                 self.clean += 1
                 if self.clean >= rel.hold_cycles:
                     self.latched = 0
                     self.clean = 0
-                    return Decision(False, Response.NONE, (), (), r, cycle, False, ())
+                    return Decision(False, Response.NONE, (), margins, r, cycle, False, ())
             else:
                 self.clean = 0
-            return Decision(True, _BY_SEV[self.latched], (), (), r, cycle, True, ())
-        return Decision(False, Response.NONE, (), (), r, cycle, False, ())
+            return Decision(True, _BY_SEV[self.latched], (), margins, r, cycle, True, ())
+        return Decision(False, Response.NONE, (), margins, r, cycle, False, ())
