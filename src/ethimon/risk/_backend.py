@@ -16,6 +16,7 @@ from __future__ import annotations
 import hashlib
 import importlib.util
 import json
+import math
 import os
 import stat
 import warnings
@@ -417,13 +418,132 @@ class LoadedModel:
 
 
 def read_manifest(d: Path) -> dict | None:
+    """The checked manifest of ``d`` (see :func:`check_manifest`), or ``None`` if there is none."""
     p = d / MANIFEST
-    if not p.is_file():
+    if not (p.exists() or p.is_symlink()):
         return None
+    return check_manifest(p, read_json_object(p, "the manifest"))
+
+
+MANIFEST_KEYS = ("format", "name", "base", "base_sha256", "adapter_file", "adapter_sha256", "lora", "pooling",
+                 "num_labels", "unsafe_index", "labels", "max_length", "truncation", "temperature",
+                 "svd_rel_error", "averaged_from")
+MAX_LENGTH = 8192
+_HEX64 = frozenset("0123456789abcdef")
+
+
+def _is_int(v: Any) -> bool:
+    return isinstance(v, int) and not isinstance(v, bool)
+
+
+def _is_num(v: Any) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _is_sha(v: Any) -> bool:
+    return isinstance(v, str) and len(v) == 64 and set(v) <= _HEX64
+
+
+def _good_lora(lora: Any) -> bool:
+    if not (isinstance(lora, dict) and set(lora) <= {"r", "alpha", "targets"}):
+        return False
+    r, alpha, targets = lora.get("r"), lora.get("alpha"), lora.get("targets", [])
+    return (_is_int(r) and 1 <= r <= 4096 and _is_num(alpha) and alpha > 0
+            and isinstance(targets, list) and all(isinstance(t, str) for t in targets))
+
+
+def check_manifest(p: Path, m: dict) -> dict:
+    """Refuse a manifest that is not exactly what ethimon writes; return it unchanged.
+
+    Every field is checked for type and range (a negative temperature would
+    swap p_safe and p_unsafe; an out-of-range unsafe index reads another
+    class; a huge ``num_labels`` allocates without bound; a pinned adapter
+    file must be a ``.safetensors`` file inside the directory). Unknown keys
+    are refused, so a misspelt field is not silently replaced by its default.
+
+    Raises:
+        ModelError: naming ``p`` and the offending field.
+    """
+    def bad(key: str, want: str) -> ModelError:
+        return ModelError(f"{p}: {key!r} = {repr(m.get(key))[:80]}: {want}")
+
+    for key in m:
+        if key not in MANIFEST_KEYS:
+            import difflib
+            close = difflib.get_close_matches(str(key), MANIFEST_KEYS, n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else f" (known: {', '.join(MANIFEST_KEYS)})"
+            raise ModelError(f"{p}: unknown key {key!r}{hint}")
+    if m.get("format") != ADAPTER_FORMAT:
+        raise bad("format", f"{ADAPTER_FORMAT!r} expected")
+    if "name" in m and not (isinstance(m["name"], str) and 0 < len(m["name"]) <= 200):
+        raise bad("name", "a string of 1..200 characters expected")
+    base = m.get("base")
+    if not (isinstance(base, dict) and len(base) == 1 and set(base) <= {"package", "path"}
+            and isinstance(next(iter(base.values())), str) and next(iter(base.values()))):
+        raise bad("base", "an object with one non-empty string 'package' or 'path' expected")
+    if "base_sha256" in m and not _is_sha(m["base_sha256"]):
+        raise bad("base_sha256", "64 lowercase hex digits expected")
+    if not _is_sha(m.get("adapter_sha256")):
+        raise bad("adapter_sha256", "64 lowercase hex digits expected (the adapter file's sha256)")
+    af = m.get("adapter_file", "adapter.safetensors")
+    if not (isinstance(af, str) and af == Path(af).name and af not in ("", ".", "..") and "\\" not in af):
+        raise bad("adapter_file", "a file name inside the model directory expected")
+    if not af.endswith(".safetensors"):
+        what = "a pickle" if af.lower().endswith(PICKLE_SUFFIXES) else "not safetensors"
+        raise bad("adapter_file", f"{what}; ethimon loads .safetensors adapters only, never pickles")
+    if "lora" in m and not _good_lora(m["lora"]):
+        raise bad("lora", "an object with an integer 'r' in 1..4096, a finite 'alpha' > 0 and an "
+                          "optional list of strings 'targets' expected")
+    if "pooling" in m and m["pooling"] not in ("mean", "cls"):
+        raise bad("pooling", "'mean' or 'cls' expected")
+    n = m.get("num_labels", 2)
+    if not (_is_int(n) and 2 <= n <= MAX_LABELS):
+        raise bad("num_labels", f"an integer in 2..{MAX_LABELS} expected")
+    if "unsafe_index" in m and not (_is_int(m["unsafe_index"]) and 0 <= m["unsafe_index"] < n):
+        raise bad("unsafe_index", f"an integer in 0..{n - 1} (num_labels - 1) expected")
+    if "labels" in m and not (isinstance(m["labels"], list) and len(m["labels"]) == n
+                              and all(isinstance(x, str) for x in m["labels"])):
+        raise bad("labels", f"a list of {n} strings (num_labels) expected")
+    if "max_length" in m and not (_is_int(m["max_length"]) and 8 <= m["max_length"] <= MAX_LENGTH):
+        raise bad("max_length", f"an integer in 8..{MAX_LENGTH} expected")
+    if "truncation" in m and m["truncation"] not in ("head", "head_tail"):
+        raise bad("truncation", "'head' or 'head_tail' expected")
+    if "temperature" in m and not (_is_num(m["temperature"]) and m["temperature"] > 0):
+        raise bad("temperature", "a finite number > 0 expected (T <= 0 would flip or break the "
+                                 "probabilities)")
+    if "svd_rel_error" in m and not (m["svd_rel_error"] is None
+                                     or (_is_num(m["svd_rel_error"]) and m["svd_rel_error"] >= 0)):
+        raise bad("svd_rel_error", "a finite number >= 0 expected")
+    if "averaged_from" in m and not (isinstance(m["averaged_from"], list)
+                                     and all(isinstance(x, dict) for x in m["averaged_from"])):
+        raise bad("averaged_from", "a list of objects expected")
+    return m
+
+
+def load_adapter_tensors(adapter: Path) -> dict:
+    """The tensors of a safetensors adapter file; anything else (a pickle) or a NaN/inf is refused."""
+    from safetensors.torch import load_file
     try:
-        return json.loads(p.read_text(encoding="utf-8"))
-    except (OSError, json.JSONDecodeError) as exc:
-        raise ModelError(f"{p}: not valid JSON: {exc}") from exc
+        tensors = load_file(str(adapter))
+    except Exception as exc:  # noqa: BLE001 - SafetensorError, OSError, ...: never fall back to pickle
+        raise ModelError(f"{adapter}: not a valid safetensors file ({type(exc).__name__}: {str(exc)[:160]}); "
+                         "ethimon loads safetensors adapters only, never pickles") from None
+    for key, t in tensors.items():
+        if not t.is_floating_point():
+            raise ModelError(f"{adapter}: tensor {key!r} has dtype {t.dtype}; floating-point weights expected")
+        if not bool(torch.isfinite(t).all()):
+            raise ModelError(f"{adapter}: tensor {key!r} holds NaN/inf values")
+    return tensors
+
+
+def usable_positions(config: Any) -> int | None:
+    """How many tokens the encoder can take (RoBERTa-style position ids start at padding_idx + 1)."""
+    mp = getattr(config, "max_position_embeddings", None)
+    if not _is_int(mp):
+        return None
+    if getattr(config, "model_type", "") in ("roberta", "xlm-roberta", "camembert"):
+        mp -= 2
+    return mp
 
 
 def resolve_base(d: Path, manifest: dict) -> Path:
@@ -458,23 +578,20 @@ def checked_adapter(d: Path, manifest: dict) -> tuple[Path, str]:
 
 def load_model(model_dir: str | os.PathLike, *, max_length: int | None = None) -> LoadedModel:
     """Load an ethimon LoRA adapter dir or a plain HF sequence-classification dir."""
-    from safetensors.torch import load_file
-
     d = Path(model_dir)
     if not d.is_dir():
         raise ModelError(f"model directory {d} does not exist")
-    manifest = read_manifest(d)
+    manifest = read_manifest(d)  # checked: every field below has its type and range
     if manifest is None:
         return _load_hf_dir(d, max_length)
-    if manifest.get("format") != ADAPTER_FORMAT:
-        raise ModelError(f"{d}/{MANIFEST}: unknown format {manifest.get('format')!r} "
-                         f"(expected {ADAPTER_FORMAT!r})")
+    mp = d / MANIFEST
     check_model_dir(d)
     adapter, got = checked_adapter(d, manifest)
     base_dir = resolve_base(d, manifest)
     base_w = base_dir / "model.safetensors"
     if not base_w.is_file():
         check_no_pickle_only(base_dir)
+        raise ModelError(f"{base_w} is missing (the base weights must be model.safetensors)")
     want_b = manifest.get("base_sha256")
     if want_b and sha256_file(base_w) != want_b:
         raise ModelError(f"{base_w}: sha256 mismatch with the pinned base "
@@ -482,21 +599,29 @@ def load_model(model_dir: str | os.PathLike, *, max_length: int | None = None) -
     tok_dir = d if any((d / n).is_file() for n in TOKENIZER_FILES) else base_dir
     tokenizer = load_tokenizer(tok_dir)
     encoder = load_encoder(base_dir)
-    tensors = load_file(str(adapter))
-    lora = manifest.get("lora") or {}
+    tensors = load_adapter_tensors(adapter)
+    lora = manifest.get("lora")
     if lora:
-        merge_lora(encoder, tensors, float(lora["alpha"]) / float(lora["r"]))
-    num_labels = int(manifest.get("num_labels", 2))
+        try:
+            merge_lora(encoder, tensors, float(lora["alpha"]) / float(lora["r"]))
+        except (RuntimeError, ValueError, TypeError, IndexError) as exc:
+            raise ModelError(f"{adapter}: adapter tensors do not fit the base model: {exc}") from None
+    num_labels = manifest.get("num_labels", 2)
     module = PooledClassifier(encoder, num_labels, manifest.get("pooling", "mean"))
     try:
         module.head.load_state_dict({"weight": tensors["head.weight"], "bias": tensors["head.bias"]})
     except (KeyError, RuntimeError) as exc:
         raise ModelError(f"{adapter}: head weights missing or of the wrong shape: {exc}") from exc
     module.eval()
+    ml = int(max_length or manifest.get("max_length", 128))
+    pos = usable_positions(encoder.config)
+    if pos is not None and ml > pos:
+        src = f"max_length={ml}" if max_length else f"{mp}: 'max_length' = {ml}"
+        raise ModelError(f"{src}: more tokens than the base model's {pos} positions ({base_dir / 'config.json'})")
     name = manifest.get("name", d.name)
-    return LoadedModel(module, tokenizer, int(max_length or manifest.get("max_length", 128)),
-                       manifest.get("truncation", "head_tail"), float(manifest.get("temperature", 1.0)),
-                       int(manifest.get("unsafe_index", num_labels - 1)), f"{name}@{got[:12]}", manifest)
+    return LoadedModel(module, tokenizer, ml, manifest.get("truncation", "head_tail"),
+                       float(manifest.get("temperature", 1.0)), manifest.get("unsafe_index", num_labels - 1),
+                       f"{name}@{got[:12]}", manifest)
 
 
 def _load_hf_dir(d: Path, max_length: int | None) -> LoadedModel:
@@ -521,7 +646,10 @@ def _load_hf_dir(d: Path, max_length: int | None) -> LoadedModel:
     if not 2 <= n <= MAX_LABELS:
         raise ModelError(f"{d / 'config.json'}: 'num_labels' {n}: a classifier of 2..{MAX_LABELS} classes expected")
     limit = getattr(tokenizer, "model_max_length", 512)
-    ml = int(max_length or min(512, limit if isinstance(limit, int) and limit < 100000 else 512))
+    pos = usable_positions(model.config)
+    ml = int(max_length or min(512, limit if isinstance(limit, int) and limit < 100000 else 512, pos or 512))
+    if pos is not None and ml > pos:
+        raise ModelError(f"max_length={ml}: more tokens than the {pos} positions of {d / 'config.json'}")
     return LoadedModel(HFClassifier(model), tokenizer, ml, "head", 1.0, n - 1, f"{d.name}@{digest}")
 
 

@@ -34,8 +34,6 @@ _SAME = ("base", "base_sha256", "pooling", "num_labels", "unsafe_index", "labels
 
 
 def _read_run(d: Path) -> tuple[dict, dict]:
-    from safetensors.torch import load_file
-
     if not d.is_dir():
         raise B.ModelError(f"run directory {d} does not exist")
     manifest = B.read_manifest(d)
@@ -45,7 +43,7 @@ def _read_run(d: Path) -> tuple[dict, dict]:
     adapter, _ = B.checked_adapter(d, manifest)
     if not manifest.get("lora"):
         raise B.ModelError(f"{d}: manifest has no 'lora' block")
-    return manifest, load_file(str(adapter))
+    return manifest, B.load_adapter_tensors(adapter)
 
 
 def average_runs(run_dirs: Sequence[str | os.PathLike], out_dir: str | os.PathLike, *,
