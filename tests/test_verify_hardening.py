@@ -9,6 +9,7 @@
 from __future__ import annotations
 
 import itertools
+import os
 import random
 from fractions import Fraction
 
@@ -102,3 +103,198 @@ def test_risk_range_is_cheap_for_many_classes():
         lo, hi = risk_range(0.6, 0.2, 0.2, "sample", k)
         assert lo <= hi
     assert time.perf_counter() - t0 < 2.0
+
+
+# -- everything below needs z3 -------------------------------------------------------------------
+z3 = pytest.importorskip("z3")
+
+import ethimon  # noqa: E402
+from ethimon.cli import main  # noqa: E402
+from ethimon.verify import format_table, verify_spec  # noqa: E402
+
+SPECS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "specs")
+
+
+def _spec(text: str):
+    return ethimon.load_spec_text(text)
+
+
+# -- 1. the release bound τ − δ is exact ---------------------------------------------------------
+RELEASE_027 = """
+ethimon: 1
+name: release_027
+signals: {x: {range: [0, 1]}}
+risk: {threshold: 0.27, release: {mode: auto, hysteresis: 0.05, hold_cycles: %d}}
+obligations:
+%s
+"""
+
+
+def test_release_bound_is_exact_in_the_decision_model():
+    """R_e pinned to 0.22 with τ = 0.27, δ = 0.05: the latch never releases (0.22 is not below 0.22)."""
+    from ethimon.verify._checks import Verifier
+    from ethimon.verify._encode import Unrolled, decision_trace, real
+    spec = _spec(RELEASE_027 % (1, "  - {id: small, require: x <= 0.5}"))
+    v = Verifier(spec, path="t", timeout_s=20, max_unroll=4)
+    enc = Unrolled(v.plan, 3)
+    dt = decision_trace(enc)
+    base = [*dt.init, dt.L0 > 0, *enc.constraints]
+    released = z3.Or([z3.Not(o) for o in dt.override])
+    for pin in (real(0.22), z3.Q(11, 50)):  # the float 0.22 and the decimal 0.22
+        s = z3.Solver()
+        s.add(*base, *[r == pin for r in enc.R], *[enc.sig[t]["x"] == 0 for t in range(3)], released)
+        assert s.check() == z3.unsat, pin
+    # the largest float below 0.22 does release
+    s = z3.Solver()
+    below = real(0.21999999999999997)
+    s.add(*base, *[r == below for r in enc.R], *[enc.sig[t]["x"] == 0 for t in range(3)], released)
+    assert s.check() == z3.sat
+
+
+def test_release_lint_with_risk_pinned_at_the_bound():
+    """An obligation that keeps R_e >= 0.22: no release is reachable (it was "reachable" with 0.22000000000000003)."""
+    rep = verify_spec(_spec(RELEASE_027 % (2, '  - {id: pinned, require: "risk >= 0.22"}')))
+    f = rep.finding("lint.release")
+    assert f.status == "warning" and "never auto-releases" in f.message, format_table(rep)
+    assert "0.22" in f.message and "0.22000000000000003" not in f.message
+    assert rep.finding("release.rule").status == "proved"
+    assert rep.finding("model.agrees").status == "ok"
+    # one float lower and it releases, confirmed by the Monitor
+    rep = verify_spec(_spec(RELEASE_027 % (2, '  - {id: pinned, require: "risk >= 0.21999999999999997"}')))
+    f = rep.finding("lint.release")
+    assert f.status == "ok" and "replayed in the Monitor" in f.message, format_table(rep)
+
+
+# -- 2. the release and contradiction lints look at runs, not one cycle --------------------------
+SLOW_NEVER = """
+ethimon: 1
+name: slow_never
+signals: {v: {unit: m/s, range: [0, 2]}}
+risk: {release: {hold_cycles: %d}}
+obligations:
+  - {id: slow, description: slow to 0.05 within 3 cycles, require: v <= 0.05, within_cycles: 3}
+  - {id: moving, description: never below 0.1, require: v >= 0.1}
+"""
+
+
+def test_release_lint_unrolls_the_hold_window():
+    rep = verify_spec(_spec(SLOW_NEVER % 10))
+    f = rep.finding("lint.release")
+    # no run holds both obligations for more than 3 cycles: 10 clean cycles are impossible
+    assert f.status == "warning" and "10 consecutive cycles" in f.message, format_table(rep)
+    # 3 clean cycles are possible (right after a fault clears the history), and the Monitor releases
+    rep = verify_spec(_spec(SLOW_NEVER % 3))
+    f = rep.finding("lint.release")
+    assert f.status == "ok" and "releases at cycle 3" in f.message, format_table(rep)
+
+
+def test_contradiction_lint_unrolls_the_response_window():
+    rep = verify_spec(_spec(SLOW_NEVER % 10))
+    f = rep.finding("lint.contradiction.slow.moving")
+    assert f is not None and f.status == "warning" and "4 cycles in a row" in f.message, format_table(rep)
+    assert rep.finding("lint.unsatisfiable.slow") is None and rep.finding("lint.unsatisfiable.moving") is None
+
+
+def test_release_lint_says_unknown_rather_than_a_wrong_yes():
+    # 3 cycles of history + 10 of window do not fit in 5: not decided, and not "reachable"
+    rep = verify_spec(_spec(SLOW_NEVER % 10), max_unroll=5)
+    f = rep.finding("lint.release")
+    assert f.status == "unknown" and "--max-unroll 5" in f.message, format_table(rep)
+    # a spec whose windows fill is still decided past --max-unroll, by a constant input replayed in the Monitor
+    rep = verify_spec(os.path.join(SPECS, "cobot_cell.yaml"), max_unroll=8)
+    f = rep.finding("lint.release")
+    assert f.status == "ok" and "replayed in the Monitor" in f.message, format_table(rep)
+
+
+def test_windowed_lints_stay_quiet_on_consistent_windows():
+    rep = verify_spec(_spec("""
+ethimon: 1
+name: ok_windows
+signals: {v: {range: [0, 2]}, d: {range: [0, 10]}}
+risk: {release: {hold_cycles: 10}}
+obligations:
+  - {id: slow, when: d < 1, require: v <= 0.05, within_cycles: 3}
+  - {id: clamp, require: "not held(v > 1.5, 4)"}
+  - {id: prev_ok, require: "abs(v - prev(v)) < 1"}
+"""))
+    assert rep.finding("lint.release").status == "ok", format_table(rep)
+    assert rep.finding("lint.contradiction").status == "ok", format_table(rep)
+
+
+# -- 3. the K-class τ-range lint: exact, whatever the solver's time limit -----------------------
+@pytest.mark.parametrize("k, hi", [(4, 0.65), (5, 0.64), (8, 0.6 + 0.2 * (7 / 8) / 7)])
+def test_tau_range_for_many_classes_is_exact_and_needs_no_solver_time(k, hi):
+    spec = _spec(f"ethimon: 1\nname: k{k}\nrisk: {{classes: {k}, threshold: {hi + 0.01}}}\n")
+    # 1 ms per check: the z3 optimisation used to time out here ("not computed for this many classes")
+    rep = verify_spec(spec, timeout_s=0.001)
+    f = rep.finding("lint.tau_range")
+    assert f.status == "warning" and "never fire" in f.message and f"R_e={hi:.6g}" in f.message, format_table(rep)
+    rep = verify_spec(_spec(f"ethimon: 1\nname: k{k}\nrisk: {{classes: {k}, threshold: {hi - 0.01}}}\n"),
+                      timeout_s=0.001)
+    assert rep.finding("lint.tau_range").status == "ok"
+
+
+# -- 4. a total budget, and an honest report of what it did not reach ---------------------------
+def _many(n: int) -> str:
+    lines = ["ethimon: 1", f"name: many{n}", "signals:"]
+    lines += [f"  s{i}: {{unit: m, range: [0, 10]}}" for i in range(8)]
+    lines.append("obligations:")
+    for j in range(n):
+        a, b = j % 8, (j * 3 + 1) % 8
+        lines.append([f"  - {{id: o{j}, require: s{a} <= {5 + j % 5}}}",
+                      f"  - {{id: o{j}, when: s{a} < 2, require: s{b} <= 8, within_cycles: 2}}",
+                      f'  - {{id: o{j}, require: "not held(s{a} > 9, 3)"}}'][j % 3])
+    return "\n".join(lines) + "\n"
+
+
+def test_budget_cuts_the_run_and_reports_what_it_did_not_reach(monkeypatch):
+    from ethimon.verify import _checks
+    real_resume = _checks.Verifier.prop_resume_explained
+
+    def resume_then_spend(self):  # the budget runs out while this check runs
+        f = real_resume(self)
+        self.deadline = _checks.time.perf_counter() - 1.0
+        return f
+    monkeypatch.setattr(_checks.Verifier, "prop_resume_explained", resume_then_spend)
+    rep = verify_spec(_spec(_many(6)), budget_s=60)
+    assert rep.finding("o5.response").status == "proved"
+    assert rep.finding("resume.explained").status == "proved"
+    for name in ("release.rule", "model.agrees", "lint.tau_range", "lint.release", "lint.contradiction"):
+        f = rep.finding(name)
+        assert f.status == "unknown" and f.message.startswith("unknown (budget)"), format_table(rep)
+    assert rep.not_reached == 2 + 7  # two properties, seven lint checks
+    assert rep.exit_code == 1
+    c = rep.counts()
+    assert c["proved"] == 3 + 12 + 1 and c["unknown"] == 2 and c["refuted"] == 0 and c["not_reached"] == 9
+    table = format_table(rep)
+    assert "budget of 60 s spent: 16 properties proved, 0 refuted, 2 unknown; 9 check(s)" in table
+    d = rep.as_dict()
+    assert d["complete"] is False and d["budget_s"] == 60 and d["counts"]["not_reached"] == 9
+
+
+def test_budget_bounds_a_large_spec(tmp_path, capsys):
+    import time
+    path = tmp_path / "many.yaml"
+    path.write_text(_many(150))
+    t0 = time.perf_counter()
+    code = main(["verify", str(path), "--budget-s", "1.5", "--json", str(tmp_path / "r.json")])
+    took = time.perf_counter() - t0
+    out = capsys.readouterr().out
+    assert code == 1 and took < 1.5 + 6.0, took
+    assert "not reached by the budget (--budget-s 1.5 per spec)" in out
+    import json
+    doc = json.loads((tmp_path / "r.json").read_text())
+    spec = doc["specs"][0]
+    assert spec["complete"] is False and doc["settings"]["budget_s"] == 1.5
+    # every property is accounted for: proved, refuted or unknown -- none silently dropped
+    names = {f["name"] for f in spec["findings"] if f["kind"] == "property"}
+    assert {f"o{j}.{p}" for j in range(150) for p in ("defined", "response")} <= names
+    assert sum(spec["counts"][k] for k in ("proved", "refuted", "unknown")) == len(names)
+
+
+def test_budget_complete_run_and_bad_values(capsys):
+    rep = verify_spec(os.path.join(SPECS, "governor.yaml"), budget_s=120)
+    assert rep.not_reached == 0 and rep.exit_code == 0 and rep.as_dict()["complete"] is True
+    assert main(["verify", os.path.join(SPECS, "governor.yaml"), "--budget-s", "0"]) == 2
+    assert "--budget-s" in capsys.readouterr().err
+    assert main(["verify", os.path.join(SPECS, "governor.yaml"), "--budget-s", "nan"]) == 2

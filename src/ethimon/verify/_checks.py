@@ -10,18 +10,19 @@ from typing import Any
 import z3
 
 from ..compiler._check import Plan
-from ..risk._formula import risk_bounds, risk_from_p_unsafe
+from ..risk._formula import release_bound, risk_bounds, risk_from_p_unsafe, risk_range
 from ..runtime import Monitor
 from ..runtime._monitor import plan_of
+from ..spec._expr import Name, walk
 from ..spec._model import Response, Spec
-from ._encode import DecisionTrace, Unrolled, decision_trace, lookback, real, z3_value
+from ._encode import DecisionTrace, Unrolled, decision_trace, lookback, real, release_below, z3_value
 from ._report import OK, PROVED, REFUTED, SKIPPED, UNKNOWN, WARNING, Counterexample, Finding
 
-__all__ = ["Verifier"]
+__all__ = ["Verifier", "BUDGET_NOTE"]
 
 _SEV_NAME = {r.severity: r.value for r in Response}
-#: most classes for which the K-class R_e range is computed symbolically
-MAX_SYMBOLIC_CLASSES = 6
+#: how a check that the run's total budget did not let finish is reported
+BUDGET_NOTE = "unknown (budget)"
 
 
 def _fmt(x: float) -> str:
@@ -31,8 +32,12 @@ def _fmt(x: float) -> str:
 class Verifier:
     """Runs every check of one compiled spec (see :func:`ethimon.verify.verify_spec`)."""
 
-    def __init__(self, spec: Spec, *, path: str, timeout_s: float, max_unroll: int) -> None:
+    def __init__(self, spec: Spec, *, path: str, timeout_s: float, max_unroll: int,
+                 budget_s: float | None = None, started: float | None = None) -> None:
         self.spec = spec
+        self.budget_s = budget_s
+        t0 = time.perf_counter() if started is None else started
+        self.deadline = None if budget_s is None else t0 + budget_s
         self.plan: Plan = plan_of(spec)
         self.path = path
         self.timeout_ms = max(1, int(timeout_s * 1000))
@@ -46,11 +51,18 @@ class Verifier:
         self.truncated = want > self.max_unroll
         r = spec.risk
         self.tau = float(r.threshold)
-        self.below = float(r.threshold - r.release.hysteresis)
+        # the release bound tau - delta, exactly (0.27 - 0.05 is 0.22, not 0.22000000000000003)
+        exact, cut = release_bound(r.threshold, r.release.hysteresis)
+        self.below = float(exact)  # for messages
+        self.below_z3 = release_below(spec)
+        self.below_cut = cut  # a float R_e is below the bound exactly when R_e < cut
+        self.below_float = math.nextafter(cut, -math.inf)  # the largest float below the bound
         self.risk_sev = Response(r.response).severity
         self.fault_sev = Response(spec.on_fault).severity
         self._enc: Unrolled | None = None
         self._dt: DecisionTrace | None = None
+        self._ds: z3.Solver | None = None
+        self._ds_n = 0
 
     # -- solver helpers ----------------------------------------------------------------
     def solve(self, *constraints, enc: Unrolled | None = None) -> tuple[str, z3.ModelRef | None, str]:
@@ -59,8 +71,11 @@ class Verifier:
         ``enc``'s domain and auxiliary constraints are added last, after every goal term
         was built (building a term can define an auxiliary variable, e.g. for ``sqrt``).
         """
+        ms = self.check_ms()
+        if ms <= 0:
+            return "unknown", None, "the run's budget is spent"
         s = z3.Solver()
-        s.set("timeout", self.timeout_ms)
+        s.set("timeout", ms)
         # incremental mode (push first): z3's SMT core with its nonlinear arithmetic module, which is
         # ~20x faster here than the one-shot tactic the default solver picks for these problems
         s.push()
@@ -73,7 +88,89 @@ class Verifier:
             return "sat", s.model(), ""
         if r == z3.unsat:
             return "unsat", None, ""
+        if self.out_of_budget():
+            return "unknown", None, "the run's budget is spent"
         return "unknown", None, s.reason_unknown()
+
+    # -- the run's budget ----------------------------------------------------------------
+    def left_s(self) -> float:
+        return math.inf if self.deadline is None else self.deadline - time.perf_counter()
+
+    def out_of_budget(self) -> bool:
+        return self.left_s() <= 0
+
+    def check_ms(self) -> int:
+        """The z3 time limit for the next check: ``--timeout-s``, or less if the budget has less left."""
+        left = self.left_s()
+        if left == math.inf:
+            return self.timeout_ms
+        return min(self.timeout_ms, int(left * 1000))
+
+    def unreached(self, kind: str, name: str, what: str = "") -> Finding:
+        return Finding(kind, name, UNKNOWN, f"{BUDGET_NOTE}: {what or 'not checked'}; the run's budget "
+                                            f"(--budget-s {self.budget_s:g}) was spent")
+
+    def run(self, lints: bool = True) -> tuple[list[Finding], int]:
+        """Every property, then every lint, while the budget lasts.
+
+        Returns:
+            The findings and how many checks the budget did not let run or finish (each is
+            reported as an ``unknown`` row whose message starts with :data:`BUDGET_NOTE`).
+        """
+        out: list[Finding] = []
+        for name, fn in self.property_tasks():
+            if self.out_of_budget():
+                out.append(self.unreached("property", name))
+                continue
+            f = fn()
+            if f.status == UNKNOWN and self.out_of_budget() and not f.message.startswith(BUDGET_NOTE):
+                f.message = f"{BUDGET_NOTE}: {f.message}"
+            out.append(f)
+        if lints:
+            for name, fn in self.lint_tasks():
+                if self.out_of_budget():
+                    out.append(self.unreached("lint", name))
+                    continue
+                for f in fn():
+                    if f.status in (UNKNOWN, SKIPPED) and self.out_of_budget() and not f.message.startswith(BUDGET_NOTE):
+                        f.status, f.message = UNKNOWN, f"{BUDGET_NOTE}: {f.message}"
+                    out.append(f)
+        return out, sum(f.message.startswith(BUDGET_NOTE) for f in out)
+
+    def solve_dt(self, *goals) -> tuple[str, z3.ModelRef | None, str]:
+        """:meth:`solve` over the shared decision trace, with one incremental solver for every decision check.
+
+        The trace (every obligation at every cycle, the latch) is asserted once; each check adds its
+        goal in a scope of its own. Much faster than re-asserting it for each of hundreds of checks.
+        """
+        enc, dt = self.enc, self.dt
+        if self._ds is None:
+            self._ds = z3.Solver()
+            self._ds.push()  # incremental mode: see solve()
+            self._ds.add(*dt.init)
+            self._ds_n = 0
+        s = self._ds
+        cons = enc.constraints
+        if len(cons) > self._ds_n:  # domain and auxiliary definitions added since (e.g. sqrt)
+            s.add(*cons[self._ds_n:])
+            self._ds_n = len(cons)
+        ms = self.check_ms()
+        if ms <= 0:
+            return "unknown", None, "the run's budget is spent"
+        s.set("timeout", ms)
+        s.push()
+        try:
+            s.add(*goals)
+            r = s.check()
+            if r == z3.sat:
+                return "sat", s.model(), ""
+            if r == z3.unsat:
+                return "unsat", None, ""
+            if self.out_of_budget():
+                return "unknown", None, "the run's budget is spent"
+            return "unknown", None, s.reason_unknown()
+        finally:
+            s.pop()
 
     @property
     def enc(self) -> Unrolled:
@@ -88,7 +185,7 @@ class Verifier:
         return self._dt
 
     def all_defined(self, enc: Unrolled, upto: int) -> z3.BoolRef:
-        return z3.And([enc.obligation_defined(ob, t) for t in range(upto + 1) for ob in self.plan.obligations])
+        return enc.all_defined(upto)
 
     def _state_prefs(self, dt: DecisionTrace) -> list[list[z3.BoolRef]]:
         """Initial latch states to try, most replayable first: fresh, just after a fault, any."""
@@ -136,15 +233,19 @@ class Verifier:
         return Counterexample(prop, frames, cycle, expect, [x.as_dict() for x in decisions], ok, note)
 
     # -- properties -------------------------------------------------------------------------
-    def properties(self) -> list[Finding]:
-        out = [self.prop_risk_bounds(), self.prop_risk_override(), self.prop_fault()]
+    def property_tasks(self) -> list[tuple[str, Any]]:
+        """``(name, check)`` of every property, in report order."""
+        out: list[tuple[str, Any]] = [("risk.bounds", self.prop_risk_bounds), ("risk.override", self.prop_risk_override),
+                                      ("fault.override", self.prop_fault)]
         for ob in self.plan.obligations:
-            out.append(self.prop_defined(ob))
-            out.append(self.prop_response(ob))
-        out.append(self.prop_resume_explained())
-        out.append(self.prop_release_rule())
-        out.append(self._timed(self.check_model))
+            out.append((f"{ob.id}.defined", lambda ob=ob: self.prop_defined(ob)))
+            out.append((f"{ob.id}.response", lambda ob=ob: self.prop_response(ob)))
+        out += [("resume.explained", self.prop_resume_explained), ("release.rule", self.prop_release_rule),
+                ("model.agrees", lambda: self._timed(self.check_model))]
         return out
+
+    def properties(self) -> list[Finding]:
+        return [fn() for _, fn in self.property_tasks()]
 
     def check_model(self, traces: int = 24) -> Finding:
         """The z3 model of this spec agrees with the real :class:`Monitor` on sampled traces.
@@ -159,15 +260,22 @@ class Verifier:
         rng = random.Random(f"ethimon-verify:{self.spec.name}")
         from ._encode import risk_input_range
         rlo, rhi = risk_input_range(self.plan)
-        r_pick = [rlo, rhi, self.tau, self.below, min(max(self.below - 1e-3, rlo), rhi)]
+        # the release bound's neighbours: the cut, the largest float below it, the float tau - delta
+        r_pick = [rlo, rhi, self.tau, self.below_cut, self.below_float, float(self.tau - self.spec.risk.release.hysteresis),
+                  min(max(self.below - 1e-3, rlo), rhi)]
+        r_pick = [x for x in r_pick if rlo <= x <= rhi]
         s = z3.Solver()
-        s.set("timeout", self.timeout_ms)
+        s.set("timeout", max(1, self.check_ms()))
         goals = [dt.L0 == 0, dt.C0 == 0, *dt.init]
         terms = [(dt.violated[t], dt.risk_fires[t], dt.override[t], dt.response[t]) for t in range(self.k)]
         s.add(*goals)
         s.add(*enc.constraints)
         compared = 0
-        for _ in range(traces):
+        for i in range(traces):
+            if self.out_of_budget():
+                return Finding("property", name, UNKNOWN, f"{BUDGET_NOTE}: the z3 model agreed with the Monitor on "
+                                                          f"{compared} sampled cycles ({i} of {traces} traces) when "
+                                                          f"the run's budget was spent")
             frames: list[dict[str, Any]] = []
             prev: dict[str, Any] | None = None
             for _t in range(self.k):
@@ -260,7 +368,6 @@ class Verifier:
                         assume_defined: bool = True) -> Finding:
         """Search for a cycle ``t`` where ``bad_at(dt, t)`` holds; refute with a replayed trace."""
         enc, dt = self.enc, self.dt
-        base = list(dt.init)
         terms = {}
         for t in range(self.k):
             bad = bad_at(dt, t)
@@ -268,14 +375,14 @@ class Verifier:
                 terms[t] = z3.And(self.all_defined(enc, t), bad) if assume_defined else bad
         if not terms:
             return Finding("property", name, PROVED, proved_msg + self._bound_note())
-        st, model, why = self.solve(*base, z3.Or(list(terms.values())), enc=enc)
+        st, model, why = self.solve_dt(z3.Or(list(terms.values())))
         if st == "unknown":
             return Finding("property", name, UNKNOWN, f"z3: {why}")
         if st == "unsat":
             return Finding("property", name, PROVED, proved_msg + self._bound_note())
         t = next(t for t, term in terms.items() if z3.is_true(model.eval(term, model_completion=True)))
         for pref in self._state_prefs(dt):  # most replayable start state first
-            st2, m2, _ = self.solve(*base, terms[t], *pref, enc=enc)
+            st2, m2, _ = self.solve_dt(terms[t], *pref)
             if st2 == "sat":
                 model = m2
                 break
@@ -416,7 +523,7 @@ class Verifier:
     def prop_release_rule(self) -> Finding:
         rel = self.spec.risk.release
         hold, auto = rel.hold_cycles, rel.mode == "auto"
-        below = real(self.below)
+        below = self.below_z3
 
         def bad(dt, t):
             was = dt.L0 > 0 if t == 0 else dt.override[t - 1]
@@ -438,51 +545,24 @@ class Verifier:
             lambda d, t: not d.override, msg))
 
     # -- lints ---------------------------------------------------------------------------
+    def lint_tasks(self) -> list[tuple[str, Any]]:
+        """``(name, check)`` of every lint, in report order (each check returns a list of findings)."""
+        return [("lint.tau_range", lambda: [self._timed(self.lint_tau)]),
+                ("lint.risk_monotone", lambda: [self._timed(self.lint_monotone)]),
+                ("lint.release", lambda: [self._timed(self.lint_release)]),
+                ("lint.vacuous", self.lint_vacuous), ("lint.contradiction", self.lint_contradictions),
+                ("lint.unbounded", self.lint_unbounded), ("lint.fault_gap", self.lint_fault_gap)]
+
     def lints(self) -> list[Finding]:
-        out = [self._timed(self.lint_tau), self._timed(self.lint_monotone), self._timed(self.lint_release)]
-        out += self.lint_vacuous()
-        out += self.lint_contradictions()
-        out += self.lint_unbounded()
-        out += self.lint_fault_gap()
-        return out
+        return [f for _, fn in self.lint_tasks() for f in fn()]
 
     def risk_range(self) -> tuple[float, float] | None:
-        """Reachable R_e over every probability vector (``None``: not computed)."""
+        """Reachable R_e over every probability vector: exact, for any number of classes."""
         r = self.spec.risk
-        if r.classes == 2:
-            return risk_bounds(r.alpha, r.beta, r.gamma, r.variance)
-        if r.classes > MAX_SYMBOLIC_CLASSES:
-            return None
-        K = r.classes
-        ps = [z3.Real(f"p{i}") for i in range(K)]
-        dom = [p >= 0 for p in ps] + [z3.Sum(ps) == 1]
-        top = ps[0]
-        for p in ps[1:]:
-            top = z3.If(p > top, p, top)
-        mean = z3.Sum(ps) / K
-        ss = z3.Sum([(p - mean) * (p - mean) for p in ps])
-        var = ss / (K - 1 if r.variance == "sample" else K)
-        R = real(r.alpha) * ps[r.unsafe_index] + real(r.beta) * (1 - top) + real(r.gamma) * var
-        o_lo, o_hi = z3.Optimize(), z3.Optimize()
-        for o in (o_lo, o_hi):
-            o.set("timeout", self.timeout_ms)
-            o.add(*dom)
-        o_lo.minimize(R)
-        o_hi.maximize(R)
-        if o_lo.check() != z3.sat or o_hi.check() != z3.sat:
-            return None
-        try:
-            lo = z3_value(o_lo.model(), R)
-            hi = z3_value(o_hi.model(), R)
-        except TypeError:
-            return None
-        return float(lo), float(hi)
+        return risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)
 
     def lint_tau(self) -> Finding:
-        rr = self.risk_range()
-        if rr is None:
-            return Finding("lint", "lint.tau_range", SKIPPED, "reachable R_e range not computed for this many classes")
-        lo, hi = rr
+        lo, hi = self.risk_range()
         tau = self.tau
         if tau > hi:
             return Finding("lint", "lint.tau_range", WARNING,
@@ -519,89 +599,255 @@ class Verifier:
             return Finding("lint", name, SKIPPED, f"z3: {why}")
         return Finding("lint", name, OK, "R_e never falls as p_unsafe grows")
 
+    # -- windows of consecutive cycles ---------------------------------------------------
+    def _window_cycles(self, ids) -> int:
+        """P: cycles of history that can still change a verdict of these obligations (look-back + response window)."""
+        return max([self.need[i] for i in ids] + [1]) - 1
+
+    def window_search(self, goal, ids, s: int) -> tuple[str, Any]:
+        """Is there a run with ``s`` consecutive fault-free cycles at each of which ``goal(enc, t)`` holds?
+
+        ``ids`` are the obligations ``goal`` talks about; ``P`` (:meth:`_window_cycles`) cycles
+        before the window are enough for their verdicts inside it. A run either starts (at a reset,
+        or after a fault, which clears the history) fewer than ``P`` cycles before the window --
+        the exact encodings with ``p < P`` prefix cycles -- or at least ``P`` cycles before it --
+        covered by the free-history encoding of ``P + s`` cycles, which admits every history.
+
+        Returns:
+            ``("sat", (enc, model, p))``: an exact run from a reset whose cycles ``p .. p+s-1``
+            are the window; ``("unsat", None)``: no run of any length has such a window;
+            ``("unknown", reason)``: neither was shown (solver limit, or the free-history
+            window is possible but no run was found).
+        """
+        P = self._window_cycles(ids)
+        if P + s > self.max_unroll:
+            return "unknown", (f"needs {P + s} cycles of unrolling ({s} in the window, {P} of history), more than "
+                               f"--max-unroll {self.max_unroll}")
+        why_unknown = ""
+
+        def attempt(p: int, free: bool = False):
+            enc = Unrolled(self.plan, p + s, prefix=f"w{'f' if free else p}.", free_history=free)
+            goals = [self.all_defined(enc, p + s - 1)] + [goal(enc, t) for t in range(p, p + s)]
+            st, model, why = self.solve(*goals, enc=enc)
+            if st == "sat" and not free:  # prefer a run whose comparisons are clear of their boundaries
+                st2, model2, _ = self.solve(*goals, *enc.decisive(), enc=enc)
+                if st2 == "sat":
+                    model = model2
+            return enc, (st, model, why)
+
+        for p in range(P):
+            enc, (st, model, why) = attempt(p)
+            if st == "sat":
+                return "sat", (enc, model, p)
+            if st == "unknown":
+                why_unknown = why_unknown or why
+        _, (st, _, why) = attempt(P, free=True)
+        if st == "unsat":
+            return ("unknown", why_unknown) if why_unknown else ("unsat", None)
+        if st == "unknown":
+            return "unknown", why_unknown or why
+        enc, (st, model, why) = attempt(P)
+        if st == "sat":
+            return "sat", (enc, model, P)
+        return "unknown", why_unknown or why or (
+            f"no run from a reset has such a window within {2 * P + s} cycles, and the solver could not rule "
+            f"out one after a longer history")
+
+    def _replay_release(self, frames: list[dict[str, Any]]) -> tuple[bool, int]:
+        """Replay a fault (which latches) and then ``frames`` in a fresh Monitor: released at the end?"""
+        seq = [self.fault_frame(frames[0])] + frames
+        m = Monitor(self.spec)
+        ds = [m.step(f) for f in seq]
+        return (not ds[-1].override and ds[0].override), len(seq) - 1
+
     def lint_release(self) -> Finding:
+        """Can a latched override auto-release: ``hold_cycles`` consecutive cycles with R_e < τ − δ and no violation?
+
+        Only a run replayed in the real Monitor makes it "reachable"; "never" is a proof over runs
+        of any length (:meth:`window_search`); anything else is ``unknown``.
+        """
         rel = self.spec.risk.release
         name = "lint.release"
         if rel.mode == "manual":
             return Finding("lint", name, WARNING, "release.mode is manual: a latched override never releases "
                                                   "by itself (only Monitor.release() or reset())")
-        rr = self.risk_range()
-        if rr is not None and self.below <= rr[0]:
+        lo, hi = self.risk_range()
+        bound = f"R_e < tau - delta = {_fmt(self.below)}"
+        if self.below_float < lo:
             return Finding("lint", name, WARNING,
-                           f"release needs R_e < tau - delta = {_fmt(self.below)}, but the smallest reachable "
-                           f"R_e is {_fmt(rr[0])}: a latched override never auto-releases")
-        # every obligation can hold while R_e < tau - delta (at a cycle where windows are full)
-        enc = self.enc
-        t = self.k - 1
-        cons = [enc.R[t] < real(self.below)]
-        if rr is not None:
-            cons += [enc.R[t] >= real(rr[0]), enc.R[t] <= real(rr[1])]
-        cons += [z3.Not(enc.violated(ob, t)) for ob in self.plan.obligations]
-        cons.append(self.all_defined(enc, t))
-        st, _, why = self.solve(*cons, enc=enc)
-        if st == "unsat":
-            return Finding("lint", name, WARNING, f"no input satisfies every obligation with R_e < "
-                                                  f"{_fmt(self.below)}: a latched override never auto-releases")
-        if st == "unknown":
-            return Finding("lint", name, SKIPPED, f"z3: {why}")
-        return Finding("lint", name, OK, f"release reachable (R_e < {_fmt(self.below)} for "
-                                         f"{rel.hold_cycles} cycles with every obligation held)")
+                           f"release needs {bound}, but the smallest reachable R_e is {_fmt(lo)}: a latched "
+                           f"override never auto-releases")
+        hold = int(rel.hold_cycles)
+        ids = [ob.id for ob in self.plan.obligations]
+        below = real(self.below_float)  # R_e arrives as a float: below the exact bound <=> at most this float
+
+        def goal(enc: Unrolled, t: int):
+            return z3.And([enc.R[t] <= below, enc.R[t] >= real(lo), enc.R[t] <= real(hi)]
+                          + [z3.Not(enc.violated(ob, t)) for ob in self.plan.obligations])
+        never = (f"no run has {hold} consecutive cycles with {bound} and every obligation held "
+                 f"(checked over runs of any length): a latched override never auto-releases")
+        P = self._window_cycles(ids)
+        if P + hold <= self.max_unroll:
+            st, info = self.window_search(goal, ids, hold)
+            if st == "unsat":
+                return Finding("lint", name, WARNING, never)
+            if st == "unknown":
+                return Finding("lint", name, UNKNOWN, f"release not decided: {info}")
+            enc, model, p = info
+            frames = self.frames(model, enc, p + hold - 1)
+        else:
+            # too long to unroll: a shorter window that no run has is still a proof ...
+            short = self.max_unroll - P
+            if short >= 1:
+                st, _ = self.window_search(goal, ids, short)
+                if st == "unsat":
+                    return Finding("lint", name, WARNING, never.replace(f"{hold} consecutive", f"even {short} consecutive"))
+            # ... and a run that repeats one input is a witness once its windows are full
+            enc = Unrolled(self.plan, P + 1, prefix="wc.")
+            same = [enc.sig[t][sg] == enc.sig[0][sg] for t in range(1, P + 1) for sg in enc.sig[0]]
+            same += [enc.R[t] == enc.R[0] for t in range(1, P + 1)]
+            st, model, why = self.solve(*same, self.all_defined(enc, P), goal(enc, P), *enc.decisive(), enc=enc)
+            if st == "unsat":
+                st, model, why = self.solve(*same, self.all_defined(enc, P), goal(enc, P), enc=enc)
+            if st != "sat":
+                return Finding("lint", name, UNKNOWN,
+                               f"release not decided: hold_cycles={hold} needs {P + hold} cycles of unrolling "
+                               f"(> --max-unroll {self.max_unroll}) and no constant input releases"
+                               + (f" (z3: {why})" if why else ""))
+            frames = self.frames(model, enc, 0) * (P + hold)
+        ok, at = self._replay_release(frames)
+        if not ok:
+            return Finding("lint", name, UNKNOWN, f"release not decided: the solver's run did not release when "
+                                                  f"replayed in the Monitor")
+        return Finding("lint", name, OK, f"release reachable: {hold} cycles with {bound} and every obligation "
+                                         f"held (a run replayed in the Monitor releases at cycle {at})")
 
     def lint_vacuous(self) -> list[Finding]:
+        """Each obligation can be violated by some fault-free run from a reset (one incremental solver)."""
         t0 = time.perf_counter()
-        out = []
-        for ob in self.plan.obligations:
-            k = min(self.need[ob.id], self.max_unroll)
-            enc = Unrolled(self.plan, k, prefix=f"v.{ob.id}.")
-            dfn = [enc.obligation_defined(o, t) for t in range(k) for o in self.plan.obligations]
-            st, _, why = self.solve(*dfn, z3.Or([enc.violated(ob, t) for t in range(k)]), enc=enc)
-            if st == "unsat":
-                out.append(Finding("lint", f"lint.vacuous.{ob.id}", WARNING,
-                                   f"obligation {ob.id!r} can never be violated inside the declared ranges"))
-            elif st == "unknown":
-                out.append(Finding("lint", f"lint.vacuous.{ob.id}", SKIPPED, f"z3: {why}"))
-        if not any(f.status == WARNING for f in out):
+        out: list[Finding] = []
+        obs = self.plan.obligations
+        if obs:
+            k = min(max(self.need[ob.id] for ob in obs), self.max_unroll)
+            enc = Unrolled(self.plan, k, prefix="v.")
+            upto = []  # every obligation defined at cycles 0 .. t
+            acc = z3.BoolVal(True)
+            for t in range(k):
+                acc = z3.And(acc, *[enc.obligation_defined(o, t) for o in obs])
+                upto.append(acc)
+            goals = {ob.id: z3.Or([z3.And(upto[t], enc.violated(ob, t)) for t in range(k)]) for ob in obs}
+            s = z3.Solver()
+            s.push()
+            s.add(*enc.constraints)
+            for i, ob in enumerate(obs):
+                ms = self.check_ms()
+                if ms <= 0:
+                    out.append(self.unreached("lint", "lint.vacuous",
+                                              f"{len(obs) - i} of {len(obs)} obligations not checked for vacuity"))
+                    break
+                s.set("timeout", ms)
+                s.push()
+                s.add(goals[ob.id])
+                st = s.check()
+                if st == z3.unsat:
+                    out.append(Finding("lint", f"lint.vacuous.{ob.id}", WARNING,
+                                       f"obligation {ob.id!r} can never be violated inside the declared ranges"))
+                elif st == z3.unknown:
+                    out.append(Finding("lint", f"lint.vacuous.{ob.id}", UNKNOWN, f"z3: {s.reason_unknown()}"))
+                s.pop()
+        if not out:
             out.append(Finding("lint", "lint.vacuous", OK, "every obligation can be violated inside the ranges"))
         dt = time.perf_counter() - t0
         for f in out:
             f.seconds = dt / len(out)
         return out
 
-    def lint_contradictions(self) -> list[Finding]:
-        t0 = time.perf_counter()
-        enc = self.enc
-        t = self.k - 1
-        base = [self.all_defined(enc, t)]
-        holds = {ob.id: z3.Not(enc.violated(ob, t)) for ob in self.plan.obligations}
-        out = []
-        alone_ok = []
+    def _components(self) -> dict[str, int]:
+        """Obligations that share no signal (nor R_e) through any chain get different numbers."""
+        parent: dict[str, str] = {}
+
+        def find(x: str) -> str:
+            while parent.setdefault(x, x) != x:
+                parent[x] = parent[parent[x]]
+                x = parent[x]
+            return x
         for ob in self.plan.obligations:
-            st, _, why = self.solve(*base, holds[ob.id], enc=enc)
+            names = [f"ob:{ob.id}"] + [f"sig:{n.id}" for root in (ob.when, ob.require) if root is not None
+                                       for n in walk(root) if isinstance(n, Name)]
+            for n in names[1:]:
+                parent[find(n)] = find(names[0])
+        return {ob.id: hash(find(f"ob:{ob.id}")) for ob in self.plan.obligations}
+
+    def lint_contradictions(self) -> list[Finding]:
+        """Obligations that cannot hold together (for a few cycles in a row: response windows take time to close)."""
+        t0 = time.perf_counter()
+        obs = self.plan.obligations
+        out: list[Finding] = []
+
+        def holds(subset):
+            return lambda enc, t: z3.And([z3.Not(enc.violated(ob, t)) for ob in subset])
+
+        def cycles(subset) -> int:
+            return self._window_cycles([ob.id for ob in subset]) + 1
+
+        def in_a_row(n: int) -> str:
+            return "" if n == 1 else f" for {n} cycles in a row"
+
+        def overrides(n: int) -> str:
+            return "the monitor overrides every cycle" if n == 1 else f"the monitor overrides at least every {n} cycles"
+
+        def done(found: list[Finding]) -> list[Finding]:
+            dt = time.perf_counter() - t0
+            for f in found:
+                f.seconds = dt / len(found)
+            return found
+        if not obs:
+            return done([Finding("lint", "lint.contradiction", OK, "no obligations")])
+        n_all = cycles(obs)
+        st_all, why_all = self.window_search(holds(obs), [ob.id for ob in obs], n_all)
+        if st_all == "sat":
+            return done([Finding("lint", "lint.contradiction", OK,
+                                 f"the obligations can all hold together{in_a_row(n_all)}")])
+        # find the culprits: each obligation alone, then pairs that share a signal
+        alone_ok, undecided = [], 0
+        for i, ob in enumerate(obs):
+            if self.out_of_budget():
+                out.append(self.unreached("lint", "lint.unsatisfiable", f"{len(obs) - i} obligations not checked"))
+                return done(out)
+            n = cycles([ob])
+            st, _ = self.window_search(holds([ob]), [ob.id], n)
             if st == "unsat":
                 out.append(Finding("lint", f"lint.unsatisfiable.{ob.id}", WARNING,
-                                   f"obligation {ob.id!r} is violated for every input inside the ranges "
-                                   f"(the monitor overrides every cycle)"))
+                                   f"obligation {ob.id!r} cannot hold{in_a_row(n) or ' for any input'} inside the "
+                                   f"ranges ({overrides(n)})"))
             elif st == "sat":
-                alone_ok.append(ob.id)
-        for a, b in itertools.combinations(alone_ok, 2):
-            st, _, why = self.solve(*base, holds[a], holds[b], enc=enc)
+                alone_ok.append(ob)
+            else:
+                undecided += 1
+        comp = self._components()
+        pairs = [(a, b) for a, b in itertools.combinations(alone_ok, 2) if comp[a.id] == comp[b.id]]
+        for i, (a, b) in enumerate(pairs):
+            if self.out_of_budget():
+                out.append(self.unreached("lint", "lint.contradiction", f"{len(pairs) - i} of {len(pairs)} pairs of "
+                                                                        f"obligations not checked"))
+                return done(out)
+            n = cycles([a, b])
+            st, _ = self.window_search(holds([a, b]), [a.id, b.id], n)
             if st == "unsat":
-                out.append(Finding("lint", f"lint.contradiction.{a}.{b}", WARNING,
-                                   f"obligations {a!r} and {b!r} contradict: no input inside the ranges "
-                                   f"satisfies both (the monitor overrides every cycle)"))
-        if len(alone_ok) > 2 and not out:
-            st, _, _ = self.solve(*base, *holds.values(), enc=enc)
-            if st == "unsat":
-                out.append(Finding("lint", "lint.contradiction.all", WARNING,
-                                   "no input satisfies all obligations together"))
+                out.append(Finding("lint", f"lint.contradiction.{a.id}.{b.id}", WARNING,
+                                   f"obligations {a.id!r} and {b.id!r} contradict: no input inside the ranges "
+                                   f"satisfies both{in_a_row(n)} ({overrides(n)})"))
+            elif st == "unknown":
+                undecided += 1
         if not out:
-            out.append(Finding("lint", "lint.contradiction", OK,
-                               "the obligations can all hold together" if self.plan.obligations
-                               else "no obligations"))
-        dt = time.perf_counter() - t0
-        for f in out:
-            f.seconds = dt / len(out)
-        return out
+            if st_all == "unsat":
+                out.append(Finding("lint", "lint.contradiction.all", WARNING,
+                                   f"no input satisfies all obligations together{in_a_row(n_all)}"))
+            else:
+                out.append(Finding("lint", "lint.contradiction", UNKNOWN,
+                                   f"not decided whether the obligations can all hold together{in_a_row(n_all)}: "
+                                   f"{why_all}"))
+        return done(out)
 
     def lint_unbounded(self) -> list[Finding]:
         out = [Finding("lint", f"lint.unbounded.{s.name}", WARNING,

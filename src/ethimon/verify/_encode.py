@@ -20,6 +20,13 @@ types that :func:`~ethimon.compiler.build_machine` compiles:
   ``t`` raises nothing (no division by zero, no ``sqrt`` of a negative),
   honouring the short-circuit order of ``and``/``or``/``implies`` that both
   implementations use;
+* with ``free_history=True`` the trace is a window cut out of a longer run
+  instead: a temporal node whose look-back reaches before the first encoded
+  cycle is a fresh unconstrained value (any history), and an unbounded
+  ``since`` carries an unknown bit in. Such a trace over-approximates every
+  run, so "no such window" is a proof about all runs of any length;
+* the release bound ``τ − δ`` is the exact rational of the spec's decimals
+  (:func:`release_below`), not the float ``0.27 - 0.05 == 0.22000000000000003``;
 * :func:`decision_trace` encodes the decision logic of ``Monitor.step``
   (severity, latch, hysteresis release) from a symbolic initial latch state.
 """
@@ -32,18 +39,24 @@ from fractions import Fraction
 import z3
 
 from ..compiler._check import RISK_NAME, Plan
-from ..risk._formula import risk_bounds
+from ..risk._formula import release_bound, risk_bounds
 from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary, walk
 from ..spec._model import Response
 
-__all__ = ["Unrolled", "DecisionTrace", "decision_trace", "lookback", "real", "risk_input_range",
-           "z3_value"]
+__all__ = ["Unrolled", "DecisionTrace", "decision_trace", "lookback", "real", "release_below",
+           "risk_input_range", "z3_value"]
 
 
 def real(x: float) -> z3.ArithRef:
     """The exact rational value of a Python float as a z3 real."""
     f = Fraction(x)
     return z3.RealVal(f"{f.numerator}/{f.denominator}") if f.denominator != 1 else z3.RealVal(f.numerator)
+
+
+def release_below(spec) -> z3.ArithRef:
+    """The release bound ``τ − δ`` of ``spec`` as an exact z3 rational (0.27 − 0.05 is 11/50)."""
+    exact, _ = release_bound(spec.risk.threshold, spec.risk.release.hysteresis)
+    return z3.Q(exact.numerator, exact.denominator)
 
 
 def z3_value(model: z3.ModelRef, expr) -> float | bool:
@@ -92,17 +105,22 @@ class Unrolled:
         plan: the compiled plan (the same object the runtime builds its closures from).
         k: number of cycles to unroll.
         prefix: variable-name prefix (to put several traces in one solver).
+        free_history: the first cycle is not a reset but any point of a longer run (see the module doc).
     """
 
-    def __init__(self, plan: Plan, k: int, prefix: str = "") -> None:
+    def __init__(self, plan: Plan, k: int, prefix: str = "", free_history: bool = False) -> None:
         self.plan = plan
         self.k = k
         self.prefix = prefix
+        self.free_history = free_history
+        self._lb: dict[int, int] = {}
         self.sig: list[dict[str, z3.ExprRef]] = []
         self.R: list[z3.ArithRef] = []
         self.domain: list[z3.BoolRef] = []
         self._ev: dict[tuple[int, int], z3.ExprRef] = {}
         self._df: dict[tuple[int, int], z3.BoolRef] = {}
+        self._obdf: dict[tuple[int, int], z3.BoolRef] = {}
+        self._alldf: list[z3.BoolRef] = []
         self._aux: list[z3.BoolRef] = []
         rlo, rhi = risk_input_range(plan)
         for t in range(k):
@@ -182,6 +200,15 @@ class Unrolled:
                     out = z3.If(v < out, v, out) if f == "min" else z3.If(v > out, v, out)
                 return out
             n = plan.windows.get(id(node))
+            if self.free_history:
+                lb = self._lb.get(id(node))
+                if lb is None:
+                    lb = self._lb[id(node)] = lookback(plan, node)
+                if t < lb:  # reads cycles before the window: any value a history could leave
+                    name = f"{self.prefix}hist#{id(node)}@{t}"
+                    return z3.Bool(name) if plan.type_of(node).kind == "bool" else z3.Real(name)
+                if f == "since" and n is None:  # since(t) = b(t) or (a(t) and since(t - 1))
+                    return z3.Or(self.ev(args[1], t), z3.And(self.ev(args[0], t), self.ev(node, t - 1)))
             if f == "prev":
                 if t == 0:
                     if len(args) == 2:
@@ -241,6 +268,21 @@ class Unrolled:
 
     def obligation_defined(self, ob, t: int) -> z3.BoolRef:
         """Evaluating obligation ``ob`` at ``t`` raises nothing (its temporal updates included)."""
+        key = (id(ob), t)
+        got = self._obdf.get(key)
+        if got is None:
+            got = self._obdf[key] = self._obligation_defined(ob, t)
+        return got
+
+    def all_defined(self, upto: int) -> z3.BoolRef:
+        """Every obligation can be evaluated at every cycle ``0 .. upto`` (no fault)."""
+        while len(self._alldf) <= upto:
+            t = len(self._alldf)
+            now = [self.obligation_defined(ob, t) for ob in self.plan.obligations]
+            self._alldf.append(z3.And(([self._alldf[-1]] if self._alldf else []) + now))
+        return self._alldf[upto]
+
+    def _obligation_defined(self, ob, t: int) -> z3.BoolRef:
         parts = []
         for root in (ob.when, ob.require):
             if root is None:
@@ -255,9 +297,31 @@ class Unrolled:
             parts += [self.defined(ob.when, t), z3.Implies(self.ev(ob.when, t), self.defined(ob.require, t))]
         return z3.And(parts)
 
+    def decisive(self, eps: float = 1e-6) -> list[z3.BoolRef]:
+        """Every ordering comparison of every obligation is at least ``eps`` from its boundary.
+
+        For witnesses that must replay in the float :class:`~ethimon.Monitor`: a value exactly on a
+        boundary (``0.79 >= 1.6 * (0.1 + 0.3) + 0.15``) can flip with rounding.
+        """
+        out = []
+        for ob in self.plan.obligations:
+            for root in (ob.when, ob.require):
+                if root is None:
+                    continue
+                for n in walk(root):
+                    if isinstance(n, Binary) and n.op in ("<", "<=", ">", ">="):
+                        for t in range(self.k):
+                            d = self.ev(n.left, t) - self.ev(n.right, t)
+                            out.append(z3.Or(d >= real(eps), d <= -real(eps)))
+        return out
+
     # -- obligations ------------------------------------------------------------------
     def violated(self, ob, t: int) -> z3.BoolRef:
-        """Obligation ``ob`` is violated at ``t`` (documented semantics, bounded response included)."""
+        """Obligation ``ob`` is violated at ``t`` (documented semantics, bounded response included).
+
+        With ``free_history`` a trigger before the first encoded cycle is not counted: that
+        only removes violations, so a window that is clean in a real run stays clean here.
+        """
         n = ob.within_cycles
         when = (lambda j: z3.BoolVal(True)) if ob.when is None else (lambda j: self.ev(ob.when, j))
         if not n:
@@ -301,7 +365,7 @@ def decision_trace(enc: Unrolled, *, fresh: bool = False, prefix: str = "") -> D
     spec = plan.spec
     rel = spec.risk.release
     tau = real(spec.risk.threshold)
-    below = real(spec.risk.threshold - rel.hysteresis)
+    below = release_below(spec)
     hold = rel.hold_cycles
     auto = rel.mode == "auto"
     risk_sev = Response(spec.risk.response).severity

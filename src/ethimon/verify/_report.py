@@ -85,6 +85,8 @@ class SpecReport:
         error: a one-line error when the spec could not be read or compiled.
         unroll: cycles of symbolic state unrolled for the temporal proofs.
         seconds: total wall time for this spec.
+        budget_s: the run's total budget for this spec (``None``: unlimited).
+        not_reached: checks the budget cut short or never started (``unknown (budget)`` rows).
     """
 
     path: str
@@ -93,10 +95,26 @@ class SpecReport:
     error: str | None = None
     unroll: int | None = None
     seconds: float = 0.0
+    budget_s: float | None = None
+    not_reached: int = 0
 
     @property
     def refuted(self) -> list[Finding]:
         return [f for f in self.findings if f.status == REFUTED]
+
+    @property
+    def unknown(self) -> list[Finding]:
+        """Findings left undecided (solver limits, unrolling limits, or the budget)."""
+        return [f for f in self.findings if f.status == UNKNOWN]
+
+    def counts(self) -> dict[str, int]:
+        """How many properties were proved, refuted, left unknown; lint warnings; checks the budget cut."""
+        props = [f for f in self.findings if f.kind == "property"]
+        return {"proved": sum(f.status == PROVED for f in props), "refuted": sum(f.status == REFUTED for f in props),
+                "unknown": sum(f.status == UNKNOWN for f in props),
+                "lint_warnings": sum(f.status == WARNING for f in self.findings),
+                "lint_unknown": sum(f.kind == "lint" and f.status == UNKNOWN for f in self.findings),
+                "not_reached": self.not_reached}
 
     @property
     def warnings(self) -> list[Finding]:
@@ -108,21 +126,27 @@ class SpecReport:
 
     @property
     def exit_code(self) -> int:
-        """0 every property proved, 1 something refuted or unproved, 2 the spec is unusable."""
+        """0 every property proved and every check run, 1 something refuted, unproved or cut by the budget, 2 unusable.
+
+        A lint's warning, or a lint the solver could not decide, does not change the code; a lint
+        the budget did not let run does (the run is incomplete).
+        """
         if self.error is not None:
             return 2
         if any(f.kind == "property" and f.status in (REFUTED, UNKNOWN) for f in self.findings):
+            return 1
+        if self.not_reached:
             return 1
         return 0
 
     def as_dict(self) -> dict[str, Any]:
         return {"path": self.path, "name": self.name, "error": self.error, "unroll_cycles": self.unroll,
-                "seconds": round(self.seconds, 6), "exit_code": self.exit_code,
-                "findings": [f.as_dict() for f in self.findings]}
+                "seconds": round(self.seconds, 6), "budget_s": self.budget_s, "complete": not self.not_reached,
+                "exit_code": self.exit_code, "counts": self.counts(), "findings": [f.as_dict() for f in self.findings]}
 
 
 def exit_code(reports: list[SpecReport]) -> int:
-    """The CLI exit code: 2 if any spec is unusable, else 1 if anything is refuted/unproved, else 0."""
+    """The CLI exit code: 2 if any spec is unusable, else 1 if anything is refuted/unproved/cut by the budget, else 0."""
     codes = [r.exit_code for r in reports]
     return 2 if 2 in codes else (1 if 1 in codes else 0)
 
@@ -172,4 +196,8 @@ def format_table(report: SpecReport) -> str:
             if f.scenario:
                 note += f" -> {os.path.normpath(f.scenario)}"
             lines.append(f"  {f.name:<{w}}  {f.status:<8}  {f.seconds:>7.3f}s  {note}")
+    if report.not_reached:
+        c = report.counts()
+        lines.append(f"  budget of {report.budget_s:g} s spent: {c['proved']} properties proved, {c['refuted']} refuted, "
+                     f"{c['unknown']} unknown; {report.not_reached} check(s) cut short or not reached (unknown (budget))")
     return "\n".join(lines)

@@ -16,10 +16,13 @@ from ..errors import DependencyNotInstalled, SpecError
 from ..spec._model import Spec
 from ._report import WARNING, Finding, SpecReport
 
-__all__ = ["verify_spec", "verify_paths", "find_specs", "require_z3", "DEFAULT_TIMEOUT_S", "DEFAULT_MAX_UNROLL"]
+__all__ = ["verify_spec", "verify_paths", "find_specs", "require_z3", "DEFAULT_TIMEOUT_S", "DEFAULT_MAX_UNROLL",
+           "DEFAULT_BUDGET_S"]
 
 DEFAULT_TIMEOUT_S = 20.0
 DEFAULT_MAX_UNROLL = 32
+#: total seconds for all checks of one spec; checks not reached in time are "unknown (budget)"
+DEFAULT_BUDGET_S = 120.0
 
 
 def require_z3():
@@ -67,12 +70,17 @@ def _is_unit_error(exc: SpecError) -> bool:
 
 def verify_spec(spec: str | os.PathLike | Spec, *, timeout_s: float = DEFAULT_TIMEOUT_S,
                 max_unroll: int = DEFAULT_MAX_UNROLL, lints: bool = True,
-                counterexamples: str | os.PathLike | None = None) -> SpecReport:
+                counterexamples: str | os.PathLike | None = None,
+                budget_s: float | None = DEFAULT_BUDGET_S) -> SpecReport:
     """Prove the decision-logic invariants of one spec, lint it, and replay counterexamples.
 
     Args:
         spec: a spec file, or a :class:`Spec` from :func:`ethimon.load_spec`.
         timeout_s: z3 time limit per check (a check that runs out is ``unknown``).
+        budget_s: total time for this spec (``None``: no limit). When it is spent, the check
+            running is cut short and the rest are not started; each is reported as ``unknown``
+            with a message starting ``unknown (budget)``, ``report.not_reached`` counts them and
+            the exit code is 1. Each check's z3 limit is also cut to what the budget has left.
         max_unroll: most cycles of symbolic state to unroll.
         lints: also run the lints.
         counterexamples: a folder to write each counterexample into as a scenario file.
@@ -106,11 +114,10 @@ def verify_spec(spec: str | os.PathLike | Spec, *, timeout_s: float = DEFAULT_TI
                 rep.findings.append(Finding("lint", "lint.unit_mismatch", WARNING, str(exc)))
             rep.seconds = time.perf_counter() - t0
             return rep
-    v = Verifier(spec, path=path, timeout_s=timeout_s, max_unroll=max_unroll)
-    rep = SpecReport(path=path, name=spec.name, unroll=v.k)
-    rep.findings += v.properties()
-    if lints:
-        rep.findings += v.lints()
+    v = Verifier(spec, path=path, timeout_s=timeout_s, max_unroll=max_unroll, budget_s=budget_s, started=t0)
+    rep = SpecReport(path=path, name=spec.name, unroll=v.k, budget_s=budget_s)
+    found, rep.not_reached = v.run(lints=lints)
+    rep.findings += found
     if counterexamples is not None:
         from ._scenario import write_counterexample
         for f in rep.findings:
