@@ -206,6 +206,16 @@ def test_each_code_route_is_refused(tmp_path, says_yes, case):
     assert re.search(want, str(ei.value)), ei.value
 
 
+def test_a_huge_tree_is_not_walked(tmp_path, monkeypatch):
+    from ethimon.risk import _backend as B
+    d = _bert_dir(tmp_path / "m", transformers.BertForSequenceClassification, num_labels=2)
+    for i in range(12):
+        (d / f"f{i}").write_text("")
+    monkeypatch.setattr(B, "MAX_DIR_ENTRIES", 10)
+    with pytest.raises(ModelError, match="more than 10 files"):
+        B.check_model_dir(d)
+
+
 def test_adapter_with_foreign_base_or_tokenizer_is_refused(tmp_path, base, says_yes):
     canary = tmp_path / "CANARY"
     evil = _evil_dir(tmp_path / "evil", canary)

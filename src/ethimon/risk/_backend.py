@@ -60,6 +60,8 @@ CODE_KEYS = ("auto_map", "custom_pipelines")
 #: files that are code: none may be in a model directory
 CODE_SUFFIXES = (".py", ".pyc", ".pyo", ".pyw", ".pyd", ".so", ".dylib", ".dll")
 MAX_JSON_BYTES = 32 << 20
+#: a model directory is small; a bigger tree (a home folder given by mistake) is not walked to the end
+MAX_DIR_ENTRIES = 10_000
 #: most classes a classifier may have (as the spec's ``risk.classes``)
 MAX_LABELS = 1000
 #: every transformers load: local files only, never code from the directory
@@ -125,8 +127,12 @@ def check_model_dir(d: Path) -> dict | None:
             got = "missing" if "model_type" not in config else repr(mt)
             raise ModelError(f"{d / 'config.json'}: 'model_type' {got} is not supported "
                              f"(supported: {', '.join(SUPPORTED_MODEL_TYPES)})")
+    seen = 0
     for root, dirs, files in os.walk(d, followlinks=False):
         dirs.sort()
+        seen += len(files) + len(dirs)
+        if seen > MAX_DIR_ENTRIES:
+            raise ModelError(f"{d}: more than {MAX_DIR_ENTRIES} files and folders; not a model directory")
         for f in sorted(files) + sorted(dirs):
             if f.lower().endswith(CODE_SUFFIXES):
                 p = Path(root) / f
