@@ -328,3 +328,24 @@ def test_dev_stdin_as_a_pipe_does_not_hang(cmd):
         os.close(wfd)
     assert p.returncode == 2, p.stdout + p.stderr
     assert "regular file" in p.stderr and "Traceback" not in p.stderr
+
+
+@needs_fifo
+def test_report_to_a_fifo_without_reader_does_not_hang(tmp_path):
+    ok_scenario(tmp_path / "a.yaml", "a")
+    fifo = tmp_path / "report.json"
+    os.mkfifo(fifo)
+    junit = tmp_path / "r.xml"
+    r = run_cli("check", str(tmp_path / "a.yaml"), "--json", str(fifo), "--junit", str(junit), timeout=30)
+    assert r.returncode == 2, r.stdout + r.stderr
+    assert f"{fifo}: cannot write the JSON report: a named pipe (FIFO) with no reader" in r.stderr
+    assert ET.parse(junit).getroot().get("tests") == "1"  # the other report is still written
+
+
+def test_unwritable_report_is_one_line(tmp_path):
+    ok_scenario(tmp_path / "a.yaml", "a")
+    junit = tmp_path / "no" / "such" / "r.xml"
+    r = run_cli("check", str(tmp_path / "a.yaml"), "--junit", str(junit))
+    assert r.returncode == 2, r.stdout + r.stderr
+    assert f"{junit}: cannot write the JUnit report" in r.stderr and "Traceback" not in r.stderr
+    assert "1 passed" in r.stdout

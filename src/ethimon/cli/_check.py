@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import errno
 import json
+import os
 import sys
 import time
 import xml.etree.ElementTree as ET
@@ -113,12 +115,43 @@ def cmd_check(args: argparse.Namespace) -> int:
                           "skipped": n_skip, "seconds": elapsed}, indent=2, default=str)
         if args.json == "-":
             print(doc)
-        else:
-            with open(args.json, "w", encoding="utf-8") as fh:
-                fh.write(doc + "\n")
-    if args.junit:
-        _write_junit(args.junit, results, elapsed)
+        elif not _report(args.json, doc + "\n", "JSON report"):
+            bad_input = True
+    if args.junit and not _report(args.junit, _junit_xml(results, elapsed), "JUnit report"):
+        bad_input = True
     return 2 if bad_input else (1 if failed else 0)
+
+
+def write_report(path: str, text: str, what: str) -> None:
+    """Write a report file without ever blocking on a FIFO that has no reader.
+
+    Raises:
+        SpecError: the file cannot be written (one line, names the path).
+    """
+    flags = (os.O_WRONLY | os.O_CREAT | os.O_TRUNC | getattr(os, "O_NONBLOCK", 0)
+             | getattr(os, "O_CLOEXEC", 0) | getattr(os, "O_NOCTTY", 0))
+    try:
+        fd = os.open(path, flags, 0o666)
+    except OSError as exc:
+        if exc.errno == errno.ENXIO:  # a FIFO nobody reads: opening it blocking would hang
+            raise SpecError(f"cannot write the {what}: a named pipe (FIFO) with no reader", path=path,
+                            hint="start the reader first, or write the report to a regular file") from None
+        raise SpecError(f"cannot write the {what}: {exc.strerror or exc}", path=path) from None
+    try:
+        os.set_blocking(fd, True)
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+    except OSError as exc:
+        raise SpecError(f"cannot write the {what}: {exc.strerror or exc}", path=path) from None
+
+
+def _report(path: str, text: str, what: str) -> bool:
+    try:
+        write_report(path, text, what)
+        return True
+    except SpecError as exc:
+        print(str(exc), file=sys.stderr)
+        return False
 
 
 def _load_spec_for(sc, path, specs):
@@ -231,7 +264,7 @@ def _print_table(rows) -> None:
         print(fmt(r))
 
 
-def _write_junit(path: str, results: list[dict], elapsed: float) -> None:
+def _junit_xml(results: list[dict], elapsed: float) -> str:
     suite = ET.Element("testsuite", name="ethimon check", tests=str(len(results)),
                        failures=str(sum(1 for r in results if r.get("passed") is False and "error" not in r)),
                        errors=str(sum(1 for r in results if "error" in r)),
@@ -245,4 +278,4 @@ def _write_junit(path: str, results: list[dict], elapsed: float) -> None:
         elif r.get("passed") is False:
             el = ET.SubElement(case, "failure", message="; ".join(r.get("failures", [])))
             el.text = "\n".join(r.get("failures", []))
-    ET.ElementTree(suite).write(path, encoding="utf-8", xml_declaration=True)
+    return "<?xml version='1.0' encoding='utf-8'?>\n" + ET.tostring(suite, encoding="unicode") + "\n"

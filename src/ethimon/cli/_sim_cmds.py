@@ -157,6 +157,10 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         if args.json == "-":
             print(doc)
         else:
-            with open(args.json, "w", encoding="utf-8") as fh:
-                fh.write(doc + "\n")
+            from ._check import write_report
+            try:
+                write_report(args.json, doc + "\n", "JSON report")
+            except SpecError as exc:
+                print(str(exc), file=sys.stderr)
+                bad = True
     return 2 if bad else (1 if failed else 0)
