@@ -313,13 +313,13 @@ def test_base_encoder_with_missing_layers_is_refused(tmp_path, base):
 
 def test_real_classifiers_still_load_and_are_deterministic(tmp_path, base):
     clf = _distilbert_clf(tmp_path / "clf")
-    p1 = load_estimator(clf, max_length=32, cache_size=0).probs(TEXT)
-    p2 = load_estimator(clf, max_length=32, cache_size=0).probs(TEXT)
+    p1 = load_estimator(clf, max_length=32, cache_size=0, jit=False).probs(TEXT)
+    p2 = load_estimator(clf, max_length=32, cache_size=0, jit=False).probs(TEXT)
     assert p1 == p2 and math.isclose(sum(p1), 1.0, abs_tol=1e-6)
     bc = _bert_dir(tmp_path / "bc", transformers.BertForSequenceClassification, num_labels=2)
-    assert load_estimator(bc, max_length=32).probs(TEXT) == load_estimator(bc, max_length=32).probs(TEXT)
+    assert load_estimator(bc, jit=False).probs(TEXT) == load_estimator(bc, jit=False).probs(TEXT)
     a = _adapter_dir(tmp_path / "a", base)
-    assert load_estimator(a).probs(TEXT) == load_estimator(a).probs(TEXT)
+    assert load_estimator(a, jit=False).probs(TEXT) == load_estimator(a, jit=False).probs(TEXT)
 
 
 # ================================================================ 3. manifests taken at their word
