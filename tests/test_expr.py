@@ -57,3 +57,55 @@ def test_depth_and_length_limits():
 def test_round_trip():
     src = "held((d < 0.5), 3) implies not (v > 1)"
     assert to_source(parse_expr(to_source(parse_expr(src)))) == to_source(parse_expr(src))
+
+
+def test_and_or_chains_are_balanced_and_keep_order():
+    from ethimon.spec._expr import walk
+    n = 1000
+    e = parse_expr(" and ".join(f"a{i}" for i in range(n)))
+    names = [x.id for x in walk(e) if isinstance(x, Name)]
+    assert names == [f"a{i}" for i in range(n)]  # left to right, as written
+
+    def height(x):
+        return 1 + max((height(c) for c in (x.left, x.right)), default=0) if isinstance(x, Binary) else 1
+    assert height(e) <= 12  # log2(1000) + 1, not 1000
+    three = parse_expr("a or b or c")  # short chains keep the left-nested shape
+    assert three.op == "or" and three.left.op == "or" and isinstance(three.right, Name)
+
+
+def test_arithmetic_chains_stay_left_nested_up_to_the_limit():
+    from ethimon.spec._expr import MAX_CHAIN_TERMS
+    e = parse_expr(" - ".join(["x"] * MAX_CHAIN_TERMS))
+    depth = 0
+    while isinstance(e, Binary):
+        assert isinstance(e.right, Name)
+        e, depth = e.left, depth + 1
+    assert depth == MAX_CHAIN_TERMS - 1
+    src = " * ".join(["x"] * (MAX_CHAIN_TERMS + 5))
+    with pytest.raises(ExprSyntaxError) as info:
+        parse_expr(src)
+    assert f"{MAX_CHAIN_TERMS + 5} terms, the limit is {MAX_CHAIN_TERMS}" in info.value.message
+    assert src[info.value.index] == "*" and info.value.index == src.index("*") + 4 * (MAX_CHAIN_TERMS - 1)
+
+
+@pytest.mark.parametrize("src,index", [("x < 1\u0665", 5), ("x <\u00a01", 3), ("\uff11 > x", 0), ("x\u3000< 1", 1)])
+def test_non_ascii_is_a_syntax_error(src, index):
+    with pytest.raises(ExprSyntaxError) as info:
+        parse_expr(src)
+    assert info.value.index == index and "U+" in info.value.message and info.value.hint
+
+
+@pytest.mark.parametrize("num", ["1e400", "9" * 400, "1.5e309"])
+def test_non_finite_literals_are_syntax_errors(num):
+    with pytest.raises(ExprSyntaxError) as info:
+        parse_expr(f"x < {num}")
+    assert info.value.index == 4 and "too large" in info.value.message
+    assert parse_expr("x < 1e-400").right.value == 0.0  # underflow to 0 is a number
+
+
+def test_length_limit():
+    from ethimon.spec._expr import MAX_EXPR_CHARS
+    src = " or ".join(["x"] * (MAX_EXPR_CHARS // 5 + 1))
+    assert len(src) > MAX_EXPR_CHARS
+    with pytest.raises(ExprSyntaxError, match="too long"):
+        parse_expr(src)

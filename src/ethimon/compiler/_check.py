@@ -107,6 +107,7 @@ class _Checker:
         self.consts: dict[str, float] = {}
         self.loc: tuple = ()
         self.text = ""
+        self.folded: dict[int, float] = {}  # id(node) -> value, for constant numeric subexpressions
         for name, sig in spec.signals.items():
             try:
                 unit = parse_unit(sig.unit) if sig.type == "number" else None
@@ -166,14 +167,55 @@ class _Checker:
         return a.unit if a.unit is not None else b.unit
 
     def check(self, node: Node) -> Ty:
+        got = self.types.get(id(node))
+        if got is not None:
+            return got
+        if not self._checking:
+            return self._check_tree(node)
         ty = self._check(node)
         self.types[id(node)] = ty
         return ty
+
+    _checking = False
+
+    def _check_tree(self, root: Node) -> Ty:
+        """Check ``root`` bottom-up without deep recursion.
+
+        Nodes are visited children first, left to right (the order the recursive
+        rules would meet them), so that each :meth:`check` call finds its
+        operands' types already computed and recurses one level only. The
+        window argument of ``held``/``once``/``since`` is left to :meth:`bound`.
+        """
+        order: list[Node] = []
+        stack: list[tuple[Node, bool]] = [(root, False)]
+        while stack:
+            node, expanded = stack.pop()
+            if expanded:
+                order.append(node)
+                continue
+            stack.append((node, True))
+            for child in reversed(_children(node)):
+                stack.append((child, False))
+        self._checking = True
+        try:
+            for node in order:
+                self.check(node)
+        finally:
+            self._checking = False
+        return self.types[id(root)]
+
+    def fold(self, node: Node, value: float) -> None:
+        """Record the value of a constant subexpression (refusing overflow to inf/nan)."""
+        if not math.isfinite(value):
+            raise self.err(node, f"the constant expression {self.snippet(node)!r} is not a finite number "
+                                 f"(it evaluates to {value})", hint="check the constants and the arithmetic")
+        self.folded[id(node)] = value
 
     def _check(self, node: Node) -> Ty:
         if isinstance(node, Num):
             if not math.isfinite(node.value):
                 raise self.err(node, "number is not finite")
+            self.folded[id(node)] = node.value
             return Ty("num", None)
         if isinstance(node, BoolLit):
             return BOOL
@@ -190,12 +232,16 @@ class _Checker:
                     hint = "declare it under 'signals:' or 'constants:'" + (
                         f"; known names: {', '.join(known)}" if len(known) <= 12 else "")
                 raise self.err(node, f"unknown signal {node.id!r}", hint=hint)
+            if node.id in self.consts:
+                self.folded[id(node)] = self.consts[node.id]
             return ty
         if isinstance(node, Unary):
             if node.op == "not":
                 self.need(node.operand, "bool", "'not'")
                 return BOOL
             ty = self.need(node.operand, "num", "unary '-'")
+            if id(node.operand) in self.folded:
+                self.fold(node, -self.folded[id(node.operand)])
             return ty
         if isinstance(node, Binary):
             op = node.op
@@ -217,6 +263,13 @@ class _Checker:
                 return BOOL
             a = self.need(node.left, "num", f"'{op}'")
             b = self.need(node.right, "num", f"'{op}'")
+            x, y = self.folded.get(id(node.left)), self.folded.get(id(node.right))
+            if op == "/" and y == 0:
+                what = "" if isinstance(node.right, Num) else f": {self.snippet(node.right)!r} is always {y}"
+                raise self.err(node.right, f"division by zero{what}",
+                               hint="the divisor is a constant 0, so every cycle would fail closed")
+            if x is not None and y is not None:
+                self.fold(node, x + y if op == "+" else x - y if op == "-" else x * y if op == "*" else x / y)
             if op in ("+", "-"):
                 return Ty("num", self.same_unit(node, a, b, f"'{op}'"))
             if op == "*":
@@ -224,8 +277,6 @@ class _Checker:
                           else (a.unit if b.unit is None and _is_literal(node.right) else
                                 b.unit if a.unit is None and _is_literal(node.left) else None))
             if op == "/":
-                if isinstance(node.right, Num) and node.right.value == 0:
-                    raise self.err(node.right, "division by zero")
                 if a.unit is not None and b.unit is not None:
                     return Ty("num", div(a.unit, b.unit))
                 if b.unit is None and _is_literal(node.right):
@@ -245,6 +296,9 @@ class _Checker:
         else:
             raise self.err(arg, f"the window of {fname}() must be a whole number of cycles, "
                                 f"not {self.snippet(arg)!r}", hint=f"e.g. {fname}(x, 3)")
+        if not math.isfinite(value) or value > MAX_WINDOW:
+            raise self.err(arg, f"window {self.snippet(arg)} of {fname}() is too long (at most {MAX_WINDOW} cycles)",
+                           hint="a window counts control cycles")
         if value != int(value):
             raise self.err(arg, f"the window of {fname}() must be a whole number of cycles, got {value}")
         n = int(value)
@@ -252,7 +306,8 @@ class _Checker:
             raise self.err(arg, f"a window of {n} cycles makes no sense in {fname}()",
                            hint="windows count the current cycle, so the smallest is 1")
         if n > MAX_WINDOW:
-            raise self.err(arg, f"window {n} is too long (at most {MAX_WINDOW} cycles)")
+            raise self.err(arg, f"window {n} is too long (at most {MAX_WINDOW} cycles)",
+                           hint="a window counts control cycles")
         self.types[id(arg)] = Ty("num", None)
         return n
 
@@ -269,9 +324,19 @@ class _Checker:
             raise self.err(node, f"{f}() takes {want} arguments, got {nargs}")
         args = node.args
         if f == "abs":
-            return self.need(args[0], "num", "abs()")
+            ty = self.need(args[0], "num", "abs()")
+            if id(args[0]) in self.folded:
+                self.fold(node, abs(self.folded[id(args[0])]))
+            return ty
         if f == "sqrt":
             ty = self.need(args[0], "num", "sqrt()")
+            v = self.folded.get(id(args[0]))
+            if v is not None:
+                if v < 0:
+                    raise self.err(args[0], f"square root of a negative constant: {self.snippet(args[0])!r} "
+                                            f"is always {v}",
+                                   hint="sqrt() of a negative number fails, so every cycle would fail closed")
+                self.fold(node, math.sqrt(v))
             try:
                 return Ty("num", sqrt_unit(ty.unit))
             except ValueError as exc:
@@ -281,6 +346,9 @@ class _Checker:
             unit = tys[0].unit
             for a, t in zip(args[1:], tys[1:]):
                 unit = self.same_unit(a, Ty("num", unit), t, f"{f}()")
+            vals = [self.folded.get(id(a)) for a in args]
+            if all(v is not None for v in vals):
+                self.fold(node, (min if f == "min" else max)(vals))
             return Ty("num", unit)
         # temporal operators
         if f == "prev":
@@ -303,6 +371,21 @@ class _Checker:
             ty = BOOL
         self.temporal.append(node)  # children were checked (and appended) first
         return ty
+
+
+def _children(node: Node) -> tuple[Node, ...]:
+    """Operands the type rules check through :meth:`_Checker.check` (not window bounds)."""
+    if isinstance(node, Unary):
+        return (node.operand,)
+    if isinstance(node, Binary):
+        return (node.left, node.right)
+    if isinstance(node, Call):
+        if node.func in ("held", "once"):
+            return node.args[:1]
+        if node.func == "since":
+            return node.args[:2]
+        return node.args
+    return ()
 
 
 def _is_literal(node: Node) -> bool:

@@ -18,11 +18,28 @@ the bounded past-time temporal operators ``prev(e[, init])``,
 
 The parser is hand-written (no ``eval``); every node keeps the character
 offsets of its source text so errors can point at file:line:column.
+
+Expressions are ASCII: digits are ``0-9``, names ``[A-Za-z_][A-Za-z0-9_]*``,
+whitespace is space, tab and line breaks (a non-ASCII digit such as ``٥`` or
+``５``, or a no-break space, is a syntax error, never read as a number or a
+blank).
+
+Size limits (each a syntax error with a position, never a crash):
+``MAX_EXPR_CHARS`` characters, ``MAX_EXPR_DEPTH`` levels of parentheses,
+``not``, unary minus, ``implies`` and calls, ``MAX_CHAIN_TERMS`` terms in one
+chain of ``+``/``-`` or of ``*``/``/``, and ``MAX_TREE_DEPTH`` levels in the
+resulting tree. A chain of ``and`` (or of ``or``) is built as a balanced tree
+(same value, same left-to-right short-circuit order, depth log2 of its
+length), so its length is bounded only by ``MAX_EXPR_CHARS``; a chain of
+``+``, ``-``, ``*`` or ``/`` keeps its left-to-right grouping (float rounding
+depends on it), one tree level per term.
 """
 
 from __future__ import annotations
 
+import math
 import re
+import unicodedata
 from dataclasses import dataclass
 
 __all__ = [
@@ -91,15 +108,20 @@ TEMPORAL = frozenset({"prev", "held", "once", "since"})
 KEYWORDS = frozenset({"and", "or", "not", "implies", "true", "false"})
 COMPARISONS = ("<=", ">=", "==", "!=", "<", ">")
 
+# ASCII only: in a str pattern, \d and \s would also match "٥", "５" and U+00A0
 _TOKEN = re.compile(r"""
-    (?P<ws>\s+)
-  | (?P<num>(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?)
+    (?P<ws>[ \t\r\n]+)
+  | (?P<num>(?:[0-9]+\.[0-9]*|\.[0-9]+|[0-9]+)(?:[eE][-+]?[0-9]+)?)
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
   | (?P<op><=|>=|==|!=|<|>|\+|-|\*|/|\(|\)|,)
-""", re.VERBOSE)
+""", re.VERBOSE | re.ASCII)
 
-MAX_EXPR_CHARS = 4000
+MAX_EXPR_CHARS = 20_000
 MAX_EXPR_DEPTH = 48
+#: terms in one chain of + and - (or of * and /): each adds a tree level
+MAX_CHAIN_TERMS = 100
+#: levels of the expression tree (chains, nesting and calls together)
+MAX_TREE_DEPTH = 160
 
 
 @dataclass(frozen=True)
@@ -128,6 +150,8 @@ def _tokenize(src: str) -> list[_Tok]:
                 hint = "compare with '=='"
             elif ch in "[]{}":
                 hint = "windows are written held(x, n) / once(x, n)"
+            elif not ch.isascii():
+                raise _non_ascii(src, i)
             raise ExprSyntaxError(f"unexpected character {ch!r}", i, hint)
         kind = m.lastgroup
         if kind != "ws":
@@ -140,12 +164,28 @@ def _tokenize(src: str) -> list[_Tok]:
     return toks
 
 
+def _non_ascii(src: str, i: int) -> ExprSyntaxError:
+    ch = src[i]
+    name = unicodedata.name(ch, "")
+    shown = f"U+{ord(ch):04X}" + (f" {name}" if name else "")
+    if ch.isdigit() or ch.isdecimal():
+        hint = "expressions use the ASCII digits 0-9 only"
+    elif ch.isspace():
+        hint = "use a plain space"
+    elif ch in "≤≥≠−×÷":
+        hint = "write <=, >=, !=, -, * or / (ASCII)"
+    else:
+        hint = "expressions are ASCII: names are letters, digits and '_'"
+    return ExprSyntaxError(f"unexpected character {ch!r} ({shown})", i, hint)
+
+
 class _Parser:
     def __init__(self, src: str) -> None:
         self.src = src
         self.toks = _tokenize(src)
         self.i = 0
         self.depth = 0
+        self.heights: dict[int, int] = {}  # id(node) -> levels of its tree (1 for a leaf)
 
     @property
     def tok(self) -> _Tok:
@@ -162,6 +202,40 @@ class _Parser:
             found = "end of expression" if t.kind == "eof" else repr(t.text)
             raise ExprSyntaxError(f"expected {what}, found {found}", t.start)
         return self.take()
+
+    def height(self, node: Node) -> int:
+        return self.heights.get(id(node), 1)
+
+    def binary(self, op: str, left: Node, right: Node, at: int) -> Binary:
+        """A Binary node, refused if the tree gets deeper than ``MAX_TREE_DEPTH``."""
+        h = 1 + max(self.height(left), self.height(right))
+        if h > MAX_TREE_DEPTH:
+            raise ExprSyntaxError(f"expression is nested or chained too deeply (more than {MAX_TREE_DEPTH} "
+                                  "levels)", at, _SPLIT_HINT)
+        node = Binary(left.start, right.end, op, left, right)
+        self.heights[id(node)] = h
+        return node
+
+    def wrap(self, node: Node, child: Node, at: int) -> Node:
+        h = 1 + self.height(child)
+        if h > MAX_TREE_DEPTH:
+            raise ExprSyntaxError(f"expression is nested or chained too deeply (more than {MAX_TREE_DEPTH} "
+                                  "levels)", at, _SPLIT_HINT)
+        self.heights[id(node)] = h
+        return node
+
+    def balanced(self, op: str, terms: list[Node], ops: list[_Tok]) -> Node:
+        """``terms[0] op terms[1] op ...`` as a balanced tree (for associative ``and``/``or``).
+
+        Evaluation is left to right with the same short-circuit as the left-nested
+        chain; a chain of three keeps the left-nested shape ``(a op b) op c``.
+        """
+        if len(terms) == 1:
+            return terms[0]
+        mid = len(terms) - len(terms) // 2
+        left = self.balanced(op, terms[:mid], ops[:mid - 1])
+        right = self.balanced(op, terms[mid:], ops[mid:])
+        return self.binary(op, left, right, ops[mid - 1].start)
 
     def _enter(self) -> None:
         self.depth += 1
@@ -185,27 +259,25 @@ class _Parser:
         self._enter()
         left = self.or_()
         if self.tok.kind == "implies":
-            self.take()
+            t = self.take()
             right = self.expr()
-            left = Binary(left.start, right.end, "implies", left, right)
+            left = self.binary("implies", left, right, t.start)
         self.depth -= 1
         return left
 
     def or_(self) -> Node:
-        left = self.and_()
+        terms, ops = [self.and_()], []
         while self.tok.kind == "or":
-            self.take()
-            right = self.and_()
-            left = Binary(left.start, right.end, "or", left, right)
-        return left
+            ops.append(self.take())
+            terms.append(self.and_())
+        return self.balanced("or", terms, ops)
 
     def and_(self) -> Node:
-        left = self.not_()
+        terms, ops = [self.not_()], []
         while self.tok.kind == "and":
-            self.take()
-            right = self.not_()
-            left = Binary(left.start, right.end, "and", left, right)
-        return left
+            ops.append(self.take())
+            terms.append(self.not_())
+        return self.balanced("and", terms, ops)
 
     def not_(self) -> Node:
         if self.tok.kind == "not":
@@ -213,34 +285,40 @@ class _Parser:
             self._enter()
             operand = self.not_()
             self.depth -= 1
-            return Unary(t.start, operand.end, "not", operand)
+            return self.wrap(Unary(t.start, operand.end, "not", operand), operand, t.start)
         return self.cmp()
 
     def cmp(self) -> Node:
         left = self.sum()
         if self.tok.kind == "op" and self.tok.text in COMPARISONS:
-            op = self.take().text
+            t = self.take()
             right = self.sum()
             if self.tok.kind == "op" and self.tok.text in COMPARISONS:
                 raise ExprSyntaxError("comparisons cannot be chained", self.tok.start,
                                       "write 'a < b and b < c'")
-            return Binary(left.start, right.end, op, left, right)
+            return self.binary(t.text, left, right, t.start)
         return left
 
     def sum(self) -> Node:
-        left = self.term()
-        while self.tok.kind == "op" and self.tok.text in ("+", "-"):
-            op = self.take().text
-            right = self.term()
-            left = Binary(left.start, right.end, op, left, right)
-        return left
+        return self.chain(("+", "-"), self.term)
 
     def term(self) -> Node:
-        left = self.unary()
-        while self.tok.kind == "op" and self.tok.text in ("*", "/"):
-            op = self.take().text
-            right = self.unary()
-            left = Binary(left.start, right.end, op, left, right)
+        return self.chain(("*", "/"), self.unary)
+
+    def chain(self, symbols: tuple[str, str], operand) -> Node:
+        """A left-nested chain ``a op b op c ...`` of at most ``MAX_CHAIN_TERMS`` terms."""
+        first = operand()
+        terms, ops = [first], []
+        while self.tok.kind == "op" and self.tok.text in symbols:
+            ops.append(self.take())
+            terms.append(operand())
+        if len(terms) > MAX_CHAIN_TERMS:
+            raise ExprSyntaxError(
+                f"chain of '{symbols[0]}'/'{symbols[1]}' is too long: {len(terms)} terms, the limit is "
+                f"{MAX_CHAIN_TERMS}", ops[MAX_CHAIN_TERMS - 1].start, _SPLIT_HINT)
+        left = first
+        for t, right in zip(ops, terms[1:]):
+            left = self.binary(t.text, left, right, t.start)
         return left
 
     def unary(self) -> Node:
@@ -251,14 +329,18 @@ class _Parser:
             self.depth -= 1
             if isinstance(operand, Num):
                 return Num(t.start, operand.end, -operand.value)
-            return Unary(t.start, operand.end, "-", operand)
+            return self.wrap(Unary(t.start, operand.end, "-", operand), operand, t.start)
         return self.primary()
 
     def primary(self) -> Node:
         t = self.tok
         if t.kind == "num":
             self.take()
-            return Num(t.start, t.end, float(t.text))
+            value = float(t.text)
+            if not math.isfinite(value):
+                raise ExprSyntaxError(f"number {_shorten(t.text)} is too large", t.start,
+                                      "the largest number is about 1.8e308")
+            return Num(t.start, t.end, value)
         if t.kind in ("true", "false"):
             self.take()
             return BoolLit(t.start, t.end, t.kind == "true")
@@ -299,7 +381,21 @@ class _Parser:
                 break
         self.depth -= 1
         close = self.expect_close(open_tok.start)
-        return Call(name.start, close.end, name.text, tuple(args), name.end)
+        node = Call(name.start, close.end, name.text, tuple(args), name.end)
+        h = 1 + max((self.height(a) for a in args), default=0)
+        if h > MAX_TREE_DEPTH:
+            raise ExprSyntaxError(f"expression is nested or chained too deeply (more than {MAX_TREE_DEPTH} "
+                                  "levels)", name.start, _SPLIT_HINT)
+        self.heights[id(node)] = h
+        return node
+
+
+_SPLIT_HINT = ("each term of a '+', '-', '*' or '/' chain adds a level; group terms with parentheses, "
+               "e.g. (a + b) + (c + d), or split the rule into several obligations")
+
+
+def _shorten(text: str) -> str:
+    return text if len(text) <= 24 else f"{text[:10]}...{text[-6:]} ({len(text)} characters)"
 
 
 def parse_expr(src: str) -> Node:
