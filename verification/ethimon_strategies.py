@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from fractions import Fraction
 from typing import Any
 
+import numpy as np
 import yaml
 from hypothesis import strategies as st
 
@@ -36,10 +38,35 @@ bool_leaf = st.one_of(st.sampled_from(BOOL_SIGNALS).map(lambda s: _n(Name, s)),
                       st.booleans().map(lambda v: _n(BoolLit, v)))
 
 
+def _const(node):
+    """The value of a constant subtree (no signal, no temporal operator), as the compiler folds it; else None."""
+    if isinstance(node, Num):
+        return node.value
+    if isinstance(node, Unary) and node.op == "-":
+        v = _const(node.operand)
+        return None if v is None else -v
+    if isinstance(node, Binary) and node.op in ("+", "-", "*", "/"):
+        a, b = _const(node.left), _const(node.right)
+        if a is None or b is None or (node.op == "/" and b == 0):
+            return None
+        return a + b if node.op == "+" else a - b if node.op == "-" else a * b if node.op == "*" else a / b
+    if isinstance(node, Call) and node.func in ("abs", "sqrt", "min", "max"):
+        vals = [_const(a) for a in node.args]
+        if any(v is None for v in vals) or (node.func == "sqrt" and vals[0] < 0):
+            return None
+        return {"abs": abs, "sqrt": math.sqrt, "min": min, "max": max}[node.func](*vals)
+    return None
+
+
 def _nonzero(node):
-    """A divisor the compiler accepts: not a literal zero (also not ``-0`` or ``-(-0)``, which fold to one)."""
-    folded = parse_expr(to_source(node))
-    return _n(Num, 1.0) if isinstance(folded, Num) and folded.value == 0 else node
+    """A divisor the compiler accepts: not a constant zero (``0``, ``-0``, ``1 - 1``: a SpecError)."""
+    return _n(Num, 1.0) if _const(node) == 0 else node
+
+
+def _nonneg(node):
+    """A sqrt argument the compiler accepts: not a negative constant (a SpecError)."""
+    v = _const(node)
+    return _n(Call, "abs", (node,)) if v is not None and v < 0 else node
 
 
 def num_expr(depth: int) -> st.SearchStrategy:
@@ -54,7 +81,7 @@ def num_expr(depth: int) -> st.SearchStrategy:
         st.builds(lambda op, a, b: _n(Binary, op, a, _nonzero(b) if op == "/" else b),
                   st.sampled_from(("+", "-", "*", "/")), sub, sub),
         sub.map(lambda a: _n(Call, "abs", (a,))),
-        sub.map(lambda a: _n(Call, "sqrt", (a,))),
+        sub.map(lambda a: _n(Call, "sqrt", (_nonneg(a),))),
         st.builds(lambda f, args: _n(Call, f, tuple(args)), st.sampled_from(("min", "max")),
                   st.lists(sub, min_size=2, max_size=3)),
         sub.map(lambda a: _n(Call, "prev", (a,))),
@@ -113,7 +140,8 @@ def spec_doc(draw, *, max_obligations: int = 3, depth: int = 3) -> dict:
         ob["response"] = draw(st.sampled_from(RESPONSES))
         obligations.append(ob)
     weights = draw(st.one_of(st.just((0.6, 0.2, 0.2)),
-                             st.tuples(*[st.sampled_from((0.0, 0.1, 0.3, 0.5, 0.8, 1.0))] * 3)))
+                             st.tuples(*[st.sampled_from((0.0, 0.1, 0.3, 0.5, 0.8, 1.0))] * 3)
+                             .filter(lambda w: sum(w) > 0)))  # all-zero weights are a SpecError
     risk: dict[str, Any] = {
         "alpha": weights[0], "beta": weights[1], "gamma": weights[2],
         "variance": draw(st.sampled_from(("sample", "population"))),
@@ -147,8 +175,42 @@ def _num_value(lo: float, hi: float) -> st.SearchStrategy:
                      st.floats(lo, hi, allow_nan=False))
 
 
-BAD_NUMBERS = (math.nan, math.inf, -math.inf, 1e9, -1e9, "0.5", True, None)
-BAD_BOOLS = ("yes", 2, None, math.nan, 0.5)
+class FloatSub(float):
+    """A float subclass (a usable number: converted to a built-in float once)."""
+
+
+class NaNFloat(float):
+    """A float subclass holding NaN (unusable)."""
+
+    def __new__(cls):
+        return super().__new__(cls, math.nan)
+
+    def __repr__(self) -> str:
+        return "NaNFloat()"
+
+
+class AlwaysPasses:
+    """Not a number, but every comparison with it is True (unusable)."""
+
+    def __lt__(self, o): return True  # noqa: E704
+    def __le__(self, o): return True  # noqa: E704
+    def __gt__(self, o): return True  # noqa: E704
+    def __ge__(self, o): return True  # noqa: E704
+    def __eq__(self, o): return True  # noqa: E704
+    def __float__(self): return 0.5  # noqa: E704
+    __hash__ = object.__hash__
+
+    def __repr__(self) -> str:
+        return "AlwaysPasses()"
+
+
+# valid numbers arrive as built-in floats mostly, sometimes as other real types (converted exactly)
+NUMBER_TYPES = (float, float, float, float, np.float64, FloatSub, Fraction)
+BAD_NUMBERS = (math.nan, math.inf, -math.inf, 1e9, -1e9, "0.5", True, None, np.bool_(True), np.bool_(False),
+               NaNFloat(), AlwaysPasses(), np.float64("nan"), [0.5])
+BAD_BOOLS = ("yes", 2, None, math.nan, 0.5, np.float64(0.5), AlwaysPasses(), "True")
+GOOD_BOOLS = (True, False, 0, 1, np.bool_(True), np.bool_(False))
+BAD_RISK = (math.nan, -0.5, 1.5, None, "high", np.bool_(False), np.bool_(True), NaNFloat(), AlwaysPasses())
 
 
 @st.composite
@@ -159,28 +221,36 @@ def frame(draw, spec: ethimon.Spec, *, p_bad: float = 0.05, late_risk: bool = Tr
     bad = lambda: draw(st.integers(0, 999)) >= cut  # noqa: E731  (shrinks towards valid input)
     for name, sig in spec.signals.items():
         if sig.type == "bool":
-            v = draw(st.sampled_from(BAD_BOOLS)) if bad() else draw(st.sampled_from((True, False, 0, 1)))
+            v = draw(st.sampled_from(BAD_BOOLS)) if bad() else draw(st.sampled_from(GOOD_BOOLS))
         else:
             lo, hi = sig.range if sig.range is not None else (-100.0, 100.0)
-            v = draw(st.sampled_from(BAD_NUMBERS)) if bad() else draw(_num_value(lo, hi))
+            v = draw(st.sampled_from(BAD_NUMBERS)) if bad() else draw(st.sampled_from(NUMBER_TYPES))(
+                draw(_num_value(lo, hi)))
         if v is not None:
             f[name] = v
     kind = draw(st.sampled_from(("risk", "p_unsafe", "p_unsafe", "p")))
     if bad():
-        f[kind] = draw(st.sampled_from((math.nan, -0.5, 1.5, None, "high")))
-        if f[kind] is None:
-            del f[kind]
+        if kind == "p" and draw(st.booleans()):  # a p of the right length that is still unusable
+            q = draw(st.sampled_from((0.0, 0.3, 1.0)))
+            f["p"] = draw(st.sampled_from(({0: 1.0 - q, 1: q}, (True, False), (np.bool_(False), np.bool_(True)),
+                                           (AlwaysPasses(), AlwaysPasses()), (1.0 - q, NaNFloat()))))
+        else:
+            f[kind] = draw(st.sampled_from(BAD_RISK))
+            if f[kind] is None:
+                del f[kind]
     else:
         q = draw(st.one_of(st.sampled_from((0.0, 0.5, 1.0, 0.55, 0.7, 0.9)), st.floats(0, 1)))
         if kind == "p":
-            f["p"] = (1.0 - q, q)
+            p = draw(st.sampled_from((tuple, tuple, list, np.array)))((1.0 - q, q))
+            f["p"] = p
         elif kind == "risk":
             f["risk"] = draw(st.one_of(st.floats(0, 1), st.sampled_from((0.1, 0.45, 0.5, 0.6, 0.7))))
         else:
             f["p_unsafe"] = q
     if spec.risk.max_age_s is not None:
         if late_risk and bad():
-            f["risk_age_s"] = draw(st.sampled_from((spec.risk.max_age_s * 2, math.nan, -1.0, None)))
+            f["risk_age_s"] = draw(st.sampled_from((spec.risk.max_age_s * 2, math.nan, -1.0, None, np.bool_(False),
+                                                    NaNFloat(), AlwaysPasses())))
             if f["risk_age_s"] is None:
                 del f["risk_age_s"]
         else:

@@ -7,6 +7,7 @@ history), ``reset()`` and ``release()``.
 
 from __future__ import annotations
 
+import math
 import os
 
 from hypothesis import given, note, settings
@@ -35,6 +36,10 @@ def run_both(spec, trace):
         note(f"frame={op[1]!r}\n  monitor  ={a!r}\n  reference={b!r}")
         assert decision_key(a) == decision_key(b)
         assert m.latched == (ref.latched > 0)
+        if not a.faults:  # margins: the O(1) compiled ones equal the definition's (bounded responses too)
+            assert len(a.margins) == len(b.margins)
+            for x, y in zip(a.margins, b.margins):
+                assert (x != x and y != y) or x == y or math.isclose(x, y, rel_tol=1e-9, abs_tol=1e-12), (x, y)
 
 
 @settings(max_examples=2 * settings.default.max_examples)  # the core differential check

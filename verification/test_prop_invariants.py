@@ -21,12 +21,15 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Mapping, Set
+from fractions import Fraction
+from numbers import Real
 
 from hypothesis import given, note, settings
 from hypothesis import strategies as st
 
 import ethimon
-from ethimon.risk._formula import risk_bounds, risk_from_p_unsafe, risk_from_probs
+from ethimon.risk._formula import risk_from_p_unsafe, risk_from_probs, risk_range
 from ethimon.spec._model import Response
 from ethimon_strategies import frame, ops, specs
 
@@ -35,26 +38,34 @@ SHIPPED = [os.path.join(ROOT, "specs", f) for f in ("governor.yaml", "cobot_cell
 
 
 def _num(v) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool)
+    """The contract: a real number (not a bool of any kind) whose float() is finite."""
+    if isinstance(v, bool) or type(v).__name__ in ("bool_", "bool") or not isinstance(v, Real):
+        return False
+    return math.isfinite(float(v))
 
 
 def expected_risk(spec, f) -> float | None:
     """R_e from the inputs as the contract defines it, or ``None`` if the risk input is bad/missing."""
     r = spec.risk
-    lo, hi = risk_bounds(r.alpha, r.beta, r.gamma, r.variance) if r.classes == 2 else (0.0, 1.0)
+    lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)
     if f.get("risk") is not None:
         v = f["risk"]
-        return float(v) if _num(v) and min(0.0, lo) <= v <= max(1.0, hi) else None
+        return float(v) if _num(v) and min(0.0, lo) <= float(v) <= max(1.0, hi) else None
     if f.get("p_unsafe") is not None:
         q = f["p_unsafe"]
-        return risk_from_p_unsafe(q, r.alpha, r.beta, r.gamma, r.variance) if _num(q) and 0 <= q <= 1 else None
+        ok = r.classes == 2 and _num(q) and 0 <= float(q) <= 1
+        return risk_from_p_unsafe(float(q), r.alpha, r.beta, r.gamma, r.variance) if ok else None
     if f.get("p") is not None:
         p = f["p"]
+        if isinstance(p, (Mapping, Set, str)):
+            return None
         try:
-            ok = len(p) == r.classes and all(_num(v) and 0 <= v <= 1 for v in p) and abs(sum(p) - 1) <= 1e-3
+            ok = len(p) == r.classes and all(_num(v) and 0 <= float(v) <= 1 for v in p)
         except TypeError:
             return None
-        return risk_from_probs(list(p), r.alpha, r.beta, r.gamma, r.variance, r.unsafe_index) if ok else None
+        if not ok or abs(sum(float(v) for v in p) - 1) > 1e-3:
+            return None
+        return risk_from_probs([float(v) for v in p], r.alpha, r.beta, r.gamma, r.variance, r.unsafe_index)
     return None
 
 
@@ -64,17 +75,18 @@ def input_valid(spec, f) -> bool:
         if v is None:
             return False
         if sig.type == "bool":
-            if not (v is True or v is False or (_num(v) and v in (0, 1))):
+            if not (v is True or v is False or type(v).__name__ in ("bool_", "bool")
+                    or (_num(v) and float(v) in (0.0, 1.0))):
                 return False
         else:
             lo, hi = sig.range if sig.range is not None else (-1.7976931348623157e308, 1.7976931348623157e308)
-            if not (_num(v) and lo <= v <= hi):
+            if not (_num(v) and lo <= float(v) <= hi):
                 return False
     if expected_risk(spec, f) is None:
         return False
     if spec.risk.max_age_s is not None:
         age = f.get("risk_age_s")
-        if not (_num(age) and 0 <= age <= spec.risk.max_age_s):
+        if not (_num(age) and 0 <= float(age) <= spec.risk.max_age_s):
             return False
     return True
 
@@ -103,7 +115,9 @@ def check_trace(spec, trace) -> None:
     m = ethimon.Monitor(spec)
     oracle = Oracle(spec)
     r = spec.risk
-    tau, below = r.threshold, r.threshold - r.release.hysteresis
+    # τ − δ as the spec writes it (decimals), compared exactly: 0.27 − 0.05 is 0.22
+    tau = r.threshold
+    below = Fraction(repr(float(r.threshold))) - Fraction(repr(float(r.release.hysteresis)))
     risk_sev, fault_sev = Response(r.response).severity, Response(spec.on_fault).severity
     obs = oracle.plan.obligations
     pending: list[int | None] = [None] * len(obs)  # cycle of the oldest trigger whose require has failed since
@@ -153,11 +167,13 @@ def check_trace(spec, trace) -> None:
                     violated_now = True
                     assert d.override and ob.id in d.violations and d.response.severity >= ob.response.severity
                 assert (ob.id in d.violations) == due
+                mg = d.margins[i]  # "> 0 satisfied, < 0 violated" (0 at a tie; NaN if not computable)
+                assert mg != mg or (mg <= 0 if due else mg >= 0), (ob.id, due, mg)
             if not d.override:
                 assert not violated_now and re < tau and not d.violations and not d.latched
             if d.override and not d.violations:
                 assert d.latched and since_clear
-            if re < below and not violated_now and not d.violations:
+            if Fraction(re) < below and not violated_now and not d.violations:
                 clean_streak += 1
             else:
                 clean_streak = 0

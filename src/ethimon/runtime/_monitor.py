@@ -18,7 +18,7 @@ from ..compiler._check import RISK_NAME, Plan
 from ..spec._expr import TEMPORAL, Call, Name, walk
 from ..compiler._codegen import build_machine
 from ..spec._model import Response, Spec
-from ..risk._formula import release_bound, risk_bounds, risk_from_probs
+from ..risk._formula import release_bound, risk_from_probs, risk_range
 from ._decision import Decision
 from ._inputs import as_bool, as_number, as_probs
 
@@ -145,7 +145,7 @@ class Monitor:
         self._sample = r.variance == "sample"
         self._k = int(r.classes)
         self._uidx = int(r.unsafe_index)
-        lo, hi = risk_bounds(r.alpha, r.beta, r.gamma, r.variance) if r.classes == 2 else (0.0, 1.0)
+        lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)  # exact, any K
         self._rlo, self._rhi = min(0.0, lo), max(1.0, hi)
         self._max_age = float(r.max_age_s) if r.max_age_s is not None else None
         self._cycle = 0

@@ -49,7 +49,7 @@ from typing import Any
 from ..compiler._check import RISK_NAME, Plan
 from ..spec._expr import TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
 from ..spec._model import Response, Spec
-from ..risk._formula import release_bound, risk_bounds, risk_from_p_unsafe, risk_from_probs
+from ..risk._formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
 from ._decision import Decision
 from ._inputs import as_bool, as_number, as_probs
 from ._monitor import plan_of
@@ -213,7 +213,7 @@ class ReferenceMonitor:
     # -- a cycle -------------------------------------------------------------------
     def _risk(self, signals) -> tuple[float | None, str | None]:
         r = self.spec.risk
-        lo, hi = risk_bounds(r.alpha, r.beta, r.gamma, r.variance) if r.classes == 2 else (0.0, 1.0)
+        lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)
         lo, hi = min(0.0, lo), max(1.0, hi)
         if signals.get("risk") is not None:
             v = as_number(signals["risk"])
