@@ -108,7 +108,8 @@ def test_two_class_closed_form_matches_the_vector_form(q, a, b, g, var):
 SPEC = """
 ethimon: 1
 name: r
-risk: {{alpha: {a}, beta: {b}, gamma: {g}, variance: {var}, threshold: 10.0}}
+risk: {{alpha: {a}, beta: {b}, gamma: {g}, variance: {var}, threshold: 10.0,
+        allow: {{threshold: "R_e formation only: the rule must never fire", weights: "zero weights are an edge case"}}}}
 """
 
 

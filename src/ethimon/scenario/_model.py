@@ -12,7 +12,10 @@ from ..spec._model import ACTIVE_RESPONSES
 
 __all__ = ["Scenario", "TimelineEntry", "Expect", "Value"]
 
-_CFG = ConfigDict(extra="forbid", frozen=True)
+#: strict types: ``cycles: '1000'``, ``at: true`` or ``override: 1`` are errors, not coerced
+_CFG = ConfigDict(extra="forbid", frozen=True, strict=True)
+#: fields holding a YAML sequence read a list; the items stay strict
+_SEQ = {"strict": False}
 
 #: an input value: a number, a boolean, ``null`` (the signal is missing) or a probability vector
 Value = float | bool | None | list[float]
@@ -34,8 +37,8 @@ class Expect(BaseModel):
     override: bool | None = Field(None, description="an override happens at some cycle (true) or never (false)")
     override_by_cycle: int | None = Field(None, ge=0, description="the first override comes at or before this cycle")
     no_override_before: int | None = Field(None, ge=0, description="no override before this cycle")
-    fired: tuple[str, ...] = Field((), description="obligation ids (or 'risk') violated at least once")
-    not_fired: tuple[str, ...] = Field((), description="obligation ids (or 'risk') never violated")
+    fired: tuple[str, ...] = Field((), description="obligation ids (or 'risk') violated at least once", **_SEQ)
+    not_fired: tuple[str, ...] = Field((), description="obligation ids (or 'risk') never violated", **_SEQ)
     response: ACTIVE_RESPONSES | None = Field(None, description="the most severe response that occurs")
     released_by_cycle: int | None = Field(None, ge=0, description="after overriding, execution resumes by this cycle")
     final_override: bool | None = Field(None, description="override state at the last cycle")
@@ -53,7 +56,7 @@ class Scenario(BaseModel):
     task: str | None = Field(None, description="task text; scored by the risk model when no risk input is given")
     cycles: int = Field(100, ge=1, le=1_000_000, description="number of control cycles to run")
     inputs: dict[str, Value] = Field(default_factory=dict, description="input values from cycle 0 on")
-    timeline: tuple[TimelineEntry, ...] = ()
+    timeline: tuple[TimelineEntry, ...] = Field((), **_SEQ)
     expect: Expect = Field(default_factory=Expect)
     sim: SimBlock | None = Field(None, description="PyBullet run (see ethimon.sim); used by check --sim")
 

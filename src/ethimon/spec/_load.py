@@ -8,7 +8,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from ..errors import SpecError
-from ._model import FORMAT_VERSION, Spec, validation_to_spec_error
+from ._model import FORMAT_VERSION, Spec, _shown, validation_to_spec_error
 from ._yaml import SourceMap, parse_yaml_text, read_yaml
 
 __all__ = ["parse_spec_file", "parse_spec_text", "validate_document", "check_version"]
@@ -24,9 +24,9 @@ def check_version(data: Any, smap: SourceMap, what: str) -> None:
         raise smap.error(f"missing format version: this {what} has no 'ethimon:' key", (),
                          hint=f"add 'ethimon: {FORMAT_VERSION}' as the first line")
     v = data["ethimon"]
-    if v != FORMAT_VERSION or isinstance(v, bool):
-        raise smap.error(f"unsupported format version {v!r}", ("ethimon",),
-                         hint=f"this ethimon reads 'ethimon: {FORMAT_VERSION}'")
+    if type(v) is not int or v != FORMAT_VERSION:  # not True, not 1.0, not '1'
+        raise smap.error(f"unsupported format version {_shown(v)}", ("ethimon",),
+                         hint=f"this ethimon reads 'ethimon: {FORMAT_VERSION}' (a whole number)")
 
 
 def validate_document(model, data: Any, smap: SourceMap, what: str):

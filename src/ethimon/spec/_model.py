@@ -3,6 +3,11 @@
 These models validate the *shape* of a spec; names, types and units inside
 expressions are checked by the compiler. All models are frozen and reject
 unknown keys.
+
+Types are strict: a number field takes a YAML number (an integer is read as
+a float), never ``true`` or the text ``'2'``; a whole-number field takes a
+YAML integer only (not ``2.0``, ``true`` or ``'2'``); a boolean field takes
+``true``/``false`` only.
 """
 
 from __future__ import annotations
@@ -57,9 +62,12 @@ _SEVERITY = {Response.NONE: 0, Response.SAFE_POSE: 1, Response.STOP_2: 2, Respon
              Response.STOP_0: 4}
 ACTIVE_RESPONSES = Literal["safe_pose", "stop_2", "stop_1", "stop_0"]
 
-_CFG = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
+_CFG = ConfigDict(extra="forbid", frozen=True, populate_by_name=True, strict=True)
 
-FiniteFloat = Annotated[float, Field(allow_inf_nan=False)]
+#: strict: an int is accepted (as a float), a bool or a string is not
+FiniteFloat = Annotated[float, Field(allow_inf_nan=False, strict=True)]
+#: fields holding a YAML sequence read a list; the items stay strict
+_SEQ = {"strict": False}
 
 
 class Signal(BaseModel):
@@ -69,7 +77,7 @@ class Signal(BaseModel):
     type: Literal["number", "bool"] = Field("number", description="'number' (default) or 'bool'")
     unit: str | None = Field(None, description="unit, e.g. m, m/s, N, rad/s, s, 1 (dimensionless)")
     range: tuple[FiniteFloat, FiniteFloat] | None = Field(
-        None, description="valid [min, max]; a value outside fails closed (override)")
+        None, description="valid [min, max]; a value outside fails closed (override)", **_SEQ)
     description: str = ""
 
     @model_validator(mode="after")
@@ -127,7 +135,7 @@ class RiskConfig(BaseModel):
     gamma: FiniteFloat = Field(0.2, description="weight γ of Var(p)")
     variance: Literal["sample", "population"] = Field(
         "sample", description="sample (÷(K−1), torch.var default) or population (÷K)")
-    threshold: FiniteFloat = Field(0.5, description="τ: R_e ≥ τ ⇒ override")
+    threshold: FiniteFloat = Field(0.5, description="τ: R_e ≥ τ ⇒ override; 0 < τ ≤ 1")
     classes: int = Field(2, ge=2, le=1000, description="number of classifier classes K")
     unsafe_index: int = Field(-1, description="index of the unsafe class in p")
     response: ACTIVE_RESPONSES = "safe_pose"
@@ -135,11 +143,32 @@ class RiskConfig(BaseModel):
     max_age_s: FiniteFloat | None = Field(
         None, gt=0.0, description="estimates older than this (input risk_age_s) fail closed")
     estimator: EstimatorConfig = Field(default_factory=EstimatorConfig)
+    allow: dict[Literal["threshold", "weights"], Annotated[str, Field(min_length=1)]] = Field(
+        default_factory=dict, description="opt-outs, each with the reason: 'threshold' lets τ lie outside "
+        "(0, 1], 'weights' lets α, β, γ be negative or all 0 (either can switch the risk rule off or on for good)")
 
     @model_validator(mode="after")
     def _check(self) -> "RiskConfig":
         if not -self.classes <= self.unsafe_index < self.classes:
             raise ValueError(f"unsafe_index {self.unsafe_index} is outside 0..{self.classes - 1}")
+        tau = self.threshold
+        if not 0.0 < tau <= 1.0 and "threshold" not in self.allow:
+            what = ("R_e ≥ τ would hold on every cycle, so the arm would always be overridden" if tau <= 0 else
+                    "R_e is a score in [0, 1] for the usual weights, so the risk rule would never fire")
+            raise _LocError(f"risk.threshold τ = {tau} is outside (0, 1]: {what}", ("risk", "threshold"),
+                            hint="set 0 < τ ≤ 1, or opt out with 'allow: {threshold: <reason>}' under risk:")
+        weights = {"alpha": self.alpha, "beta": self.beta, "gamma": self.gamma}
+        if "weights" not in self.allow:
+            for name, w in weights.items():
+                if w < 0:
+                    raise _LocError(f"risk.{name} = {w} is negative: R_e would fall as that term grows",
+                                    ("risk", name), hint="weights are ≥ 0; or opt out with "
+                                    "'allow: {weights: <reason>}' under risk:")
+            if sum(weights.values()) <= 0:
+                raise _LocError("risk weights alpha, beta and gamma are all 0: R_e would be 0 on every cycle "
+                                "and the risk rule could never fire", ("risk",),
+                                hint="the paper's weights are alpha 0.6, beta 0.2, gamma 0.2; or opt out with "
+                                "'allow: {weights: <reason>}' under risk:")
         return self
 
 
@@ -171,7 +200,7 @@ class SafePose(BaseModel):
 
     model_config = _CFG
     joints_rad: tuple[FiniteFloat, ...] = Field(
-        (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785), description="joint configuration (rad)")
+        (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785), description="joint configuration (rad)", **_SEQ)
     max_joint_speed_rad_s: FiniteFloat = Field(1.0, gt=0.0, le=10.0,
                                                description="joint-speed limit on the way (rad/s)")
     tolerance_rad: FiniteFloat = Field(0.02, gt=0.0, le=1.0, description="reached when every joint is this close")
@@ -194,7 +223,7 @@ class Spec(BaseModel):
     signals: dict[Annotated[str, Field(pattern=IDENT)], Signal] = Field(default_factory=dict)
     constants: dict[Annotated[str, Field(pattern=IDENT)], FiniteFloat | Constant] = Field(default_factory=dict)
     risk: RiskConfig = Field(default_factory=RiskConfig)
-    obligations: tuple[Obligation, ...] = ()
+    obligations: tuple[Obligation, ...] = Field((), **_SEQ)
     on_fault: ACTIVE_RESPONSES = Field("safe_pose", description="response to missing/NaN/out-of-range/stale input")
     safe_pose: SafePose = Field(default_factory=SafePose)
 
@@ -215,6 +244,10 @@ class Spec(BaseModel):
     def _check(self) -> "Spec":
         seen: dict[str, int] = {}
         for i, ob in enumerate(self.obligations):
+            if ob.id == "risk":
+                raise _LocError("obligation id 'risk' is reserved: it names the built-in rule R_e ≥ τ in "
+                                "decisions, scenarios and the audit log", ("obligations", i, "id"),
+                                hint="pick another id, e.g. 'risk_limit'")
             if ob.id in seen:
                 raise _LocError(f"duplicate obligation id {ob.id!r} (first is obligations[{seen[ob.id]}])",
                                 ("obligations", i, "id"))
@@ -285,6 +318,17 @@ def _fmt_loc(loc: tuple) -> str:
     return out or "(top level)"
 
 
+def _shown(value: Any) -> str:
+    """A short repr that cannot fail (an int of 4,300+ digits has no repr)."""
+    try:
+        shown = repr(value)
+    except Exception:  # noqa: BLE001 - e.g. ValueError: Exceeds the limit for integer string conversion
+        shown = f"<{type(value).__name__}>"
+        if isinstance(value, int):
+            shown = f"an integer of about {int(value.bit_length() * 0.30103) + 1} digits"
+    return shown if len(shown) <= 60 else shown[:57] + "..."
+
+
 def validation_to_spec_error(exc: ValidationError, smap: SourceMap, model: type[BaseModel],
                              data: Any) -> SpecError:
     """Turn the first pydantic error into a positioned :class:`SpecError`."""
@@ -305,15 +349,51 @@ def validation_to_spec_error(exc: ValidationError, smap: SourceMap, model: type[
         hint = f"did you mean {close[0]!r}?" if close else (f"known keys: {', '.join(known)}" if known else None)
         return smap.error(f"unknown key {key!r} in {_fmt_loc(loc[:-1])}", loc, hint=hint, key=True)
     if typ == "missing":
-        return smap.error(f"missing required key {loc[-1]!r} in {_fmt_loc(loc[:-1])}", loc[:-1])
+        desc = _field_help(model, loc)
+        return smap.error(f"missing required key {loc[-1]!r} in {_fmt_loc(loc[:-1])}", loc[:-1],
+                          hint=f"add '{loc[-1]}:' ({desc})" if desc else f"add '{loc[-1]}:'")
     if typ == "literal_error" and loc and loc[-1] == "ethimon":
-        return smap.error(f"unsupported format version {err.get('input')!r}", loc,
+        return smap.error(f"unsupported format version {_shown(err.get('input'))}", loc,
                           hint=f"this ethimon reads 'ethimon: {FORMAT_VERSION}'")
-    value = err.get("input")
-    shown = repr(value)
-    if len(shown) > 60:
-        shown = shown[:57] + "..."
+    if loc and loc[-1] == "[key]":  # a dict key that is not one of the allowed names
+        expected = (err.get("ctx") or {}).get("expected")
+        return smap.error(f"unknown key {_shown(loc[-2])} in {_fmt_loc(loc[:-2])}", loc[:-1], key=True,
+                          hint=f"allowed keys: {expected}" if expected else None)
+    shown = _shown(err.get("input"))
     msg = msg.replace("Value error, ", "")
     if typ in ("finite_number",):
         msg = "must be a finite number (not NaN or infinity)"
-    return smap.error(f"{_fmt_loc(loc)}: {msg} (got {shown})", loc)
+    hint = _TYPE_HINTS.get(typ) or _field_help(model, loc)
+    return smap.error(f"{_fmt_loc(loc)}: {msg} (got {shown})", loc, hint=hint)
+
+
+_TYPE_HINTS = {
+    "float_type": "write a number, e.g. 0.5 (true/false and quoted text are not numbers)",
+    "float_parsing": "write a number, e.g. 0.5 (true/false and quoted text are not numbers)",
+    "int_type": "write a whole number, e.g. 3 (not 3.0, true or quoted text)",
+    "int_parsing": "write a whole number, e.g. 3 (not 3.0, true or quoted text)",
+    "int_from_float": "write a whole number, e.g. 3 (not 3.0, true or quoted text)",
+    "bool_type": "write true or false",
+    "bool_parsing": "write true or false",
+    "string_type": "write text (quote it if it looks like a number or true/false)",
+    "string_too_short": "give a non-empty text",
+    "tuple_type": "write a list, e.g. [0, 1]",
+    "list_type": "write a list, e.g. [0, 1]",
+    "dict_type": "write a mapping of 'key: value' entries",
+    "model_type": "write a mapping of 'key: value' entries",
+    "finite_number": "write a finite number",
+}
+
+
+def _field_help(model: type[BaseModel], loc: tuple) -> str | None:
+    """The description of the field at ``loc`` (its last named key), as a hint."""
+    keys = [i for i, p in enumerate(loc) if isinstance(p, str)]
+    if not keys:
+        return None
+    k = keys[-1]
+    try:
+        owner = _model_at(model, loc[:k + 1])
+    except Exception:  # noqa: BLE001 - a hint is best effort
+        return None
+    field = owner.model_fields.get(loc[k]) if owner is not None else None
+    return (field.description or None) if field is not None else None

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 import os
 import re
+import stat
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -142,14 +143,26 @@ def read_yaml(path: str | os.PathLike, *, what: str = "file",
     """
     spath = os.fspath(path)
     try:
-        if os.path.isdir(spath):
-            raise SpecError(f"expected a {what}, found a directory", path=spath)
-        size = os.path.getsize(spath)
-        if size > max_bytes:
-            raise SpecError(f"{what} is too large ({size} bytes; limit {max_bytes})", path=spath,
-                            hint="split it into smaller files")
-        with open(spath, "rb") as fh:
-            raw = fh.read(max_bytes + 1)
+        st = os.stat(spath)  # never open something that is not a regular file: a FIFO would block
+        _require_regular(st, spath, what)
+        if st.st_size > max_bytes:
+            raise _too_large(what, st.st_size, max_bytes, spath)
+        # O_NONBLOCK: if the path was swapped for a FIFO after the stat, open returns at once
+        fd = os.open(spath, os.O_RDONLY | _O_NONBLOCK | _O_NOCTTY | _O_CLOEXEC | _O_BINARY)
+        try:
+            _require_regular(os.fstat(fd), spath, what)  # what we opened is what we read
+            chunks, n = [], 0
+            while n <= max_bytes:
+                chunk = os.read(fd, min(1 << 20, max_bytes + 1 - n))
+                if not chunk:
+                    break
+                chunks.append(chunk)
+                n += len(chunk)
+        finally:
+            os.close(fd)
+        raw = b"".join(chunks)
+        if len(raw) > max_bytes:  # it grew after the stat
+            raise _too_large(what, len(raw), max_bytes, spath)
     except FileNotFoundError:
         raise SpecError(f"{what} not found", path=spath, hint="check the path") from None
     except PermissionError:
@@ -159,6 +172,31 @@ def read_yaml(path: str | os.PathLike, *, what: str = "file",
     except OSError as exc:
         raise SpecError(f"cannot read {what}: {exc.strerror or exc}", path=spath) from None
     return parse_yaml_bytes(raw, spath, what=what)
+
+
+_O_NONBLOCK = getattr(os, "O_NONBLOCK", 0)
+_O_NOCTTY = getattr(os, "O_NOCTTY", 0)
+_O_CLOEXEC = getattr(os, "O_CLOEXEC", 0)
+_O_BINARY = getattr(os, "O_BINARY", 0)
+
+
+def _require_regular(st: os.stat_result, path: str, what: str) -> None:
+    """Refuse a directory, FIFO, socket or device (``/dev/stdin``, ``<(...)``) with a SpecError."""
+    mode = st.st_mode
+    if stat.S_ISREG(mode):
+        return
+    if stat.S_ISDIR(mode):
+        raise SpecError(f"expected a {what}, found a directory", path=path)
+    kind = ("a named pipe (FIFO)" if stat.S_ISFIFO(mode) else "a socket" if stat.S_ISSOCK(mode)
+            else "a character device" if stat.S_ISCHR(mode) else "a block device" if stat.S_ISBLK(mode)
+            else "not a regular file")
+    raise SpecError(f"expected a {what} (a regular file), found {kind}", path=path,
+                    hint="ethimon reads files only, not pipes, devices or standard input; save it to a file first")
+
+
+def _too_large(what: str, size: int, limit: int, path: str) -> SpecError:
+    return SpecError(f"{what} is too large ({size} bytes; limit {limit})", path=path,
+                     hint="split it into smaller files")
 
 
 def parse_yaml_bytes(raw: bytes, path: str, *, what: str = "file") -> tuple[Any, SourceMap]:
@@ -196,13 +234,11 @@ def parse_yaml_text(text: str, path: str = "<string>", *, what: str = "file") ->
             loader.dispose()
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
-        msg = exc.problem or exc.context or "invalid YAML"
-        if exc.context and exc.problem:
-            msg = f"{exc.problem} ({exc.context})"
+        msg, hint = _yaml_message(exc)
         if mark is not None:
             raise SpecError(f"invalid YAML: {msg}", path=path, line=mark.line + 1,
-                            column=mark.column + 1, hint=_yaml_hint(msg)) from None
-        raise SpecError(f"invalid YAML: {msg}", path=path) from None
+                            column=mark.column + 1, hint=hint) from None
+        raise SpecError(f"invalid YAML: {msg}", path=path, hint=hint) from None
     except yaml.reader.ReaderError as exc:  # a control character: unmarked, but its offset is known
         idx = min(max(int(exc.position), 0), len(text))
         line = text.count("\n", 0, idx) + 1
@@ -227,14 +263,57 @@ def parse_yaml_text(text: str, path: str = "<string>", *, what: str = "file") ->
     return data, smap
 
 
-def _yaml_hint(msg: str) -> str | None:
-    if "tab" in msg:
-        return "indent with spaces, not tabs"
-    if "mapping values are not allowed" in msg:
-        return "a value containing ': ' must be quoted"
-    if "could not find expected ':'" in msg:
-        return "each mapping entry needs 'key: value'"
-    return None
+_FOUND = {"'<block mapping start>'": "a key", "'<block sequence start>'": "a list item ('- ')",
+          "'-'": "a list item ('- ')", "'?'": "a '?'", "'<scalar>'": "a value", "'<block end>'": "the end of a block",
+          "'<flow mapping start>'": "a '{'", "'<flow sequence start>'": "a '['", "'<alias>'": "an alias ('*...')",
+          "'<anchor>'": "an anchor ('&...')", "'<tag>'": "a tag ('!...')"}
+_INDENT_HINT = ("indent every key of a mapping, and every '- ' of a list, by the same number of spaces, "
+                "and a nested block by more spaces than its parent key")
+
+
+def _yaml_message(exc: yaml.MarkedYAMLError) -> tuple[str, str | None]:
+    """PyYAML's error as plain words plus a hint (its own wording kept at the end, in brackets)."""
+    problem = exc.problem or exc.context or "invalid YAML"
+    raw = f"{exc.problem} ({exc.context})" if exc.context and exc.problem else problem
+    ctx, pm = exc.context_mark, exc.problem_mark
+    where = f"line {ctx.line + 1}, column {ctx.column + 1}" if ctx is not None else None
+    m = re.match(r"expected <block end>, but found (.+)$", problem)
+    if m is not None:
+        found = _FOUND.get(m.group(1), m.group(1))
+        block = "list" if exc.context and "collection" in exc.context else "mapping"
+        col = f" at column {pm.column + 1}" if pm is not None else ""
+        start = f"the {block} that starts at {where}" if where else f"the enclosing {block}"
+        return f"bad indentation: {found}{col} does not line up with {start} [YAML parser: {raw}]", _INDENT_HINT
+    if problem.startswith("did not find expected key") or problem.startswith("did not find expected '-'"):
+        return f"bad indentation or a missing ':' [YAML parser: {raw}]", _INDENT_HINT
+    if "mapping values are not allowed" in problem:
+        return (f"unexpected ':' [YAML parser: {raw}]",
+                "a value containing ': ' must be quoted; or this line is indented more than the key above it")
+    if "could not find expected ':'" in problem:
+        return f"a key without ':' [YAML parser: {raw}]", "each mapping entry needs 'key: value'"
+    if "\\t" in problem or "tab" in problem:
+        return raw, "indent with spaces, not tabs"
+    if problem.startswith("found character") and "cannot start any token" in problem:
+        return raw, "quote the value: '@' and '`' cannot start a plain YAML value"
+    if problem.startswith("found undefined alias"):
+        return raw, "'*name' refers to an anchor '&name' defined earlier; quote the value if '*' is meant literally"
+    if "end of stream" in problem and exc.context and "quoted scalar" in exc.context:
+        start = f" (opened at {where})" if where else ""
+        return f"a quote is not closed{start} [YAML parser: {raw}]", "close the quote on the value"
+    if re.match(r"expected ',' or '[\]}]'", problem):
+        return (f"a '{{' or '[' list/mapping is not closed, or an item in it is not separated by ',' "
+                f"[YAML parser: {raw}]", "quote values that contain ',', ':', '[' or '{'")
+    return raw, None
+
+
+_TRUE = frozenset({"yes", "true", "on", "y"})
+_FALSE = frozenset({"no", "false", "off", "n"})
+#: digits of an integer literal in any base (a 0x... of 4,300+ digits cannot even be printed)
+MAX_INT_DIGITS = 400
+
+
+def _short(text: str) -> str:
+    return text if len(text) <= 40 else f"{text[:20]}...{text[-8:]}"
 
 
 _FLOAT_SPECIAL = re.compile(r"^[-+]?(\.inf|\.Inf|\.INF)$|^\.(nan|NaN|NAN)$")
@@ -299,28 +378,30 @@ class _Builder:
         if tag == _NULL:
             return None
         if tag == _BOOL:
-            return value.lower() in ("yes", "true", "on", "y")
+            word = value.lower()
+            if word in _TRUE:
+                return True
+            if word in _FALSE:
+                return False
+            raise self._err(node, f"cannot read boolean {_short(value)!r}", hint="write true or false")
         if tag == _INT:
             v = value.replace("_", "")
             sign = -1 if v.startswith("-") else 1
             v = v.lstrip("+-")
+            base, digits = 10, v
+            if v[:2] in ("0b", "0x", "0o"):
+                base, digits = {"0b": 2, "0x": 16, "0o": 8}[v[:2]], v[2:]
+            elif v != "0" and v.startswith("0"):
+                base = 8
+            if len(digits) > MAX_INT_DIGITS:
+                raise self._err(node, f"integer {_short(value)!r} is too long ({len(digits)} digits)",
+                                hint=f"at most {MAX_INT_DIGITS} digits")
             try:
-                if v.startswith("0b"):
-                    n = int(v[2:], 2)
-                elif v.startswith("0x"):
-                    n = int(v[2:], 16)
-                elif v.startswith("0o"):
-                    n = int(v[2:], 8)
-                elif v != "0" and v.startswith("0"):
-                    n = int(v, 8)
-                elif ":" in v:
+                if ":" in v or not digits:
                     raise ValueError(v)
-                else:
-                    if len(v) > 400:
-                        raise ValueError(v)
-                    n = int(v)
+                n = int(digits, base)
             except ValueError:
-                raise self._err(node, f"cannot read integer {value!r}") from None
+                raise self._err(node, f"cannot read integer {_short(value)!r}") from None
             return sign * n
         if tag == _FLOAT:
             v = value.replace("_", "").lower()
@@ -333,5 +414,5 @@ class _Builder:
             try:
                 return float(v)
             except ValueError:
-                raise self._err(node, f"cannot read number {value!r}") from None
+                raise self._err(node, f"cannot read number {_short(value)!r}") from None
         raise self._err(node, f"unsupported scalar tag {tag!r}")  # pragma: no cover
