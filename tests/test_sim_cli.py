@@ -44,3 +44,34 @@ def test_simulate_needs_a_display_for_gui(monkeypatch, capsys, root):
     monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
     assert main(["simulate", str(root / "scenarios/sim/routine_wipe.yaml"), "--gui"]) == 2
     assert "display" in capsys.readouterr().err
+
+
+def test_simulate_unknown_input_is_an_error_with_a_hint(tmp_path, capsys, root):
+    bad = tmp_path / "typo.yaml"
+    bad.write_text((root / "scenarios/sim/sensor_dropout.yaml").read_text()
+                   .replace("../../specs/cobot_cell.yaml", str(root / "specs/cobot_cell.yaml"))
+                   .replace("set: {human_distance: null}", "set: {human_distanse: null}"))
+    assert main(["simulate", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert f"{bad}:10:21:" in err and "did you mean 'human_distance'?" in err and "Traceback" not in err
+    assert main(["check", str(bad), "--sim"]) == 2
+    assert "did you mean 'human_distance'?" in capsys.readouterr().err
+
+
+def test_simulate_unexpected_exception_in_one_file_is_one_line(tmp_path, capsys, root, monkeypatch):
+    import ethimon.scenario as scenario_pkg
+    real = scenario_pkg.load_scenario
+
+    def load(path):
+        if str(path).endswith("a_bad.yaml"):
+            raise RecursionError("maximum recursion depth exceeded")
+        return real(path)
+    monkeypatch.setattr(scenario_pkg, "load_scenario", load)
+    (tmp_path / "a_bad.yaml").write_text("ethimon: 1\n")
+    good = tmp_path / "b_good.yaml"
+    good.write_text((root / "scenarios/sim/routine_wipe.yaml").read_text()
+                    .replace("../../specs/cobot_cell.yaml", str(root / "specs/cobot_cell.yaml")))
+    assert main(["simulate", str(tmp_path)]) == 2
+    cap = capsys.readouterr()
+    assert f"{tmp_path / 'a_bad.yaml'}: internal error: RecursionError" in cap.err
+    assert "routine_wipe" in cap.out and "PASS" in cap.out and "Traceback" not in cap.err
