@@ -68,6 +68,11 @@ MAX_LABELS = 1000
 NO_REMOTE = {"local_files_only": True}
 
 
+def _short(v: Any, n: int = 100) -> str:
+    r = repr(v)
+    return r if len(r) <= n else r[:n - 1] + "…"
+
+
 def read_json_object(p: Path, what: str = "") -> dict:
     """``p`` parsed as one JSON object (no duplicate keys), or :class:`ModelError` naming ``p``."""
     try:
@@ -117,7 +122,7 @@ def check_model_dir(d: Path) -> dict | None:
         doc = read_json_object(p)
         for key in CODE_KEYS:
             if key in doc:
-                raise ModelError(f"{p}: {key!r} names custom code ({str(doc[key])[:120]}); ethimon never runs "
+                raise ModelError(f"{p}: {key!r} names custom code ({_short(doc[key])}); ethimon never runs "
                                  "code from a model directory: remove the key and use a built-in architecture")
         if name == "config.json":
             config = doc
@@ -471,7 +476,7 @@ def check_manifest(p: Path, m: dict) -> dict:
         ModelError: naming ``p`` and the offending field.
     """
     def bad(key: str, want: str) -> ModelError:
-        return ModelError(f"{p}: {key!r} = {repr(m.get(key))[:80]}: {want}")
+        return ModelError(f"{p}: {key!r} = {_short(m.get(key))}: {want}")
 
     for key in m:
         if key not in MANIFEST_KEYS:
