@@ -94,3 +94,43 @@ def ethics_aux(name: str, n: int | None = None, seed: int = 42) -> tuple[list[st
 
 def concat(*parts: LabelledRows) -> LabelledRows:
     return concat_rows(list(parts))
+
+
+# ---------------------------------------------------------------- natural robot commands (issue 12)
+NATURAL = ROOT / "data" / "natural_robot" / "natural_test.csv"
+ROBOT_TRAIN = ROOT / "data" / "robot_train"
+
+
+def natural_test() -> LabelledRows:
+    """The frozen natural robot-command test set, refused unless its sha256 matches the pinned one.
+
+    Only ever reported on: never trained, tuned, selected or thresholded on.
+    """
+    import hashlib
+    want = (NATURAL.parent / "natural_test.csv.sha256").read_text(encoding="utf-8").split()[0]
+    got = hashlib.sha256(NATURAL.read_bytes()).hexdigest()
+    if got != want:
+        raise SystemExit(f"{NATURAL}: sha256 {got} does not match the frozen {want}")
+    return load_labelled_csv(NATURAL)
+
+
+def natural_train_splits() -> tuple[LabelledRows, LabelledRows]:
+    """The hand-written robot training corpus (data/robot_train/part_*.csv), split train/validation
+    by crc32(pair id, or row id for unpaired rows) % 10 == 0 → validation, so both members of a
+    minimal pair land on the same side."""
+    rows = concat_rows([load_labelled_csv(p) for p in sorted(ROBOT_TRAIN.glob("part_*.csv"))])
+    tr, va = [], []
+    for i, e in enumerate(rows.extra):
+        key = (e.get("pair") or "").strip() or e["id"]
+        (va if _crc(key) % 10 == 0 else tr).append(i)
+    return rows.subset(tr), rows.subset(va)
+
+
+def pair_index(rows: LabelledRows, offset: int = 0) -> list[tuple[int, int]]:
+    """``(unsafe_row, safe_row)`` of every well-formed minimal pair in ``rows`` (indices + offset)."""
+    by: dict[str, dict[int, int]] = {}
+    for i, (e, y) in enumerate(zip(rows.extra, rows.labels)):
+        pid = (e.get("pair") or "").strip()
+        if pid:
+            by.setdefault(pid, {})[y] = i + offset
+    return [(d[1], d[0]) for d in by.values() if len(d) == 2]

@@ -42,6 +42,15 @@ def main() -> None:
     ap.add_argument("--aux-n", type=int, default=2000, help="rows drawn per auxiliary task")
     ap.add_argument("--aux-weight", type=float, default=1.0)
     ap.add_argument("--limit", type=int, default=None, help="smoke test: first N rows per set")
+    ap.add_argument("--natural", action="store_true",
+                    help="add the hand-written robot corpus data/robot_train (its validation split too)")
+    ap.add_argument("--natural-weight", type=float, default=1.0)
+    ap.add_argument("--ethics-n", type=int, default=None, help="draw this many ETHICS cm training rows")
+    ap.add_argument("--no-templated", action="store_true", help="leave out the templated robot_pairs.csv")
+    ap.add_argument("--init-from", default=None, help="warm start from this ethimon LoRA model dir")
+    ap.add_argument("--pair-weight", type=float, default=0.0, help="weight of the minimal-pair margin loss")
+    ap.add_argument("--pair-margin", type=float, default=1.0)
+    ap.add_argument("--pairs-per-step", type=int, default=8)
     a = ap.parse_args()
     import torch
     torch.set_num_threads(2)
@@ -49,8 +58,12 @@ def main() -> None:
     from ethimon.risk._train import train_lora
 
     e_tr, e_va, _ = D.ethics_splits()
+    if a.ethics_n:
+        e_tr = e_tr.sample(a.ethics_n, a.seed)
     s_tr, s_va, _ = D.sab_splits()
     p_tr, p_va, _, _ = D.pair_splits()
+    if a.no_templated:
+        p_tr, p_va = p_tr.subset([]), p_va.subset([])
     parts_tr, parts_va, w = [], [], []
     if not a.robot_only:
         parts_tr.append(e_tr); parts_va.append(e_va); w += [1.0] * len(e_tr)
@@ -58,6 +71,11 @@ def main() -> None:
         parts_tr += [s_tr, p_tr]; parts_va += [s_va, p_va]
         w += [a.robot_weight * (0.5 if e.get("source_file") == "abstract_1009.jsonl" else 1.0)
               for e in s_tr.extra] + [a.robot_weight] * len(p_tr)
+    pairs = []
+    if a.natural:
+        n_tr, n_va = D.natural_train_splits()
+        pairs = D.pair_index(n_tr, offset=sum(len(p) for p in parts_tr))
+        parts_tr.append(n_tr); parts_va.append(n_va); w += [a.natural_weight] * len(n_tr)
     tr, va = D.concat(*parts_tr), D.concat(*parts_va)
     if a.limit:
         tr, va, w = tr.subset(list(range(a.limit))), va.subset(list(range(a.limit))), w[:a.limit]
@@ -65,7 +83,8 @@ def main() -> None:
     for name in filter(None, (x.strip() for x in a.aux.split(","))):
         texts, labels = D.ethics_aux(name, a.limit or a.aux_n, a.seed)
         aux.append((name, texts, labels))
-    print(f"train {len(tr)} rows, val {len(va)} rows, aux {[(n, len(t)) for n, t, _ in aux]}", flush=True)
+    print(f"train {len(tr)} rows ({len(pairs)} minimal pairs), val {len(va)} rows, "
+          f"aux {[(n, len(t)) for n, t, _ in aux]}", flush=True)
     base = B.base_package_dir()
     t0 = time.time()
     s = train_lora(tr.texts, tr.labels, va.texts, va.labels, base_dir=base, out_dir=a.out,
@@ -74,8 +93,12 @@ def main() -> None:
                    seed=a.seed, init_seed=a.init_seed, max_steps=a.max_steps, name="ethimon-minilm-l6-lora",
                    num_threads=2, progress=False,
                    log=lambda m: print(m, flush=True), aux_tasks=aux, aux_weight=a.aux_weight,
+                   init_from=a.init_from, pairs=pairs, pair_weight=a.pair_weight, pair_margin=a.pair_margin,
+                   pairs_per_step=a.pairs_per_step,
                    extra_meta={"ethics_only": a.ethics_only, "robot_only": a.robot_only,
-                               "robot_weight": a.robot_weight, "aux": a.aux, "aux_n": a.aux_n})
+                               "robot_weight": a.robot_weight, "aux": a.aux, "aux_n": a.aux_n,
+                               "natural": a.natural, "natural_weight": a.natural_weight, "ethics_n": a.ethics_n,
+                               "no_templated": a.no_templated})
     print(f"{'epoch':>5} {'train_loss':>10} {'val_loss':>9} {'val_acc':>8} {'elapsed_s':>9}")
     for h in s["history"]:
         print(f"{h['epoch']:>5} {h['train_loss']:>10.4f} {h['val_loss']:>9.4f} {h['val_acc']:>8.4f} {h['elapsed_s']:>9}")

@@ -74,6 +74,29 @@ def fit_temperature(logits, labels) -> float:
     return float((lo + hi) / 2)
 
 
+def _warm_start(encoder, model, d: Path, base_dir: Path, r: int, alpha: float, targets: list[str]) -> None:
+    """Copy the LoRA factors and head of the ethimon model directory ``d`` into a fresh model."""
+    from safetensors.torch import load_file
+    manifest = B.read_manifest(d)
+    if manifest is None:
+        raise B.ModelError(f"{d}: --init-from needs an ethimon LoRA model directory (no {B.MANIFEST})")
+    lo = manifest.get("lora") or {}
+    if lo.get("r") != r or float(lo.get("alpha", -1)) != float(alpha) or list(lo.get("targets", [])) != targets:
+        raise B.ModelError(f"{d}: its LoRA (r={lo.get('r')}, alpha={lo.get('alpha')}) differs from this run's "
+                           f"(r={r}, alpha={alpha}) or adapts other layers")
+    if manifest.get("base_sha256") != B.sha256_file(base_dir / "model.safetensors"):
+        raise B.ModelError(f"{d}: trained on another base model (base_sha256 differs)")
+    adapter, _ = B.checked_adapter(d, manifest)
+    state = load_file(str(adapter))
+    with torch.no_grad():
+        for n_, mod in encoder.named_modules():
+            if isinstance(mod, B.LoRALinear):
+                mod.lora_A.copy_(state[f"lora.{n_}.A"].float())
+                mod.lora_B.copy_(state[f"lora.{n_}.B"].float())
+        model.head.weight.copy_(state["head.weight"].float())
+        model.head.bias.copy_(state["head.bias"].float())
+
+
 def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[str],
                val_labels: list[int], *, base_dir: str | Path, out_dir: str | Path,
                base_ref: dict | None = None, train_weights: list[float] | None = None,
@@ -85,7 +108,9 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
                num_threads: int | None = None, progress: bool = True,
                log: Callable[[str], Any] = print, extra_meta: dict | None = None,
                aux_tasks: list[tuple[str, list[str], list[int]]] | None = None,
-               aux_weight: float = 1.0, init_seed: int | None = None) -> dict:
+               aux_weight: float = 1.0, init_seed: int | None = None,
+               init_from: str | Path | None = None, pairs: list[tuple[int, int]] | None = None,
+               pair_weight: float = 0.0, pair_margin: float = 1.0, pairs_per_step: int = 8) -> dict:
     """Train a LoRA adapter + head; write an ethimon model directory to ``out_dir``.
 
     ``aux_tasks`` (multi-task learning): ``(name, texts, labels)`` binary tasks
@@ -98,6 +123,16 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     initial LoRA factors and heads, so runs that differ in ``seed`` start from
     one point and differ in data order, dropout and auxiliary draw — the
     setting in which their weights can be averaged (``ethimon average``).
+
+    ``init_from`` (warm start): an ethimon LoRA model directory on the same base with the
+    same rank and adapted layers; its LoRA factors and head are the starting point (its
+    sha256 is checked as at load time).
+
+    ``pairs`` (pair-aware objective): ``(unsafe_row, safe_row)`` indices into the training
+    rows, the two members of a minimal pair. Every step also draws ``pairs_per_step`` pairs
+    and adds ``pair_weight · mean(relu(pair_margin − (z_unsafe − z_safe)))``, z being the
+    unsafe-minus-safe logit: the unsafe member must outscore its safe twin by a margin, so
+    the detail that flips the verdict has to move the score.
 
     Returns:
         The run summary (also written to ``out_dir/metrics.json``).
@@ -120,6 +155,8 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     model = B.PooledClassifier(encoder, 2, pooling)
     aux_tasks = list(aux_tasks or [])
     heads = nn.ModuleList([model.head] + [nn.Linear(encoder.config.hidden_size, 2) for _ in aux_tasks])
+    if init_from is not None:
+        _warm_start(encoder, model, Path(init_from), base_dir, r, alpha, targets)
     if init_seed is not None:
         torch.manual_seed(seed)  # the rest (dropout) follows the run's own seed
     model.train()
@@ -177,6 +214,14 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
             loss_vec = nn.functional.cross_entropy(logits, ytr[bidx], reduction="none")
             w = wtr[bidx]
             loss = (loss_vec * w).sum() / w.sum()
+            if pairs and pair_weight > 0:
+                chosen = [pairs[rng.randrange(len(pairs))] for _ in range(pairs_per_step)]
+                idx = [u for u, _ in chosen] + [v for _, v in chosen]
+                pids, pmask = B.collate([tr[i] for i in idx], pad)
+                pl = model(pids, pmask)
+                z = pl[:, 1] - pl[:, 0]
+                k = len(chosen)
+                loss = loss + pair_weight * nn.functional.relu(pair_margin - (z[:k] - z[k:])).mean()
             opt.zero_grad(set_to_none=True)
             loss.backward()
             torch.nn.utils.clip_grad_norm_(lora_params + head_params, 1.0)
@@ -244,6 +289,9 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
                    "patience": patience,
                    "weight_decay": weight_decay, "n_train": len(train_texts), "n_val": len(va),
                    "aux_tasks": {n: len(t) for n, t, _ in aux_tasks}, "aux_weight": aux_weight,
+                   "init_from": str(init_from) if init_from is not None else None,
+                   "pairs": len(pairs or []), "pair_weight": pair_weight, "pair_margin": pair_margin,
+                   "pairs_per_step": pairs_per_step,
                    "base_dir": str(base_dir), **(extra_meta or {})},
         "history": history, "best_epoch": best[2], "best_val_loss": best[0],
         "temperature": temperature, "train_loss_curve": train_curve,
