@@ -353,8 +353,14 @@ def _max(a, b):
     return z3.If(a >= b, a, b)
 
 
-def decision_trace(enc: Unrolled, *, fresh: bool = False, prefix: str = "") -> DecisionTrace:
+def decision_trace(enc: Unrolled, *, fresh: bool = False, prefix: str = "",
+                   only: int | None = None) -> DecisionTrace:
     """Encode ``Monitor.step``'s decision logic over ``enc``'s cycles.
+
+    With ``only=i`` just obligation ``i`` is encoded; the other obligations are one
+    free severity (0 to 4) each cycle, and their verdicts free booleans. That admits
+    every real trace (and more), so a property proved over it holds for the spec: a
+    small problem instead of one with every obligation in it.
 
     The trace starts with a symbolic latch state (``L0`` severity, ``C0``
     clean-cycle count), which covers a fresh monitor (``fresh=True`` pins it to
@@ -378,11 +384,16 @@ def decision_trace(enc: Unrolled, *, fresh: bool = False, prefix: str = "") -> D
     out = DecisionTrace(enc, L0, C0, init, [], [], [], [], [], [], [])
     zero = z3.IntVal(0)
     for t in range(enc.k):
-        viol = [enc.violated(ob, t) for ob in plan.obligations]
+        viol = [enc.violated(ob, t) if only is None or i == only else z3.Bool(f"{prefix}viol#{i}@{t}")
+                for i, ob in enumerate(plan.obligations)]
         fires = enc.R[t] >= tau
         sev: z3.ArithRef = zero
-        for ob, v in zip(plan.obligations, viol):
-            sev = _max(sev, z3.If(v, z3.IntVal(ob.response.severity), zero))
+        if only is not None and len(plan.obligations) > 1:
+            sev = z3.Int(f"{prefix}others@{t}")
+            out.init += [sev >= 0, sev <= 4]
+        for i, (ob, v) in enumerate(zip(plan.obligations, viol)):
+            if only is None or i == only:
+                sev = _max(sev, z3.If(v, z3.IntVal(ob.response.severity), zero))
         sev = _max(sev, z3.If(fires, z3.IntVal(risk_sev), zero))
         active = sev > 0
         L_hi = _max(L, sev)
