@@ -298,3 +298,34 @@ def test_budget_complete_run_and_bad_values(capsys):
     assert main(["verify", os.path.join(SPECS, "governor.yaml"), "--budget-s", "0"]) == 2
     assert "--budget-s" in capsys.readouterr().err
     assert main(["verify", os.path.join(SPECS, "governor.yaml"), "--budget-s", "nan"]) == 2
+
+
+def test_release_window_after_a_history_that_clears_the_start():
+    # prev(x, 5) is 5 on the first cycle after a reset or fault: that cycle is always a violation,
+    # so the clean window needs one cycle of history before it (found, and replayed in the Monitor)
+    rep = verify_spec(_spec("""
+ethimon: 1
+name: prev_default
+signals: {x: {range: [0, 1]}}
+risk: {release: {hold_cycles: 2}}
+obligations:
+  - {id: from_prev, require: "prev(x, 5) <= 1"}
+"""))
+    f = rep.finding("lint.release")
+    assert f.status == "ok" and "releases at cycle 3" in f.message, format_table(rep)
+
+
+def test_response_proof_by_one_obligation_still_refutes_a_wrong_model(monkeypatch):
+    """The per-obligation proof over-approximates; when it cannot prove, the whole trace decides."""
+    from ethimon.verify import _checks, _encode
+    real_trace = _encode.decision_trace
+
+    def forgets_obligations(enc, **kw):  # a model whose override ignores every violation
+        dt = real_trace(enc, **kw)
+        dt.override = [z3.And(o, z3.Or(f, z3.Not(z3.Or(v)) if v else z3.BoolVal(True)))
+                       for o, f, v in zip(dt.override, dt.risk_fires, dt.violated)]
+        return dt
+    monkeypatch.setattr(_checks, "decision_trace", forgets_obligations)
+    rep = verify_spec(_spec(_many(3)))
+    f = rep.finding("o0.response")
+    assert f.status == "refuted" and not f.counterexample.confirmed, format_table(rep)
