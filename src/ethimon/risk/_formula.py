@@ -266,7 +266,7 @@ def risk_range(alpha: float = 0.6, beta: float = 0.2, gamma: float = 0.2, varian
     Example:
         >>> tuple(round(x, 6) for x in risk_range())
         (0.1, 0.7)
-        >>> tuple(round(x, 6) for x in risk_range(classes=3))  # γ·c·(1 − 1/3) at a safe corner; α + that at the unsafe one
+        >>> tuple(round(x, 6) for x in risk_range(classes=3))  # a safe corner; the unsafe one
         (0.066667, 0.666667)
     """
     lo, _, hi, _ = _risk_range_exact(alpha, beta, gamma, variance, classes)

@@ -132,7 +132,8 @@ class Verifier:
                     out.append(self.unreached("lint", name))
                     continue
                 for f in fn():
-                    if f.status in (UNKNOWN, SKIPPED) and self.out_of_budget() and not f.message.startswith(BUDGET_NOTE):
+                    if (f.status in (UNKNOWN, SKIPPED) and self.out_of_budget()
+                            and not f.message.startswith(BUDGET_NOTE)):
                         f.status, f.message = UNKNOWN, f"{BUDGET_NOTE}: {f.message}"
                     out.append(f)
         return out, sum(f.message.startswith(BUDGET_NOTE) for f in out)
@@ -235,8 +236,8 @@ class Verifier:
     # -- properties -------------------------------------------------------------------------
     def property_tasks(self) -> list[tuple[str, Any]]:
         """``(name, check)`` of every property, in report order."""
-        out: list[tuple[str, Any]] = [("risk.bounds", self.prop_risk_bounds), ("risk.override", self.prop_risk_override),
-                                      ("fault.override", self.prop_fault)]
+        out: list[tuple[str, Any]] = [("risk.bounds", self.prop_risk_bounds),
+                                      ("risk.override", self.prop_risk_override), ("fault.override", self.prop_fault)]
         for ob in self.plan.obligations:
             out.append((f"{ob.id}.defined", lambda ob=ob: self.prop_defined(ob)))
             out.append((f"{ob.id}.response", lambda ob=ob: self.prop_response(ob)))
@@ -261,8 +262,8 @@ class Verifier:
         from ._encode import risk_input_range
         rlo, rhi = risk_input_range(self.plan)
         # the release bound's neighbours: the cut, the largest float below it, the float tau - delta
-        r_pick = [rlo, rhi, self.tau, self.below_cut, self.below_float, float(self.tau - self.spec.risk.release.hysteresis),
-                  min(max(self.below - 1e-3, rlo), rhi)]
+        r_pick = [rlo, rhi, self.tau, self.below_cut, self.below_float,
+                  float(self.tau - self.spec.risk.release.hysteresis), min(max(self.below - 1e-3, rlo), rhi)]
         r_pick = [x for x in r_pick if rlo <= x <= rhi]
         s = z3.Solver()
         s.set("timeout", max(1, self.check_ms()))
@@ -680,7 +681,7 @@ class Verifier:
         return (not ds[-1].override and ds[0].override), len(seq) - 1
 
     def lint_release(self) -> Finding:
-        """Can a latched override auto-release: ``hold_cycles`` consecutive cycles with R_e < τ − δ and no violation?
+        """Can a latched override auto-release (``hold_cycles`` cycles in a row with R_e < τ − δ, no violation)?
 
         Only a run replayed in the real Monitor makes it "reachable"; "never" is a proof over runs
         of any length (:meth:`window_search`); anything else is ``unknown``.
@@ -720,7 +721,8 @@ class Verifier:
             if short >= 1:
                 st, _ = self.window_search(goal, ids, short)
                 if st == "unsat":
-                    return Finding("lint", name, WARNING, never.replace(f"{hold} consecutive", f"even {short} consecutive"))
+                    return Finding("lint", name, WARNING,
+                                   never.replace(f"{hold} consecutive", f"even {short} consecutive"))
             # ... and a run that repeats one input is a witness once its windows are full
             enc = Unrolled(self.plan, P + 1, prefix="wc.")
             same = [enc.sig[t][sg] == enc.sig[0][sg] for t in range(1, P + 1) for sg in enc.sig[0]]
@@ -736,8 +738,8 @@ class Verifier:
             frames = self.frames(model, enc, 0) * (P + hold)
         ok, at = self._replay_release(frames)
         if not ok:
-            return Finding("lint", name, UNKNOWN, f"release not decided: the solver's run did not release when "
-                                                  f"replayed in the Monitor")
+            return Finding("lint", name, UNKNOWN, "release not decided: the solver's run did not release when "
+                                                  "replayed in the Monitor")
         return Finding("lint", name, OK, f"release reachable: {hold} cycles with {bound} and every obligation "
                                          f"held (a run replayed in the Monitor releases at cycle {at})")
 

@@ -146,7 +146,7 @@ class SpecReport:
 
 
 def exit_code(reports: list[SpecReport]) -> int:
-    """The CLI exit code: 2 if any spec is unusable, else 1 if anything is refuted/unproved/cut by the budget, else 0."""
+    """The CLI exit code: 2 any spec unusable, else 1 anything refuted/unproved/cut by the budget, else 0."""
     codes = [r.exit_code for r in reports]
     return 2 if 2 in codes else (1 if 1 in codes else 0)
 
@@ -198,6 +198,7 @@ def format_table(report: SpecReport) -> str:
             lines.append(f"  {f.name:<{w}}  {f.status:<8}  {f.seconds:>7.3f}s  {note}")
     if report.not_reached:
         c = report.counts()
-        lines.append(f"  budget of {report.budget_s:g} s spent: {c['proved']} properties proved, {c['refuted']} refuted, "
-                     f"{c['unknown']} unknown; {report.not_reached} check(s) cut short or not reached (unknown (budget))")
+        lines.append(f"  budget of {report.budget_s:g} s spent: {c['proved']} properties proved, {c['refuted']} "
+                     f"refuted, {c['unknown']} unknown; {report.not_reached} check(s) cut short or not reached "
+                     f"(unknown (budget))")
     return "\n".join(lines)
