@@ -383,6 +383,26 @@ def test_pickle_adapter_is_refused_even_when_its_sha256_is_pinned(tmp_path, base
         load_estimator(d, jit=False)
 
 
+def test_warm_start_from_a_pinned_pickle_adapter_is_refused(tmp_path, base, monkeypatch):
+    """train --init-from reads an adapter too: the same safetensors-only rule."""
+    from ethimon.risk import _backend as B
+    from ethimon.risk._train import _warm_start
+    encoder = B.load_encoder(base)
+    targets = B.inject_lora(encoder, 2, 4.0, 0.0)
+    model = B.PooledClassifier(encoder, 2)
+    d = _adapter_dir(tmp_path / "a", base, lora={"r": 2, "alpha": 4.0, "targets": targets})
+    torch.save({"head.weight": torch.zeros(2, 32)}, str(d / "adapter.safetensors"))
+    _edit_json(d / "ethimon_model.json", adapter_sha256=_sha(d / "adapter.safetensors"))
+    monkeypatch.setattr(torch, "load", lambda *a, **k: pytest.fail("torch.load called"))
+    with pytest.raises(ModelError, match=r"adapter\.safetensors.*safetensors"):
+        _warm_start(encoder, model, d, base, 2, 4.0, targets)
+    # a valid safetensors file without the LoRA tensors: a ModelError, not a KeyError
+    save_file({"head.weight": torch.zeros(2, 32), "head.bias": torch.zeros(2)}, str(d / "adapter.safetensors"))
+    _edit_json(d / "ethimon_model.json", adapter_sha256=_sha(d / "adapter.safetensors"))
+    with pytest.raises(ModelError, match="lora"):
+        _warm_start(encoder, model, d, base, 2, 4.0, targets)
+
+
 def test_adapter_with_non_finite_weights_is_refused(tmp_path, base):
     d = _adapter_dir(tmp_path / "a", base)
     save_file({"head.weight": torch.full((2, 32), float("nan")), "head.bias": torch.zeros(2)},

@@ -76,7 +76,6 @@ def fit_temperature(logits, labels) -> float:
 
 def _warm_start(encoder, model, d: Path, base_dir: Path, r: int, alpha: float, targets: list[str]) -> None:
     """Copy the LoRA factors and head of the ethimon model directory ``d`` into a fresh model."""
-    from safetensors.torch import load_file
     manifest = B.read_manifest(d)
     if manifest is None:
         raise B.ModelError(f"{d}: --init-from needs an ethimon LoRA model directory (no {B.MANIFEST})")
@@ -87,14 +86,17 @@ def _warm_start(encoder, model, d: Path, base_dir: Path, r: int, alpha: float, t
     if manifest.get("base_sha256") != B.sha256_file(base_dir / "model.safetensors"):
         raise B.ModelError(f"{d}: trained on another base model (base_sha256 differs)")
     adapter, _ = B.checked_adapter(d, manifest)
-    state = load_file(str(adapter))
-    with torch.no_grad():
-        for n_, mod in encoder.named_modules():
-            if isinstance(mod, B.LoRALinear):
-                mod.lora_A.copy_(state[f"lora.{n_}.A"].float())
-                mod.lora_B.copy_(state[f"lora.{n_}.B"].float())
-        model.head.weight.copy_(state["head.weight"].float())
-        model.head.bias.copy_(state["head.bias"].float())
+    state = B.load_adapter_tensors(adapter)  # safetensors only, finite floats
+    try:
+        with torch.no_grad():
+            for n_, mod in encoder.named_modules():
+                if isinstance(mod, B.LoRALinear):
+                    mod.lora_A.copy_(state[f"lora.{n_}.A"].float())
+                    mod.lora_B.copy_(state[f"lora.{n_}.B"].float())
+            model.head.weight.copy_(state["head.weight"].float())
+            model.head.bias.copy_(state["head.bias"].float())
+    except (KeyError, RuntimeError) as exc:
+        raise B.ModelError(f"{adapter}: tensor missing or of the wrong shape for a warm start: {exc}") from None
 
 
 def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[str],
