@@ -265,7 +265,11 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
     Raises:
         DependencyNotInstalled: torch/transformers or the base weights are missing.
         ModelError: the directory is unusable (sha256 mismatch, pickle-only
-            weights, missing tokenizer, ...).
+            weights, missing tokenizer, ...) or not to be trusted: anything
+            that would make transformers import code (``auto_map``, a
+            ``model_type`` it does not ship, a ``*.py`` file), a classifier whose
+            head (or any weight) would be randomly initialised, a manifest
+            field of the wrong type or range. Nothing in the directory runs.
         ValueError: bad ``quantize``/``max_length``/``cache_size``.
 
     Example:
