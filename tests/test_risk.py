@@ -409,7 +409,7 @@ def test_csv_other_ethics_layouts(tmp_path):
     j = tmp_path / "j.csv"
     j.write_text("label,scenario\n0,I deserve a raise because I work hard.\n", encoding="utf-8")
     assert load_labelled_csv(j, any_ethics_layout=True).texts == ["I deserve a raise because I work hard."]
-    (tmp_path / "bad.csv").write_text("label,text\n1,x\n", encoding="utf-8")
+    (tmp_path / "bad.csv").write_text("label,sentence\n1,x\n", encoding="utf-8")
     with pytest.raises(SpecError, match="scenario"):
         load_labelled_csv(tmp_path / "bad.csv", any_ethics_layout=True)
 
