@@ -328,3 +328,47 @@ def test_response_proof_by_one_obligation_still_refutes_a_wrong_model(monkeypatc
     rep = verify_spec(_spec(_many(3)))
     f = rep.finding("o0.response")
     assert f.status == "refuted" and not f.counterexample.confirmed, format_table(rep)
+
+
+def test_free_history_window_admits_every_clean_window_of_real_runs():
+    """The 'never' side of the windowed lints rests on this: every window that is clean in a real
+    Monitor run, however long, is a solution of the free-history encoding of its last P + s cycles."""
+    from ethimon.runtime import Monitor
+    from ethimon.verify._checks import Verifier
+    from ethimon.verify._encode import Unrolled, real
+    spec = _spec("""
+ethimon: 1
+name: windows
+signals: {x: {range: [0, 1]}, y: {range: [0, 1]}}
+obligations:
+  - {id: a, when: x > 0.5, require: y < 0.5, within_cycles: 2}
+  - {id: b, require: "not held(x > 0.8, 3)"}
+  - {id: c, require: "once(y < 0.9, 3)"}
+  - {id: d, require: "since(x < 0.9, y < 0.2) or x < 0.7"}
+  - {id: e, require: "prev(x, 0) <= 0.95"}
+""")
+    v = Verifier(spec, path="t", timeout_s=20, max_unroll=32)
+    obs = v.plan.obligations
+    P = v._window_cycles([ob.id for ob in obs])
+    rng = random.Random("free-history")
+    values = [0.0, 0.1, 0.3, 0.6, 0.85, 0.95, 1.0]
+    checked = 0
+    for _ in range(20):
+        m = Monitor(spec)
+        run = [{"x": rng.choice(values), "y": rng.choice(values[:4] if rng.random() < 0.6 else values), "risk": 0.0}
+               for _ in range(12)]
+        clean = [not m.step(f).violations for f in run]
+        for s in (1, 2, 3):
+            for end in range(P + s - 1, len(run)):
+                first = end - s + 1
+                if first < P or not all(clean[first:end + 1]):
+                    continue
+                enc = Unrolled(v.plan, P + s, prefix="h.", free_history=True)
+                pins = []
+                for t, f in enumerate(run[first - P:end + 1]):
+                    pins += [enc.sig[t]["x"] == real(f["x"]), enc.sig[t]["y"] == real(f["y"]), enc.R[t] == 0]
+                goals = [z3.Not(enc.violated(ob, t)) for t in range(P, P + s) for ob in obs]
+                st, _, why = v.solve(enc.all_defined(P + s - 1), *goals, *pins, enc=enc)
+                assert st == "sat", (run, first, end, why)
+                checked += 1
+    assert checked > 50
