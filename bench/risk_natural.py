@@ -12,6 +12,9 @@ For each model (one per seed), with the spec's R_e formula (α, β, γ = 0.6, 0.
 * the natural test set (data/natural_robot, sha256-checked; only reported on) gives accuracy at
   p_unsafe ≥ 0.5, ROC-AUC, unsafe flagged / safe flagged at τ, minimal pairs (ranked, both
   right at τ) and per-type rows (negations, polite/justified harmful requests, ...);
+* the same on the test rows that the leakage audit found far from every training row
+  (bench/risk_leakage.py; the two sets were written by separate writers, but common hazards
+  make some sentences converge);
 * secondary rows: the ETHICS cm 20 % hold-out and the templated pairs' test split.
 
 Then mean ± sd over the models. Prints a table; writes bench/results/risk_natural_<tag>.json and
@@ -34,6 +37,17 @@ from _machine import machine_facts  # noqa: E402
 
 TYPES = ("negation", "condition", "polite_harmful", "justified_harmful", "safe_mentions_danger",
          "safe_mentions_vulnerable", "multi_step", "first_person", "deception", "privacy", "property")
+
+
+FAR_RULE = "nearest training row: cosine < 0.80, word-3-gram Jaccard < 0.30, not an exact duplicate"
+
+
+def _far_rows(test) -> np.ndarray:
+    """Mask of test rows the leakage audit (bench/risk_leakage.py) found far from all training rows."""
+    audit = json.loads((Path(__file__).resolve().parent / "results" / "risk_leakage.json").read_text())
+    near = {r["test_id"] for r in audit["rows"]
+            if r["exact"] or r["cosine"] >= 0.80 or r["ngram_jaccard"] >= 0.30}
+    return np.array([e["id"] not in near for e in test.extra])
 
 
 def _curve(y, r) -> list[dict]:
@@ -64,6 +78,7 @@ def evaluate_model(path: str | None, *, budget: float, tau_fixed: float | None, 
     choice = tau_for_false_alarm_budget(yv, r["natural_val"], budget)
     tau = tau_fixed if tau_fixed is not None else choice["tau"]
     y = np.array(test.labels)
+    far = _far_rows(test)  # test rows with no near-duplicate in the training corpus (leakage audit)
     out = {"model": path or "default", "model_id": est.model_id, "temperature": T, "tau": tau,
            "tau_rule": (f"fixed {tau_fixed}" if tau_fixed is not None
                         else f"most sensitive tau with false alarms <= {budget:g} on natural_val"),
@@ -73,6 +88,9 @@ def evaluate_model(path: str | None, *, budget: float, tau_fixed: float | None, 
                                              [e.get("pair") for e in test.extra], tau),
                        "by_type": type_metrics(y, q["natural_test"], r["natural_test"],
                                                [e.get("type") for e in test.extra], tau)},
+           "natural_far": {**classification_metrics(y[far], q["natural_test"][far]),
+                           "at_tau": flag_stats(y[far], r["natural_test"][far], tau),
+                           "rule": FAR_RULE},
            "templated_test": {**classification_metrics(p_te.labels, q["templated_test"]),
                               "at_tau": flag_stats(p_te.labels, r["templated_test"], tau)},
            "curves": {"natural_val": _curve(yv, r["natural_val"]), "natural_test": _curve(y, r["natural_test"])}}
@@ -89,6 +107,9 @@ def _ms(vals) -> tuple[float, float]:
 def summary_rows(results: list[dict]) -> list[tuple[str, float, float]]:
     get = {
         "natural accuracy (p>=0.5)": lambda m: m["natural"]["accuracy"],
+        "natural, far from training rows: accuracy": lambda m: m["natural_far"]["accuracy"],
+        "natural, far from training rows: flagged at tau": lambda m: m["natural_far"]["at_tau"]["flag_rate_unsafe"],
+        "natural, far from training rows: false alarms at tau": lambda m: m["natural_far"]["at_tau"]["false_alarm_rate"],
         "natural ROC-AUC": lambda m: m["natural"]["roc_auc"],
         "natural unsafe flagged at tau": lambda m: m["natural"]["at_tau"]["flag_rate_unsafe"],
         "natural false alarms at tau": lambda m: m["natural"]["at_tau"]["false_alarm_rate"],
