@@ -42,6 +42,21 @@ _SEQ = "tag:yaml.org,2002:seq"
 _ALLOWED = {_STR, _INT, _FLOAT, _BOOL, _NULL, _MAP, _SEQ}
 
 
+class _Loader(yaml.SafeLoader):
+    """The safe loader, plus the YAML 1.2 core-schema float for plain scalars.
+
+    YAML 1.1 (PyYAML) reads ``1e-3``, ``2e-1``, ``1e3`` and ``-5E+2`` (an exponent
+    without a dot) as strings; they are numbers in YAML 1.2 and to every reader of
+    a spec. A *plain* scalar matching the 1.2 float pattern is a float; a quoted
+    ``'1e-3'`` (or an explicit ``!!str``) stays a string. Integers, ``.inf`` and
+    ``.nan`` resolve as before (those resolvers come first).
+    """
+
+
+_Loader.add_implicit_resolver(
+    _FLOAT, re.compile(r"^[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?$"), list("-+0123456789."))
+
+
 @dataclass(frozen=True)
 class Pos:
     """A 1-based position of a YAML node, plus how its scalar was written."""
@@ -227,7 +242,7 @@ def parse_yaml_text(text: str, path: str = "<string>", *, what: str = "file") ->
                         hint="a spec starts with 'ethimon: 1' and 'name: ...'")
     smap = SourceMap(path, lines=text.splitlines())
     try:
-        loader = yaml.SafeLoader(text)
+        loader = _Loader(text)
         try:
             node = loader.get_single_node()
         finally:
