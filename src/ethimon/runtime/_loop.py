@@ -51,6 +51,7 @@ from dataclasses import dataclass, field
 from typing import Any, NamedTuple, Protocol, runtime_checkable
 
 from ..errors import EthimonError
+from ..risk._formula import release_bound
 from ..spec._model import Spec
 from ._decision import Decision
 from ._monitor import Monitor
@@ -572,11 +573,11 @@ class ReloadResult:
         spec_sha256: hash of the new spec (``None`` if it did not load).
         error: why it was rejected.
         applied: set once the loop has swapped it in (``wait_applied``).
-        weakened: how the new spec weakens monitoring compared with the running
-            one (see :func:`weakenings`); non-empty only when refused for it or
-            accepted with ``allow_weaker=True``.
-        unjudged: changes whose direction is not judged (condition texts,
-            constants, ...): accepted, and listed in the audit record.
+        weakened: how the new spec weakens, or may weaken, monitoring compared
+            with the running one (see :func:`weakenings`); non-empty only when
+            refused for it or accepted with ``allow_weaker=True``.
+        unjudged: the entries of ``weakened`` whose direction cannot be told
+            (condition texts, constants, ...): refused like any weakening.
     """
 
     ok: bool
@@ -633,13 +634,15 @@ def _sev(response: Any) -> int:
     return Response(response).severity
 
 
-def _release_bound(threshold: float, hysteresis: float) -> Any:
-    try:
-        from ..risk._formula import release_bound
-        return release_bound(threshold, hysteresis)[0]
-    except Exception:  # noqa: BLE001 - fall back to exact decimal subtraction
-        from decimal import Decimal
-        return Decimal(repr(threshold)) - Decimal(repr(hysteresis))
+#: the reason attached to every change whose direction :func:`weakenings` cannot judge
+CANNOT_TELL = "cannot tell whether this change weakens monitoring"
+
+
+def _same_text(a: str | None, b: str | None) -> bool:
+    """Equal condition texts up to whitespace (``x>=1`` and ``x >= 1`` still differ: not judged)."""
+    if a is None or b is None:
+        return a is b
+    return " ".join(a.split()) == " ".join(b.split())
 
 
 def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> tuple[list[str], list[str]]:
@@ -656,9 +659,15 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     ``loop_max_age_s``); a signal's range widened or removed; the safe pose's
     joint-speed limit or tolerance raised.
 
-    Not judged (second list; they may strengthen or weaken): the text of a
-    ``require`` or ``when`` that changed, a constant's value, a signal's type,
-    the safe pose's joints, the estimator settings.
+    Cannot be judged field by field, so counted as possible weakenings too (in the
+    first list, each ending in :data:`CANNOT_TELL`; the second list repeats just
+    these): the text of a ``require`` or ``when`` that changed (beyond
+    whitespace), a constant's value, a signal's type, the safe pose's joints, the
+    estimator settings, the ``risk.allow`` opt-outs. ``require: 'true'`` or a
+    constant ``min_d: -1`` would otherwise switch a check off unnoticed.
+
+    Returns:
+        ``(weakenings, cannot_tell)``; ``cannot_tell`` is a sublist of ``weakenings``.
     """
     weak: list[str] = []
     unjudged: list[str] = []
@@ -673,9 +682,9 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
             weak.append(f"obligation {oid}: response {o.response} -> {n.response} (less severe)")
         if o.when is None and n.when is not None:
             weak.append(f"obligation {oid}: when added ({n.when!r}): require is no longer checked every cycle")
-        elif o.when != n.when and n.when is not None:
+        elif n.when is not None and not _same_text(o.when, n.when):
             unjudged.append(f"obligation {oid}: when changed ({o.when!r} -> {n.when!r})")
-        if o.require != n.require:
+        if not _same_text(o.require, n.require):
             unjudged.append(f"obligation {oid}: require changed ({o.require!r} -> {n.require!r})")
         ow, nw = o.within_cycles or 0, n.within_cycles or 0
         if nw > ow:
@@ -698,8 +707,8 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     if ro.release.mode == "manual" and rn.release.mode == "auto":
         weak.append("release mode manual -> auto (a latched override now releases by itself)")
     elif rn.release.mode == "auto":
-        bo = _release_bound(ro.threshold, ro.release.hysteresis)
-        bn = _release_bound(rn.threshold, rn.release.hysteresis)
+        bo = release_bound(ro.threshold, ro.release.hysteresis)[0]
+        bn = release_bound(rn.threshold, rn.release.hysteresis)[0]
         if bn > bo:
             weak.append(f"release bound τ − δ raised {float(bo):g} -> {float(bn):g} (hysteresis "
                         f"{ro.release.hysteresis!r} -> {rn.release.hysteresis!r}: a latch releases at a higher R_e)")
@@ -733,7 +742,8 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
         unjudged.append("risk.estimator settings changed")
     if getattr(rn, "allow", None) != getattr(ro, "allow", None):
         unjudged.append("risk.allow opt-outs changed")
-    return weak, unjudged
+    unjudged = [f"{u}: {CANNOT_TELL}" for u in unjudged]
+    return weak + unjudged, unjudged
 
 
 _NUM = re.compile(r"[-+]?(?:\d+\.?\d*(?:e[-+]?\d+)?|nan|inf)", re.IGNORECASE)
@@ -1097,9 +1107,11 @@ class GovernedLoop:
         severe, ``max_age_s`` removed or raised, a signal range widened, ...) is
         refused unless ``allow_weaker=True``; the refusal and an allowed
         weakening are both recorded in the audit log with the list of
-        weakenings. Changes whose direction is not judged (the text of a
-        condition, a constant's value, the estimator settings) are accepted and
-        listed as ``unjudged``; use ``verify=`` for a semantic check.
+        weakenings. A change whose direction cannot be told field by field (the
+        text of a condition beyond whitespace, a constant's value, a signal's
+        type, the safe pose's joints, the estimator settings) counts as a
+        possible weakening: refused the same way, listed with
+        "cannot tell whether this change weakens monitoring" (and in ``unjudged``).
 
         Args:
             source: a spec file path, or a loaded :class:`~ethimon.Spec`.
