@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import json
 import os
-import stat
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import BinaryIO
 
+from .._files import open_regular
 from ._log import FORMAT, GENESIS, MAX_RECORD_BYTES, canonical, record_hash
 
 __all__ = ["AuditReport", "verify_log", "read_log", "AuditFormatError"]
@@ -55,33 +55,14 @@ class AuditReport:
         return f"ok: {self.records} records, chain intact, {state}{torn}; head {self.head[:16]}"
 
 
-def _open_regular(path: str) -> BinaryIO:
-    """Open ``path`` for reading without ever blocking: only a regular file is accepted.
+def _audit_error(message: str, *, path: str, hint: str | None = None) -> AuditFormatError:
+    return AuditFormatError(f"{path}: {message}" + (f" ({hint})" if hint else ""))
 
-    A FIFO (or ``/dev/stdin`` on a pipe or terminal) would block ``open()`` or
-    ``read()`` forever; it is opened non-blocking, checked with ``fstat`` on the
-    open descriptor (no check-then-open race) and refused.
-    """
-    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
-    try:
-        fd = os.open(path, flags)
-    except IsADirectoryError:
-        raise AuditFormatError(f"{path}: is a directory, not an audit log") from None
-    except OSError as exc:
-        raise AuditFormatError(f"{path}: cannot read: {exc.strerror or exc}") from None
-    try:
-        st = os.fstat(fd)
-        if stat.S_ISDIR(st.st_mode):
-            raise AuditFormatError(f"{path}: is a directory, not an audit log")
-        if not stat.S_ISREG(st.st_mode):
-            raise AuditFormatError(f"{path}: not a regular file (a pipe, FIFO, socket or device); "
-                                   "an audit log must be a file")
-        if hasattr(os, "set_blocking"):
-            os.set_blocking(fd, True)
-        return os.fdopen(fd, "rb")
-    except BaseException:
-        os.close(fd)
-        raise
+
+def _open_regular(path: str) -> BinaryIO:
+    """Open ``path`` for reading without ever blocking: only a regular file is accepted
+    (:func:`ethimon._files.open_regular`; a FIFO or ``/dev/stdin`` is an :class:`AuditFormatError`)."""
+    return open_regular(path, "rb", what="audit log", error=_audit_error)
 
 
 def _read_lines(fh: BinaryIO) -> Iterator[tuple[int, bytes | None]]:

@@ -9,7 +9,6 @@ audit log, unreadable key). It prints one line and never a traceback.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 
 __all__ = ["add_audit_parsers", "cmd_audit_verify", "main"]
@@ -39,21 +38,17 @@ def add_audit_parsers(subparsers: argparse._SubParsersAction) -> argparse.Argume
 
 def cmd_audit_verify(args: argparse.Namespace) -> int:
     """Run ``audit verify``; returns the exit code (0/1/2)."""
+    from .._files import open_regular
     from ..audit import AuditFormatError, verify_log
     from ..errors import SpecError
-    from ..scenario import require_regular_file
-    for what, path in (("audit log", args.log), ("key file", getattr(args, "key_file", None))):
-        if path and os.path.exists(path):
-            try:  # a FIFO or /dev/stdin would block the read: refuse it without opening it
-                require_regular_file(path, what)
-            except SpecError as exc:
-                print(str(exc), file=sys.stderr)
-                return 2
     key = None
     if getattr(args, "key_file", None):
-        try:
-            with open(args.key_file, "rb") as fh:
+        try:  # regular files only: a FIFO or /dev/stdin would block the read
+            with open_regular(args.key_file, "rb", what="key file") as fh:
                 key = fh.read().strip()
+        except SpecError as exc:
+            print(str(exc), file=sys.stderr)
+            return 2
         except OSError as exc:
             print(f"{args.key_file}: cannot read key: {exc.strerror or exc}", file=sys.stderr)
             return 2

@@ -3,9 +3,7 @@
 from __future__ import annotations
 
 import argparse
-import errno
 import json
-import os
 import sys
 import time
 import xml.etree.ElementTree as ET
@@ -123,26 +121,18 @@ def cmd_check(args: argparse.Namespace) -> int:
 
 
 def write_report(path: str, text: str, what: str) -> None:
-    """Write a report file without ever blocking on a FIFO that has no reader.
+    """Write a report file without ever blocking on a FIFO that has no reader
+    (:func:`ethimon._files.open_regular`; a FIFO with a reader or ``/dev/null`` is accepted).
 
     Raises:
         SpecError: the file cannot be written (one line, names the path).
     """
-    flags = (os.O_WRONLY | os.O_CREAT | os.O_TRUNC | getattr(os, "O_NONBLOCK", 0)
-             | getattr(os, "O_CLOEXEC", 0) | getattr(os, "O_NOCTTY", 0))
-    try:
-        fd = os.open(path, flags, 0o666)
-    except OSError as exc:
-        if exc.errno == errno.ENXIO:  # a FIFO nobody reads: opening it blocking would hang
-            raise SpecError(f"cannot write the {what}: a named pipe (FIFO) with no reader", path=path,
-                            hint="start the reader first, or write the report to a regular file") from None
-        raise SpecError(f"cannot write the {what}: {exc.strerror or exc}", path=path) from None
-    try:
-        os.set_blocking(fd, True)
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+    from .._files import open_regular
+    with open_regular(path, "w", what=what, error=SpecError, special_ok=True) as fh:
+        try:
             fh.write(text)
-    except OSError as exc:
-        raise SpecError(f"cannot write the {what}: {exc.strerror or exc}", path=path) from None
+        except OSError as exc:
+            raise SpecError(f"cannot write the {what}: {exc.strerror or exc}", path=path) from None
 
 
 def _report(path: str, text: str, what: str) -> bool:
@@ -159,13 +149,9 @@ def _load_spec_for(sc, path, specs):
     got = specs.get(sc.spec_path)
     if got is None:
         from .. import _api
-        from ..scenario import require_regular_file
         try:
-            require_regular_file(sc.spec_path, "spec")  # a FIFO as spec must not block the run
-            got = _api.load_spec(sc.spec_path)
-        except SpecError as exc:
-            got = exc
-        except Exception as exc:  # noqa: BLE001 - an internal error of this spec, reported per scenario
+            got = _api.load_spec(sc.spec_path)  # regular files only: a FIFO as spec is a SpecError
+        except Exception as exc:  # noqa: BLE001 - a SpecError, or an internal error of this spec, per scenario
             got = exc
         specs[sc.spec_path] = got
     if isinstance(got, SpecError):

@@ -80,7 +80,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         return _err("--gui needs a display (DISPLAY is not set); use --record DIR for frames instead")
     try:
         from .. import Monitor, load_spec
-        from ..scenario import check_input_names, load_scenario, require_regular_file
+        from ..scenario import check_input_names, load_scenario
         from ..scenario._run import scan_yaml_files
         from ..sim import SimBlock, check_sim_expectations, run_sim
     except ImportError as exc:  # pragma: no cover - packaging problem
@@ -108,8 +108,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
                 continue
             spec = specs.get(sc.spec_path)
             if spec is None:
-                require_regular_file(sc.spec_path, "spec")  # a FIFO as spec must not block the run
-                spec = specs[sc.spec_path] = load_spec(sc.spec_path)
+                spec = specs[sc.spec_path] = load_spec(sc.spec_path)  # regular files only: never blocks
             check_input_names(sc, spec)
             block = SimBlock.model_validate(sc.sim)  # already validated with positions by the loader
             rec = os.path.join(args.record, sc.name) if args.record else None

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import os
-import stat
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from .._api import load_spec
+from .._files import file_kind
+from .._files import require_regular as require_regular_file  # re-exported (public name)
 from ..errors import SpecError
 from ..runtime import Decision, Monitor
 from ..spec._load import validate_document
@@ -45,39 +46,6 @@ def load_scenario_text(text: str, path: str = "<string>") -> Scenario:
     return validate_document(Scenario, data, smap, "scenario")
 
 
-def file_kind(st: os.stat_result) -> str | None:
-    """``None`` for a regular file, else what the path is (``"a named pipe (FIFO)"``, ...)."""
-    mode = st.st_mode
-    if stat.S_ISREG(mode):
-        return None
-    return ("a folder" if stat.S_ISDIR(mode) else "a named pipe (FIFO)" if stat.S_ISFIFO(mode)
-            else "a socket" if stat.S_ISSOCK(mode) else "a character device" if stat.S_ISCHR(mode)
-            else "a block device" if stat.S_ISBLK(mode) else "not a regular file")
-
-
-def require_regular_file(path: str | os.PathLike, what: str = "file") -> None:
-    """Refuse, without opening it, a path that is a FIFO, socket or device (``/dev/stdin``).
-
-    Opening a FIFO blocks until a writer appears; ethimon never does that.
-
-    Raises:
-        SpecError: the path is missing or not a regular file.
-    """
-    spath = os.fspath(path)
-    try:
-        st = os.stat(spath)
-    except FileNotFoundError:
-        raise SpecError("no such file or folder", path=spath) from None
-    except OSError as exc:
-        raise SpecError(f"cannot read this {what}: {exc.strerror or exc}", path=spath) from None
-    kind = file_kind(st)
-    if kind is not None:
-        raise SpecError(f"expected a {what} (a regular file), found {kind}", path=spath, hint=_NOT_REGULAR_HINT)
-
-
-_NOT_REGULAR_HINT = "ethimon reads files only, not pipes, devices or standard input; save it to a file first"
-
-
 def scan_yaml_files(paths: Iterable[str], *, what: str = "scenario",
                     command: str = "ethimon check") -> list[tuple[str, str | None]]:
     """Expand files and folders into ``(path, reason)`` pairs, in order, without opening any file.
@@ -101,7 +69,7 @@ def scan_yaml_files(paths: Iterable[str], *, what: str = "scenario",
                         continue
                     full = os.path.join(root, f)
                     try:
-                        kind = file_kind(os.stat(full))
+                        kind = file_kind(full)
                     except OSError:  # a broken link or no permission: reading it gives the clean error
                         kind = None
                     found.append((full, None if kind is None else f"{kind}, not a regular file: not read"))

@@ -17,13 +17,13 @@ from __future__ import annotations
 import math
 import os
 import re
-import stat
 from dataclasses import dataclass, field
 from typing import Any
 
 import yaml
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 
+from .._files import open_regular
 from ..errors import SpecError
 
 __all__ = ["SourceMap", "Pos", "read_yaml", "parse_yaml_text", "MAX_BYTES", "MAX_NODES", "MAX_DEPTH"]
@@ -158,55 +158,16 @@ def read_yaml(path: str | os.PathLike, *, what: str = "file",
     """
     spath = os.fspath(path)
     try:
-        st = os.stat(spath)  # never open something that is not a regular file: a FIFO would block
-        _require_regular(st, spath, what)
-        if st.st_size > max_bytes:
-            raise _too_large(what, st.st_size, max_bytes, spath)
-        # O_NONBLOCK: if the path was swapped for a FIFO after the stat, open returns at once
-        fd = os.open(spath, os.O_RDONLY | _O_NONBLOCK | _O_NOCTTY | _O_CLOEXEC | _O_BINARY)
-        try:
-            _require_regular(os.fstat(fd), spath, what)  # what we opened is what we read
-            chunks, n = [], 0
-            while n <= max_bytes:
-                chunk = os.read(fd, min(1 << 20, max_bytes + 1 - n))
-                if not chunk:
-                    break
-                chunks.append(chunk)
-                n += len(chunk)
-        finally:
-            os.close(fd)
-        raw = b"".join(chunks)
-        if len(raw) > max_bytes:  # it grew after the stat
+        with open_regular(spath, "rb", what=what, error=SpecError) as fh:  # never blocks on a FIFO
+            size = os.fstat(fh.fileno()).st_size
+            if size > max_bytes:
+                raise _too_large(what, size, max_bytes, spath)
+            raw = fh.read(max_bytes + 1)
+        if len(raw) > max_bytes:  # it grew after the fstat
             raise _too_large(what, len(raw), max_bytes, spath)
-    except FileNotFoundError:
-        raise SpecError(f"{what} not found", path=spath, hint="check the path") from None
-    except PermissionError:
-        raise SpecError(f"{what} is not readable (permission denied)", path=spath) from None
-    except IsADirectoryError:
-        raise SpecError(f"expected a {what}, found a directory", path=spath) from None
     except OSError as exc:
         raise SpecError(f"cannot read {what}: {exc.strerror or exc}", path=spath) from None
     return parse_yaml_bytes(raw, spath, what=what)
-
-
-_O_NONBLOCK = getattr(os, "O_NONBLOCK", 0)
-_O_NOCTTY = getattr(os, "O_NOCTTY", 0)
-_O_CLOEXEC = getattr(os, "O_CLOEXEC", 0)
-_O_BINARY = getattr(os, "O_BINARY", 0)
-
-
-def _require_regular(st: os.stat_result, path: str, what: str) -> None:
-    """Refuse a directory, FIFO, socket or device (``/dev/stdin``, ``<(...)``) with a SpecError."""
-    mode = st.st_mode
-    if stat.S_ISREG(mode):
-        return
-    if stat.S_ISDIR(mode):
-        raise SpecError(f"expected a {what}, found a directory", path=path)
-    kind = ("a named pipe (FIFO)" if stat.S_ISFIFO(mode) else "a socket" if stat.S_ISSOCK(mode)
-            else "a character device" if stat.S_ISCHR(mode) else "a block device" if stat.S_ISBLK(mode)
-            else "not a regular file")
-    raise SpecError(f"expected a {what} (a regular file), found {kind}", path=path,
-                    hint="ethimon reads files only, not pipes, devices or standard input; save it to a file first")
 
 
 def _too_large(what: str, size: int, limit: int, path: str) -> SpecError:
