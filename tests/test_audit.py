@@ -246,3 +246,21 @@ def test_cli_require_closed(tmp_path):
     assert _cli("audit", "verify", str(p)).returncode == 0
     r = _cli("audit", "verify", "--require-closed", str(p))
     assert r.returncode == 1 and "close" in r.stdout
+
+
+def test_read_log_names_an_over_long_line_instead_of_stopping_silently(tmp_path, monkeypatch):
+    import ethimon.audit._verify as v
+    path = tmp_path / "l.jsonl"
+    log = AuditLog(path)
+    log.append("note", text="x")
+    log.close()
+    real = v.verify_log
+
+    def verify_then_change(p, **kw):  # the file changes between the check and the read
+        rep = real(p, **kw)
+        lines = Path(p).read_bytes().splitlines(keepends=True)
+        Path(p).write_bytes(lines[0] + b"x" * (v.MAX_RECORD_BYTES + 10) + b"\n" + b"".join(lines[1:]))
+        return rep
+    monkeypatch.setattr(v, "verify_log", verify_then_change)
+    with pytest.raises(AuditFormatError, match=r"l\.jsonl: line 2 is longer than"):
+        read_log(path)

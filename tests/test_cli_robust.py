@@ -139,6 +139,37 @@ def test_a_bad_spec_shared_by_scenarios_is_read_once(tmp_path, monkeypatch, caps
     assert sum("bad" in os.fspath(c) for c in calls) == 1
 
 
+
+@pytest.mark.parametrize("exc", [RecursionError("maximum recursion depth exceeded"),
+                                 SpecError("bad spec", path="x.yaml", line=3, column=1, hint="fix it")])
+def test_a_cached_spec_failure_is_raised_fresh_for_each_scenario(tmp_path, monkeypatch, exc):
+    import ethimon._api as api
+    from ethimon.cli._check import _load_spec_for
+    from ethimon.scenario import load_scenario
+
+    def load_spec(path):
+        raise exc
+    monkeypatch.setattr(api, "load_spec", load_spec)
+    specs, raised = {}, []
+    for n in ("a", "b", "c"):
+        sc = load_scenario(ok_scenario(tmp_path / f"{n}.yaml", n, spec=tmp_path / "bad_spec.yaml"))
+        ctx = {}
+        with pytest.raises(type(exc)) as info:
+            _load_spec_for(sc, str(tmp_path / f"{n}.yaml"), specs, ctx)
+        raised.append(info.value)
+        assert ctx["from_spec"] is True
+    assert len({id(e) for e in raised}) == 3 and all(e is not exc for e in raised)
+    assert all(str(e) == str(exc) and type(e) is type(exc) for e in raised)
+    assert all(e.__context__ is None and e.__cause__ is None for e in raised)
+    # no traceback accumulates across scenarios: each carries only its own raise
+    depths = []
+    for e in raised:
+        tb, n = e.__traceback__, 0
+        while tb is not None:
+            tb, n = tb.tb_next, n + 1
+        depths.append(n)
+    assert len(set(depths)) == 1, depths
+
 def test_lint_reports_every_file_despite_a_hostile_one(tmp_path):
     hexs, chain = hostile_specs(tmp_path)
     good = tmp_path / "good.yaml"

@@ -80,14 +80,6 @@ def _read_lines(fh: BinaryIO) -> Iterator[tuple[int, bytes | None]]:
         yield lineno, raw
 
 
-def _lines(path: str) -> Iterator[tuple[int, bytes, bool]]:
-    with _open_regular(path) as fh:
-        for i, raw in _read_lines(fh):
-            if raw is None:
-                return
-            yield i, raw, raw.endswith(b"\n")
-
-
 def verify_log(path: str | os.PathLike, *, key: bytes | None = None, require_closed: bool = False,
                expect_head: str | None = None) -> AuditReport:
     """Verify an audit log written by :class:`~ethimon.audit.AuditLog`.
@@ -208,13 +200,25 @@ def _verify_stream(path: str, fh, key: bytes | None, require_closed: bool,
 
 
 def read_log(path: str | os.PathLike, *, key: bytes | None = None) -> list[dict]:
-    """The verified records of a log (raises :class:`AuditFormatError`/``ValueError`` if tampered)."""
+    """The verified records of a log.
+
+    Raises:
+        AuditFormatError: not an audit log, or a line longer than
+            :data:`~ethimon.audit.MAX_RECORD_BYTES` (named by its number) when the
+            records are read.
+        ValueError: the chain is tampered.
+    """
+    path = os.fspath(path)
     rep = verify_log(path, key=key)
     if not rep.ok:
-        raise ValueError(f"{os.fspath(path)}: {rep.summary()}")
+        raise ValueError(f"{path}: {rep.summary()}")
     out = []
-    for _, raw, complete in _lines(os.fspath(path)):
-        if not complete or len(out) >= rep.records:
-            break
-        out.append(json.loads(raw))
+    with _open_regular(path) as fh:
+        for lineno, raw in _read_lines(fh):
+            if raw is None:  # the file changed after it was verified: never stop silently
+                raise AuditFormatError(f"{path}: line {lineno} is longer than {MAX_RECORD_BYTES} bytes (the audit "
+                                       "record size cap): not a record AuditLog writes (appended or corrupted)")
+            if not raw.endswith(b"\n") or len(out) >= rep.records:
+                break
+            out.append(json.loads(raw))
     return out

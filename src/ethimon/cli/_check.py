@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import copy
 import json
 import sys
 import time
@@ -89,7 +90,7 @@ def cmd_check(args: argparse.Namespace) -> int:
                 msg = f"{path}: {exc}"
             else:
                 sc = ctx.get("scenario")
-                from_spec = sc is not None and specs.get(sc.spec_path) is exc
+                from_spec = sc is not None and bool(ctx.get("from_spec"))
                 msg = internal_error(f"{sc.spec_path} (spec of {path})" if from_spec else path, exc)
             problems.append(msg)
             name = ctx["scenario"].name if "scenario" in ctx else path
@@ -144,8 +145,12 @@ def _report(path: str, text: str, what: str) -> bool:
         return False
 
 
-def _load_spec_for(sc, path, specs):
-    """The scenario's spec, read once per run (a spec that failed fails every scenario using it)."""
+def _load_spec_for(sc, path, specs, ctx=None):
+    """The scenario's spec, read once per run (a spec that failed fails every scenario using it).
+
+    A failure is cached and raised again as a fresh copy for each scenario (no traceback or
+    context chained across scenarios); ``ctx["from_spec"]`` is set when the error is the spec's.
+    """
     got = specs.get(sc.spec_path)
     if got is None:
         from .. import _api
@@ -154,16 +159,29 @@ def _load_spec_for(sc, path, specs):
         except Exception as exc:  # noqa: BLE001 - a SpecError, or an internal error of this spec, per scenario
             got = exc
         specs[sc.spec_path] = got
-    if isinstance(got, SpecError):
-        if got.path == sc.spec_path and ("not found" in got.message or "no such file" in got.message):
+    if isinstance(got, BaseException):
+        if ctx is not None:
+            ctx["from_spec"] = True
+        if (isinstance(got, SpecError) and got.path == sc.spec_path
+                and ("not found" in got.message or "no such file" in got.message)):
             pos = sc._source.pos(("spec",))
             raise SpecError(f"spec {sc.spec!r} not found (looked at {sc.spec_path})", path=path,
                             line=pos.line if pos else None, column=pos.column if pos else None,
                             hint="'spec:' is relative to the scenario file") from None
-        raise got
-    if isinstance(got, BaseException):
-        raise got
+        raise _fresh(got) from None
     return got
+
+
+def _fresh(exc: BaseException) -> BaseException:
+    """A new exception equal to ``exc`` (same type, message and fields), without its traceback."""
+    try:
+        new = copy.copy(exc)
+    except Exception:  # noqa: BLE001 - a type that cannot be rebuilt from its args
+        new = None
+    if new is None or new is exc or type(new) is not type(exc) or str(new) != str(exc):
+        new = RuntimeError(f"{type(exc).__name__}: {exc}")
+    new.__traceback__ = new.__context__ = new.__cause__ = None
+    return new
 
 
 def _check_one(path, args, ests, specs, rows, results, problems, ctx) -> bool:
@@ -174,7 +192,7 @@ def _check_one(path, args, ests, specs, rows, results, problems, ctx) -> bool:
     from ..scenario import check_input_names, load_scenario, run_scenario
 
     sc = ctx["scenario"] = load_scenario(path)
-    spec = _load_spec_for(sc, path, specs)
+    spec = _load_spec_for(sc, path, specs, ctx)
     check_input_names(sc, spec)
     failed = False
     # a sim scenario whose signals come from the simulator cannot run as a timeline
