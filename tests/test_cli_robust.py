@@ -36,7 +36,8 @@ def ok_scenario(path, name, spec=GOVERNOR):
 
 
 def hostile_specs(folder):
-    """Specs that crash the compiler today (issue 11); they must cost one row, not the run."""
+    """A spec that must be refused (a 5,000-digit hex constant) and one that must load (a 2,000-term
+    ``and`` chain: chains are balanced trees since issue 11)."""
     head = ("ethimon: 1\nname: {n}\nsignals:\n  x: {{unit: m, range: [0, 10]}}\n"
             "risk: {{alpha: 0.6, beta: 0.2, gamma: 0.2, threshold: 0.27, response: safe_pose}}\n")
     hexs = folder / "hex_spec.yaml"
@@ -80,15 +81,15 @@ def test_hostile_files_are_one_error_row_each_and_reports_are_written(tmp_path, 
     by_path = {os.path.basename(x["path"]): x for x in doc["results"]}
     assert sorted(by_path) == ["a_ok.yaml", "b_hex.yaml", "c_chain.yaml", "d_hexat.yaml", "e_ok.yaml"]
     assert by_path["a_ok.yaml"]["passed"] is True and by_path["e_ok.yaml"]["passed"] is True
-    # the huge literals are errors (a SpecError once the parser refuses them, else an internal
-    # error of that file); the long chain is an error too unless the compiler handles it
+    # the huge literals are ERROR rows, refused by the parser (a SpecError naming the file, not an
+    # internal error); the 2,000-term chain loads and its scenario passes
     for bad in ("b_hex.yaml", "d_hexat.yaml"):
-        assert by_path[bad]["passed"] is False and by_path[bad]["error"]
-    assert by_path["c_chain.yaml"]["passed"] is True or by_path["c_chain.yaml"]["error"]
-    n_err = sum("error" in x for x in doc["results"])
-    assert f"{5 - n_err} passed, 0 failed, {n_err} errors" in r.stdout, r.stdout
+        assert by_path[bad]["passed"] is False and "too long" in by_path[bad]["error"]
+        assert "internal error" not in by_path[bad]["error"]
+    assert by_path["c_chain.yaml"]["passed"] is True and "error" not in by_path["c_chain.yaml"]
+    assert "3 passed, 0 failed, 2 errors" in r.stdout, r.stdout
     suite = ET.parse(junit).getroot()
-    assert suite.get("tests") == "5" and suite.get("errors") == str(n_err) and suite.get("failures") == "0"
+    assert suite.get("tests") == "5" and suite.get("errors") == "2" and suite.get("failures") == "0"
 
 
 @pytest.mark.parametrize("exc", [RecursionError("maximum recursion depth exceeded"),
@@ -178,8 +179,8 @@ def test_lint_reports_every_file_despite_a_hostile_one(tmp_path):
     assert r.returncode == 2, r.stdout + r.stderr
     assert "Traceback" not in r.stderr
     assert f"{good}: ok (governor" in r.stdout
-    assert f"{hexs}:" in r.stderr
-    assert f"{chain}: ok" in r.stdout or f"{chain}:" in r.stderr
+    assert f"{hexs}:" in r.stderr and "too long" in r.stderr and f"{hexs}: ok" not in r.stdout
+    assert f"{chain}: ok" in r.stdout and f"{chain}:" not in r.stderr
 
 
 def test_lint_unexpected_exception_is_one_line(tmp_path, monkeypatch, capsys):
