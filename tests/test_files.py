@@ -98,3 +98,22 @@ def test_audit_verify_cli_does_not_stat_before_verify_log(tmp_path, monkeypatch,
     assert main(["audit", "verify", str(tmp_path)]) == 2
     assert f"{tmp_path}: expected an audit log, found a directory" in capsys.readouterr().err
 
+
+
+@needs_fifo
+def test_a_model_config_that_is_a_fifo_is_a_model_error_without_blocking(tmp_path, monkeypatch):
+    import ethimon.risk._backend as backend
+    from ethimon.errors import ModelError
+    from ethimon.risk._backend import read_json_object
+    monkeypatch.setattr(backend, "MAX_JSON_BYTES", 1000)
+    fifo = tmp_path / "config.json"
+    os.mkfifo(fifo)
+    err = _no_block(lambda: read_json_object(fifo))["exc"]
+    assert isinstance(err, ModelError) and str(err).startswith(f"{fifo}: expected a file, found a named pipe")
+    big = tmp_path / "big.json"
+    big.write_bytes(b" " * 2000 + b"{}")
+    with pytest.raises(ModelError, match="bytes; a model configuration file is at most"):
+        read_json_object(big)
+    ok = tmp_path / "ok.json"
+    ok.write_text('{"a": 1}')
+    assert read_json_object(ok) == {"a": 1}

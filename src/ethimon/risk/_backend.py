@@ -18,7 +18,6 @@ import importlib.util
 import json
 import math
 import os
-import stat
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -75,14 +74,20 @@ def _short(v: Any, n: int = 100) -> str:
 
 def read_json_object(p: Path, what: str = "") -> dict:
     """``p`` parsed as one JSON object (no duplicate keys), or :class:`ModelError` naming ``p``."""
-    try:
-        st = p.stat()
+    from .._files import open_regular
+
+    def error(message: str, *, path: str, hint: str | None = None) -> ModelError:
+        return ModelError(f"{path}: {message}" + (f" ({hint})" if hint else ""))
+    try:  # regular files only, opened without blocking (ethimon._files)
+        with open_regular(p, "rb", what=(what or "the file").removeprefix("the "), error=error) as fh:
+            size = os.fstat(fh.fileno()).st_size
+            if size <= MAX_JSON_BYTES:
+                raw = fh.read(MAX_JSON_BYTES + 1)
+                size = len(raw)
     except OSError as exc:
-        raise ModelError(f"{p}: cannot read {what or 'the file'}: {exc.strerror or exc}") from None
-    if not stat.S_ISREG(st.st_mode):
-        raise ModelError(f"{p}: not a regular file")
-    if st.st_size > MAX_JSON_BYTES:
-        raise ModelError(f"{p}: {st.st_size} bytes; a model configuration file is at most {MAX_JSON_BYTES}")
+        raise ModelError(f"{p}: cannot read: {exc.strerror or exc}") from None
+    if size > MAX_JSON_BYTES:
+        raise ModelError(f"{p}: {size} bytes; a model configuration file is at most {MAX_JSON_BYTES}")
 
     def no_duplicates(pairs):
         seen = {}
@@ -93,11 +98,9 @@ def read_json_object(p: Path, what: str = "") -> dict:
         return seen
 
     try:
-        doc = json.loads(p.read_bytes().decode("utf-8"), object_pairs_hook=no_duplicates)
+        doc = json.loads(raw.decode("utf-8"), object_pairs_hook=no_duplicates)
     except ModelError:
         raise
-    except OSError as exc:
-        raise ModelError(f"{p}: cannot read: {exc.strerror or exc}") from None
     except (ValueError, RecursionError) as exc:  # JSONDecodeError, UnicodeDecodeError, int digits
         raise ModelError(f"{p}: not valid JSON: {type(exc).__name__}: {str(exc)[:200]}") from None
     if not isinstance(doc, dict):
