@@ -46,7 +46,7 @@ def file_kind(target: str | os.PathLike | os.stat_result) -> str | None:
         return None
     return ("a directory" if stat.S_ISDIR(mode) else "a named pipe (FIFO)" if stat.S_ISFIFO(mode)
             else "a socket" if stat.S_ISSOCK(mode) else "a character device" if stat.S_ISCHR(mode)
-            else "a block device" if stat.S_ISBLK(mode) else "not a regular file")
+            else "a block device" if stat.S_ISBLK(mode) else "a special file")
 
 
 def _a(what: str) -> str:
