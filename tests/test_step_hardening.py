@@ -220,3 +220,75 @@ def test_non_finite_risk_is_a_fault(monkeypatch):
     monkeypatch.setattr(mm, "risk_from_probs", lambda *a, **k: math.nan)
     d = mon().step(good(p_unsafe=None, p=(0.5, 0.5)))
     assert d.override and d.risk is None and any("not finite" in f for f in d.faults)
+
+
+# ------------------------------------------------------------ found in review
+class Liar:
+    """Claims to be a float through __class__ and passes every comparison."""
+
+    __class__ = property(lambda self: float)  # type: ignore[assignment]
+
+    def __float__(self): return 0.0  # noqa: E704
+    def __le__(self, o): return True  # noqa: E704
+    def __ge__(self, o): return o < 0.5  # noqa: E704
+    def __gt__(self, o): return True  # noqa: E704
+    def __lt__(self, o): return True  # noqa: E704
+
+
+@pytest.mark.parametrize("impl", [ethimon.Monitor, ethimon.ReferenceMonitor])
+@pytest.mark.parametrize("frame", [good(d=Liar()), good(p_unsafe=None, risk=Liar()), good(p_unsafe=Liar()),
+                                   good(p_unsafe=None, p=[Liar(), Liar()]), good(ok=Liar())])
+def test_an_object_claiming_to_be_a_float_is_not_one(impl, frame):
+    d = impl(ethimon.load_spec_text(SPEC)).step(frame)
+    assert d.override and d.faults
+    assert d.risk is None or type(d.risk) is float
+
+
+@pytest.mark.parametrize("value", [Fraction(10 ** 400), 10 ** 400, -(10 ** 400)])
+def test_numbers_too_large_for_a_float_are_not_numbers(value):
+    d = mon().step(good(d=value))
+    assert d.override and any("must be a number" in f for f in d.faults), d.faults
+
+
+@pytest.mark.parametrize("p", [[0.9, 0.1], (0.9, 0.1), (np.float64(0.9), 0.1), np.array([0.9, 0.1])])
+def test_p_fast_path_and_slow_path_agree(p):
+    d = mon().step(good(p_unsafe=None, p=p))
+    assert not d.faults and d.risk == pytest.approx(0.6 * 0.1 + 0.2 * 0.1 + 0.2 * 2 * 0.4 ** 2)
+
+
+@pytest.mark.parametrize("p", [[0.9, math.nan], (0.9, 0.2), [0.5, 0.5, 0.0], (True, 0.0), [Liar(), 1.0]])
+def test_p_fast_path_still_refuses(p):
+    d = mon().step(good(p_unsafe=None, p=p))
+    assert d.override and d.faults
+
+
+def test_bounded_margin_that_cannot_be_computed_is_nan_like_the_reference():
+    spec = ethimon.load_spec_text("""
+ethimon: 1
+name: nanm
+signals: {x: {range: [0, 1]}, y: {range: [0, 1]}}
+obligations:
+  - {id: r, when: x >= 0.75, require: 'y <= 0 or x / y < 2', within_cycles: 2}
+""")
+    m, ref = ethimon.Monitor(spec), ethimon.ReferenceMonitor(spec)
+    for x, y in ((0.9, 0.0), (0.9, 0.1), (0.9, 0.1)):
+        a, b = m.step({"x": x, "y": y, "p_unsafe": 0.0}), ref.step({"x": x, "y": y, "p_unsafe": 0.0})
+        assert a.violations == b.violations == ()
+        mg, rg = a.margins[0], b.margins[0]
+        assert (mg != mg and rg != rg) or mg == rg, (mg, rg)
+        assert mg != mg or mg >= 0  # never a negative margin on a satisfied cycle
+
+
+@pytest.mark.parametrize("classes,weights", [(2, (0.6, 0.2, 0.2)), (3, (0.6, 0.2, 0.2)), (3, (1.0, 1.0, 1.0)),
+                                             (4, (0.9, 0.5, 1.0))])
+def test_verify_assumes_the_risk_inputs_the_monitor_accepts(classes, weights):
+    """verify's encoding of the ``risk`` input must cover what Monitor.step accepts (any K): a narrower
+    range would let a proof skip inputs the monitor runs on."""
+    from ethimon.verify._encode import risk_input_range
+    a, b, g = weights
+    spec = ethimon.load_spec_text(f"{{ethimon: 1, name: k, risk: {{classes: {classes}, alpha: {a}, beta: {b}, "
+                                  f"gamma: {g}, threshold: 0.5, allow: {{weights: test}}}}}}")
+    m = ethimon.Monitor(spec)
+    lo, hi = risk_input_range(m.plan)
+    assert (lo, hi) == (m._rlo, m._rhi)
+    assert not m.step({"risk": hi}).faults and m.step({"risk": math.nextafter(hi, math.inf)}).faults

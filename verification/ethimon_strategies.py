@@ -204,13 +204,29 @@ class AlwaysPasses:
         return "AlwaysPasses()"
 
 
+class ClaimsFloat:
+    """Claims to be a float through ``__class__`` and passes every comparison (unusable)."""
+
+    __class__ = property(lambda self: float)  # type: ignore[assignment]
+
+    def __float__(self): return 0.5  # noqa: E704
+    def __lt__(self, o): return True  # noqa: E704
+    def __le__(self, o): return True  # noqa: E704
+    def __gt__(self, o): return True  # noqa: E704
+    def __ge__(self, o): return True  # noqa: E704
+
+    def __repr__(self) -> str:
+        return "ClaimsFloat()"
+
+
 # valid numbers arrive as built-in floats mostly, sometimes as other real types (converted exactly)
 NUMBER_TYPES = (float, float, float, float, np.float64, FloatSub, Fraction)
 BAD_NUMBERS = (math.nan, math.inf, -math.inf, 1e9, -1e9, "0.5", True, None, np.bool_(True), np.bool_(False),
-               NaNFloat(), AlwaysPasses(), np.float64("nan"), [0.5])
+               NaNFloat(), AlwaysPasses(), np.float64("nan"), [0.5], ClaimsFloat(), 10 ** 400)
 BAD_BOOLS = ("yes", 2, None, math.nan, 0.5, np.float64(0.5), AlwaysPasses(), "True")
 GOOD_BOOLS = (True, False, 0, 1, np.bool_(True), np.bool_(False))
-BAD_RISK = (math.nan, -0.5, 1.5, None, "high", np.bool_(False), np.bool_(True), NaNFloat(), AlwaysPasses())
+BAD_RISK = (math.nan, -0.5, 1.5, None, "high", np.bool_(False), np.bool_(True), NaNFloat(), AlwaysPasses(),
+            ClaimsFloat())
 
 
 @st.composite
@@ -233,7 +249,8 @@ def frame(draw, spec: ethimon.Spec, *, p_bad: float = 0.05, late_risk: bool = Tr
         if kind == "p" and draw(st.booleans()):  # a p of the right length that is still unusable
             q = draw(st.sampled_from((0.0, 0.3, 1.0)))
             f["p"] = draw(st.sampled_from(({0: 1.0 - q, 1: q}, (True, False), (np.bool_(False), np.bool_(True)),
-                                           (AlwaysPasses(), AlwaysPasses()), (1.0 - q, NaNFloat()))))
+                                           (AlwaysPasses(), AlwaysPasses()), (1.0 - q, NaNFloat()),
+                                           [ClaimsFloat(), ClaimsFloat()], [1.0 - q, math.nan])))
         else:
             f[kind] = draw(st.sampled_from(BAD_RISK))
             if f[kind] is None:

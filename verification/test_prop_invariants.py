@@ -39,9 +39,13 @@ SHIPPED = [os.path.join(ROOT, "specs", f) for f in ("governor.yaml", "cobot_cell
 
 def _num(v) -> bool:
     """The contract: a real number (not a bool of any kind) whose float() is finite."""
-    if isinstance(v, bool) or type(v).__name__ in ("bool_", "bool") or not isinstance(v, Real):
+    t = type(v)  # its real type: an object may claim any __class__
+    if issubclass(t, bool) or t.__name__ in ("bool_", "bool") or not issubclass(t, Real):
         return False
-    return math.isfinite(float(v))
+    try:
+        return math.isfinite(float(v))
+    except OverflowError:
+        return False
 
 
 def expected_risk(spec, f) -> float | None:
@@ -57,7 +61,7 @@ def expected_risk(spec, f) -> float | None:
         return risk_from_p_unsafe(float(q), r.alpha, r.beta, r.gamma, r.variance) if ok else None
     if f.get("p") is not None:
         p = f["p"]
-        if isinstance(p, (Mapping, Set, str)):
+        if issubclass(type(p), (Mapping, Set, str)):
             return None
         try:
             ok = len(p) == r.classes and all(_num(v) and 0 <= float(v) <= 1 for v in p)
@@ -75,7 +79,7 @@ def input_valid(spec, f) -> bool:
         if v is None:
             return False
         if sig.type == "bool":
-            if not (v is True or v is False or type(v).__name__ in ("bool_", "bool")
+            if not (v is True or v is False or (type(v).__name__ in ("bool_", "bool") and type(v).__module__ == "numpy")
                     or (_num(v) and float(v) in (0.0, 1.0))):
                 return False
         else:

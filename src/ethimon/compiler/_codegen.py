@@ -23,6 +23,7 @@ from ._check import RISK_NAME, Plan
 __all__ = ["Machine", "build_machine"]
 
 INF = math.inf
+NAN = math.nan
 
 
 @dataclass
@@ -421,7 +422,8 @@ def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: 
 
         M(t) = min over s ≤ t − n of  max(−rob(when)(s), max over u in s..t of rob(require)(u))
 
-    (+inf while no trigger is old enough), whose sign agrees with the verdict. Since
+    (+inf while no trigger is old enough), whose sign agrees with the verdict; NaN from the
+    first due window that holds a term that could not be computed (until reset). Since
     ``max(·, x)`` is monotone, ``M(t) = min(max(M(t−1), rr(t)), max(−rw(t−n), W(t)))``
     with ``W(t)`` the maximum of ``rr`` over the last ``n + 1`` cycles, kept by a
     monotone deque over a ring buffer (no per-cycle allocation beyond the deque's ints).
@@ -436,12 +438,17 @@ def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: 
     win: deque[int] = deque()  # cycle numbers whose ring_r is decreasing: the window max at win[0]
     t = -1
     m = INF
+    unknown = False  # a NaN term entered some due window: NaN until reset, as in the reference
 
     def margin() -> float:
-        nonlocal t, m
+        nonlocal t, m, unknown
         t += 1
         a = -_safe(rw) if rw is not None else -INF
         b = _safe(rr)
+        if b != b:
+            unknown = True  # every window from now on contains it (the oldest trigger's does)
+        if unknown:
+            return NAN if t >= n else INF
         i = t % size
         ring_w[i] = a
         ring_r[i] = b
@@ -454,17 +461,21 @@ def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: 
             m = b
         if t >= n:
             cand = ring_w[(t - n) % size]
+            if cand != cand:
+                unknown = True
+                return NAN
             top = ring_r[win[0] % size]
             if top > cand:
                 cand = top
-            if cand < m or cand != cand:
+            if cand < m:
                 m = cand
         return m
 
     def reset() -> None:
-        nonlocal t, m
+        nonlocal t, m, unknown
         t = -1
         m = INF
+        unknown = False
         win.clear()
     return margin, reset
 

@@ -10,8 +10,9 @@ comparison of the monitor.
 
 * A number is a built-in ``int`` or ``float``, or any other
   :class:`numbers.Real` that is not a bool (``numpy.float32``, ``numpy.int64``,
-  ``fractions.Fraction``...); it is converted with ``float()`` (which always
-  returns a built-in float) and must be finite. ``bool``, ``numpy.bool_``,
+  ``fractions.Fraction``...), judged by its real type (``type(v)``, never a
+  ``__class__`` the object claims); it is converted with ``float()`` (which
+  always returns a built-in float) and must be finite. ``bool``, ``numpy.bool_``,
   strings, ``Decimal``, tensors and anything else are not numbers.
 * A bool is ``True``/``False``, a ``numpy.bool_``, or a number equal to 0 or 1.
 * ``p`` is an ordered, finite sequence of numbers (a list, tuple or 1-d array),
@@ -32,7 +33,7 @@ _isfinite = math.isfinite
 
 
 def _is_numpy_bool(v: Any) -> bool:
-    c = v.__class__
+    c = type(v)  # type(), never v.__class__: an object can claim any __class__
     return c.__name__ in ("bool_", "bool") and c.__module__ == "numpy"
 
 
@@ -43,18 +44,15 @@ def as_number(v: Any) -> float | None:
         >>> as_number(2), as_number(0.5), as_number(True), as_number("1"), as_number(float("nan"))
         (2.0, 0.5, None, None, None)
     """
-    c = v.__class__
+    c = type(v)  # type(), never v.__class__: an object can claim any __class__
     if c is float:
         return v if _isfinite(v) else None
-    if c is int:
-        try:
-            f = float(v)
-        except OverflowError:
-            return None
-        return f if _isfinite(f) else None
-    if c is bool or not isinstance(v, Real) or isinstance(v, bool):
+    if not issubclass(c, Real) or issubclass(c, bool):  # the real type, not a claimed __class__
         return None
-    f = float(v)  # exactly once; float() always returns a built-in float
+    try:
+        f = float(v)  # exactly once; float() always returns a built-in float
+    except (OverflowError, ValueError, TypeError):  # 10**400, Fraction(10**400): not a usable number
+        return None
     return f if _isfinite(f) else None
 
 
@@ -69,11 +67,14 @@ def as_bool(v: Any) -> bool | None:
         return v
     if _is_numpy_bool(v):
         return bool(v)
-    c = v.__class__
+    c = type(v)
     if c is str or c is bytes:
         return None
-    if c is int or c is float or (isinstance(v, Real) and not isinstance(v, bool)):
-        f = float(v)
+    if issubclass(c, Real) and not issubclass(c, bool):
+        try:
+            f = float(v)
+        except (OverflowError, ValueError, TypeError):
+            return None
         if f == 0.0:
             return False
         if f == 1.0:
@@ -93,7 +94,18 @@ def as_probs(p: Any, k: int) -> tuple[tuple[float, ...] | None, str | None]:
         >>> as_probs({0: 0.5, 1: 0.5}, 2)[1]
         'p must be an ordered sequence of probabilities, got dict'
     """
-    if isinstance(p, (Mapping, Set, str, bytes, bytearray)) or not hasattr(p, "__iter__"):
+    tp = type(p)
+    if (tp is tuple or tp is list) and len(p) == k:  # the common case: k built-in floats
+        t = p if tp is tuple else tuple(p)  # a list is copied once: the copy is what is read
+        s = 0.0
+        for v in t:
+            if type(v) is not float or not 0.0 <= v <= 1.0:
+                break
+            s += v
+        else:
+            if abs(s - 1.0) <= 1e-3:
+                return t, None
+    if issubclass(tp, (Mapping, Set, str, bytes, bytearray)) or not hasattr(tp, "__iter__"):
         return None, f"p must be an ordered sequence of probabilities, got {type(p).__name__}"
     try:
         items = list(islice(p, k + 1))  # read once; never more than k + 1 items

@@ -184,7 +184,7 @@ class Monitor:
         """R_e from this cycle's risk input, converted once at the boundary (see ``_inputs``)."""
         r = get("risk")
         if r is not None:
-            f = r if r.__class__ is float else as_number(r)
+            f = r if type(r) is float else as_number(r)
             if f is None or not self._rlo <= f <= self._rhi:
                 return None, f"risk input R_e={r!r} is NaN, not a number or outside [{self._rlo:g}, {self._rhi:g}]"
             return f, None
@@ -192,7 +192,7 @@ class Monitor:
         if q is not None:
             if self._k != 2:
                 return None, f"p_unsafe alone needs a 2-class spec (risk.classes is {self._k}); pass p"
-            f = q if q.__class__ is float else as_number(q)
+            f = q if type(q) is float else as_number(q)
             if f is None or not 0.0 <= f <= 1.0:
                 return None, f"p_unsafe={q!r} is NaN, not a number or outside [0, 1]"
             d = f - 0.5
@@ -240,7 +240,7 @@ class Monitor:
                         vals[slot] = b
                 else:
                     # the common case (a built-in float) first; anything else is converted once
-                    f = v if v.__class__ is float else as_number(v)
+                    f = v if type(v) is float else as_number(v)
                     if f is None:
                         (faults := faults or []).append(
                             f"signal {name!r} must be a number, got {v!r} (a finite int, float or numpy scalar; "
@@ -316,7 +316,7 @@ class Monitor:
                 reason = f"internal error: {type(exc).__name__}: {exc}"
             except BaseException:  # pragma: no cover - a broken __str__
                 reason = "internal error"
-            return self._fault(cycle, (reason,), r if r.__class__ is float else None)
+            return self._fault(cycle, (reason,), r if type(r) is float else None)
 
     def fault(self, *reasons: str, decision: Decision | None = None) -> Decision:
         """Fail closed on a fault found outside the monitor (watchdog, estimator, audit).

@@ -39,7 +39,7 @@ from fractions import Fraction
 import z3
 
 from ..compiler._check import RISK_NAME, Plan
-from ..risk._formula import release_bound, risk_bounds
+from ..risk._formula import release_bound, risk_range
 from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary, walk
 from ..spec._model import Response
 
@@ -77,7 +77,7 @@ def z3_value(model: z3.ModelRef, expr) -> float | bool:
 def risk_input_range(plan: Plan) -> tuple[float, float]:
     """The interval of ``risk`` inputs the monitor accepts (as ``Monitor`` computes it)."""
     r = plan.spec.risk
-    lo, hi = risk_bounds(r.alpha, r.beta, r.gamma, r.variance) if r.classes == 2 else (0.0, 1.0)
+    lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)  # exactly what Monitor uses, any K
     return min(0.0, lo), max(1.0, hi)
 
 
