@@ -36,7 +36,17 @@ def _crc(s: str) -> int:
     return zlib.crc32(s.encode("utf-8"))
 
 
+def _require_sklearn() -> None:
+    """The fixed splits are scikit-learn's ``train_test_split``; the fallback shuffle gives other rows."""
+    try:
+        import sklearn  # noqa: F401
+    except ImportError:
+        raise SystemExit("bench/risk_data: the fixed ETHICS split needs scikit-learn "
+                         "(pip install -e '.[risk]'); without it the 20 % hold-out would hold other rows") from None
+
+
 def ethics_splits():
+    _require_sklearn()
     cm = load_labelled_csv(CM)
     tr, ho = stratified_split(cm.labels, 0.2, 42)
     sub = cm.subset(tr)
