@@ -444,7 +444,7 @@ def test_cli_risk_json(tiny, capsys):
     assert _cli(["risk", TEXTS[0], "--model", str(tiny[1]), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["risk"] == pytest.approx(risk_from_p_unsafe(out["p_unsafe"]))
-    assert out["tau"] == 0.27 and out["flagged"] == (out["risk"] >= 0.27)
+    assert out["tau"] == 0.47 and out["flagged"] == (out["risk"] >= 0.47)
 
 
 def test_spec_estimator_block(tiny, tmp_path, capsys):

@@ -17,7 +17,7 @@ __all__ = ["add_risk_parsers", "cmd_risk", "cmd_train", "cmd_average", "cmd_eval
 
 # without --spec: the paper's weights and the tau of the shipped specs (specs/governor.yaml),
 # chosen for the shipped default model on held-out validation robot commands (MODEL_CARD.md)
-DEFAULT_RISK = {"alpha": 0.6, "beta": 0.2, "gamma": 0.2, "variance": "sample", "threshold": 0.27}
+DEFAULT_RISK = {"alpha": 0.6, "beta": 0.2, "gamma": 0.2, "variance": "sample", "threshold": 0.47}
 
 
 def _err(msg: str) -> int:

@@ -63,7 +63,7 @@ def default_model_dir() -> Path:
 #: sha256 of the shipped ``default_model/ethimon_model.json``. The manifest pins the
 #: adapter and base weights by sha256, and carries the temperature; pinning the
 #: manifest itself here means an edited shipped model (weights, T, labels) is refused.
-DEFAULT_MANIFEST_SHA256 = "150a9a4647e75ec3b9d9245d98627f673fc55f6b38e3cad17a7e14afe8bbaa98"
+DEFAULT_MANIFEST_SHA256 = "0c15c46314b928a9df07b1617715c40e694564976145fa09a3ca54393d8963db"
 
 
 def check_default_manifest(d: Path) -> None:
