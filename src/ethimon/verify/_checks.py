@@ -83,6 +83,10 @@ class Verifier:
             s.add(c)
         if enc is not None:
             s.add(*enc.constraints)
+        return self._outcome(s)
+
+    def _outcome(self, s: z3.Solver) -> tuple[str, z3.ModelRef | None, str]:
+        """Check ``s`` as it stands: ``sat`` with its model, ``unsat``, or ``unknown`` with the reason."""
         r = s.check()
         if r == z3.sat:
             return "sat", s.model(), ""
@@ -162,14 +166,7 @@ class Verifier:
         s.push()
         try:
             s.add(*goals)
-            r = s.check()
-            if r == z3.sat:
-                return "sat", s.model(), ""
-            if r == z3.unsat:
-                return "unsat", None, ""
-            if self.out_of_budget():
-                return "unknown", None, "the run's budget is spent"
-            return "unknown", None, s.reason_unknown()
+            return self._outcome(s)
         finally:
             s.pop()
 
