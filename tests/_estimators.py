@@ -77,3 +77,20 @@ def wait_for(cond, timeout: float = 5.0, poll: float = 0.005) -> bool:
             return True
         time.sleep(poll)
     return bool(cond())
+
+
+def run_in_thread(fn, timeout: float = 5.0) -> tuple[bool, dict]:
+    """Run ``fn`` in a daemon thread for at most ``timeout`` s: ``(still_running, out)`` where
+    ``out`` holds ``"value"`` or ``"exc"`` (any exception, even BaseException) once it returned."""
+    out: dict = {}
+
+    def work():
+        try:
+            out["value"] = fn()
+        except BaseException as exc:  # noqa: BLE001
+            out["exc"] = exc
+
+    t = threading.Thread(target=work, daemon=True)
+    t.start()
+    t.join(timeout)
+    return t.is_alive(), out

@@ -2,10 +2,10 @@
 files: specs and scenarios, audit logs, key files, reports (review of issue 11)."""
 
 import os
-import threading
 
 import pytest
 from _cli import ROOT
+from _estimators import run_in_thread
 
 import ethimon
 from ethimon import _files
@@ -16,17 +16,8 @@ needs_fifo = pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs here
 
 
 def _no_block(fn, timeout=10.0):
-    out: dict = {}
-
-    def work():
-        try:
-            out["value"] = fn()
-        except BaseException as exc:  # noqa: BLE001
-            out["exc"] = exc
-    t = threading.Thread(target=work, daemon=True)
-    t.start()
-    t.join(timeout)
-    assert not t.is_alive(), "blocked"
+    blocked, out = run_in_thread(fn, timeout)
+    assert not blocked, "blocked"
     return out
 
 

@@ -8,7 +8,6 @@ weaken monitoring.
 
 from __future__ import annotations
 
-import json
 import os
 import re
 import subprocess
@@ -26,22 +25,11 @@ from ethimon.audit import _log
 from ethimon.audit._log import GENESIS, canonical, record_hash
 from ethimon.runtime import AsyncRiskSource, GovernedLoop, ProcessEstimator, Watchdog
 
-from _estimators import FakeClock, ScriptedEstimator, wait_for
+from _estimators import FakeClock, ScriptedEstimator, run_in_thread, wait_for
+from test_loop import CELL, SAFE
 
 ROOT = Path(__file__).resolve().parents[1]
 MAX_RECORD_BYTES = getattr(_log, "MAX_RECORD_BYTES", 1 << 20)  # the documented cap: 1 MiB
-
-CELL = """
-ethimon: 1
-name: cell
-signals:
-  human_distance: {unit: m, range: [0, 10]}
-risk: {threshold: 0.5, max_age_s: 0.2, release: {mode: auto, hysteresis: 0.05, hold_cycles: 2}}
-on_fault: safe_pose
-obligations:
-  - {id: keep_away, require: "human_distance >= 0.5", response: stop_2}
-"""
-SAFE = {"human_distance": 2.0}
 
 
 def _loop(clock=None, spec=CELL, **kw):
@@ -67,25 +55,12 @@ def _gate_writer(log):
 
 
 # ================================================================ audit verify: hangs and memory
-def _in_thread(fn, timeout=5.0):
-    out: dict = {}
-
-    def work():
-        try:
-            out["value"] = fn()
-        except BaseException as exc:  # noqa: BLE001
-            out["exc"] = exc
-
-    t = threading.Thread(target=work, daemon=True)
-    t.start()
-    t.join(timeout)
-    return t.is_alive(), out
 
 
 def test_verify_refuses_a_fifo_without_blocking(tmp_path):
     fifo = tmp_path / "log.fifo"
     os.mkfifo(fifo)
-    hung, out = _in_thread(lambda: verify_log(fifo))
+    hung, out = run_in_thread(lambda: verify_log(fifo))
     if hung:  # unblock the stuck open() so the thread can end, then fail
         fd = os.open(fifo, os.O_WRONLY | os.O_NONBLOCK)
         os.close(fd)
@@ -173,7 +148,7 @@ def test_close_does_not_hang_when_the_writer_died_with_a_full_queue(tmp_path):
     assert log.append("decision", cycle=1) and log.append("decision", cycle=2)  # the queue is full
     gate.set()
     assert wait_for(lambda: not log._thread.is_alive())
-    hung, out = _in_thread(lambda: log.close(timeout=1.0))
+    hung, out = run_in_thread(lambda: log.close(timeout=1.0))
     assert not hung, "close() blocked on the full queue of a dead writer"
     assert isinstance(out.get("exc"), OSError) and "Input/output error" in str(out["exc"])
 
