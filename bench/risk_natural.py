@@ -52,8 +52,11 @@ def _far_rows(test) -> np.ndarray:
 
 def _curve(y, r) -> list[dict]:
     from ethimon.risk._evaluate import flag_stats
-    return [{"tau": float(t), **{k: flag_stats(y, r, float(t))[k] for k in ("flag_rate_unsafe", "false_alarm_rate")}}
-            for t in np.round(np.arange(0.10, 0.701, 0.01), 2)]
+    out = []
+    for t in np.round(np.arange(0.10, 0.701, 0.01), 2):
+        f = flag_stats(y, r, float(t))
+        out.append({"tau": float(t), "flag_rate_unsafe": f["flag_rate_unsafe"], "false_alarm_rate": f["false_alarm_rate"]})
+    return out
 
 
 def evaluate_model(path: str | None, *, budget: float, tau_fixed: float | None, skip_ethics: bool) -> dict:

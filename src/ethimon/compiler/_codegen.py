@@ -14,6 +14,7 @@ from the checked AST only.
 from __future__ import annotations
 
 import math
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -431,7 +432,6 @@ def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: 
     Must be called exactly once per valid cycle (the monitor computes every margin
     once per cycle, and each call here never raises); the returned reset clears it.
     """
-    from collections import deque
     size = n + 1
     ring_w = [0.0] * size  # −rob(when) of the last n + 1 cycles
     ring_r = [0.0] * size  # rob(require) of the last n + 1 cycles
