@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from ._api import load_spec, load_spec_text
 from .errors import DependencyNotInstalled, EthimonError, ModelError, SpecError
-from .risk._formula import risk_from_p_unsafe, risk_from_probs
+from .compiler._risk_formula import risk_from_p_unsafe, risk_from_probs
 from .runtime import Decision, Monitor, ReferenceMonitor
 from .spec import Response, Spec
 

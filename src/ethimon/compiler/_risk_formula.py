@@ -1,5 +1,8 @@
 """The ethical-risk formula R_e = α·p_unsafe + β·(1 − max p) + γ·Var(p).
 
+Spec semantics, so it lives on the compiler floor (the monitor, the reference
+interpreter and the z3 encoder use it); ``ethimon.risk`` re-exports the names.
+
 Pure Python on purpose: the monitor calls it inside ``Monitor.step`` and it
 must not import numpy arrays, torch or allocate more than a float.
 """

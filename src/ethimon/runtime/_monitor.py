@@ -18,7 +18,7 @@ from ..compiler._check import RISK_NAME, Plan
 from ..spec._expr import TEMPORAL, Call, Name, walk
 from ..compiler._codegen import build_machine
 from ..spec._model import Response, Spec
-from ..risk._formula import release_bound, risk_from_probs, risk_range
+from ..compiler._risk_formula import release_bound, risk_from_probs, risk_range
 from ._decision import Decision
 from ._inputs import as_bool, as_number, as_probs
 

@@ -49,7 +49,7 @@ from typing import Any
 from ..compiler._check import RISK_NAME, Plan
 from ..spec._expr import TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
 from ..spec._model import Response, Spec
-from ..risk._formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
+from ..compiler._risk_formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
 from ._decision import Decision
 from ._inputs import as_bool, as_number, as_probs
 from ._monitor import plan_of

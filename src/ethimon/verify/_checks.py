@@ -10,7 +10,7 @@ from typing import Any
 import z3
 
 from ..compiler._check import Plan
-from ..risk._formula import release_bound, risk_bounds, risk_from_p_unsafe, risk_range
+from ..compiler._risk_formula import release_bound, risk_bounds, risk_from_p_unsafe, risk_range
 from ..runtime import Monitor
 from ..runtime._monitor import plan_of
 from ..spec._expr import Name, walk

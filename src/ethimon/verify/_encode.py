@@ -39,7 +39,7 @@ from fractions import Fraction
 import z3
 
 from ..compiler._check import RISK_NAME, Plan
-from ..risk._formula import release_bound, risk_range
+from ..compiler._risk_formula import release_bound, risk_range
 from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary, walk
 from ..spec._model import Response
 

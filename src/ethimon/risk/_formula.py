@@ -1,0 +1,13 @@
+"""The R_e formula, re-exported where it has always been importable.
+
+The formula is spec semantics (the monitor, the reference interpreter and the
+z3 encoder all use it), so it lives on the compiler floor:
+:mod:`ethimon.compiler._risk_formula`. ``ethimon.risk`` keeps the same names.
+"""
+
+from __future__ import annotations
+
+from ..compiler._risk_formula import (VARIANCE_MODES, _risk_range_exact, release_bound, risk_bounds,  # noqa: F401
+                                      risk_from_p_unsafe, risk_from_probs, risk_range)
+
+__all__ = ["risk_from_p_unsafe", "risk_from_probs", "risk_bounds", "release_bound", "risk_range", "VARIANCE_MODES"]
