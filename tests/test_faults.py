@@ -9,7 +9,7 @@ import pytest
 import ethimon
 from ethimon import Response
 from ethimon.audit import AuditLog, read_log, verify_log
-from ethimon.runtime import AsyncRiskSource, GovernedLoop
+from ethimon.loop import AsyncRiskSource, GovernedLoop
 
 from _estimators import FakeClock, ScriptedEstimator, wait_for
 

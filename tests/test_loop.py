@@ -10,7 +10,7 @@ import pytest
 import ethimon
 from ethimon import Response
 from ethimon.audit import AuditLog, read_log, spec_hash, verify_log
-from ethimon.runtime import AsyncRiskSource, GovernedLoop, ProcessEstimator, Watchdog
+from ethimon.loop import AsyncRiskSource, GovernedLoop, ProcessEstimator, Watchdog
 
 from _estimators import FakeClock, ScriptedEstimator, wait_for
 

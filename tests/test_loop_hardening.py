@@ -23,7 +23,7 @@ import ethimon
 from ethimon.audit import AuditFormatError, AuditLog, read_log, verify_log
 from ethimon.audit import _log
 from ethimon.audit._log import GENESIS, canonical, record_hash
-from ethimon.runtime import AsyncRiskSource, GovernedLoop, ProcessEstimator, Watchdog
+from ethimon.loop import AsyncRiskSource, GovernedLoop, ProcessEstimator, Watchdog
 
 from _estimators import FakeClock, ScriptedEstimator, run_in_thread, wait_for
 from test_loop import CELL, SAFE

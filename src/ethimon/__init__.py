@@ -22,7 +22,19 @@ from .spec import Response, Spec
 __version__ = "0.1.0"
 
 __all__ = [
-    "Decision", "DependencyNotInstalled", "EthimonError", "ModelError", "Monitor", "ReferenceMonitor",
-    "Response", "Spec", "SpecError", "__version__", "load_spec", "load_spec_text", "risk_from_p_unsafe",
-    "risk_from_probs",
+    "AsyncRiskSource", "Decision", "DependencyNotInstalled", "EthimonError", "GovernedLoop", "ModelError", "Monitor",
+    "ProcessEstimator", "ReferenceMonitor", "Response", "Spec", "SpecError", "__version__", "load_spec",
+    "load_spec_text", "risk_from_p_unsafe", "risk_from_probs",
 ]
+
+#: names served from :mod:`ethimon.loop` on first use (it starts threads and pulls in the audit log)
+_LAZY = {"AsyncRiskSource": "loop", "GovernedLoop": "loop", "ProcessEstimator": "loop"}
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        import importlib
+        value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,10 +1,11 @@
-"""Stage 3 of 3: the runtime monitor (and its reference interpreter)."""
+"""Stage 3 of 3: the runtime monitor (and its reference interpreter).
+
+The governed loop around it (async risk, watchdog, audit, reload) is one floor
+up, in :mod:`ethimon.loop`.
+"""
 
 from ._decision import Decision
-from ._loop import (AsyncRiskSource, GovernedLoop, LoopStats, ProbEstimator, ProcessEstimator, ReloadResult,
-                    RiskReading, Watchdog)
-from ._monitor import Monitor, plan_of
+from ._monitor import Monitor
 from ._reference import ReferenceMonitor
 
-__all__ = ["AsyncRiskSource", "Decision", "GovernedLoop", "LoopStats", "Monitor", "ProbEstimator",
-           "ProcessEstimator", "ReferenceMonitor", "ReloadResult", "RiskReading", "Watchdog", "plan_of"]
+__all__ = ["Decision", "Monitor", "ReferenceMonitor"]

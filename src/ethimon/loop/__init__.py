@@ -1,0 +1,19 @@
+"""The governed loop: the monitor stepped at a fixed rate with an async risk estimator.
+
+An integration floor above ``runtime``, ``verify``, ``audit`` and ``risk``
+(below ``cli``): :class:`GovernedLoop` paces the monitor, feeds it the latest
+estimate of an :class:`AsyncRiskSource` (in a thread, or in a child process
+with :class:`ProcessEstimator`), watches for stalls (:class:`Watchdog`), writes
+the audit trail, and reloads specs (refusing one that :func:`weakenings` finds
+weaker unless asked, optionally gated by the SMT proofs).
+"""
+
+from ._governed import GovernedLoop, ReloadResult
+from ._process import ProcessEstimator
+from ._source import AsyncRiskSource, ProbEstimator, RiskReading
+from ._stats import LoopStats
+from ._watchdog import Watchdog
+from ._weakenings import CANNOT_TELL, weakenings
+
+__all__ = ["AsyncRiskSource", "CANNOT_TELL", "GovernedLoop", "LoopStats", "ProbEstimator", "ProcessEstimator",
+           "ReloadResult", "RiskReading", "Watchdog", "weakenings"]

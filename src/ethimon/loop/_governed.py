@@ -1,0 +1,554 @@
+"""The governed control loop: async risk estimator, watchdog, hot spec reload.
+
+The risk estimator is slow (10–50 Hz) and the monitor fast (up to 1 kHz), so
+they run apart: :class:`AsyncRiskSource` runs the estimator in its own thread
+on the current task text and publishes ``(probs, time)`` snapshots;
+:class:`GovernedLoop` steps the monitor every cycle with the latest snapshot
+(``p`` and ``risk_age_s``) and never waits for the estimator.
+
+Everything that can go wrong around the monitor ends in an override with the
+reason in ``Decision.faults``: an estimator that raises, returns NaN/inf or
+probabilities that do not sum to 1, hangs or dies; a stale estimate; a control
+cycle that misses its deadline; a loop that stalled between two cycles (found
+when it resumes, even if the whole interpreter was frozen); a signal source that
+raises; an audit log that is closed, broken, full or behind its lag bounds.
+The one loop::
+
+    loop = GovernedLoop(Monitor(load_spec("specs/governor.yaml")), signals=read_sensors,
+                        risk=AsyncRiskSource(load_estimator(), text=task), period_s=0.001,
+                        audit=AuditLog("run.jsonl"))
+    loop.run(duration_s=60)      # or call loop.cycle() from your own timer
+
+A spec is reloaded with :meth:`GovernedLoop.reload`: compiled (and optionally
+verified) in the caller's thread, swapped in between two cycles; an invalid
+spec is rejected and the running one stays, and so is a spec that *weakens*
+monitoring (see :func:`weakenings`) unless ``allow_weaker=True`` is passed.
+
+Estimator isolation. An estimator running in a thread of this interpreter
+(any plain object given to :class:`AsyncRiskSource`) shares the GIL with the
+loop and its watchdog: an estimator that holds the GIL (a C extension that
+does not release it, a catastrophic regular expression) freezes the loop, the
+watchdog *and* the hang detection until it returns. Nothing in the same
+interpreter can interrupt that; the loop only finds the stall afterwards and
+overrides then (``LoopStats.stalls``). Run the estimator in a child process
+(:class:`ProcessEstimator`: ``GovernedLoop(..., risk="ethimon.risk:load_estimator")``
+does that) so that the loop keeps its rate and a stuck child is killed. In-process
+estimators stay supported because a child process needs an importable
+``module:function`` factory with JSON arguments (no pickled objects cross the
+boundary), loads its own copy of the model and costs a process start.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import threading
+import time
+from collections.abc import Callable, Mapping
+from concurrent.futures import Future
+from dataclasses import dataclass, field
+from typing import Any
+
+from .._api import load_spec
+from ..audit import spec_hash
+from ..errors import EthimonError
+from ..runtime import Decision, Monitor
+from ..spec._model import Spec
+from ._process import ProcessEstimator
+from ._source import AsyncRiskSource, RiskReading
+from ._stats import LoopStats
+from ._watchdog import Watchdog
+from ._weakenings import weakenings
+
+__all__ = ["GovernedLoop", "ReloadResult"]
+
+
+@dataclass
+class ReloadResult:
+    """Outcome of :meth:`GovernedLoop.reload`.
+
+    Attributes:
+        ok: compiled (and verified) and queued for the swap; ``False``: rejected,
+            the running spec stays.
+        source: the path (or ``"<Spec>"``) that was loaded.
+        spec_sha256: hash of the new spec (``None`` if it did not load).
+        error: why it was rejected.
+        applied: set once the loop has swapped it in (``wait_applied``).
+        weakened: how the new spec weakens, or may weaken, monitoring compared
+            with the running one (see :func:`weakenings`); non-empty only when
+            refused for it or accepted with ``allow_weaker=True``.
+        unjudged: the entries of ``weakened`` whose direction cannot be told
+            (condition texts, constants, ...): refused like any weakening.
+    """
+
+    ok: bool
+    source: str
+    spec_sha256: str | None = None
+    error: str | None = None
+    applied: threading.Event = field(default_factory=threading.Event, repr=False)
+    applied_at_cycle: int | None = None
+    weakened: tuple[str, ...] = ()
+    unjudged: tuple[str, ...] = ()
+
+    def wait_applied(self, timeout: float | None = None) -> bool:
+        """Block until the loop has swapped the new spec in (``False`` on timeout or rejection)."""
+        return self.ok and self.applied.wait(timeout)
+
+
+def _verify_smt(spec: Spec) -> None:
+    """Reject a spec unless every decision-logic property is proved (``ethimon.verify``, z3)."""
+    from ..verify import verify_spec  # lazy: z3 only when verify='smt'
+    rep = verify_spec(spec, lints=False)
+    if rep.exit_code != 0:
+        bad = [f"{f.name}: {f.status}" for f in rep.findings if f.kind == "property"
+               and f.status in ("refuted", "unknown")]
+        raise EthimonError("verification failed: " + ("; ".join(bad) if bad else str(rep.error)))
+
+
+_NUM = re.compile(r"[-+]?(?:\d+\.?\d*(?:e[-+]?\d+)?|nan|inf)", re.IGNORECASE)
+
+
+def _fault_kind(faults: tuple[str, ...]) -> tuple[str, ...]:
+    return tuple(_NUM.sub("#", f) for f in faults)
+
+
+class GovernedLoop:
+    """Steps a :class:`~ethimon.Monitor` at a fixed rate with async risk, a deadline and an audit trail.
+
+    Args:
+        monitor: a :class:`~ethimon.Monitor` (or a :class:`~ethimon.Spec` to build one).
+        signals: called once per cycle for the spec's signals (a mapping); it may
+            also be passed to :meth:`cycle` directly. An exception from it is a fault.
+        risk: an :class:`AsyncRiskSource`; each cycle feeds its latest ``p`` and
+            ``risk_age_s`` (and drops any ``risk``/``p_unsafe`` keys from the signals).
+            A ``"module:function"`` string (or a :class:`ProcessEstimator`) builds one
+            around an estimator in a **child process** (the recommended form: an
+            estimator in a child cannot freeze the loop by holding the GIL); its task
+            text starts as ``None`` (fail closed) until ``loop.risk.set_text(...)``.
+            Without it, the signals must carry the risk input themselves.
+        risk_kwargs: JSON-ready keyword arguments for a ``risk`` factory string.
+        risk_env: extra environment variables for that child process.
+        period_s: control period (0.001 = 1 kHz).
+        deadline_s: a decision ready later than ``scheduled start + deadline_s`` is a
+            missed deadline, which is a fault (default: ``period_s``).
+        stall_s: a gap longer than this between the end of one cycle and the start
+            of the next (the loop, or the whole interpreter, was frozen) is a stall:
+            the resuming cycle overrides and ``stats.stalls`` counts it (default:
+            ``period_s + deadline_s``).
+        max_risk_age_s: oldest usable estimate when the spec has no ``risk.max_age_s``
+            (when it has one, the monitor enforces that). ``None``: no limit here.
+        audit: an :class:`~ethimon.audit.AuditLog`; state changes are always logged.
+            Every cycle overrides while the log is unusable (its ``fault``: closed,
+            writer failed or dead, writer behind its lag bounds) or refused a record.
+        audit_every_cycle: log every cycle, not just state changes.
+        verify: check run on a reloaded spec before the swap: a callable
+            ``verify(spec)`` (raising or returning ``False`` rejects it), or ``"smt"``
+            for :func:`ethimon.verify.verify_spec` (z3; any refuted or unproved
+            property rejects the spec). ``None``: compile only.
+        watchdog_s: if set, a :class:`Watchdog` thread calls ``on_stall`` (and logs a
+            fault) when no cycle completes for this long.
+        on_stall: the watchdog callback (e.g. trigger the hardware stop).
+        on_decision: called with each cycle's decision (keep it quick).
+        clock: time source in seconds (``time.perf_counter``; inject one in tests).
+        sleep: how :meth:`run` waits (``time.sleep``).
+
+    Example:
+        >>> import ethimon
+        >>> spec = ethimon.load_spec_text("{ethimon: 1, name: demo}")
+        >>> class Fixed:
+        ...     def probs(self, text):
+        ...         return (0.95, 0.05)
+        >>> src = AsyncRiskSource(Fixed(), text="wipe the table", start=False)
+        >>> _ = src.poll_once()
+        >>> loop = GovernedLoop(ethimon.Monitor(spec), risk=src, period_s=1.0)
+        >>> loop.cycle({}).override
+        False
+        >>> src.set_text("new task")      # no estimate for it yet: fail closed
+        >>> loop.cycle({}).faults[-1]
+        'no risk estimate yet for the current task text'
+    """
+
+    def __init__(self, monitor: Monitor | Spec, *, signals: Callable[[], Mapping[str, Any]] | None = None,
+                 risk: AsyncRiskSource | ProcessEstimator | str | None = None,
+                 risk_kwargs: Mapping[str, Any] | None = None, risk_env: Mapping[str, str] | None = None,
+                 period_s: float = 0.001, deadline_s: float | None = None, stall_s: float | None = None,
+                 max_risk_age_s: float | None = 0.5, audit: Any = None, audit_every_cycle: bool = False,
+                 verify: Callable[[Spec], Any] | str | None = None, watchdog_s: float | None = None,
+                 on_stall: Callable[[str], None] | None = None,
+                 on_decision: Callable[[Decision], None] | None = None,
+                 clock: Callable[[], float] = time.perf_counter, sleep: Callable[[float], None] = time.sleep
+                 ) -> None:
+        if isinstance(monitor, Spec):
+            monitor = Monitor(monitor)
+        if not isinstance(monitor, Monitor):
+            raise TypeError(f"GovernedLoop needs a Monitor or a Spec, got {type(monitor).__name__}")
+        if not (isinstance(period_s, (int, float)) and period_s > 0 and math.isfinite(period_s)):
+            raise ValueError(f"period_s={period_s!r}; expected a positive number of seconds")
+        self.monitor = monitor
+        self.period_s = float(period_s)
+        self.deadline_s = float(deadline_s) if deadline_s is not None else self.period_s
+        if not self.deadline_s > 0:
+            raise ValueError(f"deadline_s={deadline_s!r}; expected > 0")
+        self.stall_s = float(stall_s) if stall_s is not None else self.period_s + self.deadline_s
+        if not self.stall_s > 0:
+            raise ValueError(f"stall_s={stall_s!r}; expected > 0")
+        self.max_risk_age_s = max_risk_age_s
+        if isinstance(risk, str):
+            risk = ProcessEstimator(risk, risk_kwargs, env=risk_env)
+        elif risk_kwargs is not None or risk_env is not None:
+            raise ValueError("risk_kwargs/risk_env need risk='module:function'")
+        if isinstance(risk, ProcessEstimator):
+            risk = AsyncRiskSource(risk, text=None, classes=monitor.spec.risk.classes)
+        if risk is not None and not callable(getattr(risk, "snapshot", None)):
+            raise TypeError(f"risk must be an AsyncRiskSource, a ProcessEstimator or 'module:function', "
+                            f"got {type(risk).__name__}")
+        self.risk = risk
+        self.audit = audit
+        self.audit_every_cycle = bool(audit_every_cycle)
+        self.stats = LoopStats()
+        self.last_decision: Decision | None = None
+        self._signals = signals
+        if verify == "smt":
+            verify = _verify_smt
+        elif verify is not None and not callable(verify):
+            raise ValueError(f"verify={verify!r}; expected None, 'smt' or a callable verify(spec)")
+        self._verify = verify
+        self._on_decision = on_decision
+        self._clock = clock
+        self._sleep = sleep
+        self._next: float | None = None  # scheduled start of the next cycle
+        self._pending: tuple[Monitor, ReloadResult, str] | None = None
+        self._reload_lock = threading.Lock()
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        self._state_key: tuple | None = None
+        self._audit_failed = False
+        self._stall_reason: str | None = None
+        self._last_end: float | None = None  # end of the previous cycle (stall detection)
+        self._spec_hash_fn = spec_hash
+        self.spec_sha256 = spec_hash(monitor.spec)
+        self._age_guard = self.max_risk_age_s if monitor.spec.risk.max_age_s is None else None
+        self._ids = monitor.obligation_ids
+        self.watchdog: Watchdog | None = None
+        if watchdog_s is not None:
+            self.watchdog = Watchdog(watchdog_s, self._stalled)
+            self._user_on_stall = on_stall
+        isolation = None
+        if risk is not None:
+            isolation = "process" if getattr(risk, "isolated", False) else "thread"
+        self.estimator_isolation = isolation
+        self._log("start", spec=monitor.spec.name, spec_sha256=self.spec_sha256,
+                  model_id=risk.model_id if risk is not None else None, period_s=self.period_s,
+                  deadline_s=self.deadline_s, stall_s=self.stall_s, obligations=list(self._ids),
+                  estimator_isolation=isolation)
+
+    # ------------------------------------------------------------------ properties
+    @property
+    def spec(self) -> Spec:
+        """The spec running now."""
+        return self.monitor.spec
+
+    # ------------------------------------------------------------------ one cycle
+    def cycle(self, signals: Mapping[str, Any] | None = None) -> Decision:
+        """Run one control cycle now and return its decision (never raises).
+
+        Reads the signals (argument, or the ``signals`` callable), adds the
+        latest risk reading, steps the monitor and escalates to an override for
+        any fault around it: risk reading fault or too old, signal source
+        error, missed deadline, a stall before this cycle, an audit log that is
+        unusable or refused a record, an override carried over a spec reload.
+        """
+        clock = self._clock
+        now = clock()
+        sched = self._next if self._next is not None else now
+        if self._pending is not None:
+            self._apply_reload()
+        m = self.monitor
+        st = self.stats
+        reasons: list[str] = []
+        if self.watchdog is not None:
+            # a stall its thread could not report (it was frozen too) fires now, into this cycle
+            self.watchdog.kick()
+        if self._last_end is not None:
+            gap = now - self._last_end
+            if gap > st.max_gap_s:
+                st.max_gap_s = gap
+            if gap > self.stall_s:
+                st.stalls += 1
+                reasons.append(f"control loop stalled for {gap * 1e3:.1f} ms before cycle {st.cycles} "
+                               f"(stall_s {self.stall_s * 1e3:g} ms): no decision was made meanwhile")
+        if self.audit is not None:
+            try:
+                afault = getattr(self.audit, "fault", None)
+            except Exception as exc:  # noqa: BLE001 - a broken log is a fault, not a crash
+                afault = f"audit log health check raised {type(exc).__name__}: {exc}"[:300]
+            if isinstance(afault, str) and afault:
+                reasons.append(afault)
+                st.audit_faults += 1
+        try:
+            if signals is None:
+                if self._signals is None:
+                    raise EthimonError("no signals given and no signals source configured")
+                signals = self._signals()
+            inputs = dict(signals)
+        except Exception as exc:  # noqa: BLE001
+            reasons.append(f"signal source raised {type(exc).__name__}: {exc}"[:300])
+            inputs = {}
+        reading = None
+        if self.risk is not None:
+            try:
+                reading = self.risk.snapshot()
+            except Exception as exc:  # noqa: BLE001
+                reading = RiskReading(None, math.inf, f"risk source failed: {type(exc).__name__}: {exc}", 0)
+            inputs.pop("risk", None)
+            inputs.pop("p_unsafe", None)
+            if reading.fault is None:
+                inputs["p"] = reading.probs
+                inputs["risk_age_s"] = reading.age_s
+                if self._age_guard is not None and reading.age_s > self._age_guard:
+                    reasons.append(f"risk estimate is stale: {reading.age_s:.3f} s > {self._age_guard:g} s")
+            else:
+                inputs.pop("p", None)
+                inputs.pop("risk_age_s", None)
+                reasons.append(reading.fault)
+        d = m.step(inputs)
+        if self._stall_reason is not None:
+            reasons.append(self._stall_reason)
+            self._stall_reason = None
+        if self._audit_failed:
+            reasons.append(f"audit log failed or its queue is full, or its writer is behind its lag bounds "
+                           f"({self.stats.audit_drops} records refused)")
+        if self._carry_latch:
+            reasons.append("override latched before the spec reload is carried over")
+            self._carry_latch = False
+        end = clock()
+        late = end - sched
+        if late > self.deadline_s:
+            reasons.append(f"control cycle {self.stats.cycles} missed its deadline: decision ready "
+                           f"{late * 1e3:.3f} ms after its start time (deadline {self.deadline_s * 1e3:g} ms)")
+            self.stats.deadline_misses += 1
+        if reasons:
+            d = m.fault(*reasons, decision=d)
+        st.cycles += 1
+        if end - now > st.max_cycle_s:
+            st.max_cycle_s = end - now
+        if late > st.max_late_s:
+            st.max_late_s = late
+        if d.override:
+            st.overrides += 1
+        if d.faults:
+            st.fault_cycles += 1
+            if reading is not None and (reading.fault is not None or
+                                        (self._age_guard is not None and reading.age_s > self._age_guard)):
+                st.risk_faults += 1
+            if any("stale" in f for f in d.faults):
+                st.stale_overrides += 1
+        # schedule the next slot; after an overrun, skip to the first grid slot not yet
+        # past (no burst of catch-up cycles)
+        P = self.period_s
+        nxt = sched + P
+        if nxt < end:
+            k = math.ceil((end - sched) / P)
+            st.skipped_slots += k - 1
+            nxt = sched + k * P
+        self._next = nxt
+        if self.audit is not None:
+            self._audit(d, inputs, reading)
+        self._last_end = clock()
+        self.last_decision = d
+        if self._on_decision is not None:
+            try:
+                self._on_decision(d)
+            except Exception as exc:  # noqa: BLE001 - recorded, and the next cycle overrides
+                self._stall_reason = f"on_decision callback raised {type(exc).__name__}: {exc}"[:300]
+        return d
+
+    _carry_latch = False
+
+    def _audit(self, d: Decision, inputs: dict, reading: RiskReading | None) -> None:
+        key = (d.override, d.response, d.violations, _fault_kind(d.faults) if d.faults else ())
+        if not self.audit_every_cycle and key == self._state_key:
+            return
+        prev = self._state_key
+        self._state_key = key
+        event = "cycle"
+        if prev is None or prev[0] != d.override:
+            event = "override_on" if d.override else "override_off"
+        elif key != prev:
+            event = "change"
+        ok = self._log("decision", event=event, loop_cycle=self.stats.cycles - 1, cycle=d.cycle,
+                       override=d.override, response=d.response.value, violations=list(d.violations),
+                       faults=list(d.faults), latched=d.latched, risk=d.risk,
+                       margins=dict(zip(self._ids, d.margins)) if d.margins else {},
+                       inputs=inputs, risk_age_s=reading.age_s if reading is not None else None,
+                       spec_sha256=self.spec_sha256,
+                       model_id=self.risk.model_id if self.risk is not None else None)
+        if not ok:
+            self._state_key = None  # log the state again once the queue has room
+
+    def _log(self, kind: str, **fields: Any) -> bool:
+        if self.audit is None:
+            return True
+        try:
+            ok = bool(self.audit.append(kind, **fields))
+        except Exception:  # noqa: BLE001 - a broken log is a fault, not a crash
+            ok = False
+        if ok:
+            self.stats.audit_records += 1
+            self._audit_failed = False
+        else:
+            self.stats.audit_drops += 1
+            self._audit_failed = True
+        return ok
+
+    # ------------------------------------------------------------------ running
+    def run(self, duration_s: float | None = None, *, cycles: int | None = None) -> LoopStats:
+        """Run cycles at ``period_s`` until ``duration_s``, ``cycles`` or :meth:`stop`.
+
+        Returns:
+            :attr:`stats`.
+        """
+        clock, sleep = self._clock, self._sleep
+        self._stop.clear()
+        t_end = None if duration_s is None else clock() + float(duration_s)
+        n = 0
+        if self.watchdog is not None:
+            self.watchdog.start()
+        self._next = None
+        self._last_end = None  # the time before run() is not a stall
+        try:
+            while not self._stop.is_set():
+                self.cycle()
+                n += 1
+                if cycles is not None and n >= cycles:
+                    break
+                wait = self._next - clock()
+                if t_end is not None and self._next >= t_end:
+                    break
+                if wait > 0.0:
+                    sleep(wait)
+        finally:
+            if self.watchdog is not None:
+                self.watchdog.stop()
+        return self.stats
+
+    def start(self, duration_s: float | None = None) -> threading.Thread:
+        """Run :meth:`run` in a daemon thread; :meth:`stop` ends it."""
+        t = threading.Thread(target=self.run, args=(duration_s,), name="ethimon-loop", daemon=True)
+        self._thread = t
+        self._stop.clear()
+        t.start()
+        return t
+
+    def stop(self, timeout: float = 2.0) -> None:
+        """Ask :meth:`run` to return after the current cycle (and wait for a :meth:`start` thread)."""
+        self._stop.set()
+        t = self._thread
+        if t is not None and t is not threading.current_thread():
+            t.join(timeout)
+
+    def _stalled(self, reason: str) -> None:
+        self._stall_reason = reason
+        self._log("fault", reason=reason, source="watchdog")
+        cb = getattr(self, "_user_on_stall", None)
+        if cb is not None:
+            cb(reason)
+
+    # ------------------------------------------------------------------ reload
+    def reload(self, source: str | os.PathLike | Spec, *, allow_weaker: bool = False) -> ReloadResult:
+        """Compile (and verify) a new spec in the calling thread, then swap it in between cycles.
+
+        Trust model: whoever can call ``reload`` can change what is monitored,
+        but not *silently weaken* it. A spec that weakens monitoring compared
+        with the running one (see :func:`weakenings`: an obligation removed, τ
+        raised, the release made easier, a response or ``on_fault`` made less
+        severe, ``max_age_s`` removed or raised, a signal range widened, ...) is
+        refused unless ``allow_weaker=True``; the refusal and an allowed
+        weakening are both recorded in the audit log with the list of
+        weakenings. A change whose direction cannot be told field by field (the
+        text of a condition beyond whitespace, a constant's value, a signal's
+        type, the safe pose's joints, the estimator settings) counts as a
+        possible weakening: refused the same way, listed with
+        "cannot tell whether this change weakens monitoring" (and in ``unjudged``).
+
+        Args:
+            source: a spec file path, or a loaded :class:`~ethimon.Spec`.
+            allow_weaker: accept a spec that weakens monitoring (a deliberate,
+                recorded decision).
+
+        Returns:
+            A :class:`ReloadResult`. Rejected (``ok=False``, old spec keeps
+            running) if it does not load, compile or verify, or weakens
+            monitoring without ``allow_weaker``. Both outcomes are recorded in
+            the audit log, and so is the swap itself.
+        """
+        label = "<Spec>" if isinstance(source, Spec) else os.fspath(source)
+        weak: tuple[str, ...] = ()
+        unjudged: tuple[str, ...] = ()
+        try:
+            spec = source if isinstance(source, Spec) else load_spec(source)
+            new = Monitor(spec, margins=self.monitor._margins_on)
+            guard = self.max_risk_age_s if self.risk is not None else None
+            w, u = weakenings(self.monitor.spec, spec, loop_max_age_s=guard)
+            weak, unjudged = tuple(w), tuple(u)
+            if weak and not allow_weaker:
+                raise EthimonError("reload refused: the new spec weakens monitoring: " + "; ".join(weak)
+                                   + ". The running spec stays; pass allow_weaker=True to accept a weaker spec")
+            if self._verify is not None:
+                verdict = self._verify(spec)
+                if verdict is False:
+                    raise EthimonError("verification failed")
+            h = self._spec_hash_fn(spec)
+        except Exception as exc:  # noqa: BLE001 - rejected, never raised into the loop's owner
+            msg = str(exc) if isinstance(exc, EthimonError) else f"{type(exc).__name__}: {exc}"
+            res = ReloadResult(False, label, None, msg[:4000], weakened=weak, unjudged=unjudged)
+            self.stats.reloads_rejected += 1
+            self._log("reload", status="rejected", source=label, error=res.error,
+                      running_spec_sha256=self.spec_sha256, weakened=list(weak), unjudged=list(unjudged))
+            return res
+        res = ReloadResult(True, label, h, weakened=weak, unjudged=unjudged)
+        with self._reload_lock:
+            old = self._pending
+            self._pending = (new, res, label)
+        if old is not None:
+            self._log("reload", status="superseded", source=old[2], spec_sha256=old[1].spec_sha256)
+        self._log("reload", status="accepted", source=label, spec_sha256=h, running_spec_sha256=self.spec_sha256,
+                  allow_weaker=bool(allow_weaker), weakened=list(weak), unjudged=list(unjudged))
+        return res
+
+    def reload_async(self, source: str | os.PathLike | Spec, *, allow_weaker: bool = False) -> Future:
+        """:meth:`reload` in a helper thread; the future's result is the :class:`ReloadResult`."""
+        fut: Future = Future()
+
+        def work() -> None:
+            try:
+                fut.set_result(self.reload(source, allow_weaker=allow_weaker))
+            except BaseException as exc:  # pragma: no cover - reload() catches everything
+                fut.set_exception(exc)
+
+        threading.Thread(target=work, name="ethimon-reload", daemon=True).start()
+        return fut
+
+    def _apply_reload(self) -> None:
+        with self._reload_lock:
+            pending, self._pending = self._pending, None
+        if pending is None:
+            return
+        new, res, label = pending
+        old = self.monitor
+        self._carry_latch = old.latched
+        self.monitor = new
+        old_hash, self.spec_sha256 = self.spec_sha256, res.spec_sha256
+        self._ids = new.obligation_ids
+        self._age_guard = self.max_risk_age_s if new.spec.risk.max_age_s is None else None
+        self._state_key = None
+        self.stats.reloads_applied += 1
+        res.applied_at_cycle = self.stats.cycles
+        self._log("reload", status="applied", source=label, spec_sha256=res.spec_sha256,
+                  previous_spec_sha256=old_hash, loop_cycle=self.stats.cycles, carried_latch=old.latched)
+        res.applied.set()
+
+    def __repr__(self) -> str:
+        return (f"GovernedLoop(spec={self.spec.name!r}, period_s={self.period_s:g}, "
+                f"cycles={self.stats.cycles}, misses={self.stats.deadline_misses})")

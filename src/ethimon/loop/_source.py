@@ -1,0 +1,278 @@
+"""The risk side of the loop: an estimator run in its own thread, read without blocking.
+
+:class:`AsyncRiskSource` runs any :class:`ProbEstimator` at its own rate and publishes
+``(probs, time)`` snapshots; readers (the control loop) never wait for it.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from collections.abc import Callable, Sequence
+from typing import Any, NamedTuple, Protocol, runtime_checkable
+
+__all__ = ["AsyncRiskSource", "ProbEstimator", "RiskReading"]
+
+
+@runtime_checkable
+class ProbEstimator(Protocol):
+    """Anything with ``probs(text) -> (p_0, ..., p_{K-1})``, e.g. :func:`ethimon.risk.load_estimator`."""
+
+    def probs(self, text: str) -> Sequence[float]: ...
+
+
+class RiskReading(NamedTuple):
+    """A snapshot of an :class:`AsyncRiskSource`.
+
+    Attributes:
+        probs: class probabilities for the *current* task text, or ``None``.
+        age_s: seconds since the estimate's inference started (``inf`` if none).
+        fault: why the reading must not be trusted (raised, NaN, hung, dead, no
+            estimate yet), or ``None``.
+        count: how many estimates have been published (any text).
+    """
+
+    probs: tuple[float, ...] | None
+    age_s: float
+    fault: str | None
+    count: int
+
+
+def _check_probs(out: Any, classes: int | None, tol: float) -> tuple[tuple[float, ...] | None, str | None]:
+    try:
+        p = tuple(float(v) for v in out)
+    except Exception:  # noqa: BLE001 - any odd return value is a fault
+        return None, f"risk estimator returned {type(out).__name__}, not a sequence of probabilities"
+    if len(p) < 2 or (classes is not None and len(p) != classes):
+        want = classes if classes is not None else "at least 2"
+        return None, f"risk estimator returned {len(p)} probabilities, expected {want}"
+    for v in p:
+        if not (0.0 <= v <= 1.0):
+            return None, f"risk estimator returned {_short(p)}: NaN/inf or outside [0, 1]"
+    s = math.fsum(p)
+    if abs(s - 1.0) > tol:
+        return None, f"risk estimator returned {_short(p)}, which sums to {s:.6g}, not 1"
+    return p, None
+
+
+def _short(p: tuple[float, ...]) -> str:
+    text = "(" + ", ".join(f"{v:.4g}" for v in p[:6]) + (", ..." if len(p) > 6 else "") + ")"
+    return text
+
+
+class AsyncRiskSource:
+    """Runs a risk estimator in its own thread at its own rate; readers never block.
+
+    Args:
+        estimator: an object with ``probs(text)`` (see :class:`ProbEstimator`).
+        text: the task text to score (``None``: no task yet; readings then carry a fault).
+        rate_hz: estimates per second (an estimate that takes longer simply delays the next).
+        hang_timeout_s: an inference running longer than this is reported as hung
+            (default: ``max(0.25, 5 / rate_hz)``).
+        classes: expected number of probabilities (``None``: any ``>= 2``).
+        sum_tol: allowed ``|sum(p) - 1|``.
+        clock: monotonic time source in seconds (inject a fake one in tests).
+        start: start the worker thread now.
+
+    A returned value is checked before it is published: not a sequence of
+    numbers, NaN/inf, outside [0, 1] or not summing to 1 is a fault, as is an
+    exception. A fault replaces the previous estimate (never a silent fallback
+    to an older, lower risk). :meth:`restart` abandons a hung worker and
+    starts a fresh one (optionally with a new estimator) while readers keep
+    reading; a thread blocked inside the estimator cannot be killed, so it is
+    left as an abandoned daemon and its late result is discarded.
+
+    Example:
+        >>> class Fixed:
+        ...     def probs(self, text):
+        ...         return (0.9, 0.1)
+        >>> src = AsyncRiskSource(Fixed(), text="hand over the cup", start=False)
+        >>> src.poll_once().probs
+        (0.9, 0.1)
+        >>> src.set_text("new task")
+        >>> src.snapshot().fault
+        'no risk estimate yet for the current task text'
+    """
+
+    def __init__(self, estimator: ProbEstimator, *, text: str | None = None, rate_hz: float = 20.0,
+                 hang_timeout_s: float | None = None, classes: int | None = None, sum_tol: float = 1e-3,
+                 clock: Callable[[], float] = time.monotonic, start: bool = True) -> None:
+        if not callable(getattr(estimator, "probs", None)):
+            raise TypeError(f"estimator needs a probs(text) method, got {type(estimator).__name__}")
+        if not (isinstance(rate_hz, (int, float)) and 0.0 < rate_hz <= 10_000.0):
+            raise ValueError(f"rate_hz={rate_hz!r}; expected a number in (0, 10000]")
+        self._est = estimator
+        self.rate_hz = float(rate_hz)
+        self.hang_timeout_s = float(hang_timeout_s) if hang_timeout_s is not None else max(0.25, 5.0 / rate_hz)
+        self.classes = classes
+        self.sum_tol = float(sum_tol)
+        self._clock = clock
+        self._text = text
+        self._text_gen = 0
+        # (probs, stamp, fault, text_gen, count): replaced as one object, read without locks
+        self._state: tuple = (None, None, None, -1, 0)
+        self._busy: tuple | None = None  # (worker gen, start time) while an inference runs
+        self._gen = 0
+        self._thread: threading.Thread | None = None
+        self._stop = threading.Event()
+        self._lock = threading.Lock()
+        self.restarts = 0
+        self.abandoned_threads = 0
+        self.errors = 0
+        if start:
+            self.start()
+
+    # ------------------------------------------------------------------ public
+    @property
+    def model_id(self) -> str:
+        """The estimator's ``model_id`` (its class name if it has none)."""
+        return str(getattr(self._est, "model_id", type(self._est).__name__))
+
+    @property
+    def text(self) -> str | None:
+        """The task text being scored."""
+        return self._text
+
+    @property
+    def estimator(self) -> ProbEstimator:
+        """The estimator being run."""
+        return self._est
+
+    @property
+    def isolated(self) -> bool:
+        """Whether the estimator runs outside this interpreter (a :class:`ProcessEstimator`).
+
+        ``False`` means it shares the GIL with the control loop: an estimator
+        that holds the GIL freezes the loop and its watchdog (see the module doc).
+        """
+        return bool(getattr(self._est, "isolated", False))
+
+    def set_text(self, text: str | None) -> None:
+        """Score a new task text; until its first estimate, readings carry a fault."""
+        with self._lock:
+            self._text = text
+            self._text_gen += 1
+
+    def latest(self) -> tuple[tuple[float, ...] | None, float]:
+        """``(probs, age_s)`` of the newest estimate for the current text, without blocking.
+
+        ``probs`` is ``None`` (and ``age_s`` is ``inf``) when the reading has a
+        fault; see :meth:`snapshot` for the reason.
+        """
+        r = self.snapshot()
+        return r.probs, r.age_s
+
+    def snapshot(self) -> RiskReading:
+        """The newest reading with its fault, if any (hung, dead, raised, bad value, none yet)."""
+        probs, stamp, fault, tgen, count = self._state
+        now = self._clock()
+        age = math.inf if stamp is None else max(0.0, now - stamp)
+        busy = self._busy
+        if busy is not None and busy[0] == self._gen and now - busy[1] > self.hang_timeout_s:
+            fault = (f"risk estimator hung: inference running for {now - busy[1]:.3f} s "
+                     f"(hang_timeout_s {self.hang_timeout_s:g})")
+        elif self._thread is not None and not self._thread.is_alive() and not self._stop.is_set():
+            fault = "risk estimator thread died"
+        elif self._text is None:
+            fault = "no task text to score"
+        elif fault is None and (probs is None or tgen != self._text_gen):
+            fault = "no risk estimate yet for the current task text"
+        if fault is not None:
+            return RiskReading(None, math.inf, fault, count)
+        return RiskReading(probs, age, None, count)
+
+    @property
+    def fault(self) -> str | None:
+        """The current fault reason (``None`` when the latest reading is usable)."""
+        return self.snapshot().fault
+
+    def poll_once(self) -> RiskReading:
+        """Run one estimate now in the calling thread and publish it (tests, manual driving)."""
+        self._estimate(self._gen)
+        return self.snapshot()
+
+    def start(self) -> None:
+        """Start the worker thread (no-op if it runs)."""
+        with self._lock:
+            if self._thread is not None and self._thread.is_alive():
+                return
+            self._stop.clear()
+            gen = self._gen
+            t = threading.Thread(target=self._run, args=(gen,), name=f"ethimon-risk-{gen}", daemon=True)
+            self._thread = t
+        t.start()
+
+    def stop(self, timeout: float = 1.0) -> None:
+        """Stop the worker (waits up to ``timeout`` for an inference to finish)."""
+        self._stop.set()
+        t = self._thread
+        if t is not None and t is not threading.current_thread():
+            t.join(timeout)
+
+    def restart(self, estimator: ProbEstimator | None = None) -> None:
+        """Abandon the current worker (hung or not) and start a fresh one.
+
+        Readers are never blocked; until the new worker publishes, readings
+        carry a fault. Args: ``estimator``: a replacement (default: the same one).
+        """
+        if estimator is not None and not callable(getattr(estimator, "probs", None)):
+            raise TypeError(f"estimator needs a probs(text) method, got {type(estimator).__name__}")
+        with self._lock:
+            old = self._thread
+            self._gen += 1
+            if estimator is not None:
+                self._est = estimator
+            self._busy = None
+            self._state = (None, None, "risk estimator restarting", self._text_gen, self._state[4])
+            self.restarts += 1
+            if old is not None and old.is_alive():
+                self.abandoned_threads += 1
+            self._thread = None
+        self._stop = threading.Event()
+        self.start()
+
+    def __enter__(self) -> "AsyncRiskSource":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.stop()
+
+    def __repr__(self) -> str:
+        r = self.snapshot()
+        return f"AsyncRiskSource(model={self.model_id!r}, rate_hz={self.rate_hz:g}, fault={r.fault!r})"
+
+    # ------------------------------------------------------------------ worker
+    def _run(self, gen: int) -> None:
+        stop = self._stop
+        period = 1.0 / self.rate_hz
+        nxt = time.monotonic()
+        while not stop.is_set() and gen == self._gen:
+            self._estimate(gen)
+            nxt += period
+            wait = nxt - time.monotonic()
+            if wait < 0.0:
+                nxt = time.monotonic()
+                wait = 0.0
+            stop.wait(wait)
+
+    def _estimate(self, gen: int) -> None:
+        text, tgen, est = self._text, self._text_gen, self._est
+        if text is None:
+            return
+        t0 = self._clock()
+        self._busy = (gen, t0)
+        try:
+            out = est.probs(text)
+        except Exception as exc:  # noqa: BLE001 - every failure is a published fault
+            probs, fault = None, f"risk estimator raised {type(exc).__name__}: {exc}"[:300]
+        else:
+            probs, fault = _check_probs(out, self.classes, self.sum_tol)
+        finally:
+            if self._busy is not None and self._busy[0] == gen:
+                self._busy = None
+        if gen != self._gen:  # abandoned by restart(): drop the late result
+            return
+        if fault is not None:
+            self.errors += 1
+        self._state = (probs, t0, fault, tgen, self._state[4] + 1)
