@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 
-from .compiler._check import compile_plan
+from .compiler._plans import plan_of
 from .spec._load import parse_spec_file, parse_spec_text
 from .spec._model import Spec
 
@@ -29,12 +29,12 @@ def load_spec(path: str | os.PathLike) -> Spec:
         0.5
     """
     spec = parse_spec_file(path)
-    spec._program = compile_plan(spec)
+    plan_of(spec)  # compile now (errors surface here); Monitor(spec) finds this plan
     return spec
 
 
 def load_spec_text(text: str, path: str = "<string>") -> Spec:
     """Like :func:`load_spec`, from YAML text (``path`` is used in error messages)."""
     spec = parse_spec_text(text, path)
-    spec._program = compile_plan(spec)
+    plan_of(spec)
     return spec

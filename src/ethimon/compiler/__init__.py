@@ -2,5 +2,7 @@
 
 from ._check import ObligationPlan, Plan, SignalSlot, compile_plan
 from ._codegen import Machine, build_machine
+from ._plans import plan_of, stateless_slots
 
-__all__ = ["Machine", "ObligationPlan", "Plan", "SignalSlot", "build_machine", "compile_plan"]
+__all__ = ["Machine", "ObligationPlan", "Plan", "SignalSlot", "build_machine", "compile_plan", "plan_of",
+           "stateless_slots"]

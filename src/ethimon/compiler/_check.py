@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from ..errors import SpecError
 from ..spec._expr import (FUNCTIONS, TEMPORAL, Binary, BoolLit, Call, ExprSyntaxError, Name, Node, Num,
                           Unary, parse_expr)
-from ..spec._model import Constant, Response, Spec
+from ..spec._model import Constant, Response, RiskConfig, Spec
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit
 
 __all__ = ["Plan", "ObligationPlan", "SignalSlot", "Ty", "compile_plan", "RISK_NAME", "MAX_WINDOW"]
@@ -77,6 +77,13 @@ class Plan:
         temporal: every temporal call node, children before parents.
         types: type of every expression node, keyed by ``id(node)``.
         windows: the integer bound of each temporal node (``id(node)`` → n or None).
+        slots: input slot of every name an expression can read (signals and ``risk``),
+            built once here for every consumer (code generation, fault-path evaluation).
+        risk: the spec's risk settings (τ, weights, classes, release, max age).
+        on_fault: the response to a fault.
+
+    The plan points at its spec (``spec``, where it came from); the spec never
+    points at its plan: :func:`~ethimon.compiler.plan_of` finds or compiles it.
     """
 
     spec: Spec
@@ -87,6 +94,9 @@ class Plan:
     temporal: tuple[Call, ...]
     types: dict[int, Ty] = field(default_factory=dict)
     windows: dict[int, int | None] = field(default_factory=dict)
+    slots: dict[str, int] = field(default_factory=dict)
+    risk: RiskConfig = field(default_factory=RiskConfig)
+    on_fault: Response = Response.SAFE_POSE
 
     @property
     def n_slots(self) -> int:
@@ -416,6 +426,8 @@ def compile_plan(spec: Spec) -> Plan:
         lo, hi = (sig.range if sig.range is not None else (-big, big))
         ty = ck.names[name]
         signals.append(SignalSlot(name, slot, sig.type, float(lo), float(hi), ty.unit))
+    slots = {s.name: s.slot for s in signals}
+    slots[RISK_NAME] = len(signals)
     return Plan(spec=spec, signals=tuple(signals), risk_slot=len(signals), constants=dict(ck.consts),
                 obligations=tuple(obligations), temporal=tuple(ck.temporal), types=ck.types,
-                windows=ck.windows)
+                windows=ck.windows, slots=slots, risk=spec.risk, on_fault=Response(spec.on_fault))

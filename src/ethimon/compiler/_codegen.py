@@ -19,7 +19,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary
-from ._check import RISK_NAME, Plan
+from ._check import Plan
 
 __all__ = ["Machine", "build_machine"]
 
@@ -162,8 +162,7 @@ class _Gen:
         self.vals: list = [0.0] * plan.n_slots
         self.tv: list = [False] * len(plan.temporal)
         self.tindex = {id(n): k for k, n in enumerate(plan.temporal)}
-        self.slots = {s.name: s.slot for s in plan.signals}
-        self.slots[RISK_NAME] = plan.risk_slot
+        self.slots = plan.slots
         self.consts = plan.constants
 
     # -- values --------------------------------------------------------------

@@ -14,40 +14,18 @@ from math import isfinite as _isfinite
 from collections.abc import Mapping
 from typing import Any
 
-from ..compiler._check import RISK_NAME, Plan
-from ..spec._expr import TEMPORAL, Call, Name, walk
+from ..compiler._check import Plan
 from ..compiler._codegen import build_machine
+from ..compiler._plans import plan_of, stateless_slots
 from ..spec._model import Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_probs, risk_range
 from ._decision import Decision
 from ._inputs import as_bool, as_number, as_probs
 
-__all__ = ["Monitor", "plan_of"]
+__all__ = ["Monitor"]
 
 _RESPONSES = (Response.NONE, Response.SAFE_POSE, Response.STOP_2, Response.STOP_1, Response.STOP_0)
 _EMPTY: tuple = ()
-
-
-def stateless_slots(plan: Plan, ob) -> frozenset[int] | None:
-    """Input slots an obligation reads, or ``None`` if it keeps state across cycles.
-
-    Stateless obligations (no temporal operator, no ``within_cycles``) can be
-    judged on a fault cycle from the inputs that are valid.
-    """
-    if ob.within_cycles:
-        return None
-    slots = {s.name: s.slot for s in plan.signals}
-    slots[RISK_NAME] = plan.risk_slot
-    used = set()
-    for root in (ob.when, ob.require):
-        if root is None:
-            continue
-        for node in walk(root):
-            if isinstance(node, Call) and node.func in TEMPORAL:
-                return None
-            if isinstance(node, Name) and node.id in slots:
-                used.add(slots[node.id])
-    return frozenset(used)
 
 
 def _all_margins(fns: tuple) -> tuple[float, ...]:
@@ -67,25 +45,12 @@ def _all_margins(fns: tuple) -> tuple[float, ...]:
     return tuple(out)
 
 
-def plan_of(spec: Spec | Plan) -> Plan:
-    """The compiled :class:`Plan` of a spec (compiled once and cached on the spec)."""
-    if isinstance(spec, Plan):
-        return spec
-    if not isinstance(spec, Spec):
-        raise TypeError(f"Monitor needs a Spec from ethimon.load_spec(), got {type(spec).__name__}")
-    plan = spec._program
-    if plan is None:
-        from ..compiler._check import compile_plan
-        plan = compile_plan(spec)
-        spec._program = plan
-    return plan
-
-
 class Monitor:
     """Runtime monitor compiled from a spec; call :meth:`step` once per control cycle.
 
     Args:
-        spec: a :class:`~ethimon.Spec` from :func:`ethimon.load_spec` (or its compiled plan).
+        plan: a compiled :class:`~ethimon.compiler.Plan`, or a :class:`~ethimon.Spec` from
+            :func:`ethimon.load_spec` (its plan is found with :func:`ethimon.compiler.plan_of`).
         margins: compute per-obligation robustness margins each cycle (a little slower).
 
     Each cycle pass a mapping with the spec's signals and one risk input:
@@ -116,8 +81,8 @@ class Monitor:
                  "_hold", "_alpha", "_beta", "_gamma", "_sample", "_k", "_uidx", "_rlo", "_rhi",
                  "_max_age", "_cycle", "_latched", "_clean", "_margins_on", "_stateless")
 
-    def __init__(self, spec: Spec | Plan, *, margins: bool = True) -> None:
-        plan = plan_of(spec)
+    def __init__(self, plan: Plan | Spec, *, margins: bool = True) -> None:
+        plan = plan_of(plan)
         self.plan = plan
         self.spec = plan.spec
         m = build_machine(plan)
@@ -134,10 +99,10 @@ class Monitor:
         self._margins_on = margins
         self._margin_fns = m.margins
         self._nan_margins = tuple(math.nan for _ in plan.obligations)
-        r = plan.spec.risk
+        r = plan.risk
         self._tau = float(r.threshold)
         self._risk_sev = Response(r.response).severity
-        self._fault_sev = Response(plan.spec.on_fault).severity
+        self._fault_sev = plan.on_fault.severity
         self._auto = r.release.mode == "auto"
         self._below = release_bound(r.threshold, r.release.hysteresis)[1]  # exact: 0.27 - 0.05 is 0.22
         self._hold = int(r.release.hold_cycles)

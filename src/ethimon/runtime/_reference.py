@@ -47,12 +47,12 @@ from fractions import Fraction
 from typing import Any
 
 from ..compiler._check import RISK_NAME, Plan
+from ..compiler._plans import plan_of
 from ..spec._expr import TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
 from ..spec._model import Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
 from ._decision import Decision
 from ._inputs import as_bool, as_number, as_probs
-from ._monitor import plan_of
 
 __all__ = ["ReferenceMonitor"]
 

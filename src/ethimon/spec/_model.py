@@ -228,7 +228,6 @@ class Spec(BaseModel):
     safe_pose: SafePose = Field(default_factory=SafePose)
 
     _source: SourceMap | None = PrivateAttr(default=None)
-    _program: Any = PrivateAttr(default=None)
 
     @property
     def path(self) -> str | None:

@@ -10,9 +10,9 @@ from typing import Any
 import z3
 
 from ..compiler._check import Plan
+from ..compiler._plans import plan_of
 from ..compiler._risk_formula import release_bound, risk_bounds, risk_from_p_unsafe, risk_range
 from ..runtime import Monitor
-from ..runtime._monitor import plan_of
 from ..spec._expr import Name, walk
 from ..spec._model import Response, Spec
 from ._encode import DecisionTrace, Unrolled, decision_trace, lookback, real, release_below, z3_value

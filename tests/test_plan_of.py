@@ -1,0 +1,44 @@
+"""A Spec never points at its Plan: the compiler finds (or compiles) it; Monitor takes either."""
+
+from __future__ import annotations
+
+import ethimon
+from ethimon.compiler import Plan, compile_plan, plan_of, stateless_slots
+
+SPEC = """
+ethimon: 1
+name: p
+signals: {d: {unit: m, range: [0, 10]}, v: {unit: m/s}}
+obligations:
+  - {id: near, require: "d >= 0.5"}
+  - {id: slow, require: "held(v <= 1, 3)"}
+  - {id: fast, require: "v <= 2 or risk < 0.2"}
+"""
+
+
+def test_spec_is_plain_data_and_plan_of_finds_the_compiled_plan():
+    spec = ethimon.load_spec_text(SPEC)
+    assert not hasattr(spec, "_program")
+    plan = plan_of(spec)
+    assert isinstance(plan, Plan) and plan.spec is spec and plan_of(spec) is plan and plan_of(plan) is plan
+    other = ethimon.load_spec_text(SPEC)  # an equal spec is another object: its own plan
+    assert plan_of(other) is not plan and plan_of(other).spec is other
+
+
+def test_monitor_takes_a_plan_or_a_spec():
+    spec = ethimon.load_spec_text(SPEC)
+    frame = {"d": 0.2, "v": 0.1, "p_unsafe": 0.05}
+    a = ethimon.Monitor(compile_plan(spec)).step(frame)
+    b = ethimon.Monitor(spec).step(frame)
+    assert a == b and "near" in a.violations
+    assert ethimon.Monitor(spec).plan is plan_of(spec)
+
+
+def test_slot_map_is_built_once_at_compile_time():
+    plan = plan_of(ethimon.load_spec_text(SPEC))
+    assert plan.slots == {"d": 0, "v": 1, "risk": 2}
+    near, slow, fast = plan.obligations
+    assert stateless_slots(plan, near) == frozenset({0})
+    assert stateless_slots(plan, slow) is None  # temporal: keeps state
+    assert stateless_slots(plan, fast) == frozenset({1, 2})
+    assert plan.risk is plan.spec.risk and plan.on_fault is ethimon.Response.SAFE_POSE
