@@ -68,13 +68,13 @@ class Recorder:
                             r.controller, ";".join(r.violations), ";".join(r.faults),
                             f"{r.safe_pose_error_rad:.5f}"])
         sj = os.path.join(self.dir, "summary.json")
+        pl = os.path.join(self.dir, "plot.png")
+        self.files += [jl, cs, sj, pl]  # summary.json lists every file of the recording, itself included
         with open(sj, "w", encoding="utf-8") as fh:
             summ = result.summary()
             summ["files"] = list(self.files)
             json.dump({k: _clean(v) for k, v in summ.items()}, fh, indent=2)
-        pl = os.path.join(self.dir, "plot.png")
         plot_trace(result.trace, pl)
-        self.files += [jl, cs, sj, pl]
         return list(self.files)
 
 

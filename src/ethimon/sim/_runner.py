@@ -81,8 +81,9 @@ class SimResult:
         executed_response: the most severe response the arm executed ("none" if none).
         fired: ids of every obligation violated at least once.
         fault_cycles: cycles whose decision carried fail-closed faults.
-        sim_time_s, wall_time_s, realtime_factor: simulated vs. wall-clock time of the loop.
-        files: paths written by ``record_dir``.
+        sim_time_s, wall_time_s, realtime_factor: simulated time; wall-clock time of the run
+            (setup, loop and recorded frames); simulated over wall-clock time of the loop alone.
+        files: every path written to ``record_dir`` (frames, traces, ``summary.json``, ``plot.png``).
     """
 
     trace: list[CycleRecord] = field(default_factory=list)
@@ -359,8 +360,11 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         res.realtime_factor = res.sim_time_s / loop_wall if loop_wall > 0 else math.inf
         if recorder:
             recorder.frame("end")
+        # set before the recording is finished: its summary.json carries it (setup, loop and frames;
+        # not the writing of the trace and plot files)
+        res.wall_time_s = time.perf_counter() - wall0
+        if recorder:
             res.files = recorder.finish(res)
-    res.wall_time_s = time.perf_counter() - wall0
     return res
 
 
