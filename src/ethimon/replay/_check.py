@@ -1,0 +1,116 @@
+"""The one checking step of a replay: the monitor over resampled columns.
+
+:func:`check_columns` takes one column per monitor input (float64, NaN =
+unusable: missing, stale or a bad recorded value) plus the risk input, and
+returns per-cycle verdicts. It runs :meth:`ethimon.Monitor.step` over the
+cycles (the reference semantics; a vectorised checker can replace this one
+function without touching the rest of replay).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..runtime import Monitor
+from ..spec._model import Spec
+
+__all__ = ["CycleResults", "check_columns"]
+
+
+@dataclass
+class CycleResults:
+    """Per-cycle verdicts of one replay (``n`` cycles, ``m`` obligations).
+
+    Attributes:
+        ids: obligation ids in ``Monitor.obligation_ids`` order, then ``"risk"``.
+        override: bool[n].
+        severity: int8[n], the response's severity (0 none .. 4 stop_0).
+        violated: bool[n, m + 1], column ``j`` is ``ids[j]`` (the last one is the risk rule).
+        margins: float64[n, m] (NaN on fault cycles).
+        risk: float64[n], R_e (NaN when no usable risk input).
+        fault: bool[n], the cycle failed closed.
+        latched: bool[n].
+        faults: the monitor's fault reasons by cycle, for the cycles that had any.
+        engine: what checked the cycles (``"Monitor.step"``).
+    """
+
+    ids: tuple[str, ...]
+    override: np.ndarray
+    severity: np.ndarray
+    violated: np.ndarray
+    margins: np.ndarray
+    risk: np.ndarray
+    fault: np.ndarray
+    latched: np.ndarray
+    faults: dict[int, tuple[str, ...]]
+    engine: str = "Monitor.step"
+
+
+def check_columns(spec: Spec, columns: dict[str, np.ndarray], n: int, *,
+                  risk_key: str = "p", keep_faults: int = 64) -> CycleResults:
+    """Check ``n`` cycles of resampled inputs.
+
+    Args:
+        spec: the compiled spec.
+        columns: one float64[n] column per spec signal (a bool signal as 1.0/0.0), NaN where the
+            input is unusable; the risk input under ``risk_key``: ``"p"`` a float64[n, K] array
+            (a NaN row: no estimate), ``"p_unsafe"``/``"risk"`` a float64[n] column; and
+            ``"risk_age_s"`` when the spec sets ``risk.max_age_s``.
+        keep_faults: keep the monitor's fault texts of at most this many fault cycles.
+
+    A NaN input is left out of that cycle's inputs, so the monitor fails closed on it
+    ("signal ... is missing") exactly as for an input that did not arrive.
+    """
+    mon = Monitor(spec)
+    ids = tuple(mon.obligation_ids) + ("risk",)
+    col_of = {oid: j for j, oid in enumerate(ids)}
+    m = len(ids) - 1
+    override = np.zeros(n, dtype=bool)
+    severity = np.zeros(n, dtype=np.int8)
+    violated = np.zeros((n, m + 1), dtype=bool)
+    margins = np.full((n, m), math.nan)
+    risk = np.full(n, math.nan)
+    fault = np.zeros(n, dtype=bool)
+    latched = np.zeros(n, dtype=bool)
+    faults: dict[int, tuple[str, ...]] = {}
+    sig = [(name, columns[name].tolist()) for name in spec.signals]
+    rcol = columns.get(risk_key)
+    if rcol is None:
+        rlist = [None] * n
+    elif rcol.ndim == 2:
+        rlist = [None if any(x != x for x in row) else tuple(row) for row in rcol.tolist()]
+    else:
+        rlist = [None if x != x else x for x in rcol.tolist()]
+    age = columns.get("risk_age_s")
+    alist = age.tolist() if age is not None else None
+    step = mon.step
+    for k in range(n):
+        inp = {}
+        for name, lst in sig:
+            v = lst[k]
+            if v == v:
+                inp[name] = v
+        r = rlist[k]
+        if r is not None:
+            inp[risk_key] = r
+        if alist is not None and alist[k] == alist[k]:
+            inp["risk_age_s"] = alist[k]
+        d = step(inp)
+        if d.override:
+            override[k] = True
+            severity[k] = d.response.severity
+        for v in d.violations:
+            violated[k, col_of[v]] = True
+        if d.margins:
+            margins[k] = d.margins
+        if d.risk is not None:
+            risk[k] = d.risk
+        if d.faults:
+            fault[k] = True
+            if len(faults) < keep_faults:
+                faults[k] = d.faults
+        latched[k] = d.latched
+    return CycleResults(ids, override, severity, violated, margins, risk, fault, latched, faults)

@@ -1,0 +1,199 @@
+"""The replay mapping file: which bag topic and field gives which monitor input.
+
+A mapping is YAML (format version 1), read with the project's safe YAML loader
+and validated by pydantic models, so errors name ``file:line:column`` with a
+hint exactly as spec errors do; :func:`mapping_json_schema` is its JSON Schema.
+
+::
+
+    ethimon: 1
+    rate_hz: 100                 # the monitor's cycle rate; inputs are zero-order held
+    max_age_s: 0.1               # staleness limit of every signal (null: never stale)
+    signals:
+      joint_speed_max: {topic: /joint_states, field: velocity, reduce: max_abs}
+      human_distance:  {topic: /human/range, field: range, max_age_s: 0.2}
+      ee_speed:        {topic: /ee/twist, field: twist.linear, reduce: norm}
+      contact_force:   {topic: /ee/wrench, field: wrench.force, reduce: norm, scale: 1.0}
+    task: {topic: /task}         # std_msgs/String, scored by the risk estimator
+"""
+
+from __future__ import annotations
+
+import difflib
+import os
+import re
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
+
+from ..errors import SpecError
+from ..spec._load import validate_document
+from ..spec._model import FiniteFloat, Spec
+from ..spec._yaml import SourceMap, parse_yaml_text, read_yaml
+
+__all__ = ["FIELD_PATH", "REDUCTIONS", "RISK_INPUTS", "Mapping", "SignalMap", "TaskMap", "load_mapping",
+           "load_mapping_text", "mapping_json_schema", "check_against_spec", "parse_field_path"]
+
+_CFG = ConfigDict(extra="forbid", frozen=True, populate_by_name=True, strict=True)
+#: a field path: names separated by dots, each optionally indexed, e.g. ``pose.position.x``, ``poses[0].x``
+FIELD_PATH = r"^[A-Za-z_][A-Za-z0-9_]*(\[[0-9]{1,9}\])*(\.[A-Za-z_][A-Za-z0-9_]*(\[[0-9]{1,9}\])*)*$"
+_SEGMENT = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)((?:\[[0-9]+\])*)")
+#: how an array field (or a vector such as geometry_msgs/Vector3) becomes one number
+REDUCTIONS = ("value", "max", "min", "max_abs", "norm", "mean", "index")
+#: built-in monitor inputs a topic may carry instead of a spec signal
+RISK_INPUTS = ("risk", "p_unsafe")
+TOPIC = r"^/?[A-Za-z0-9_~{}][A-Za-z0-9_/~{}.-]*$"
+
+
+class SignalMap(BaseModel):
+    """Where one monitor input comes from, and how it is turned into a number."""
+
+    model_config = _CFG
+    topic: str = Field(pattern=TOPIC, max_length=400, description="the bag topic, e.g. /joint_states")
+    field: str = Field("data", pattern=FIELD_PATH, max_length=400,
+                       description="field path in the message: 'data', 'velocity', 'twist.linear', 'poses[0].x'")
+    reduce: Literal["value", "max", "min", "max_abs", "norm", "mean", "index"] = Field(
+        "value", description="value (a scalar field) | max | min | max_abs | norm | mean over an array or "
+        "vector (x, y, z) | index (element 'index' of an array)")
+    index: int | None = Field(None, ge=0, le=1_000_000, description="the element taken by 'reduce: index'")
+    scale: FiniteFloat = Field(1.0, description="unit scaling: value * scale + offset")
+    offset: FiniteFloat = Field(0.0, description="unit offset: value * scale + offset")
+    max_age_s: FiniteFloat | None = Field(
+        None, gt=0.0, description="staleness limit of this signal (s); default: the mapping's max_age_s")
+    stale: bool = Field(True, description="false: this signal is never stale (a latched topic), whatever "
+                        "max_age_s says")
+    time: Literal["log", "header"] = Field(
+        "log", description="sample time: the bag's log (receive) time, or the message's header.stamp")
+
+    @model_validator(mode="after")
+    def _check(self) -> "SignalMap":
+        if self.reduce == "index" and self.index is None:
+            raise ValueError("reduce: index needs 'index: <element number>'")
+        if self.reduce != "index" and self.index is not None:
+            raise ValueError(f"'index' is only used with 'reduce: index' (reduce is {self.reduce!r})")
+        return self
+
+
+class TaskMap(BaseModel):
+    """The topic that carries the task text (std_msgs/String); each new text is scored by the risk estimator."""
+
+    model_config = _CFG
+    topic: str = Field(pattern=TOPIC, max_length=400, description="the task-text topic, e.g. /task")
+    field: str = Field("data", pattern=FIELD_PATH, max_length=400, description="the text field (default 'data')")
+
+
+class Mapping(BaseModel):
+    """A replay mapping (format version 1): bag topics → monitor inputs at the monitor's rate."""
+
+    model_config = _CFG
+    ethimon: Literal[1] = Field(description="format version; this ethimon reads 1")
+    description: str = ""
+    rate_hz: FiniteFloat = Field(gt=0.0, le=100_000.0,
+                                 description="the monitor's cycle rate (Hz); inputs are zero-order held")
+    max_age_s: FiniteFloat | None = Field(
+        description="staleness limit (s) of every signal unless it sets its own; null: signals are never "
+        "stale (set it: a sensor that dies would otherwise be held forever)")
+    start: Literal["first_message", "all_seen"] = Field(
+        "first_message", description="first cycle: at the first mapped message (inputs not yet seen are "
+        "missing: fail closed), or once every mapped input has been seen")
+    signals: dict[str, SignalMap] = Field(
+        description="spec signal (or 'p_unsafe' / 'risk') → where it comes from", min_length=1)
+    task: TaskMap | None = Field(None, description="optional: the task-text topic scored by the risk estimator")
+
+    _source: SourceMap | None = PrivateAttr(default=None)
+
+    @property
+    def path(self) -> str | None:
+        return self._source.path if self._source else None
+
+    def limit_s(self, name: str) -> float | None:
+        """The staleness limit of signal ``name`` in seconds (``None``: never stale)."""
+        sm = self.signals[name]
+        if not sm.stale:
+            return None
+        return sm.max_age_s if sm.max_age_s is not None else self.max_age_s
+
+    @model_validator(mode="after")
+    def _check(self) -> "Mapping":
+        risky = [n for n in self.signals if n in RISK_INPUTS]
+        if len(risky) > 1:
+            raise ValueError(f"map one risk input, not {' and '.join(risky)}")
+        if risky and self.task is not None:
+            raise ValueError(f"both a task topic and a {risky[0]!r} signal give the risk input; keep one")
+        return self
+
+
+def load_mapping(path: str | os.PathLike) -> Mapping:
+    """Read and validate a mapping file.
+
+    Raises:
+        SpecError: with ``path:line:column`` and a hint.
+    """
+    data, smap = read_yaml(path, what="mapping")
+    return validate_document(Mapping, data, smap, "mapping")
+
+
+def load_mapping_text(text: str, path: str = "<string>") -> Mapping:
+    """Like :func:`load_mapping`, from YAML text."""
+    data, smap = parse_yaml_text(text, path, what="mapping")
+    return validate_document(Mapping, data, smap, "mapping")
+
+
+def mapping_json_schema() -> dict[str, Any]:
+    """The JSON Schema of mapping files (for editors)."""
+    schema = Mapping.model_json_schema()
+    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    schema["title"] = "ethimon replay mapping (format 1)"
+    return schema
+
+
+def _err(mapping: Mapping, message: str, loc: tuple, *, hint: str | None = None, key: bool = False) -> SpecError:
+    if mapping._source is not None:
+        return mapping._source.error(message, loc, hint=hint, key=key)
+    return SpecError(message, hint=hint)
+
+
+def check_against_spec(mapping: Mapping, spec: Spec, *, risk_given: bool = False) -> None:
+    """Every mapped name is a signal of ``spec`` (or a risk input), every spec signal is mapped,
+    and there is a risk input (a task topic, a ``p_unsafe``/``risk`` signal, or ``risk_given``).
+
+    Raises:
+        SpecError: pointing into the mapping file.
+    """
+    known = list(spec.signals) + list(RISK_INPUTS)
+    for name, sm in mapping.signals.items():
+        if name in known:
+            if name in spec.signals and spec.signals[name].type == "bool" and (
+                    sm.scale != 1.0 or sm.offset != 0.0 or sm.reduce not in ("value", "index")):
+                raise _err(mapping, f"signal {name!r} is a bool in spec {spec.name!r}: no scale, offset or "
+                           f"numeric reduction", ("signals", name), hint="use 'reduce: value' (or index) on a "
+                           "bool field")
+            continue
+        close = difflib.get_close_matches(name, known, n=1, cutoff=0.6)
+        hint = f"did you mean {close[0]!r}?" if close else "known inputs: " + ", ".join(known)
+        shown = name if len(name) <= 80 else name[:77] + "..."
+        raise _err(mapping, f"unknown input {shown!r}: spec {spec.name!r} has no signal of that name",
+                   ("signals", name), hint=hint, key=True)
+    missing = [n for n in spec.signals if n not in mapping.signals]
+    if missing:
+        raise _err(mapping, f"spec {spec.name!r} reads {', '.join(map(repr, missing))}, which the mapping does "
+                   f"not map", ("signals",), key=True,
+                   hint="add each under 'signals:' with its topic and field (an unmapped signal would fail "
+                   "closed on every cycle)")
+    if not risk_given and mapping.task is None and not any(n in mapping.signals for n in RISK_INPUTS):
+        raise _err(mapping, "the mapping gives no risk input: the monitor's risk rule would fail closed on "
+                   "every cycle", (), hint="add 'task: {topic: /your/task_text}' (scored by the risk model), "
+                   "or map a 'p_unsafe' or 'risk' signal from a topic")
+
+
+def parse_field_path(path: str) -> tuple[str | int, ...]:
+    """``'poses[0].position.x'`` → ``('poses', 0, 'position', 'x')``."""
+    out: list[str | int] = []
+    for part in path.split("."):
+        m = _SEGMENT.fullmatch(part)
+        if m is None:  # pragma: no cover - the model's pattern already refused it
+            raise ValueError(f"bad field path {path!r}")
+        out.append(m.group(1))
+        out.extend(int(i) for i in re.findall(r"\[([0-9]+)\]", m.group(2)))
+    return tuple(out)
+
