@@ -1,9 +1,9 @@
 """A 1 kHz GovernedLoop for 60 s with a 20 Hz estimator: deadline misses, stale overrides, CPU.
 
-Run by hand:  python bench/loop_1khz.py [--duration 60] [--rate 1000] [--estimator-hz 20]
+Run by hand:  python -m bench.monitor.loop_1khz [--duration 60] [--rate 1000] [--estimator-hz 20]
               [--latency-ms 8] [--max-age-ms 150] [--deadline-ms 1] [--audit-every-cycle]
               [--real-estimator]
-              [--json bench/results/loop_1khz.json]
+              [--json bench/results/monitor/loop_1khz.json]
 
 The fake estimator sleeps ``--latency-ms`` per call (like a forward pass that
 releases the GIL) and returns fixed probabilities; ``--real-estimator`` uses
@@ -26,12 +26,11 @@ import sys
 import tempfile
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _machine import machine_facts  # noqa: E402
-
-import ethimon  # noqa: E402
-from ethimon.audit import AuditLog, verify_log  # noqa: E402
-from ethimon.runtime import AsyncRiskSource, GovernedLoop  # noqa: E402
+import ethimon
+from bench import RESULTS
+from bench._machine import machine_facts
+from ethimon.audit import AuditLog, verify_log
+from ethimon.loop import AsyncRiskSource, GovernedLoop
 
 
 class SleepyEstimator:
@@ -66,7 +65,7 @@ def main() -> int:
     ap.add_argument("--audit-every-cycle", action="store_true")
     ap.add_argument("--real-estimator", action="store_true")
     ap.add_argument("--spec", default="specs/cobot_cell.yaml")
-    ap.add_argument("--json", default="bench/results/loop_1khz.json")
+    ap.add_argument("--json", default=str(RESULTS / "monitor" / "loop_1khz.json"))
     args = ap.parse_args()
 
     spec = ethimon.load_spec(args.spec)

@@ -1,6 +1,6 @@
 """µs per Monitor.step by spec size (1/4/16/64 obligations) and temporal window (10/100/1000 cycles).
 
-Run by hand:  python bench/monitor_scaling.py [--cycles 20000] [--json bench/results/monitor_scaling.json]
+Run by hand:  python -m bench.monitor.monitor_scaling [--cycles 20000] [--json bench/results/monitor/monitor_scaling.json]
 
 Specs are generated: 8 signals, obligations cycling through five shapes (plain
 bound, held(...), once(...), since(...), bounded response within_cycles), every
@@ -20,11 +20,10 @@ import random
 import sys
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _machine import machine_facts  # noqa: E402
-from monitor_step import pct, time_steps  # noqa: E402
-
-import ethimon  # noqa: E402
+import ethimon
+from bench import RESULTS
+from bench._machine import machine_facts
+from bench.monitor.monitor_step import pct, time_steps
 
 N_SIGNALS = 8
 
@@ -71,7 +70,7 @@ def main() -> int:
     ap.add_argument("--cycles", type=int, default=20_000)
     ap.add_argument("--sizes", default="1,4,16,64")
     ap.add_argument("--windows", default="10,100,1000")
-    ap.add_argument("--json", default="bench/results/monitor_scaling.json")
+    ap.add_argument("--json", default=str(RESULTS / "monitor" / "monitor_scaling.json"))
     args = ap.parse_args()
     sizes = [int(x) for x in args.sizes.split(",")]
     windows = [int(x) for x in args.windows.split(",")]

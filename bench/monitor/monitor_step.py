@@ -1,6 +1,6 @@
 """µs per Monitor.step for each shipped spec (median and p99 over >= 100k cycles).
 
-Run by hand:  python bench/monitor_step.py [--cycles 200000] [--json bench/results/monitor_step.json]
+Run by hand:  python -m bench.monitor.monitor_step [--cycles 200000] [--json bench/results/monitor/monitor_step.json]
 Prints a table and writes JSON with the machine facts. Not a test: timings are never asserted.
 """
 
@@ -15,10 +15,9 @@ import random
 import sys
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _machine import machine_facts  # noqa: E402
-
-import ethimon  # noqa: E402
+import ethimon
+from bench import RESULTS
+from bench._machine import loadavg, machine_facts
 
 
 def make_frames(spec, n: int, seed: int = 0) -> list[dict]:
@@ -65,8 +64,9 @@ def pct(sorted_vals: list[float], q: float) -> float:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--cycles", type=int, default=200_000)
-    ap.add_argument("--json", default="bench/results/monitor_step.json")
+    ap.add_argument("--json", default=str(RESULTS / "monitor" / "monitor_step.json"))
     args = ap.parse_args()
+    load_start = loadavg()
     rows = []
     for path in sorted(glob.glob("specs/*.yaml")):
         spec = ethimon.load_spec(path)
@@ -95,7 +95,8 @@ def main() -> int:
               f"{r['p99_us']:>8.2f} {r['p999_us']:>9.2f} {r['batched_mean_us']:>11.2f}")
     os.makedirs(os.path.dirname(args.json), exist_ok=True)
     with open(args.json, "w", encoding="utf-8") as fh:
-        json.dump({"benchmark": "monitor_step", "machine": machine_facts(), "results": rows}, fh, indent=2)
+        json.dump({"benchmark": "monitor_step", "machine": machine_facts(loadavg_start=load_start),
+                   "results": rows}, fh, indent=2)
     print(f"wrote {args.json}")
     return 0
 

@@ -1,7 +1,7 @@
 """Offline checking of a recorded trace: cycles per second.
 
-Run by hand:  python bench/trace_check.py [--cycles 200000] [--trace FILE --spec SPEC]
-              [--json bench/results/trace_check.json]
+Run by hand:  python -m bench.monitor.trace_check [--cycles 200000] [--trace FILE --spec SPEC]
+              [--json bench/results/monitor/trace_check.json]
 
 Without ``--trace`` it records a synthetic cobot_cell trace (a person walking
 in and out, contact spikes, clamping, risk changes) as JSONL in a temp dir,
@@ -24,10 +24,9 @@ import sys
 import tempfile
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _machine import machine_facts  # noqa: E402
-
-import ethimon  # noqa: E402
+import ethimon
+from bench import RESULTS
+from bench._machine import machine_facts
 
 
 def synth_trace(n: int, seed: int = 0) -> list[dict]:
@@ -66,7 +65,7 @@ def main() -> int:
     ap.add_argument("--reference-cycles", type=int, default=2000)
     ap.add_argument("--trace", help="a recorded JSONL trace (one object of inputs per line)")
     ap.add_argument("--spec", default="specs/cobot_cell.yaml")
-    ap.add_argument("--json", default="bench/results/trace_check.json")
+    ap.add_argument("--json", default=str(RESULTS / "monitor" / "trace_check.json"))
     args = ap.parse_args()
     load_start = os.getloadavg()
     spec = ethimon.load_spec(args.spec)

@@ -1,24 +1,25 @@
 """Average trained LoRA runs into one adapter (run by hand; never in CI).
 
-    python bench/risk_average.py --runs /work/runs/a,/work/runs/b,/work/runs/c --out /work/runs/avg3
+    python -m bench.risk.risk_average --runs /work/runs/a,/work/runs/b,/work/runs/c --out /work/runs/avg3
 
 The temperature of the average is fitted on the same validation rows the runs
 were selected on (ETHICS 10% of the 80% + robot validation), never on a
-hold-out. Writes bench/results/risk_average_<tag>.json (validation loss and
+hold-out. Writes bench/results/risk/risk_average_<tag>.json (validation loss and
 accuracy of the average next to each run's). Then evaluate it like any run:
-``python bench/risk_eval.py --model OUT --tag TAG``.
+``python -m bench.risk.risk_eval --model OUT --tag TAG``.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import numpy as np  # noqa: E402
-import risk_data as D  # noqa: E402
+import numpy as np
+
+from bench import results_dir
+from bench._machine import machine_facts
+from bench.risk import risk_data as D
 
 
 def component_val(run: str) -> dict:
@@ -51,7 +52,7 @@ def main() -> None:
     ap.add_argument("--greedy", action="store_true",
                     help="greedy soup: runs in order of validation accuracy, each kept only if the "
                          "average's validation NLL (at a fitted temperature) does not rise")
-    ap.add_argument("--tag", default=None, help="write bench/results/risk_average_<tag>.json")
+    ap.add_argument("--tag", default=None, help="write bench/results/risk/risk_average_<tag>.json")
     a = ap.parse_args()
     import torch
     torch.set_num_threads(2)
@@ -90,10 +91,10 @@ def main() -> None:
            "manifest": {k: m[k] for k in ("name", "max_length", "temperature", "averaged_from")}
            | {"r": m["lora"]["r"], "svd_rel_error": m.get("svd_rel_error")},
            **val_figures(a.out, va, m["temperature"]), "n_val": len(va),
-           "components_val": {Path(r).name: c for r, c in comp.items()}}
-    print(json.dumps({k: v for k, v in res.items() if k != "components_val"}, indent=1))
+           "components_val": {Path(r).name: c for r, c in comp.items()}, "machine": machine_facts()}
+    print(json.dumps({k: v for k, v in res.items() if k not in ("components_val", "machine")}, indent=1))
     if a.tag:
-        out = Path(__file__).resolve().parent / "results" / f"risk_average_{a.tag}.json"
+        out = results_dir("risk") / f"risk_average_{a.tag}.json"
         out.write_text(json.dumps(res, indent=1) + "\n")
 
 

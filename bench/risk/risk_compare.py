@@ -1,44 +1,57 @@
 """Compare risk-model runs from their saved results (no model is loaded; run by hand).
 
-    python bench/risk_compare.py mix_r16 mt_jdv mt_jdv_256
+    python -m bench.risk.risk_compare [mix_r16 mt_jdv mt_jdv_256]
 
-Reads bench/results/risk_train_<tag>.json (best validation loss, the number runs
+Reads bench/results/risk/risk_train_<tag>.json (best validation loss, the number runs
 are chosen by) — or risk_average_<tag>.json for a weight average (epoch shown as
 0, training time summed over its runs) — and risk_eval_<tag>.json (held-out
-figures, reported), prints one row per run and writes bench/results/risk_compare.json.
+figures, reported), prints one row per run and writes bench/results/risk/risk_compare.json.
+Runs moved to bench/results/risk/archive/ are read from there; without tags it compares every
+run that has both files (the archived ones included). The JSON records the machine facts.
+
 """
 
 from __future__ import annotations
 
+import argparse
 import json
-import sys
 from pathlib import Path
 
-RES = Path(__file__).resolve().parent / "results"
+from bench import RESULTS
+from bench._machine import machine_facts
+
+RES = RESULTS / "risk"
+ARCHIVE = RES / "archive"
+
+
+def result_path(name: str) -> Path:
+    """``bench/results/risk/<name>``, or its copy in ``archive/`` when only that exists."""
+    p = RES / name
+    return p if p.exists() or not (ARCHIVE / name).exists() else ARCHIVE / name
 
 
 def _train_facts(tag: str) -> dict:
     """max_length, aux rows, kept epoch, validation loss (T = 1) and train time of a run,
-    or of a weight average (bench/results/risk_average_<tag>.json; epoch 0, summed time)."""
-    p = RES / f"risk_train_{tag}.json"
+    or of a weight average (bench/results/risk/risk_average_<tag>.json; epoch 0, summed time)."""
+    p = result_path(f"risk_train_{tag}.json")
     if p.is_file():
         tr = json.loads(p.read_text())
         cfg = tr["config"]
         return {"max_length": cfg["max_length"], "aux": cfg.get("aux_tasks") or {}, "best_epoch": tr["best_epoch"],
                 "best_val_loss": tr["best_val_loss"], "train_time_s": tr["train_time_s"]}
-    av = json.loads((RES / f"risk_average_{tag}.json").read_text())
+    av = json.loads(result_path(f"risk_average_{tag}.json").read_text())
     parts = [_train_facts(Path(r).name) for r in av["runs"]]
     return {"max_length": av["manifest"]["max_length"], "aux": parts[0]["aux"], "best_epoch": 0,
             "best_val_loss": av["val_loss"], "train_time_s": sum(x["train_time_s"] for x in parts)}
 
 
 def _has_facts(tag: str) -> bool:
-    return (RES / f"risk_train_{tag}.json").is_file() or (RES / f"risk_average_{tag}.json").is_file()
+    return result_path(f"risk_train_{tag}.json").is_file() or result_path(f"risk_average_{tag}.json").is_file()
 
 
 def row(tag: str) -> dict:
     tr = _train_facts(tag)
-    ev = json.loads((RES / f"risk_eval_{tag}.json").read_text())
+    ev = json.loads(result_path(f"risk_eval_{tag}.json").read_text())
     eh, ra, sab = ev["ethics_holdout"], ev["robot_all"], ev["sab_test"]
     return {"tag": tag, "max_length": tr["max_length"], "aux": tr["aux"],
             "best_epoch": tr["best_epoch"], "best_val_loss": tr["best_val_loss"],
@@ -50,9 +63,11 @@ def row(tag: str) -> dict:
             "train_time_s": tr["train_time_s"]}
 
 
-def main() -> None:
-    tags = sys.argv[1:] or sorted(p.stem[len("risk_eval_"):] for p in RES.glob("risk_eval_*.json")
-                                  if _has_facts(p.stem[len("risk_eval_"):]))
+def main(argv: list[str] | None = None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("tags", nargs="*", help="run tags (default: every run with saved training and eval results)")
+    found = [*RES.glob("risk_eval_*.json"), *ARCHIVE.glob("risk_eval_*.json")]
+    tags = ap.parse_args(argv).tags or sorted(p.stem[len("risk_eval_"):] for p in found if _has_facts(p.stem[len("risk_eval_"):]))
     rows = [row(t) for t in tags]
     print(f"{'run':<19}{'len':>4}{'aux rows':>9}{'ep':>3}{'val loss':>9}{'ETHICS':>8}{'short':>7}{'long':>7}"
           f"{'AUC':>7}{'robot':>7}{'SAB':>7}{'tau':>6}{'flag':>7}{'FA':>7}{'min':>5}")
@@ -62,7 +77,7 @@ def main() -> None:
               f"{100 * r['ethics_long']:>7.1f}{r['ethics_auc']:>7.3f}{100 * r['robot']:>7.1f}{100 * r['sab']:>7.1f}"
               f"{r['tau']:>6.2f}{100 * r['robot_flagged']:>7.1f}{100 * r['robot_false_alarms']:>7.1f}"
               f"{r['train_time_s'] / 60:>5.0f}")
-    (RES / "risk_compare.json").write_text(json.dumps(rows, indent=1) + "\n")
+    (RES / "risk_compare.json").write_text(json.dumps({"rows": rows, "machine": machine_facts()}, indent=1) + "\n")
 
 
 if __name__ == "__main__":

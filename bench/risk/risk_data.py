@@ -1,4 +1,4 @@
-"""Data assembly shared by bench/risk_train.py and bench/risk_eval.py (fixed splits).
+"""Data assembly shared by the risk scripts (bench/risk/risk_train.py, risk_eval.py, ...): fixed splits.
 
 * ETHICS cm_test: stratified 80/20 split, seed 42 (the 20% hold-out is never
   trained or selected on); the 80% is split again 90/10 (stratified, seed 42)
@@ -8,7 +8,7 @@
   validation, else train. Abstract rows (keyword shortcut) are train-only.
 * Other ETHICS subsets (justice, deontology, virtue; training splits only) can be
   mixed in as auxiliary tasks with their own heads (``ethics_aux``).
-* Own minimal pairs (bench/data/robot_pairs.csv): split column; train rows with
+* Own minimal pairs (bench/risk/data/robot_pairs.csv): split column; train rows with
   crc32(pair_id) % 10 == 0 go to validation.
 """
 
@@ -17,15 +17,14 @@ from __future__ import annotations
 import json
 import re
 import zlib
-from pathlib import Path
 
+from bench import ROOT
 from ethimon.risk._data import LabelledRows, concat_rows, load_labelled_csv, stratified_split
 
-ROOT = Path(__file__).resolve().parents[1]
 SHARED = ROOT.parent / "shared" / "data"
 CM = SHARED / "ethics" / "commonsense" / "cm_test.csv"
 SAB = SHARED / "safeagentbench"
-PAIRS = ROOT / "bench" / "data" / "robot_pairs.csv"
+PAIRS = ROOT / "bench" / "risk" / "data" / "robot_pairs.csv"
 
 
 def _key(s: str) -> str:
@@ -41,7 +40,7 @@ def _require_sklearn() -> None:
     try:
         import sklearn  # noqa: F401
     except ImportError:
-        raise SystemExit("bench/risk_data: the fixed ETHICS split needs scikit-learn "
+        raise SystemExit("bench/risk/risk_data: the fixed ETHICS split needs scikit-learn "
                          "(pip install -e '.[risk]'); without it the 20 % hold-out would hold other rows") from None
 
 

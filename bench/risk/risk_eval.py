@@ -1,42 +1,82 @@
 """Evaluate a risk model on the fixed hold-outs (run by hand; never in CI).
 
-    python bench/risk_eval.py --model src/ethimon/risk/default_model --tag default [--int8]
+    python -m bench.risk.risk_eval --model src/ethimon/risk/default_model --tag default [--int8]
+    python -m bench.risk.risk_eval --tau 0.47 --tag default_tau047      # at the shipped τ
+    python -m bench.risk.risk_eval --model runs/mt_jdv_256 --tag mt_jdv_256 --min-flagged 0.92  # previous rule
 
 Hold-outs (never trained on, never selected on): the ETHICS cm_test 20%
 stratified hold-out (seed 42; short/long separately), the SafeAgentBench
 detailed-task test groups, and our own minimal pairs (``test``: unseen
 objects/people of known hazard families; ``test_family``: unseen families).
-τ is chosen on the robot *validation* rows (the largest R_e threshold that
-flags ≥ 92% of unsafe validation commands) and then reported on the tests.
-Prints a table and writes bench/results/risk_eval_<tag>.json (+ PNG plots).
+τ is chosen on the robot *validation* rows (SafeAgentBench + templated pairs) and then
+reported on the tests, by one of three rules (recorded as ``tau_rule`` in the JSON):
+
+* ``--budget B`` (default 0.15): the library's rule that set the shipped τ,
+  :func:`ethimon.risk._evaluate.tau_for_false_alarm_budget` — the most sensitive τ whose
+  false-alarm rate on the validation rows is ≤ B (the shipped τ 0.47 was chosen by it on the
+  natural corpus's validation rows, ``bench/risk/risk_natural.py``; here the rows differ);
+* ``--min-flagged F``: the previous default's rule (it set τ 0.27 in
+  ``bench/results/risk/risk_eval_default.json`` and every ``risk_eval_*`` / ``risk_ensemble_*``
+  result written before issue 13): the largest τ in 0.10..0.70 (step 0.01) that flags ≥ F of
+  the unsafe validation rows (0.4 if none does); use ``--min-flagged 0.92`` to reproduce them;
+* ``--tau T``: fixed.
+
+Prints a table and writes bench/results/risk/risk_eval_<tag>.json (+ PNG plots).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import os
-import platform
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import risk_data as D  # noqa: E402
+from bench import results_dir
+from bench._machine import machine_facts
+from bench.risk import risk_data as D
 
 
-def choose_tau(y, risks) -> tuple[float, list[dict]]:
-    """The τ rule: the largest τ in 0.10..0.70 (step 0.01) flagging ≥ 92 % of the unsafe
-    validation rows (0.4 if none does), and the whole sweep."""
+def tau_sweep(y, risks) -> list[dict]:
+    """Unsafe flagged and false alarms at τ = 0.10, 0.11, ..., 0.70 (recorded with every result)."""
     from ethimon.risk._evaluate import flag_stats
     sweep = []
     for tau in np.round(np.arange(0.10, 0.701, 0.01), 2):
         f = flag_stats(y, risks, float(tau))
         sweep.append({"tau": float(tau), **{k: f[k] for k in ("flag_rate_unsafe", "false_alarm_rate")}})
-    ok = [s["tau"] for s in sweep if s["flag_rate_unsafe"] >= 0.92]
-    return (max(ok) if ok else 0.4), sweep
+    return sweep
+
+
+def tau_for_min_flagged(sweep: list[dict], min_flagged: float) -> float:
+    """The previous default's rule (not the shipped τ's): the largest τ of the sweep flagging
+    ≥ ``min_flagged`` of the unsafe validation rows, 0.4 if none does. Kept here only to
+    reproduce the results written with it; the library has no such function."""
+    ok = [s["tau"] for s in sweep if s["flag_rate_unsafe"] >= min_flagged]
+    return max(ok) if ok else 0.4
+
+
+def add_tau_args(ap: argparse.ArgumentParser) -> None:
+    g = ap.add_mutually_exclusive_group()
+    g.add_argument("--budget", type=float, default=0.15,
+                   help="τ: most sensitive with false alarms ≤ BUDGET on robot validation rows "
+                        "(the library's rule, ethimon.risk._evaluate.tau_for_false_alarm_budget; default 0.15)")
+    g.add_argument("--min-flagged", type=float, default=None,
+                   help="τ: the previous rule, largest τ in 0.10..0.70 flagging ≥ this share of unsafe "
+                        "validation rows (0.92 reproduces the results written before issue 13)")
+    g.add_argument("--tau", type=float, default=None, help="fix τ instead of choosing it on validation")
+
+
+def choose_tau(a: argparse.Namespace, y, risks) -> tuple[float, str, list[dict]]:
+    """τ by the rule the arguments name, a description of the rule, and the sweep."""
+    from ethimon.risk._evaluate import tau_for_false_alarm_budget
+    sweep = tau_sweep(y, risks)
+    if a.tau is not None:
+        return a.tau, f"fixed {a.tau}", sweep
+    if a.min_flagged is not None:
+        return (tau_for_min_flagged(sweep, a.min_flagged),
+                f"largest tau in 0.10..0.70 flagging >= {a.min_flagged:g} of unsafe robot validation rows", sweep)
+    tau = tau_for_false_alarm_budget(y, risks, a.budget)["tau"]
+    return float(tau), f"most sensitive tau with false alarms <= {a.budget:g} on robot validation rows", sweep
 
 
 def pair_rank_accuracy(rows, q) -> float:
@@ -53,7 +93,7 @@ def main() -> None:
     ap.add_argument("--model", default=None)
     ap.add_argument("--tag", default="default")
     ap.add_argument("--int8", action="store_true")
-    ap.add_argument("--tau", type=float, default=None, help="fix τ instead of choosing it on validation")
+    add_tau_args(ap)
     ap.add_argument("--skip-ethics", action="store_true")
     a = ap.parse_args()
     import torch
@@ -80,10 +120,8 @@ def main() -> None:
     # τ on robot validation
     yv = np.array(s_va.labels + p_va.labels)
     rv = R(softmax_unsafe(np.concatenate([lg["sab_val"], lg["pairs_val"]]), T))
-    tau, sweep = choose_tau(yv, rv)
-    if a.tau is not None:
-        tau = a.tau
-    res = {"model_id": est.model_id, "temperature": T, "tau": tau, "tau_sweep_robot_val": sweep}
+    tau, rule, sweep = choose_tau(a, yv, rv)
+    res = {"model_id": est.model_id, "temperature": T, "tau": tau, "tau_rule": rule, "tau_sweep_robot_val": sweep}
     sets = {"sab_test": s_te, "pairs_test": p_te, "pairs_test_family": p_tf}
     if not a.skip_ethics:
         sets["ethics_holdout"] = e_ho
@@ -104,11 +142,10 @@ def main() -> None:
     m = evaluate_logits(y, L, temperature=T, tau=tau)
     rr = m.pop("_risks"); m.pop("_p_unsafe")
     res["robot_all"] = m
-    out = Path("bench/results")
-    out.mkdir(parents=True, exist_ok=True)
+    out = results_dir("risk")
     plots = out / f"risk_eval_{a.tag}"
     plots.mkdir(exist_ok=True)
-    # raw logits per set (git-ignored): bench/risk_ensemble.py averages runs offline from them
+    # raw logits per set (git-ignored): bench/risk/risk_ensemble.py averages runs offline from them
     np.savez_compressed(plots / "logits.npz", **{k: np.asarray(v, dtype=np.float32) for k, v in lg.items()})
     plot_confusion(m["confusion"], plots / "confusion_robot.png", "Robot commands (held out)")
     plot_risk_hist(rr, y, tau, plots / "risk_distribution_robot.png", "R_e, robot commands (held out)")
@@ -127,9 +164,7 @@ def main() -> None:
         res["ethics_holdout"]["ece_domain_temperature"] = expected_calibration_error(
             e_ho.labels, softmax_unsafe(lg["ethics_holdout"], t_eth))
     res["robot_all"]["ece_domain_temperature"] = expected_calibration_error(y, softmax_unsafe(L, t_rob))
-    res["machine"] = {"python": platform.python_version(), "torch": torch.__version__,
-                      "cpu": platform.processor() or platform.machine(), "cores": os.cpu_count(),
-                      "threads": torch.get_num_threads(), "int8": a.int8}
+    res["machine"] = machine_facts(threads=torch.get_num_threads(), int8=a.int8)
     res["eval_time_s"] = round(time.time() - t0, 1)
     (out / f"risk_eval_{a.tag}.json").write_text(json.dumps(res, indent=1) + "\n")
 

@@ -1,22 +1,23 @@
 """Latency of the risk estimator on this machine (run by hand; never in CI).
 
-    python bench/risk_latency.py [--model DIR] [--threads 2]
+    python -m bench.risk.risk_latency [--model DIR] [--threads 2] [--json PATH]
 
 One short sentence, cache off: p50/p90 for fp32 (TorchScript-frozen, the
 default), fp32 eager, int8 and int8 eager; a cache hit
 (``probs`` and ``estimate``) in µs; batch-32 throughput of short commands.
-Prints a table and writes bench/results/risk_latency.json with machine facts.
+Prints a table and writes bench/results/risk/risk_latency.json (or --json) with machine facts.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import os
-import platform
 import statistics
 import time
 from pathlib import Path
+
+from bench import RESULTS
+from bench._machine import machine_facts
 
 TEXT = "Hand the kitchen knife to the child blade first."
 BATCH = ["Hand the kitchen knife to the child blade first.", "Put the fork in the drawer.",
@@ -35,6 +36,7 @@ def main() -> None:
     ap.add_argument("--model", default=None)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--reps", type=int, default=300)
+    ap.add_argument("--json", default=str(RESULTS / "risk" / "risk_latency.json"))
     a = ap.parse_args()
     import torch
     from ethimon.risk import load_estimator
@@ -77,19 +79,16 @@ def main() -> None:
     hit_est = (time.perf_counter() - t) / (n // 4)
     res["cache_hit_probs_us"] = hit_probs * 1e6
     res["cache_hit_estimate_us"] = hit_est * 1e6
-    res["machine"] = {"python": platform.python_version(), "torch": torch.__version__,
-                      "cpu": platform.processor() or platform.machine(), "cores": os.cpu_count(),
-                      "threads": torch.get_num_threads(),
-                      "loadavg_1m": os.getloadavg()[0]}
+    res["machine"] = machine_facts(threads=torch.get_num_threads())
     print(f"{'mode':<11}{'jit':>4}{'load s':>8}{'p50 ms':>9}{'p90 ms':>9}{'b32 ms':>9}{'rows/s':>9}")
     for m in modes:
         r = res[m]
         print(f"{m:<11}{'y' if r['jit'] else 'n':>4}{r['load_s']:>8.2f}{r['p50_ms']:>9.2f}{r['p90_ms']:>9.2f}{r['batch32_ms']:>9.1f}"
               f"{r['batch32_throughput_per_s']:>9.0f}")
     print(f"cache hit: probs {res['cache_hit_probs_us']:.2f} µs, estimate {res['cache_hit_estimate_us']:.2f} µs"
-          f"  (load avg {res['machine']['loadavg_1m']:.2f})")
-    Path("bench/results").mkdir(parents=True, exist_ok=True)
-    Path("bench/results/risk_latency.json").write_text(json.dumps(res, indent=1) + "\n")
+          f"  (load avg {res['machine']['loadavg']})")
+    Path(a.json).parent.mkdir(parents=True, exist_ok=True)
+    Path(a.json).write_text(json.dumps(res, indent=1) + "\n")
 
 
 if __name__ == "__main__":

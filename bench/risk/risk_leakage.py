@@ -1,6 +1,6 @@
 """Leakage audit: hand-written robot training corpus vs the frozen natural test set (run by hand).
 
-    python bench/risk_leakage.py
+    python -m bench.risk.risk_leakage
 
 Three checks, each from every test row to its nearest training row:
 
@@ -9,23 +9,22 @@ Three checks, each from every test row to its nearest training row:
 * embedding: cosine similarity of mean-pooled MiniLM-L6 sentence embeddings (the pretrained
   base, no adapter) — paraphrases that share few words.
 
-Prints counts above thresholds and the closest pairs; writes bench/results/risk_leakage.json with
+Prints counts above thresholds and the closest pairs; writes bench/results/risk/risk_leakage.json with
 every test row's nearest neighbour by each measure (so a reader can judge the borderline ones).
 """
 
 from __future__ import annotations
 
+import argparse
 import json
 import re
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import risk_data as D  # noqa: E402
-from _machine import machine_facts  # noqa: E402
+from bench import results_dir
+from bench._machine import machine_facts
+from bench.risk import risk_data as D
 
 
 def norm(s: str) -> str:
@@ -69,6 +68,7 @@ def embed(texts: list[str]) -> np.ndarray:
 
 
 def main() -> None:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # no options; --help
     import torch
     torch.set_num_threads(2)
     t0 = time.time()
@@ -104,7 +104,7 @@ def main() -> None:
     }
     doc = {"counts": counts, "rows": sorted(rows, key=lambda r: -r["cosine"]), "machine": machine_facts(),
            "time_s": round(time.time() - t0, 1)}
-    out = Path("bench/results/risk_leakage.json")
+    out = results_dir("risk") / "risk_leakage.json"
     out.write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
     for k, v in counts.items():
         print(f"  {k:<28} {v}")

@@ -1,7 +1,7 @@
 """Headline robot figures: the frozen natural robot-command test set (run by hand; never in CI).
 
-    python bench/risk_natural.py --models runs/a_s42 runs/a_s7 runs/a_s13 --tag recipe_a
-    python bench/risk_natural.py --models src/ethimon/risk/default_model --tag shipped
+    python -m bench.risk.risk_natural --models runs/a_s42 runs/a_s7 runs/a_s13 --tag recipe_a
+    python -m bench.risk.risk_natural --models src/ethimon/risk/default_model --tag shipped
 
 For each model (one per seed), with the spec's R_e formula (α, β, γ = 0.6, 0.2, 0.2, sample variance):
 
@@ -13,27 +13,26 @@ For each model (one per seed), with the spec's R_e formula (α, β, γ = 0.6, 0.
   p_unsafe ≥ 0.5, ROC-AUC, unsafe flagged / safe flagged at τ, minimal pairs (ranked, both
   right at τ) and per-type rows (negations, polite/justified harmful requests, ...);
 * the same on the test rows that the leakage audit found far from every training row
-  (bench/risk_leakage.py; the two sets were written by separate writers, but common hazards
+  (bench/risk/risk_leakage.py; the two sets were written by separate writers, but common hazards
   make some sentences converge);
 * secondary rows: the ETHICS cm 20 % hold-out and the templated pairs' test split.
 
-Then mean ± sd over the models. Prints a table; writes bench/results/risk_natural_<tag>.json and
-bench/results/risk_natural_<tag>/flag_curves.png (unsafe flagged vs false alarms as τ moves).
+Then mean ± sd over the models. Prints a table; writes bench/results/risk/risk_natural_<tag>.json and
+bench/results/risk/risk_natural_<tag>/flag_curves.png (unsafe flagged vs false alarms as τ moves).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import risk_data as D  # noqa: E402
-from _machine import machine_facts  # noqa: E402
+from bench import RESULTS, results_dir
+from bench._machine import machine_facts
+from bench.risk import risk_data as D
 
 TYPES = ("negation", "condition", "polite_harmful", "justified_harmful", "safe_mentions_danger",
          "safe_mentions_vulnerable", "multi_step", "first_person", "deception", "privacy", "property")
@@ -43,8 +42,8 @@ FAR_RULE = "nearest training row: cosine < 0.80, word-3-gram Jaccard < 0.30, not
 
 
 def _far_rows(test) -> np.ndarray:
-    """Mask of test rows the leakage audit (bench/risk_leakage.py) found far from all training rows."""
-    audit = json.loads((Path(__file__).resolve().parent / "results" / "risk_leakage.json").read_text())
+    """Mask of test rows the leakage audit (bench/risk/risk_leakage.py) found far from all training rows."""
+    audit = json.loads((RESULTS / "risk" / "risk_leakage.json").read_text())
     near = {r["test_id"] for r in audit["rows"]
             if r["exact"] or r["cosine"] >= 0.80 or r["ngram_jaccard"] >= 0.30}
     return np.array([e["id"] not in near for e in test.extra])
@@ -172,7 +171,7 @@ def main() -> None:
     t0 = time.time()
     results = [evaluate_model(m, budget=a.budget, tau_fixed=a.tau, skip_ethics=a.skip_ethics) for m in a.models]
     rows = summary_rows(results)
-    out = Path("bench/results")
+    out = results_dir("risk")
     (out / f"risk_natural_{a.tag}").mkdir(parents=True, exist_ok=True)
     plot_curves(results, out / f"risk_natural_{a.tag}" / "flag_curves.png")
     doc = {"tag": a.tag, "models": a.models, "budget": a.budget, "n_models": len(results),

@@ -1,24 +1,21 @@
 """Train the shipped risk model by hand (never in CI). Writes a run dir + JSON.
 
-    python bench/risk_train.py --out runs/main [--ethics-only] [--epochs 4]
-    python bench/risk_train.py --out runs/mt --aux justice,deontology,virtue --aux-n 2000
+    python -m bench.risk.risk_train --out runs/main [--ethics-only] [--epochs 4]
+    python -m bench.risk.risk_train --out runs/mt --aux justice,deontology,virtue --aux-n 2000
 
-Prints the per-epoch table and writes bench/results/risk_train_<tag>.json.
+Prints the per-epoch table and writes bench/results/risk/risk_train_<tag>.json.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import os
-import platform
-import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-import risk_data as D  # noqa: E402
+from bench import results_dir
+from bench._machine import machine_facts
+from bench.risk import risk_data as D
 
 
 def main() -> None:
@@ -105,12 +102,9 @@ def main() -> None:
     print(f"best epoch {s['best_epoch']}, T={s['temperature']:.3f}, {time.time() - t0:.0f}s")
     tag = a.tag or Path(a.out).name
     res = {k: v for k, v in s.items() if k != "train_loss_curve"}
-    res["machine"] = {"python": platform.python_version(), "torch": torch.__version__,
-                      "cpu": platform.processor() or platform.machine(), "cores": os.cpu_count(),
-                      "threads": torch.get_num_threads()}
+    res["machine"] = machine_facts(threads=torch.get_num_threads())
     res["out_dir"] = a.out
-    Path("bench/results").mkdir(parents=True, exist_ok=True)
-    Path(f"bench/results/risk_train_{tag}.json").write_text(json.dumps(res, indent=1) + "\n")
+    (results_dir("risk") / f"risk_train_{tag}.json").write_text(json.dumps(res, indent=1) + "\n")
 
 
 if __name__ == "__main__":

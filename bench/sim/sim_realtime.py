@@ -8,15 +8,13 @@ pose and the peak joint speed on the way there. Then it times the whole
 ``ethimon check scenarios/ --sim`` command (all shipped scenarios, YAML
 timelines plus sims) in a fresh process.
 
-    python bench/sim_realtime.py [--repeats 3] [--out bench/results/sim_realtime.json]
+    python -m bench.sim.sim_realtime [--repeats 3] [--out bench/results/sim/sim_realtime.json]
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import os
-import platform
 import statistics
 import subprocess
 import sys
@@ -26,30 +24,15 @@ from pathlib import Path
 import yaml
 
 import ethimon
+from bench import RESULTS, ROOT
+from bench._machine import machine_facts
 from ethimon.sim import SimBlock, run_sim
-
-ROOT = Path(__file__).resolve().parents[1]
 
 
 def machine() -> dict:
-    import numpy
+    """The shared machine facts plus the PyBullet API version."""
     import pybullet
-    cpu = platform.processor()
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    try:
-        load = os.getloadavg()[0]
-    except OSError:
-        load = None
-    return {"cpu": cpu, "cpus": os.cpu_count(), "platform": platform.platform(),
-            "python": platform.python_version(), "pybullet_api": pybullet.getAPIVersion(),
-            "numpy": numpy.__version__, "ethimon": ethimon.__version__, "load_avg_1m": load,
-            "date_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
+    return machine_facts(pybullet_api=pybullet.getAPIVersion())
 
 
 def risk_kwargs(doc: dict) -> dict:
@@ -100,7 +83,7 @@ def time_check_sim() -> dict:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=3)
-    ap.add_argument("--out", default=str(ROOT / "bench" / "results" / "sim_realtime.json"))
+    ap.add_argument("--out", default=str(RESULTS / "sim" / "sim_realtime.json"))
     ap.add_argument("--no-check", action="store_true", help="skip timing 'ethimon check --sim'")
     args = ap.parse_args()
     rows = [bench_scenario(p, args.repeats) for p in sorted((ROOT / "scenarios" / "sim").glob("*.yaml"))]

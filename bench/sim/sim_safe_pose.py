@@ -7,7 +7,7 @@ within the spec's tolerance of the safe pose, and the peak joint speed on the
 way (per 240 Hz physics step) against the spec's limit. The physical minimum
 is max|Δq| / limit; "overhead" is the time beyond it (ramps, settling).
 
-    python bench/sim_safe_pose.py [--step-s 0.25] [--out bench/results/sim_safe_pose.json]
+    python -m bench.sim.sim_safe_pose [--step-s 0.25] [--out bench/results/sim/sim_safe_pose.json]
 """
 
 from __future__ import annotations
@@ -22,12 +22,10 @@ from pathlib import Path
 import yaml
 
 import ethimon
+from bench import RESULTS, ROOT
+from bench.sim.sim_realtime import machine
 from ethimon.sim import SimBlock, run_sim
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from sim_realtime import machine  # noqa: E402
-
-ROOT = Path(__file__).resolve().parents[1]
 ROUTINE = ("routine_pick_place", "routine_wipe")
 
 
@@ -71,7 +69,7 @@ def sweep(name: str, step_s: float) -> dict:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--step-s", type=float, default=0.25)
-    ap.add_argument("--out", default=str(ROOT / "bench" / "results" / "sim_safe_pose.json"))
+    ap.add_argument("--out", default=str(RESULTS / "sim" / "sim_safe_pose.json"))
     args = ap.parse_args()
     t0 = time.perf_counter()
     out = [sweep(n, args.step_s) for n in ROUTINE]
@@ -87,6 +85,7 @@ def main() -> int:
         print("  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip())
     wall = time.perf_counter() - t0
     print(f"{sum(o['runs'] for o in out)} runs in {wall:.1f} s")
+    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
     Path(args.out).write_text(json.dumps({"machine": machine(), "step_s": args.step_s,
                                           "wall_time_s": round(wall, 2), "scenarios": out}, indent=2) + "\n")
     print(f"wrote {args.out}")

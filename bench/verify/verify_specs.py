@@ -2,45 +2,39 @@
 
 Usage::
 
-    python bench/verify_specs.py                 # shipped specs, 3 repeats
-    python bench/verify_specs.py specs/ tests/verify_fixtures/ --repeat 5
+    python -m bench.verify.verify_specs                 # shipped specs, 3 repeats
+    python -m bench.verify.verify_specs specs/ tests/verify_fixtures/ --repeat 5
 
 Prints a table (spec, check, result, median seconds) and a per-spec summary,
-and writes ``bench/results/verify.json`` with the machine facts.
+and writes ``bench/results/verify/verify.json`` with the machine facts.
 """
 
 from __future__ import annotations
 
 import argparse
-import datetime as _dt
 import json
 import os
 import statistics
 import sys
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "src"))
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _machine import machine_facts  # noqa: E402
+from bench import RESULTS, ROOT
+from bench._machine import machine_facts
 
 
 def machine() -> dict:
     import z3
 
-    facts = machine_facts()
-    facts["z3"] = z3.get_version_string()
-    facts["date_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
-    return facts
+    return machine_facts(z3=z3.get_version_string())
 
 
 def main(argv=None) -> int:
     from ethimon.verify import find_specs, verify_spec
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("paths", nargs="*", default=[os.path.join(ROOT, "specs")])
+    ap.add_argument("paths", nargs="*", default=[str(ROOT / "specs")])
     ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "verify.json"))
+    ap.add_argument("--out", default=str(RESULTS / "verify" / "verify.json"))
     args = ap.parse_args(argv)
 
     rows, specs = [], []

@@ -1,6 +1,6 @@
 """Author ethimon's own robot-command minimal pairs (label 1 = unsafe).
 
-Run: python bench/data/make_robot_pairs.py  ->  bench/data/robot_pairs.csv
+Run: python -m bench.risk.data.make_robot_pairs  ->  bench/risk/data/robot_pairs.csv
 
 Every family is a hazard written as a safe/unsafe minimal pair: the two
 commands share objects and wording and differ in the one detail that makes the

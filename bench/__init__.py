@@ -1,0 +1,25 @@
+"""ethimon's benchmarks: scripts that print a table and write JSON with the machine facts.
+
+Run every script as a module from the repository root, e.g.::
+
+    python -m bench.monitor.monitor_step --cycles 20000
+
+Layout (see bench/README.md): ``bench/<concern>/<script>.py`` for the concerns monitor, risk,
+sim and verify; results in ``bench/results/<concern>/``. Timings live here, never in tests.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+"""The repository root."""
+RESULTS = ROOT / "bench" / "results"
+"""Where every script writes: ``RESULTS / <concern> / <file>``."""
+
+
+def results_dir(concern: str) -> Path:
+    """``bench/results/<concern>/``, created if missing."""
+    d = RESULTS / concern
+    d.mkdir(parents=True, exist_ok=True)
+    return d

@@ -1,0 +1,1 @@
+"""The risk model: data splits, training, evaluation, averaging, latency (results in bench/results/risk/)."""

@@ -1,0 +1,1 @@
+"""PyBullet sim + monitor speed and time to the safe pose (results in bench/results/sim/)."""

@@ -1,0 +1,1 @@
+"""z3 proof and lint times per spec (results in bench/results/verify/)."""
