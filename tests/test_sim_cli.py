@@ -75,3 +75,26 @@ def test_simulate_unexpected_exception_in_one_file_is_one_line(tmp_path, capsys,
     cap = capsys.readouterr()
     assert f"{tmp_path / 'a_bad.yaml'}: internal error: RecursionError" in cap.err
     assert "routine_wipe" in cap.out and "PASS" in cap.out and "Traceback" not in cap.err
+
+
+def test_simulate_json_to_stdout_is_pure_json(capsys, root):
+    # regression (issue 13): the table and summary were printed to stdout before the JSON
+    rc = main(["simulate", str(root / "scenarios/sim/routine_wipe.yaml"), "--json", "-"])
+    cap = capsys.readouterr()
+    assert rc == 0, cap.out + cap.err
+    doc = json.loads(cap.out)
+    assert [r["name"] for r in doc["results"]] == ["routine_wipe"] and doc["results"][0]["passed"] is True
+    assert "PASS" in cap.err and "1 passed, 0 failed" in cap.err
+
+
+def test_recorded_summary_has_the_wall_time_and_every_file(tmp_path, root):
+    # regression (issue 13): summary.json had wall_time_s 0.0 (written before it was set) and
+    # listed the frames only, not the trace, summary and plot files
+    assert main(["simulate", str(root / "scenarios/sim/routine_wipe.yaml"), "--record", str(tmp_path)]) == 0
+    rec = tmp_path / "routine_wipe"
+    summary = json.loads((rec / "summary.json").read_text())
+    assert summary["wall_time_s"] > 0
+    assert summary["realtime_factor"] > 0
+    listed = sorted(summary["files"])
+    assert listed == sorted(str(p) for p in rec.iterdir())
+    assert {"trace.jsonl", "trace.csv", "summary.json", "plot.png"} <= {p.rsplit("/", 1)[-1] for p in listed}

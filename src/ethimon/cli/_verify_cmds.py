@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
+
+from ._common import Progress, emit_json
 
 __all__ = ["add_verify_parsers"]
 
@@ -20,7 +21,8 @@ def add_verify_parsers(sub) -> None:
                     "property refuted or unproved (solver or unrolling limit), or checks cut by the budget; "
                     "2 bad input. Lint warnings alone do not change the exit code.")
     p.add_argument("paths", nargs="+", metavar="PATH", help="spec files or folders")
-    p.add_argument("--json", metavar="FILE", help="write the report as JSON ('-' for stdout)")
+    p.add_argument("--json", metavar="FILE", help="write the report as JSON ('-' for stdout: then stdout holds "
+                   "only the JSON, the tables go to stderr)")
     p.add_argument("--counterexamples", metavar="DIR",
                    help="write each counterexample as a scenario file that 'ethimon check' replays")
     p.add_argument("--timeout-s", type=float, default=None, metavar="S",
@@ -37,8 +39,9 @@ def add_verify_parsers(sub) -> None:
 def cmd_verify(args: argparse.Namespace) -> int:
     from .. import verify
     from ..errors import DependencyNotInstalled, SpecError
-    from ..verify import (DEFAULT_BUDGET_S, DEFAULT_MAX_UNROLL, DEFAULT_TIMEOUT_S, exit_code, find_specs,
-                          format_table, reports_to_json, require_z3)
+    from ..scenario import error_line, scan_yaml_files
+    from ..verify import (DEFAULT_BUDGET_S, DEFAULT_MAX_UNROLL, DEFAULT_TIMEOUT_S, exit_code, format_table,
+                          reports_to_json, require_z3)
 
     require_z3()  # DependencyNotInstalled -> one line, exit 2
     timeout = args.timeout_s if args.timeout_s is not None else DEFAULT_TIMEOUT_S
@@ -46,23 +49,29 @@ def cmd_verify(args: argparse.Namespace) -> int:
     budget = args.budget_s if args.budget_s is not None else DEFAULT_BUDGET_S
     if not timeout > 0 or unroll < 1 or not budget > 0:
         raise SpecError("--timeout-s and --budget-s must be > 0 and --max-unroll >= 1", path="<command line>")
-    paths = find_specs(args.paths)
+    scanned = scan_yaml_files(args.paths, what="spec", command="ethimon verify")
     to_stdout = args.json == "-"
     out = sys.stderr if to_stdout else sys.stdout
     reports = []
-    for path in paths:
-        try:
-            rep = verify.verify_spec(path, timeout_s=timeout, max_unroll=unroll, lints=not args.no_lint,
-                                     counterexamples=args.counterexamples, budget_s=budget)
-        except DependencyNotInstalled:
-            raise
-        except Exception as exc:  # noqa: BLE001 - one unusable spec is one report; the others still run
-            from ._check import internal_error
-            rep = verify.SpecReport(path=path, error=str(exc) if isinstance(exc, SpecError)
-                                    else internal_error(path, exc))
-        reports.append(rep)
-        print(format_table(rep), file=out)
-        print(file=out)
+    with Progress("verify", enabled=not to_stdout) as progress:
+        for i, (path, skipped) in enumerate(scanned):
+            progress(i, len(scanned), path)
+            if skipped is not None:  # a FIFO, socket or device in a folder: never opened
+                print(f"{path}: skipped: {skipped}", file=out)
+                continue
+            try:
+                rep = verify.verify_spec(path, timeout_s=timeout, max_unroll=unroll, lints=not args.no_lint,
+                                         counterexamples=args.counterexamples, budget_s=budget)
+            except DependencyNotInstalled:
+                raise
+            except Exception as exc:  # noqa: BLE001 - one unusable spec is one report; the others still run
+                rep = verify.SpecReport(path=path, error=error_line(path, exc))
+            reports.append(rep)
+            if progress.bar is not None:
+                progress.bar.clear()
+            print(format_table(rep), file=out)
+            print(file=out)
+        progress(len(scanned), len(scanned), "")
     n_ref = sum(len(r.refuted) for r in reports)
     n_warn = sum(len(r.warnings) for r in reports)
     n_err = sum(r.error is not None for r in reports)
@@ -78,13 +87,6 @@ def cmd_verify(args: argparse.Namespace) -> int:
         from .. import __version__
         doc = reports_to_json(reports, {"ethimon": __version__, "z3": z3.get_version_string(),
                                         "timeout_s": timeout, "max_unroll": unroll, "budget_s": budget})
-        text = json.dumps(doc, indent=2)
-        if to_stdout:
-            print(text)
-        else:
-            try:
-                with open(args.json, "w", encoding="utf-8") as fh:
-                    fh.write(text + "\n")
-            except OSError as exc:
-                raise SpecError(f"cannot write JSON report: {exc.strerror or exc}", path=args.json) from None
+        if not emit_json(args.json, doc):
+            return 2
     return exit_code(reports)

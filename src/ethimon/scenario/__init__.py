@@ -1,10 +1,14 @@
-"""Scenarios: scripted input timelines with expectations, run by ``ethimon check``."""
+"""Scenarios: scripted input timelines with expectations, run by ``ethimon check`` and ``ethimon simulate``."""
 
+from ._check import (CheckOutcome, CheckReport, ScenarioSession, check_paths, error_line, internal_error,
+                     sim_risk_inputs, simulate_paths)
 from ._model import Expect, Scenario, TimelineEntry
 from ._run import (BUILTIN_INPUTS, ScenarioResult, build_inputs, check_expectations, check_input_names,
                    find_scenarios, find_yaml_files, load_scenario, load_scenario_text, require_regular_file,
-                   run_scenario)
+                   run_scenario, scan_yaml_files)
 
-__all__ = ["BUILTIN_INPUTS", "Expect", "Scenario", "ScenarioResult", "TimelineEntry", "build_inputs",
-           "check_expectations", "check_input_names", "find_scenarios", "find_yaml_files", "load_scenario",
-           "load_scenario_text", "require_regular_file", "run_scenario"]
+__all__ = ["BUILTIN_INPUTS", "CheckOutcome", "CheckReport", "Expect", "Scenario", "ScenarioResult",
+           "ScenarioSession", "TimelineEntry", "build_inputs", "check_expectations", "check_input_names",
+           "check_paths", "error_line", "find_scenarios", "find_yaml_files", "internal_error", "load_scenario",
+           "load_scenario_text", "require_regular_file", "run_scenario", "scan_yaml_files", "sim_risk_inputs",
+           "simulate_paths"]

@@ -1,0 +1,441 @@
+"""Checking many scenario files in one run: the library behind ``ethimon check`` and ``ethimon simulate``.
+
+One :class:`ScenarioSession` reads each spec once (a spec that fails fails every
+scenario using it, each with its own fresh exception), loads each risk model
+once (only when a scenario's task text must be scored: no torch otherwise) and
+imports the simulator only for ``sim:`` runs. :func:`check_paths` and
+:func:`simulate_paths` turn files and folders into a :class:`CheckReport`; one
+unusable file is one ERROR outcome, the others still run.
+"""
+
+from __future__ import annotations
+
+import copy
+import os
+import time
+import xml.etree.ElementTree as ET
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..errors import DependencyNotInstalled, EthimonError, SpecError
+from ._model import Scenario
+from ._run import RISK_KEYS, needs_text_risk, override_expectations, scan_yaml_files
+
+__all__ = ["CheckOutcome", "CheckReport", "ScenarioSession", "check_paths", "simulate_paths", "error_line",
+           "internal_error", "sim_risk_inputs"]
+
+#: ``on_file(done, total, path)``: called before each file (``path`` is starting, ``done`` files are
+#: finished) and once at the end with ``done == total`` and ``path == ""`` (progress bars)
+ProgressCallback = Callable[[int, int, str], None]
+
+
+def internal_error(where: str, exc: BaseException) -> str:
+    """One line for an unexpected exception from one file: ``where: internal error: Type: text``."""
+    text = str(exc)
+    if len(text) > 300:
+        text = text[:297] + "..."
+    what = f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+    return f"{where}: internal error: {what} (this file could not be checked; please report this)"
+
+
+def error_line(path: str, exc: BaseException, *, where: str | None = None) -> str:
+    """The one line that reports ``exc`` raised while using the file ``path``.
+
+    A :class:`SpecError` names its own location; another ethimon error (or an
+    ``OSError``) is prefixed with ``path``; anything else is an internal error
+    at ``where`` (default ``path``).
+    """
+    if isinstance(exc, SpecError):
+        return str(exc)
+    if isinstance(exc, (EthimonError, OSError)):
+        return f"{path}: {exc}"
+    return internal_error(where or path, exc)
+
+
+@dataclass
+class CheckOutcome:
+    """One row of a run: a scenario's timeline, its ``sim:`` block, a skipped file or an unusable one.
+
+    Attributes:
+        name: the scenario's name (``"<name> [sim]"`` for a sim row of ``check``; the path when
+            the file could not be read).
+        path: the scenario file.
+        status: ``"PASS"``, ``"FAIL"``, ``"ERROR"`` (bad input) or ``"SKIP"``.
+        expected, got: short descriptions for the table.
+        first_override_cycle: first cycle with an override (``None``: never, or no run).
+        messages: one-line messages: the failed expectations (located at the file), the error, or
+            why the file was skipped.
+        record: the JSON-ready record of this row.
+        result: the :class:`~ethimon.scenario.ScenarioResult` or ``ethimon.sim.SimResult``
+            (``None`` for SKIP and ERROR).
+    """
+
+    name: str
+    path: str
+    status: str
+    expected: str = "-"
+    got: str = "-"
+    first_override_cycle: int | None = None
+    messages: list[str] = field(default_factory=list)
+    record: dict[str, Any] = field(default_factory=dict)
+    result: Any = field(default=None, repr=False)
+
+    @property
+    def mode(self) -> str:
+        return self.record.get("mode", "timeline")
+
+
+@dataclass
+class CheckReport:
+    """Every outcome of a run, in file order, and its wall time."""
+
+    outcomes: list[CheckOutcome] = field(default_factory=list)
+    seconds: float = 0.0
+
+    def count(self, status: str) -> int:
+        return sum(1 for o in self.outcomes if o.status == status)
+
+    @property
+    def passed(self) -> int:
+        return self.count("PASS")
+
+    @property
+    def failed(self) -> int:
+        return self.count("FAIL")
+
+    @property
+    def errors(self) -> int:
+        return self.count("ERROR")
+
+    @property
+    def skipped(self) -> int:
+        return self.count("SKIP")
+
+    @property
+    def exit_code(self) -> int:
+        """0 every run passed, 1 an expectation failed, 2 a file was unusable."""
+        return 2 if self.errors else (1 if self.failed else 0)
+
+    def summary(self) -> str:
+        """``"3 passed, 1 failed, 0 errors[, 2 skipped] in 1.23s"``."""
+        text = f"{self.passed} passed, {self.failed} failed, {self.errors} errors"
+        if self.skipped:
+            text += f", {self.skipped} skipped"
+        return f"{text} in {self.seconds:.2f}s"
+
+    def as_dict(self) -> dict[str, Any]:
+        """The JSON report of ``ethimon check``."""
+        return {"results": [o.record for o in self.outcomes], "passed": self.passed, "failed": self.failed,
+                "errors": self.errors, "skipped": self.skipped, "seconds": self.seconds}
+
+    def junit_xml(self) -> str:
+        """The JUnit XML report (one test case per outcome)."""
+        results = [o.record for o in self.outcomes]
+        suite = ET.Element("testsuite", name="ethimon check", tests=str(len(results)),
+                           failures=str(self.failed), errors=str(self.errors), skipped=str(self.skipped),
+                           time=f"{self.seconds:.3f}")
+        for o in self.outcomes:
+            case = ET.SubElement(suite, "testcase", classname=str(o.path), name=str(o.name))
+            if o.status == "ERROR":
+                ET.SubElement(case, "error", message=str(o.record.get("error", "; ".join(o.messages))))
+            elif o.status == "SKIP":
+                ET.SubElement(case, "skipped", message=str(o.record.get("skipped", "")))
+            elif o.status == "FAIL":
+                fails = [str(f) for f in o.record.get("failures", o.record.get("problems", []))]
+                el = ET.SubElement(case, "failure", message="; ".join(fails))
+                el.text = "\n".join(fails)
+        return "<?xml version='1.0' encoding='utf-8'?>\n" + ET.tostring(suite, encoding="unicode") + "\n"
+
+
+def _fresh(exc: BaseException) -> BaseException:
+    """A new exception equal to ``exc`` (same type, message and fields), without its traceback."""
+    try:
+        new = copy.copy(exc)
+    except Exception:  # noqa: BLE001 - a type that cannot be rebuilt from its args
+        new = None
+    if new is None or new is exc or type(new) is not type(exc) or str(new) != str(exc):
+        new = RuntimeError(f"{type(exc).__name__}: {exc}")
+    new.__traceback__ = new.__context__ = new.__cause__ = None
+    return new
+
+
+class _SpecLoadError(Exception):
+    """Internal: wraps an unexpected exception raised by a scenario's spec (the row names the spec)."""
+
+    def __init__(self, spec_path: str, exc: BaseException) -> None:
+        super().__init__(str(exc))
+        self.spec_path = spec_path
+        self.exc = exc
+
+
+def sim_risk_inputs(sc: Scenario, estimator: Callable[[], Any] | Any) -> dict[str, Any]:
+    """The constant risk input of a scenario's ``sim:`` run (the one rule of ``simulate`` and ``check --sim``).
+
+    The first of ``risk``, ``p_unsafe``, ``p`` in ``inputs``; else the first value of one of them in
+    the timeline; else the task text scored by ``estimator`` (an object with ``probs(text)`` or a
+    zero-argument factory of one), fed as ``probs``.
+
+    Raises:
+        SpecError: no risk input and no task text (located at the scenario).
+    """
+    if not needs_text_risk(sc):
+        for key in RISK_KEYS:
+            if key in sc.inputs:
+                return {key: sc.inputs[key]}
+        for entry in sc.timeline:  # risk given only in the timeline: use its first value
+            for key in RISK_KEYS:
+                if key in entry.set:
+                    return {key: entry.set[key]}
+        return {}  # pragma: no cover - needs_text_risk is False only when one of the above holds
+    if not sc.task:
+        hint = "add 'task: ...' (scored by the risk model) or 'inputs: {p_unsafe: ...}'"
+        msg = "scenario gives no risk input and no task text"
+        raise sc._source.error(msg, (), hint=hint) if sc._source is not None else SpecError(msg, hint=hint)
+    est = estimator() if callable(estimator) and not hasattr(estimator, "probs") else estimator
+    return {"probs": tuple(float(x) for x in est.probs(sc.task))}
+
+
+class ScenarioSession:
+    """Shared state of one run over many scenario files: specs read once, risk models loaded once.
+
+    Args:
+        model_dir: risk model directory for every scenario (default: each spec's
+            ``risk.estimator.model``, else the shipped model).
+    """
+
+    def __init__(self, *, model_dir: str | None = None) -> None:
+        self.model_dir = model_dir
+        self._specs: dict[str, Any] = {}       # spec path -> Spec, or the exception loading it raised
+        self._estimators: dict[tuple, Any] = {}
+
+    # -- shared resources ----------------------------------------------------------------------------
+
+    def spec_for(self, sc: Scenario) -> Any:
+        """The scenario's spec, read once per session.
+
+        Raises:
+            SpecError: the spec is missing (located at the scenario's ``spec:``) or invalid; a failure
+                is cached and raised again as a fresh copy for each scenario.
+            _SpecLoadError: an unexpected exception of the spec (wrapping a fresh copy).
+        """
+        spath = sc.spec_path
+        got = self._specs.get(spath)
+        if got is None:
+            if not os.path.lexists(spath):
+                pos = sc._source.pos(("spec",)) if sc._source is not None else None
+                raise SpecError(f"spec {sc.spec!r} not found (looked at {spath})", path=sc.path,
+                                line=pos.line if pos else None, column=pos.column if pos else None,
+                                hint="'spec:' is relative to the scenario file")
+            from .. import _api
+            try:
+                got = _api.load_spec(spath)  # regular files only: a FIFO as spec is a SpecError
+            except Exception as exc:  # noqa: BLE001 - a SpecError, or an internal error of this spec
+                got = exc
+            self._specs[spath] = got
+        if isinstance(got, SpecError):
+            raise _fresh(got) from None
+        if isinstance(got, BaseException):
+            raise _SpecLoadError(spath, _fresh(got)) from None
+        return got
+
+    def estimator_for(self, spec: Any) -> Callable[[], Any]:
+        """A zero-argument factory of the spec's risk estimator (loaded on first call, then shared)."""
+        def factory():
+            from ..risk import estimator_kwargs, load_estimator_for  # lazy: torch only when a text is scored
+            kw = estimator_kwargs(spec)
+            if self.model_dir:
+                kw["model_dir"] = self.model_dir
+            key = tuple(sorted(kw.items()))
+            if key not in self._estimators:
+                self._estimators[key] = load_estimator_for(spec, model_dir=kw["model_dir"])
+            return self._estimators[key]
+        return factory
+
+    def sim_inputs(self, sc: Scenario, spec: Any) -> dict[str, Any]:
+        """:func:`sim_risk_inputs` with this session's estimator of ``spec``."""
+        return sim_risk_inputs(sc, self.estimator_for(spec))
+
+    def run_sim(self, sc: Scenario, spec: Any, *, record_dir: str | None = None, gui: bool = False):
+        """Run the scenario's ``sim:`` block; returns ``(block, SimResult, sim problems)``.
+
+        Raises:
+            DependencyNotInstalled: the simulator cannot be loaded.
+        """
+        try:
+            from ..sim import SimBlock, check_sim_expectations, run_sim
+        except ImportError as exc:
+            raise DependencyNotInstalled(f"the simulator cannot be loaded: {exc}") from None
+        from ..runtime import Monitor
+        block = sc.sim if isinstance(sc.sim, SimBlock) else SimBlock.model_validate(sc.sim)
+        res = run_sim(block, Monitor(spec), record_dir=record_dir, gui=gui, **self.sim_inputs(sc, spec))
+        return block, res, check_sim_expectations(block, res)
+
+    # -- one file ------------------------------------------------------------------------------------
+
+    def check_file(self, path: str, *, sim: bool = False) -> list[CheckOutcome]:
+        """``ethimon check`` of one scenario file: its timeline row, and its sim row with ``sim``.
+
+        Never raises for a bad file: the problem is one ERROR outcome (its message names the file).
+        """
+        from . import _run, load_scenario  # the package's name, looked up per call
+        sc = None
+        where = None
+        try:
+            sc = load_scenario(path)
+            try:
+                spec = self.spec_for(sc)
+            except _SpecLoadError as exc:
+                where = f"{exc.spec_path} (spec of {path})"
+                raise exc.exc from None
+            _run.check_input_names(sc, spec)
+            out: list[CheckOutcome] = []
+            # a sim scenario whose signals come from the simulator cannot run as a timeline
+            sim_only = sc.sim is not None and any(name not in sc.inputs for name in spec.signals)
+            if sim_only and not sim:
+                return [CheckOutcome(sc.name, path, "SKIP", "(sim only)", "skipped: needs --sim",
+                                     record={"name": sc.name, "path": path, "passed": None,
+                                             "skipped": "needs --sim"})]
+            if not sim_only:
+                out.append(self._timeline_outcome(sc, spec, path))
+            if sim and sc.sim is not None:
+                out.append(self._sim_outcome(sc, spec, path))
+            return out
+        except Exception as exc:  # noqa: BLE001 - one unusable file is one ERROR row; the others still run
+            msg = error_line(path, exc, where=where)
+            name = sc.name if sc is not None else path
+            return [CheckOutcome(name, path, "ERROR", "-", "bad input", messages=[msg],
+                                 record={"name": name, "path": path, "passed": False, "error": msg})]
+
+    def _timeline_outcome(self, sc: Scenario, spec: Any, path: str) -> CheckOutcome:
+        from ._run import run_scenario
+        res = run_scenario(sc, spec=spec, estimator=self.estimator_for(spec))
+        msgs = []
+        if not res.passed:
+            pos = sc._source.pos(("expect",)) if sc._source is not None else None
+            line = pos.line if pos else None
+            msgs = [f"{path}:{line}: {res.name}: {f}" if line else f"{path}: {res.name}: {f}"
+                    for f in res.failures]
+        return CheckOutcome(res.name, path, "PASS" if res.passed else "FAIL", res.expected, res.got,
+                            res.first_override_cycle, msgs, {**res.as_dict(), "path": path}, res)
+
+    def _sim_outcome(self, sc: Scenario, spec: Any, path: str) -> CheckOutcome:
+        block, res, problems = self.run_sim(sc, spec)
+        problems = problems + override_expectations(sc.expect, res.first_override_cycle)
+        name = f"{sc.name} [sim]"
+        record = {"name": name, "path": path, "passed": not problems, "failures": problems,
+                  "first_override_cycle": res.first_override_cycle, "mode": "sim",
+                  "time_to_safe_pose_s": res.time_to_safe_pose_s, "min_separation_m": res.min_separation_m,
+                  "realtime_factor": res.realtime_factor}
+        return CheckOutcome(name, path, "FAIL" if problems else "PASS", "sim expectations",
+                            "no override" if res.first_override_cycle is None else "override",
+                            res.first_override_cycle, [f"{path}: {name}: {p}" for p in problems], record, res)
+
+    def simulate_file(self, path: str, *, record_dir: str | None = None, gui: bool = False,
+                      require_sim: bool = True) -> CheckOutcome | None:
+        """``ethimon simulate`` of one scenario file (its ``sim:`` block only).
+
+        Returns ``None`` for a scenario without a ``sim:`` block when ``require_sim`` is false.
+        ``record_dir`` is the folder above the recording: it goes to ``record_dir/<scenario name>/``.
+
+        Raises:
+            DependencyNotInstalled: the simulator cannot be loaded (no file can run).
+        """
+        from . import _run, load_scenario
+        try:
+            sc = load_scenario(path)
+            if sc.sim is None:
+                if not require_sim:
+                    return None
+                raise SpecError("the scenario has no 'sim:' block", path=path)
+            spec = self.spec_for(sc)
+            _run.check_input_names(sc, spec)
+            rec = os.path.join(record_dir, sc.name) if record_dir else None
+            block, res, problems = self.run_sim(sc, spec, record_dir=rec, gui=gui)
+        except DependencyNotInstalled:
+            raise
+        except _SpecLoadError as exc:
+            msg = error_line(path, exc.exc, where=f"{exc.spec_path} (spec of {path})")
+            return CheckOutcome(path, path, "ERROR", messages=[msg], record={"path": path, "error": msg})
+        except Exception as exc:  # noqa: BLE001 - one unusable file is one line; the others still run
+            msg = error_line(path, exc)
+            return CheckOutcome(path, path, "ERROR", messages=[msg], record={"path": path, "error": msg})
+        return CheckOutcome(sc.name, path, "FAIL" if problems else "PASS", "sim expectations",
+                            res.executed_response, res.first_override_cycle,
+                            [f"{path}: {sc.name}: {p}" for p in problems],
+                            {"name": sc.name, "path": path, "passed": not problems, "problems": problems,
+                             **res.summary()}, res)
+
+
+def _skipped(path: str, reason: str) -> CheckOutcome:
+    return CheckOutcome(path, path, "SKIP", "-", "skipped: not a regular file",
+                        messages=[f"{path}: skipped: {reason}"],
+                        record={"name": path, "path": path, "passed": None, "skipped": reason})
+
+
+def check_paths(paths: Iterable[str], *, sim: bool = False, model_dir: str | None = None,
+                on_file: ProgressCallback | None = None) -> CheckReport:
+    """Run every scenario file under ``paths`` (files and folders): what ``ethimon check`` reports.
+
+    Args:
+        paths: scenario files or folders (``*.yaml``/``*.yml``, sorted; FIFOs, sockets and devices
+            found in a folder are SKIP outcomes, never opened).
+        sim: also run each ``sim:`` block in PyBullet (scenarios whose signals come from the
+            simulator are SKIP outcomes without it).
+        model_dir: the risk model of every scenario (default: each spec's).
+        on_file: ``on_file(done, total, path)`` before each file and once at the end (see
+            :data:`ProgressCallback`).
+
+    Raises:
+        SpecError: a path given that does not exist or is not a regular file or folder, or a folder
+            without YAML files (nothing can run).
+    """
+    files = scan_yaml_files(paths, what="scenario", command="ethimon check")
+    session = ScenarioSession(model_dir=model_dir)
+    report = CheckReport()
+    t0 = time.perf_counter()
+    for i, (path, reason) in enumerate(files):
+        if on_file is not None:
+            on_file(i, len(files), path)
+        if reason is not None:  # a FIFO, socket or device in a folder: never opened
+            report.outcomes.append(_skipped(path, reason))
+        else:
+            report.outcomes.extend(session.check_file(path, sim=sim))
+    if on_file is not None:
+        on_file(len(files), len(files), "")
+    report.seconds = time.perf_counter() - t0
+    return report
+
+
+def simulate_paths(paths: Iterable[str], *, model_dir: str | None = None, record_dir: str | None = None,
+                   gui: bool = False, on_file: ProgressCallback | None = None) -> CheckReport:
+    """Run the ``sim:`` block of every scenario file under ``paths``: what ``ethimon simulate`` reports.
+
+    Files passed over (FIFOs, sockets, devices in a folder) are SKIP outcomes; scenarios without a
+    ``sim:`` block are left out, or an ERROR when a single file is given.
+
+    Raises:
+        SpecError: a bad path, or no scenario files at all.
+        DependencyNotInstalled: the simulator cannot be loaded.
+    """
+    paths = list(paths)
+    scanned = scan_yaml_files(paths, what="scenario", command="ethimon simulate")
+    readable = [p for p, reason in scanned if reason is None]
+    if not readable:
+        raise EthimonError(f"no scenario files under {' '.join(paths)}")
+    session = ScenarioSession(model_dir=model_dir)
+    report = CheckReport()
+    t0 = time.perf_counter()
+    for i, (path, reason) in enumerate(scanned):
+        if on_file is not None:
+            on_file(i, len(scanned), path)
+        if reason is not None:
+            report.outcomes.append(_skipped(path, reason))
+        else:
+            out = session.simulate_file(path, record_dir=record_dir, gui=gui, require_sim=len(readable) == 1)
+            if out is not None:
+                report.outcomes.append(out)
+    if on_file is not None:
+        on_file(len(scanned), len(scanned), "")
+    report.seconds = time.perf_counter() - t0
+    return report
