@@ -330,7 +330,7 @@ def check_expectations(sc: Scenario, decisions: list[Decision]) -> list[str]:
         has = any(d.faults for d in decisions)
         if has != e.fault:
             fails.append("expected a fail-closed fault, none happened" if e.fault
-                         else "expected no fault, got: " + next(f for d in decisions for f in d.faults))
+                         else "expected no fault, got: " + str(next(f for d in decisions for f in d.faults)))
     return fails
 
 

@@ -36,7 +36,8 @@ class CycleRecord:
         cycle: control-cycle index (0-based; the monitor's ``Decision.cycle`` is ``monitor_cycle``).
         t_s: simulated time at which the signals were read.
         signals: what the monitor was given (after dropouts; NaN for a dropped value).
-        override, response, violations, risk, faults, latched: the monitor's decision.
+        override, response, violations, risk, faults, latched: the monitor's decision (each fault
+            as its message, ``str(fault)``).
         controller: the controller that commanded the arm in this same cycle.
         joint_speed_max_rad_s: the largest |joint velocity| over this cycle's physics substeps.
         safe_pose_error_rad: max |q − q_safe| after the cycle's physics.
@@ -205,7 +206,7 @@ class GovernedArm:
             cycle=cycle, monitor_cycle=int(d.cycle), t_s=t,
             signals={k: _num(v) for k, v in fed.items() if not isinstance(v, (list, tuple))},
             override=bool(d.override), response=_response_name(d.response),
-            violations=tuple(d.violations), risk=d.risk, faults=tuple(d.faults),
+            violations=tuple(d.violations), risk=d.risk, faults=tuple(str(f) for f in d.faults),
             latched=bool(getattr(d, "latched", False)), controller=label, task_step=task_step,
             joint_speed_max_rad_s=sim.max_joint_speed_substep,
             safe_pose_error_rad=float(np.max(np.abs(q - self.safe_joints))),
