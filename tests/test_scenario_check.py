@@ -172,3 +172,15 @@ def test_errors_have_one_prefix(tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(scenario_pkg, "check_paths", crash)
     assert main(["check", str(tmp_path)]) == 3
     assert capsys.readouterr().err.startswith("ethimon: error: internal error: KeyError")
+
+
+def test_check_without_text_risk_or_sim_imports_neither_torch_nor_pybullet(tmp_path):
+    # one-shot speed: the learned model (torch, transformers) only when a task text must be scored,
+    # the simulator only with --sim
+    import subprocess
+    import sys
+    write_ok(tmp_path, "a")
+    code = ("import sys; from ethimon.cli import main; rc = main(['check', '-q', sys.argv[1]]); "
+            "print(rc, sorted(m for m in ('torch', 'transformers', 'pybullet', 'z3') if m in sys.modules))")
+    r = subprocess.run([sys.executable, "-c", code, str(tmp_path)], capture_output=True, text=True, timeout=120)
+    assert r.stdout.strip().splitlines()[-1] == "0 []", r.stdout + r.stderr

@@ -13,7 +13,6 @@ from __future__ import annotations
 import copy
 import os
 import time
-import xml.etree.ElementTree as ET
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
@@ -131,6 +130,7 @@ class CheckReport:
 
     def junit_xml(self) -> str:
         """The JUnit XML report (one test case per outcome)."""
+        import xml.etree.ElementTree as ET
         results = [o.record for o in self.outcomes]
         suite = ET.Element("testsuite", name="ethimon check", tests=str(len(results)),
                            failures=str(self.failed), errors=str(self.errors), skipped=str(self.skipped),
