@@ -396,7 +396,7 @@ def trace_for_inference(module: nn.Module, tokenizer, max_length: int, truncatio
     ``torch.jit.trace`` on a padded two-row batch, then ``freeze`` +
     ``optimize_for_inference`` (constant-folded weights, pre-packed matmuls;
     per short sentence on 2 CPU cores: fp32 8.7 → 7.2 ms, int8 3.9 → 1.7 ms,
-    bench/risk_latency.py). The copy is used
+    bench/risk/risk_latency.py). The copy is used
     only if its logits match the eager module's within 1e-4 on batches of
     other sizes and lengths than the traced one.
 
