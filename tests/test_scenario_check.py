@@ -184,3 +184,22 @@ def test_check_without_text_risk_or_sim_imports_neither_torch_nor_pybullet(tmp_p
             "print(rc, sorted(m for m in ('torch', 'transformers', 'pybullet', 'z3') if m in sys.modules))")
     r = subprocess.run([sys.executable, "-c", code, str(tmp_path)], capture_output=True, text=True, timeout=120)
     assert r.stdout.strip().splitlines()[-1] == "0 []", r.stdout + r.stderr
+
+
+@pytest.mark.skipif(not hasattr(__import__("os"), "openpty"), reason="no pseudo-terminals here")
+def test_check_on_a_terminal_draws_the_bar_on_stderr(tmp_path):
+    pytest.importorskip("tqdm")
+    import os
+    import subprocess
+    import sys
+    write_ok(tmp_path, "a")
+    write_ok(tmp_path, "b")
+    master, slave = os.openpty()
+    try:
+        p = subprocess.run([sys.executable, "-m", "ethimon.cli", "check", str(tmp_path)], stdout=slave,
+                           stderr=subprocess.PIPE, text=True, timeout=120, cwd=ROOT)
+    finally:
+        os.close(slave)
+        os.close(master)
+    assert p.returncode == 0
+    assert "check:" in p.stderr and "file" in p.stderr  # tqdm's bar, on stderr only
