@@ -203,3 +203,11 @@ def test_check_on_a_terminal_draws_the_bar_on_stderr(tmp_path):
         os.close(master)
     assert p.returncode == 0
     assert "check:" in p.stderr and "file" in p.stderr  # tqdm's bar, on stderr only
+
+
+def test_a_dangling_spec_link_is_not_found_at_the_scenario(tmp_path):
+    (tmp_path / "spec.yaml").symlink_to(tmp_path / "gone.yaml")
+    p = tmp_path / "a.yaml"
+    p.write_text("ethimon: 1\nname: a\nspec: spec.yaml\ncycles: 5\ninputs: {risk: 0.2}\n")
+    msg = check_paths([str(p)]).outcomes[0].messages[0]
+    assert msg.startswith(f"{p}:3:7: spec 'spec.yaml' not found"), msg

@@ -169,6 +169,17 @@ class _SpecLoadError(Exception):
         self.exc = exc
 
 
+def _missing(path: str) -> bool:
+    """``path`` does not exist (a dangling link included); other stat errors are the loader's to say."""
+    try:
+        os.stat(path)
+    except FileNotFoundError:
+        return True
+    except OSError:
+        return False
+    return False
+
+
 def sim_risk_inputs(sc: Scenario, estimator: Callable[[], Any] | Any) -> dict[str, Any]:
     """The constant risk input of a scenario's ``sim:`` run (the one rule of ``simulate`` and ``check --sim``).
 
@@ -222,7 +233,7 @@ class ScenarioSession:
         spath = sc.spec_path
         got = self._specs.get(spath)
         if got is None:
-            if not os.path.lexists(spath):
+            if _missing(spath):  # said at the scenario's 'spec:' key, where the fix goes
                 pos = sc._source.pos(("spec",)) if sc._source is not None else None
                 raise SpecError(f"spec {sc.spec!r} not found (looked at {spath})", path=sc.path,
                                 line=pos.line if pos else None, column=pos.column if pos else None,
