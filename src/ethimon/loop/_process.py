@@ -49,7 +49,10 @@ class ProcessEstimator:
         if not isinstance(factory, str) or factory.count(":") != 1:
             raise ValueError(f"factory={factory!r}; expected 'module:function'")
         self.factory = factory
-        self._kwargs_json = json.dumps(dict(kwargs or {}))
+        kw = dict(kwargs or {})
+        if factory == "ethimon.risk:load_estimator":
+            kw.setdefault("jit", True)  # trace while starting (start_timeout_s), never mid-run (timeout_s)
+        self._kwargs_json = json.dumps(kw)
         self.timeout_s = float(timeout_s)
         self.start_timeout_s = float(start_timeout_s)
         self._python = python or sys.executable

@@ -10,6 +10,7 @@ nothing is cached for it and no low risk is ever returned in its place.
 from __future__ import annotations
 
 import math
+import sys
 import threading
 import time
 import unicodedata
@@ -21,10 +22,45 @@ from typing import Any
 from ..errors import EthimonError
 from ._formula import VARIANCE_MODES, risk_from_probs
 
-__all__ = ["RiskEstimate", "RiskEstimator", "RiskInferenceError", "load_estimator",
-           "default_model_dir", "normalize_text"]
+__all__ = ["DEFAULT_TAU", "RiskEstimate", "RiskEstimator", "RiskInferenceError", "load_estimator",
+           "default_model_dir", "default_threads", "normalize_text"]
 
 QUANTIZE_MODES = (None, "fp32", "int8")
+
+#: rows an estimator scores eagerly before it traces itself (``jit=None``). Tracing
+#: (TorchScript trace + freeze + a check against the eager model) costs about 0.5 s
+#: on one quiet core and saves about 1.5–5 ms per sentence, so it pays after a few
+#: hundred sentences: in an evaluation or a long-running service, never in a
+#: one-shot command that scores one text.
+JIT_AFTER_ROWS = 256
+
+
+def default_threads(rows: int) -> int:
+    """Torch threads for a command that scores ``rows`` texts: 1 for one text, else at most 2.
+
+    One sentence is too small to split (a second thread only adds start-up and
+    synchronisation); a batch uses up to two threads, fewer when the cores are
+    busy (a thread per core that another process already keeps busy makes
+    OpenMP spin: measured 7x slower on 2 shared cores). The rule reads the
+    cores this process may use and the 1-minute load average.
+
+    >>> default_threads(1)
+    1
+    >>> 1 <= default_threads(64) <= 2
+    True
+    """
+    if rows <= 1:
+        return 1
+    import os
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        cores = os.cpu_count() or 1
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):  # pragma: no cover - not Unix
+        load = 0.0
+    return max(1, min(2, cores, int(cores - load + 0.5)))
 
 
 class RiskInferenceError(EthimonError):
@@ -65,6 +101,12 @@ def default_model_dir() -> Path:
 #: manifest itself here means an edited shipped model (weights, T, labels) is refused.
 DEFAULT_MANIFEST_SHA256 = "0c15c46314b928a9df07b1617715c40e694564976145fa09a3ca54393d8963db"
 
+#: τ of the shipped default model: R_e ≥ τ flags a text. Chosen on held-out validation
+#: robot commands for a false-alarm budget (MODEL_CARD.md); ``ethimon risk``/``evaluate``
+#: use it without ``--spec``, and the shipped specs write it as their ``risk.threshold``.
+#: (A spec that writes no threshold gets the spec language's default, 0.5.)
+DEFAULT_TAU = 0.47
+
 
 def check_default_manifest(d: Path) -> None:
     """Refuse a shipped default model whose manifest is not the one this code pins."""
@@ -96,7 +138,7 @@ class RiskEstimator:
     """
 
     def __init__(self, loaded: Any, *, cache_size: int = 4096, batch_size: int = 32,
-                 quantized: str | None = None) -> None:
+                 quantized: str | None = None, trace_after: int | None = None) -> None:
         self._m = loaded
         self._cache: OrderedDict[str, tuple[float, float]] = OrderedDict()
         self._cache_size = int(cache_size)
@@ -109,7 +151,10 @@ class RiskEstimator:
         self.max_length = loaded.max_length
         self.truncation = loaded.truncation
         self.temperature = loaded.temperature
+        #: whether the model runs as a TorchScript-frozen copy (see :meth:`trace`)
         self.jit = False
+        self._trace_after = trace_after
+        self._rows = 0
 
     # -------------------------------------------------------------- public
     def probs(self, text: str) -> tuple[float, float]:
@@ -179,9 +224,50 @@ class RiskEstimator:
             self._cache.clear()
             self._hits = self._misses = 0
 
-    def logits_batch(self, texts: list[str]) -> list[list[float]]:
-        """Raw (untempered) logits, uncached; for evaluation and calibration."""
-        return self._forward([normalize_text(t) for t in texts], raw=True)
+    def trace(self) -> bool:
+        """Run a TorchScript-frozen copy of the model from now on (at most once); return :attr:`jit`.
+
+        The copy is checked against the eager model first (see
+        ``_backend.trace_for_inference``); if tracing fails or disagrees, a
+        :class:`RuntimeWarning` says so and the eager model stays (same
+        results, slower). Call it before a control loop starts, not inside it:
+        it takes about 0.5 s on one quiet core.
+        """
+        with self._lock:
+            self._trace_after = None
+            if self.jit:
+                return True
+            from . import _backend as B
+            m = self._m
+            try:
+                m.module = B.trace_for_inference(m.module, m.tokenizer, m.max_length, m.truncation)
+                self.jit = True
+            except Exception as exc:  # noqa: BLE001 - any tracing failure: keep the eager model
+                import warnings
+                warnings.warn(f"TorchScript tracing of the risk model failed ({type(exc).__name__}: {exc}); "
+                              "using the eager model (same results, slower)", RuntimeWarning, stacklevel=2)
+            return self.jit
+
+    def logits_batch(self, texts: list[str], *, progress: bool = False,
+                     desc: str = "scoring") -> list[list[float]]:
+        """Raw (untempered) logits, uncached; for evaluation and calibration.
+
+        ``progress``: a tqdm bar on stderr (rows done), if tqdm is installed.
+        """
+        keys = [normalize_text(t) for t in texts]
+        bar = None
+        if progress:
+            try:
+                from tqdm import tqdm
+                bar = tqdm(total=len(keys), desc=desc, unit="row", file=sys.stderr, leave=False,
+                           dynamic_ncols=True)
+            except ImportError:  # pragma: no cover - tqdm ships with the risk extra
+                bar = None
+        try:
+            return self._forward(keys, raw=True, on_batch=None if bar is None else bar.update)
+        finally:
+            if bar is not None:
+                bar.close()
 
     # -------------------------------------------------------------- internals
     def _infer(self, keys: list[str]) -> list[tuple[float, float]]:
@@ -196,7 +282,7 @@ class RiskEstimator:
                     self._cache.popitem(last=False)
         return probs
 
-    def _forward(self, keys: list[str], raw: bool) -> list:
+    def _forward(self, keys: list[str], raw: bool, on_batch: Any = None) -> list:
         from . import _backend as B
         torch = B.torch
         m = self._m
@@ -209,6 +295,9 @@ class RiskEstimator:
         pad = m.tokenizer.pad_token_id or 0
         ui = m.unsafe_index
         with self._lock:
+            if self._trace_after is not None and self._rows >= self._trace_after:
+                self.trace()          # lazily, once enough rows were scored for it to pay
+            self._rows += len(seqs)
             try:
                 with torch.inference_mode():
                     for s in range(0, len(order), self._batch_size):
@@ -223,6 +312,8 @@ class RiskEstimator:
                             rows = list(zip((1.0 - pu).tolist(), pu.tolist()))
                         for i, r in zip(idx, rows):
                             results[i] = r
+                        if on_batch is not None:
+                            on_batch(len(idx))
             except RiskInferenceError:
                 raise
             except Exception as exc:  # noqa: BLE001 - fail closed on anything
@@ -236,7 +327,7 @@ class RiskEstimator:
 def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None = None,
                    max_length: int | None = None, cache_size: int = 4096, batch_size: int = 32,
                    num_threads: int | None = None, temperature: float | None = None,
-                   jit: bool = True) -> RiskEstimator:
+                   jit: bool | None = None) -> RiskEstimator:
     """Load a risk estimator from a local model directory (default: the shipped one).
 
     Args:
@@ -254,8 +345,12 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
             fitted on validation rows of your deployment domain
             (``ethimon evaluate --calibrate-on``); must be finite and > 0.
         jit: run a TorchScript-frozen copy of the model (checked against the
-            eager one at load; per sentence on 2 CPU cores fp32 8.7 → 7.2 ms,
-            int8 3.9 → 1.7 ms).
+            eager one; per sentence on 2 CPU cores fp32 8.7 → 7.2 ms, int8
+            3.9 → 1.7 ms). ``True``: trace now, at load (a control loop or a
+            service: no pause later; :class:`ethimon.loop.ProcessEstimator`
+            asks for it); ``None`` (default): trace lazily, before the first
+            forward pass after :data:`JIT_AFTER_ROWS` rows were scored eagerly
+            (a one-shot command never pays the ~0.5 s); ``False``: never.
             If tracing fails or disagrees, the eager model is used and
             ``RiskEstimator.jit`` is ``False``.
 
@@ -302,18 +397,10 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
             warnings.simplefilter("ignore")
             loaded.module = B.torch.ao.quantization.quantize_dynamic(
                 loaded.module, {B.nn.Linear}, dtype=B.torch.qint8)
-    traced = False
+    est = RiskEstimator(loaded, cache_size=cache_size, batch_size=batch_size, quantized=quantize,
+                        trace_after=JIT_AFTER_ROWS if jit is None else None)
     if jit:
-        try:
-            loaded.module = B.trace_for_inference(loaded.module, loaded.tokenizer, loaded.max_length,
-                                                  loaded.truncation)
-            traced = True
-        except Exception as exc:  # noqa: BLE001 - any tracing failure: keep the eager model
-            import warnings
-            warnings.warn(f"TorchScript tracing of the risk model failed ({type(exc).__name__}: {exc}); "
-                          "using the eager model (same results, slower)", RuntimeWarning, stacklevel=2)
-    est = RiskEstimator(loaded, cache_size=cache_size, batch_size=batch_size, quantized=quantize)
-    est.jit = traced
+        est.trace()
     return est
 
 
