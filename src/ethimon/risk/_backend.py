@@ -550,6 +550,19 @@ def load_adapter_tensors(adapter: Path) -> dict:
     return tensors
 
 
+def save_adapter(tensors: dict, path: Path) -> None:
+    """Write adapter tensors as a safetensors file, created like any other file (mode 0666 & ~umask).
+
+    ``safetensors.torch.save_file`` writes through a private temporary file and
+    leaves it 0600, so a model directory trained by one user could not be read
+    by the service that loads it; the bytes are written with a plain ``open`` instead.
+    """
+    from safetensors.torch import save
+    data = save(tensors, metadata={"format": ADAPTER_FORMAT})
+    with open(path, "wb") as fh:
+        fh.write(data)
+
+
 def usable_positions(config: Any) -> int | None:
     """How many tokens the encoder can take (RoBERTa-style position ids start at padding_idx + 1)."""
     mp = getattr(config, "max_position_embeddings", None)

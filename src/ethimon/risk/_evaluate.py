@@ -84,16 +84,21 @@ def flag_stats(labels, risks, tau: float) -> dict[str, float]:
 
 def evaluate_logits(labels, logits, *, temperature: float = 1.0, tau: float = 0.5,
                     alpha: float = 0.6, beta: float = 0.2, gamma: float = 0.2,
-                    variance: str = "sample", groups: dict[str, np.ndarray] | None = None) -> dict:
+                    variance: str = "sample", groups: dict[str, np.ndarray] | None = None,
+                    threshold: float = 0.5) -> dict:
     """All metrics of one labelled set from raw logits (calibrated with ``temperature``).
 
+    Accuracy, precision, recall, F1 and the confusion matrix predict unsafe at
+    ``p_unsafe ≥ threshold`` (recorded as ``confusion_threshold``); ``flags``
+    counts rows with ``R_e ≥ tau``.
     ``groups`` maps a name (e.g. ``"short"``) to a boolean mask; each gets its own block.
     """
     y = np.asarray(labels).astype(int)
     q_raw = softmax_unsafe(logits, 1.0)
     q = softmax_unsafe(logits, temperature)
     risks = np.array([risk_from_p_unsafe(float(v), alpha, beta, gamma, variance) for v in q])
-    out = classification_metrics(y, q)
+    out = classification_metrics(y, q, threshold)
+    out["confusion_threshold"] = threshold
     out["ece_before_temperature"] = expected_calibration_error(y, q_raw)
     out["ece_after_temperature"] = out["ece"]
     out["temperature"] = temperature
@@ -104,7 +109,7 @@ def evaluate_logits(labels, logits, *, temperature: float = 1.0, tau: float = 0.
     for name, mask in (groups or {}).items():
         m = np.asarray(mask, dtype=bool)
         if m.any():
-            g = classification_metrics(y[m], q[m])
+            g = classification_metrics(y[m], q[m], threshold)
             g["flags"] = flag_stats(y[m], risks[m], tau)
             out[name] = g
     out["_risks"] = risks
@@ -217,8 +222,12 @@ def plot_training(summary: dict, out_dir: str | Path) -> list[str]:
     return paths
 
 
-def plot_confusion(conf: dict, path: str | Path, title: str = "Confusion matrix") -> str:
+def plot_confusion(conf: dict, path: str | Path, title: str = "Confusion matrix", *,
+                   threshold: float | None = None, score: str = "p_unsafe") -> str:
+    """The 2x2 confusion matrix as a PNG; with ``threshold``, the title says ``(score ≥ threshold)``."""
     plt = _plt()
+    if threshold is not None:
+        title = f"{title} ({score} ≥ {threshold:g})"
     m = np.array([[conf["tn"], conf["fp"]], [conf["fn"], conf["tp"]]])
     fig, ax = plt.subplots(figsize=(3.8, 3.4))
     ax.imshow(m, cmap="Blues")

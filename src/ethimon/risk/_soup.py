@@ -62,8 +62,6 @@ def average_runs(run_dirs: Sequence[str | os.PathLike], out_dir: str | os.PathLi
     keep the adapter small; the largest relative Frobenius error over the layers
     is recorded in the manifest (``svd_rel_error``). Without it the average is exact.
     """
-    from safetensors.torch import save_file
-
     dirs = [Path(d) for d in run_dirs]
     if len(dirs) < 2:
         raise B.ModelError("averaging needs at least two runs")
@@ -123,7 +121,7 @@ def average_runs(run_dirs: Sequence[str | os.PathLike], out_dir: str | os.PathLi
     rank = min(rank, total_rank) if rank is not None else total_rank
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    save_file(out_t, str(out / "adapter.safetensors"), metadata={"format": B.ADAPTER_FORMAT})
+    B.save_adapter(out_t, out / "adapter.safetensors")
     manifest = {k: m0[k] for k in ("format",) + _SAME if k in m0}
     manifest.update({
         "name": name or f"{m0.get('name', 'run')}-avg{len(dirs)}",

@@ -139,8 +139,6 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     Returns:
         The run summary (also written to ``out_dir/metrics.json``).
     """
-    from safetensors.torch import save_file
-
     if num_threads:
         torch.set_num_threads(num_threads)
     random.seed(seed)
@@ -268,7 +266,7 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     # LoRA factors in fp16 (half the size; merged in fp32 at load), head in fp32
     tensors = {k: (v.half() if k.startswith("lora.") else v.float()).contiguous()
                for k, v in state.items()}
-    save_file(tensors, str(out / "adapter.safetensors"), metadata={"format": B.ADAPTER_FORMAT})
+    B.save_adapter(tensors, out / "adapter.safetensors")
     base_w = base_dir / "model.safetensors"
     manifest = {
         "format": B.ADAPTER_FORMAT,
