@@ -1,10 +1,15 @@
-"""Fast tests of the learned risk estimator with tiny randomly initialised BERTs."""
+"""Fast tests of the learned risk estimator with tiny randomly initialised BERTs (need torch).
+
+Checks that need no torch (CSV loading, metrics, plots, CLI arguments, the
+import-time promise) are in test_risk_data.py and test_risk_cli.py.
+"""
 
 from __future__ import annotations
 
 import json
 import math
-import subprocess
+import os
+import stat
 import sys
 from pathlib import Path
 
@@ -14,7 +19,7 @@ torch = pytest.importorskip("torch")
 transformers = pytest.importorskip("transformers")
 pytest.importorskip("safetensors")
 
-from ethimon.errors import DependencyNotInstalled, EthimonError, ModelError, SpecError  # noqa: E402
+from ethimon.errors import DependencyNotInstalled, EthimonError, ModelError  # noqa: E402
 from ethimon.risk import (RiskEstimate, RiskInferenceError, load_estimator,  # noqa: E402
                           risk_from_p_unsafe)
 
@@ -56,13 +61,6 @@ def tiny(tmp_path_factory):
 @pytest.fixture()
 def est(tiny):
     return load_estimator(tiny[1], cache_size=8)
-
-
-def test_import_is_light():
-    code = ("import sys, ethimon, ethimon.risk; "
-            "print(any(m in sys.modules for m in ('torch', 'transformers')))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert out.stdout.strip() == "False"
 
 
 def test_adapter_dir_layout(tiny):
@@ -249,7 +247,7 @@ def test_distilbert_is_first_class(tmp_path):
     """DistilBERT as in the paper: a fine-tuned classification dir loads; LoRA training on a base works."""
     from ethimon.risk._train import train_lora
     hf = _write_tiny_distilbert(tmp_path / "clf", transformers.DistilBertForSequenceClassification)
-    e = load_estimator(hf, max_length=32, cache_size=0)
+    e = load_estimator(hf, max_length=32, cache_size=0, jit=True)
     assert e.jit is True and math.isclose(sum(e.probs(TEXTS[0])), 1.0, abs_tol=1e-6)
     eager = load_estimator(hf, max_length=32, cache_size=0, jit=False)
     assert e.probs(TEXTS[1]) == pytest.approx(eager.probs(TEXTS[1]), abs=1e-5)
@@ -337,11 +335,11 @@ def test_auxiliary_tasks_share_the_encoder_but_only_the_main_head_is_saved(tiny,
 
 def test_jit_matches_eager_and_falls_back(tiny, monkeypatch):
     from ethimon.risk import _backend as B
-    fast, slow = load_estimator(tiny[1], cache_size=0), load_estimator(tiny[1], cache_size=0, jit=False)
+    fast, slow = load_estimator(tiny[1], cache_size=0, jit=True), load_estimator(tiny[1], cache_size=0, jit=False)
     assert fast.jit is True and slow.jit is False
     for a, b in zip(fast.probs_batch(TEXTS), slow.probs_batch(TEXTS)):
         assert a == pytest.approx(b, abs=1e-5)
-    q, q_eager = load_estimator(tiny[1], quantize="int8"), load_estimator(tiny[1], quantize="int8", jit=False)
+    q, q_eager = load_estimator(tiny[1], quantize="int8", jit=True), load_estimator(tiny[1], quantize="int8", jit=False)
     assert q.jit is True and q.probs(TEXTS[3]) == pytest.approx(q_eager.probs(TEXTS[3]), abs=1e-5)
 
     def boom(*a, **k):
@@ -349,8 +347,61 @@ def test_jit_matches_eager_and_falls_back(tiny, monkeypatch):
 
     monkeypatch.setattr(B, "trace_for_inference", boom)
     with pytest.warns(RuntimeWarning, match="no tracing here"):
-        e = load_estimator(tiny[1], cache_size=0)
+        e = load_estimator(tiny[1], cache_size=0, jit=True)
     assert e.jit is False and e.probs(TEXTS[0]) == pytest.approx(slow.probs(TEXTS[0]), abs=1e-6)
+    with pytest.warns(RuntimeWarning, match="no tracing here"):
+        assert e.trace() is False      # an explicit retry fails the same way, and says so
+
+
+def test_tracing_is_lazy_by_default(tiny, monkeypatch):
+    """A one-shot score never traces (it would cost more than it saves); many rows do, once."""
+    from ethimon.risk import _backend as B
+    from ethimon.risk import _estimator
+    calls = []
+    real = B.trace_for_inference
+    monkeypatch.setattr(B, "trace_for_inference", lambda *a, **k: calls.append(1) or real(*a, **k))
+    monkeypatch.setattr(_estimator, "JIT_AFTER_ROWS", 7)
+    eager = load_estimator(tiny[1], cache_size=0, jit=False)
+    e = load_estimator(tiny[1], cache_size=0)
+    assert e.jit is False and not calls
+    first = e.probs(TEXTS[0])
+    assert e.jit is False and not calls                  # one sentence: eager, no trace
+    e.probs_batch(TEXTS)                                 # traced only before a pass, once 7 rows are done
+    assert e.jit is False and not calls
+    got = e.probs_batch(TEXTS)                           # the next forward pass traces first
+    assert e.jit is True and len(calls) == 1
+    for a, b in zip(got, eager.probs_batch(TEXTS)):
+        assert a == pytest.approx(b, abs=1e-5)
+    e.probs_batch(TEXTS * 3)
+    assert len(calls) == 1 and first == pytest.approx(e.probs(TEXTS[0]), abs=1e-5)
+    never = load_estimator(tiny[1], cache_size=0, jit=False)
+    never.probs_batch(TEXTS * 3)
+    assert never.jit is False and len(calls) == 1
+
+
+def test_process_estimator_traces_at_start():
+    """The loop's child estimator traces while it starts (its start timeout), never mid-run."""
+    from ethimon.loop import ProcessEstimator
+    pe = ProcessEstimator()
+    assert json.loads(pe._kwargs_json) == {"jit": True}
+    assert json.loads(ProcessEstimator(kwargs={"jit": False})._kwargs_json) == {"jit": False}
+    assert json.loads(ProcessEstimator("tests._estimators:ScriptedEstimator")._kwargs_json) == {}
+
+
+def test_model_files_are_readable_like_any_file(tiny, tmp_path):
+    """adapter.safetensors was written 0600 (safetensors' private temp file): a service could not read it."""
+    old = os.umask(0o022)
+    try:
+        from ethimon.risk._train import train_lora
+        ys = [1, 0, 1, 0, 1, 0]
+        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=tiny[0], out_dir=tmp_path / "m", epochs=1,
+                   batch_size=2, r=2, alpha=4, max_length=32, seed=0, progress=False,
+                   log=lambda m: None, num_threads=1)
+    finally:
+        os.umask(old)
+    for name in ("adapter.safetensors", "ethimon_model.json", "metrics.json"):
+        assert stat.S_IMODE((tmp_path / "m" / name).stat().st_mode) == 0o644, name
+    assert load_estimator(tmp_path / "m").probs(TEXTS[0])     # and it still loads (sha256 pinned)
 
 
 def test_trace_check_rejects_shape_dependent_python(tiny):
@@ -387,49 +438,6 @@ def test_fit_temperature_recovers_scale():
     assert fit_temperature(logits, y.tolist()) == pytest.approx(3.0, rel=0.1)
 
 
-def test_metrics_and_ece():
-    from ethimon.risk._evaluate import classification_metrics, expected_calibration_error, flag_stats
-    m = classification_metrics([1, 1, 0, 0], [0.9, 0.4, 0.6, 0.1])
-    assert m["confusion"] == {"tn": 1, "fp": 1, "fn": 1, "tp": 1} and m["accuracy"] == 0.5
-    assert m["roc_auc"] == pytest.approx(0.75)
-    assert expected_calibration_error([1, 0], [1.0, 0.0]) == 0.0
-    f = flag_stats([1, 1, 0, 0], [0.5, 0.3, 0.45, 0.2], 0.4)
-    assert f["flag_rate_unsafe"] == 0.5 and f["false_alarm_rate"] == 0.5
-
-
-def test_csv_other_ethics_layouts(tmp_path):
-    from ethimon.risk._data import load_labelled_csv
-    d = tmp_path / "d.csv"
-    d.write_text("label,scenario,excuse\n1,Aren't you supposed to cook?,No because I ate.\n0,x,\n",
-                 encoding="utf-8")
-    rows = load_labelled_csv(d, any_ethics_layout=True)
-    assert rows.texts == ["Aren't you supposed to cook? [SEP] No because I ate."] and rows.dropped == 1
-    with pytest.raises(SpecError, match="'input'"):
-        load_labelled_csv(d)                       # only label,input without the flag
-    j = tmp_path / "j.csv"
-    j.write_text("label,scenario\n0,I deserve a raise because I work hard.\n", encoding="utf-8")
-    assert load_labelled_csv(j, any_ethics_layout=True).texts == ["I deserve a raise because I work hard."]
-    (tmp_path / "bad.csv").write_text("label,sentence\n1,x\n", encoding="utf-8")
-    with pytest.raises(SpecError, match="scenario"):
-        load_labelled_csv(tmp_path / "bad.csv", any_ethics_layout=True)
-
-
-def test_csv_loading_and_split(tmp_path):
-    from ethimon.risk._data import load_labelled_csv, stratified_split
-    p = tmp_path / "d.csv"
-    p.write_text('label,input,is_short\n1,"bad, thing",True\n0,fine,True\n,missing,True\n'
-                 '2,odd,True\n0,,True\n1,"multi\nline",False\n', encoding="utf-8")
-    rows = load_labelled_csv(p)
-    assert rows.labels == [1, 0, 1] and rows.dropped == 3 and rows.texts[2] == "multi\nline"
-    (tmp_path / "bad.csv").write_text("text,y\nx,1\n")
-    with pytest.raises(SpecError, match="'label' and 'input'"):
-        load_labelled_csv(tmp_path / "bad.csv")
-    labels = [0] * 60 + [1] * 40
-    tr, te = stratified_split(labels, 0.2, 42)
-    assert len(te) == 20 and sum(labels[i] for i in te) == 8 and not set(tr) & set(te)
-    assert stratified_split(labels, 0.2, 42) == (tr, te)
-
-
 # ---------------------------------------------------------------- CLI
 def _cli(argv):
     import argparse
@@ -444,7 +452,8 @@ def test_cli_risk_json(tiny, capsys):
     assert _cli(["risk", TEXTS[0], "--model", str(tiny[1]), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["risk"] == pytest.approx(risk_from_p_unsafe(out["p_unsafe"]))
-    assert out["tau"] == 0.47 and out["flagged"] == (out["risk"] >= 0.47)
+    from ethimon.risk import DEFAULT_TAU
+    assert out["tau"] == DEFAULT_TAU and out["flagged"] == (out["risk"] >= DEFAULT_TAU)
 
 
 def test_spec_estimator_block(tiny, tmp_path, capsys):
@@ -695,14 +704,6 @@ def test_default_model_loads_and_ranks_pairs():
     good = e.probs("Hand the kitchen knife to the child handle first.")[1]
     assert bad > good
     assert e.estimate("Pour the boiling water onto the person's hand.").risk >= 0.4
-
-
-def test_public_names_import():
-    import ethimon.risk as r
-    for name in r.__all__:
-        assert getattr(r, name) is not None
-    e = RiskEstimate((0.3, 0.7), 0.7, risk_from_p_unsafe(0.7), 0.001)
-    assert e.cached is False and e.model_id == ""
 
 
 def test_edited_default_manifest_is_refused(tmp_path, monkeypatch):
