@@ -4,7 +4,10 @@ Measures, per scenario (median of --repeats runs, DIRECT mode, no recording):
 the realtime factor of the governed loop (simulated s / wall s, 240 Hz physics,
 monitor every control cycle), the wall time of a whole run (setup, IK planning
 and loop), the override cycle, the reaction in cycles, the time to the safe
-pose and the peak joint speed on the way there. Then it times the whole
+pose and the peak joint speed on the way there. Each run's constant risk input comes by the
+library's one rule for ``simulate`` and ``check --sim`` (:func:`ethimon.scenario.sim_risk_inputs`):
+the scenario's own ``risk``/``p_unsafe``/``p``, else its task text scored by the spec's risk
+model (torch; loaded once). Then it times the whole
 ``ethimon check scenarios/ --sim`` command (all shipped scenarios, YAML
 timelines plus sims) in a fresh process.
 
@@ -26,7 +29,10 @@ import yaml
 import ethimon
 from bench import RESULTS, ROOT
 from bench._machine import machine_facts
+from ethimon.scenario import ScenarioSession, load_scenario
 from ethimon.sim import SimBlock, run_sim
+
+SESSION = ScenarioSession()  # risk models loaded once, shared by every scenario
 
 
 def machine() -> dict:
@@ -35,12 +41,9 @@ def machine() -> dict:
     return machine_facts(pybullet_api=pybullet.getAPIVersion())
 
 
-def risk_kwargs(doc: dict) -> dict:
-    inputs = doc.get("inputs") or {}
-    for key in ("risk", "p_unsafe", "p"):
-        if key in inputs:
-            return {key: inputs[key]}
-    raise SystemExit(f"{doc['name']}: the bench needs an explicit risk input in 'inputs'")
+def risk_kwargs(path: Path, spec) -> dict:
+    """The run's constant risk input (``risk``, ``p_unsafe`` or ``probs``), as ``simulate`` feeds it."""
+    return SESSION.sim_inputs(load_scenario(path), spec)
 
 
 def bench_scenario(path: Path, repeats: int) -> dict:
@@ -48,7 +51,8 @@ def bench_scenario(path: Path, repeats: int) -> dict:
     block = SimBlock.model_validate(doc["sim"])
     spec = ethimon.load_spec(str((path.parent / doc["spec"]).resolve()))
     monitor = ethimon.Monitor(spec)
-    runs = [run_sim(block, monitor, **risk_kwargs(doc)) for _ in range(repeats)]
+    kw = risk_kwargs(path, spec)
+    runs = [run_sim(block, monitor, **kw) for _ in range(repeats)]
     r = runs[0]
     return {
         "scenario": doc["name"],

@@ -1,7 +1,9 @@
 """Time to the safe pose when the override comes at any moment of a routine task.
 
 For each routine sim scenario, reruns it with the risk input jumping to
-p_unsafe = 0.95 at t = 0.25 s, 0.5 s, ... (one run per override time) and
+p_unsafe = 0.95 at t = 0.25 s, 0.5 s, ... (one run per override time; before the jump the
+scenario's own risk input, else its task text scored by the risk model, as ``simulate`` feeds
+it: torch) and
 records the reaction (cycles), the time from the override to every joint
 within the spec's tolerance of the safe pose, and the peak joint speed on the
 way (per 240 Hz physics step) against the spec's limit. The physical minimum
@@ -23,7 +25,7 @@ import yaml
 
 import ethimon
 from bench import RESULTS, ROOT
-from bench.sim.sim_realtime import machine
+from bench.sim.sim_realtime import machine, risk_kwargs
 from ethimon.sim import SimBlock, run_sim
 
 ROUTINE = ("routine_pick_place", "routine_wipe")
@@ -35,13 +37,15 @@ def sweep(name: str, step_s: float) -> dict:
     spec = ethimon.load_spec(str((path.parent / doc["spec"]).resolve()))
     monitor = ethimon.Monitor(spec)
     base = dict(doc["sim"])
-    p0 = doc["inputs"]["p_unsafe"]
+    base_risk = risk_kwargs(path, spec)  # before the jump; p_unsafe then wins over p (Monitor: risk > p_unsafe > p)
+    if "risk" in base_risk:
+        raise SystemExit(f"{name}: gives R_e itself ('risk'), which a p_unsafe jump would not override")
     rows = []
     t = step_s
     while t < base["duration_s"] - 2.0:
         raw = {**base, "inputs_at": [{"t_s": t, "inputs": {"p_unsafe": 0.95}}],
                "duration_s": t + 2.0, "expect": {}}
-        res = run_sim(SimBlock.model_validate(raw), monitor, p_unsafe=p0)
+        res = run_sim(SimBlock.model_validate(raw), monitor, **base_risk)
         i = res.first_override_cycle
         dq = res.trace[i - 1].safe_pose_error_rad if i else res.trace[0].safe_pose_error_rad
         rows.append({"joint_distance_rad": round(dq, 4),
