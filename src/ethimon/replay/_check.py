@@ -33,7 +33,8 @@ class CycleResults:
         risk: float64[n], R_e (NaN when no usable risk input).
         fault: bool[n], the cycle failed closed.
         latched: bool[n].
-        faults: the monitor's fault reasons by cycle, for the cycles that had any.
+        faults: the monitor's fault reasons (``Decision.faults``) of each fault cycle whose reasons differ
+            from the cycle before (:meth:`faults_at` finds those of any cycle).
         engine: what checked the cycles (``"Monitor.step"``).
     """
 
@@ -45,12 +46,19 @@ class CycleResults:
     risk: np.ndarray
     fault: np.ndarray
     latched: np.ndarray
-    faults: dict[int, tuple[str, ...]]
+    faults: dict[int, tuple]
     engine: str = "Monitor.step"
+
+    def faults_at(self, k: int) -> tuple:
+        """The monitor's fault reasons of cycle ``k`` (empty if it did not fail closed)."""
+        if not self.fault[k]:
+            return ()
+        keys = [c for c in self.faults if c <= k]
+        return self.faults[max(keys)] if keys else ()
 
 
 def check_columns(spec: Spec, columns: dict[str, np.ndarray], n: int, *,
-                  risk_key: str = "p", keep_faults: int = 64) -> CycleResults:
+                  risk_key: str = "p") -> CycleResults:
     """Check ``n`` cycles of resampled inputs.
 
     Args:
@@ -59,7 +67,6 @@ def check_columns(spec: Spec, columns: dict[str, np.ndarray], n: int, *,
             input is unusable; the risk input under ``risk_key``: ``"p"`` a float64[n, K] array
             (a NaN row: no estimate), ``"p_unsafe"``/``"risk"`` a float64[n] column; and
             ``"risk_age_s"`` when the spec sets ``risk.max_age_s``.
-        keep_faults: keep the monitor's fault texts of at most this many fault cycles.
 
     A NaN input is left out of that cycle's inputs, so the monitor fails closed on it
     ("signal ... is missing") exactly as for an input that did not arrive.
@@ -75,7 +82,8 @@ def check_columns(spec: Spec, columns: dict[str, np.ndarray], n: int, *,
     risk = np.full(n, math.nan)
     fault = np.zeros(n, dtype=bool)
     latched = np.zeros(n, dtype=bool)
-    faults: dict[int, tuple[str, ...]] = {}
+    faults: dict[int, tuple] = {}
+    last: tuple = ()
     sig = [(name, columns[name].tolist()) for name in spec.signals]
     rcol = columns.get(risk_key)
     if rcol is None:
@@ -110,7 +118,9 @@ def check_columns(spec: Spec, columns: dict[str, np.ndarray], n: int, *,
             risk[k] = d.risk
         if d.faults:
             fault[k] = True
-            if len(faults) < keep_faults:
-                faults[k] = d.faults
+            if d.faults != last:
+                faults[k] = last = d.faults
+        else:
+            last = ()
         latched[k] = d.latched
     return CycleResults(ids, override, severity, violated, margins, risk, fault, latched, faults)

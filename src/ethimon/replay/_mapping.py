@@ -130,13 +130,38 @@ def load_mapping(path: str | os.PathLike) -> Mapping:
         SpecError: with ``path:line:column`` and a hint.
     """
     data, smap = read_yaml(path, what="mapping")
-    return validate_document(Mapping, data, smap, "mapping")
+    return _validate(data, smap)
 
 
 def load_mapping_text(text: str, path: str = "<string>") -> Mapping:
     """Like :func:`load_mapping`, from YAML text."""
     data, smap = parse_yaml_text(text, path, what="mapping")
+    return _validate(data, smap)
+
+
+def _validate(data: Any, smap: SourceMap) -> Mapping:
+    # unknown keys first, with "did you mean": a misspelt key would otherwise be reported as
+    # the required key it was meant to be ("missing required key 'topic'")
+    if isinstance(data, dict):
+        _known_keys(data, Mapping, (), smap)
+        sigs = data.get("signals")
+        if isinstance(sigs, dict):
+            for name, sm in sigs.items():
+                if isinstance(sm, dict):
+                    _known_keys(sm, SignalMap, ("signals", name), smap)
+        if isinstance(data.get("task"), dict):
+            _known_keys(data["task"], TaskMap, ("task",), smap)
     return validate_document(Mapping, data, smap, "mapping")
+
+
+def _known_keys(d: dict, model: type[BaseModel], loc: tuple, smap: SourceMap) -> None:
+    known = list(model.model_fields)
+    for key in d:
+        if key not in known:
+            close = difflib.get_close_matches(str(key), known, n=1)
+            hint = f"did you mean {close[0]!r}?" if close else f"known keys: {', '.join(known)}"
+            where = ".".join(str(p) for p in loc) or "(top level)"
+            raise smap.error(f"unknown key {str(key)[:80]!r} in {where}", loc + (key,), hint=hint, key=True)
 
 
 def mapping_json_schema() -> dict[str, Any]:

@@ -283,7 +283,7 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
         checks.append(CheckResult(oid, kind, resp, cnt, *at(first), worst))
     nf = int(tr.fault.sum())
     first_f = int(np.argmax(tr.fault)) if nf else None
-    detail = "; ".join(_why_fault(first_f, rs, tr, data, mapping, spec)) if first_f is not None else ""
+    detail = "; ".join(_why_fault(rs, tr, data, mapping)) if first_f is not None else ""
     checks.append(CheckResult("inputs", "faults", str(spec.on_fault), nf, *at(first_f), None, detail))
     signals: dict[str, dict[str, Any]] = {}
     for name, s in data.series.items():
@@ -305,46 +305,53 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
     return res
 
 
-def _why_fault(k: int, rs: Resampled, tr: CycleResults, data: BagData, mapping: Mapping,
-               spec: Spec) -> list[str]:
-    """Why cycle ``k`` failed closed, in the bag's words (topics, ages), then the monitor's own reasons."""
-    out: list[str] = []
-    explained: set[str] = set()
-    t = int(rs.grid[k])
+def _why_fault(rs: Resampled, tr: CycleResults, data: BagData, mapping: Mapping) -> list[str]:
+    """Why cycles failed closed, in the bag's words: each cause with its cycle count and first time
+    (missing, stale or unusable inputs; task texts not yet seen or not scored), then the monitor's
+    own reasons for fault cycles that no such cause explains (e.g. a value out of its range)."""
+    grid = rs.grid
+    t0 = int(grid[0])
+    causes: list[tuple[int, str]] = []
+    explained = np.zeros(grid.size, dtype=bool)
+
+    def add(mask: np.ndarray, text: str) -> None:
+        mask = mask & tr.fault
+        cnt = int(mask.sum())
+        if cnt:
+            k = int(np.argmax(mask))
+            causes.append((k, f"{text} on {cnt} cycle{'s' if cnt != 1 else ''} from t = {(int(grid[k]) - t0) / 1e9:.3f} s"))
+            explained[mask] = True
+
     for name, s in data.series.items():
-        code = int(rs.codes[name][k])
-        if code == MISSING:
-            if s.times.size == 0:
-                have = "not in this bag" if s.topic not in data.topics else "has no message"
-                out.append(f"{name}: topic {s.topic} {have}")
-            else:
-                out.append(f"{name}: no message on {s.topic} yet")
-            explained.add(name)
-        elif code == STALE:
-            i = int(np.searchsorted(s.times, t, side="right") - 1)
-            age = (t - int(s.times[i])) / 1e9
-            out.append(f"{name}: stale, last {s.topic} message {age:.3f} s old (max_age_s {mapping.limit_s(name):g})")
-            explained.add(name)
-        elif rs.columns[name][k] != rs.columns[name][k]:
-            out.append(f"{name}: the {s.topic} message held has no usable value (NaN, empty array or "
-                       f"index past its end)")
-            explained.add(name)
-    if rs.risk_key == "p" and "p" in rs.codes:
-        if int(rs.codes["p"][k]) == MISSING and mapping.task is not None:
-            out.append(f"risk: no task text on {mapping.task.topic} yet")
-            explained.add("risk")
+        code = rs.codes[name]
+        missing = code == MISSING
+        if s.times.size == 0:
+            have = "is not in this bag" if s.topic not in data.topics else "has no message"
+            add(missing, f"{name}: topic {s.topic} {have}")
         else:
-            row = int(rs.codes["_task_row"][k])
-            if row in rs.risk_note:
-                out.append(f"risk: {rs.risk_note[row]}")
-                explained.add("risk")
-    for f in tr.faults.get(k, ()):
-        if any(f.startswith(f"signal {name!r} is missing") for name in explained):
-            continue
-        if "risk" in explained and f.startswith("no risk input"):
-            continue
-        out.append(f)
-    return out
+            add(missing, f"{name}: no message on {s.topic} yet")
+        stale = code == STALE
+        if stale.any():
+            k = int(np.argmax(stale & tr.fault)) if (stale & tr.fault).any() else int(np.argmax(stale))
+            i = int(np.searchsorted(s.times, grid[k], side="right") - 1)
+            age = (int(grid[k]) - int(s.times[i])) / 1e9
+            add(stale, f"{name}: stale (last {s.topic} message {age:.3f} s old, max_age_s "
+                       f"{mapping.limit_s(name):g})")
+        add((code == OK) & np.isnan(rs.columns[name]),
+            f"{name}: the {s.topic} message held has no usable value (NaN, an empty array or an index past its end)")
+    if rs.risk_key == "p" and "p" in rs.codes and mapping.task is not None:
+        add(rs.codes["p"] == MISSING, f"risk: no task text on {mapping.task.topic} yet")
+        rows = rs.codes["_task_row"]
+        for j, why in rs.risk_note.items():
+            add(rows == j, f"risk: {why}")
+    rest = tr.fault & ~explained
+    if rest.any():
+        k = int(np.argmax(rest))
+        cnt = int(rest.sum())
+        texts = "; ".join(str(f) for f in tr.faults_at(k)) or "fault"
+        causes.append((k, f"{texts} (monitor) on {cnt} cycle{'s' if cnt != 1 else ''} from "
+                          f"t = {(int(grid[k]) - t0) / 1e9:.3f} s"))
+    return [text for _, text in sorted(causes, key=lambda c: c[0])]
 
 
 def _audit(log: Any, res: BagReplay, tr: CycleResults, rs: Resampled, spec: Spec) -> None:
@@ -373,7 +380,8 @@ def _audit(log: Any, res: BagReplay, tr: CycleResults, rs: Resampled, spec: Spec
         resp = _RESP[int(tr.severity[k])] if tr.override[k] else "none"
         append("decision", event=event, bag=res.path, cycle=k, bag_time_ns=int(rs.grid[k]),
                override=bool(tr.override[k]), response=resp, violations=list(viol),
-               faults=list(tr.faults.get(k, ("fault",) if tr.fault[k] else ())), latched=bool(tr.latched[k]),
+               faults=[_fault_dict(f) for f in tr.faults_at(k)],
+               latched=bool(tr.latched[k]),
                risk=None if tr.risk[k] != tr.risk[k] else float(tr.risk[k]),
                margins={oid: float(tr.margins[k, j]) for j, oid in enumerate(ids)},
                inputs={nm: float(rs.columns[nm][k]) for nm in names})
@@ -382,6 +390,11 @@ def _audit(log: Any, res: BagReplay, tr: CycleResults, rs: Resampled, spec: Spec
 
 
 _RESP = {r.severity: r.value for r in Response}
+
+
+def _fault_dict(f: Any) -> Any:
+    as_dict = getattr(f, "as_dict", None)
+    return as_dict() if as_dict is not None else str(f)
 
 
 def replay_bag(bag: str | os.PathLike, spec: Spec, mapping: Mapping | str | os.PathLike, *,
