@@ -144,7 +144,7 @@ def test_loop_feeds_latest_estimate_and_age():
     assert not d.override and d.risk == pytest.approx(ethimon.risk_from_probs((0.95, 0.05), 0.6, 0.2, 0.2))
     clock.advance(0.25)  # older than the spec's max_age_s 0.2
     d = loop.cycle(SAFE)
-    assert d.override and any("stale" in f for f in d.faults)
+    assert d.override and any(f.kind == "stale" for f in d.faults)
     assert loop.stats.stale_overrides == 1
 
 
@@ -165,7 +165,7 @@ def test_missed_deadline_is_a_fault_with_reason():
     loop._clock = clock
     d = loop.cycle()
     assert d.override and d.response is Response.SAFE_POSE
-    assert any("missed its deadline" in f for f in d.faults)
+    assert any(f.kind == "deadline" and "missed its deadline" in f.message for f in d.faults)
     assert loop.stats.deadline_misses == 1
 
 
@@ -177,7 +177,7 @@ def test_late_call_is_a_missed_deadline_and_override_latches_until_release():
     assert not loop.cycle(inputs).override
     clock.advance(0.010)  # the caller came 9 ms late
     d = loop.cycle(inputs)
-    assert d.override and "missed its deadline" in d.faults[-1]
+    assert d.override and d.faults[-1].kind == "deadline" and "missed its deadline" in d.faults[-1].message
     clock.advance(0.001)
     d = loop.cycle(inputs)
     assert d.override and d.latched and not d.faults  # held by the release rule
@@ -199,7 +199,8 @@ def test_signal_source_raising_is_a_fault():
 
     loop, _ = _loop(signals=broken)
     d = loop.cycle()
-    assert d.override and any("signal source raised OSError: sensor bus timeout" in f for f in d.faults)
+    assert d.override and any(f.kind == "signals" and "signal source raised OSError: sensor bus timeout" in f.message
+                           for f in d.faults)
 
 
 def test_run_paces_cycles_with_injected_sleep():
@@ -262,7 +263,7 @@ def test_watchdog_thread_reports_a_stalled_loop(tmp_path):
     t.join(5.0)
     assert "control loop stalled" in stalls[0]
     stalled = decisions[2]  # the cycle stuck in the sensor read overrides when it completes
-    assert stalled.override and any("control loop stalled" in f for f in stalled.faults)
+    assert stalled.override and any(f.kind == "stall" and "control loop stalled" in f.message for f in stalled.faults)
     log.close()
     assert any(r["kind"] == "fault" and "stalled" in r["reason"] for r in read_log(tmp_path / "w.jsonl"))
 
@@ -338,7 +339,7 @@ def test_reload_carries_a_latched_override_over(tmp_path):
     loop.reload(ethimon.load_spec_text(CELL))
     clock.advance(0.001)
     d = loop.cycle(SAFE)  # inputs are fine, but the override must not be dropped by the swap
-    assert d.override and any("carried over" in f for f in d.faults)
+    assert d.override and any(f.kind == "reload" and "carried over" in f.message for f in d.faults)
 
 
 def test_reload_async_from_another_thread_while_running():

@@ -213,7 +213,8 @@ def test_loop_overrides_every_cycle_while_the_writer_lags_without_a_full_queue(t
         for _ in range(5):  # no state change, nothing appended: every cycle must still override
             clock.advance(0.001)
             d = loop.cycle(SAFE)
-            assert d.override and any("audit log is behind" in f for f in d.faults), d.faults
+            assert d.override and any(f.kind == "audit" and "audit log is behind" in f.message
+                                      for f in d.faults), d.faults
     finally:
         gate.set()
     assert wait_for(lambda: log.fault is None)
@@ -271,7 +272,7 @@ def test_loop_overrides_every_cycle_after_the_log_is_closed_mid_run(tmp_path):
     for _ in range(10):  # same inputs, no state change: every cycle must still override
         clock.advance(0.001)
         d = loop.cycle(SAFE)
-        assert d.override and any("audit log is closed" in f for f in d.faults), d.faults
+        assert d.override and any(f.kind == "audit" and "audit log is closed" in f.message for f in d.faults), d.faults
 
 
 def test_loop_overrides_every_cycle_after_the_writer_thread_died(tmp_path):
@@ -288,7 +289,7 @@ def test_loop_overrides_every_cycle_after_the_writer_thread_died(tmp_path):
     for _ in range(10):
         clock.advance(0.001)
         d = loop.cycle(SAFE)
-        assert d.override and any("audit writer failed" in f for f in d.faults), d.faults
+        assert d.override and any(f.kind == "audit" and "audit writer failed" in f.message for f in d.faults), d.faults
 
 
 # ================================================================ estimator holding the GIL
@@ -300,7 +301,8 @@ def test_stall_between_cycles_is_a_fault_and_counted():
     assert not loop.cycle(inputs).override
     clock.advance(9.6)  # the whole interpreter was frozen (e.g. a regex holding the GIL)
     d = loop.cycle(inputs)
-    assert d.override and any("control loop stalled for 9600" in f for f in d.faults), d.faults
+    assert d.override and any(f.kind == "stall" and "control loop stalled for 9600" in f.message
+                              for f in d.faults), d.faults
     assert loop.stats.stalls == 1 and loop.stats.max_gap_s == pytest.approx(9.6, abs=0.01)
 
 
@@ -361,7 +363,8 @@ def test_an_estimator_holding_the_gil_is_reported_as_a_stall():
     finally:
         src.stop()
     assert loop.stats.stalls >= 1 and loop.stats.max_gap_s >= 0.1
-    assert any(any("control loop stalled for" in f for f in d.faults) for d in decisions if d.override)
+    assert any(any(f.kind == "stall" and "control loop stalled for" in f.message for f in d.faults)
+               for d in decisions if d.override)
     assert stalls, "the on_stall callback (hardware stop) was never called"
 
 
@@ -374,7 +377,7 @@ def test_a_factory_string_runs_the_estimator_in_a_child_process(tmp_path):
         assert isinstance(loop.risk, AsyncRiskSource) and isinstance(loop.risk.estimator, ProcessEstimator)
         assert loop.risk.isolated and loop.risk.text is None
         d = loop.cycle(SAFE)  # no task text yet: fail closed
-        assert d.override and "no task text to score" in d.faults
+        assert d.override and ethimon.Fault("estimator", "no task text to score") in d.faults
         loop.risk.set_text("wipe the table")
         assert wait_for(lambda: loop.risk.fault is None, timeout=30.0)
     finally:

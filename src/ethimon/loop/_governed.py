@@ -42,7 +42,6 @@ from __future__ import annotations
 
 import math
 import os
-import re
 import threading
 import time
 from collections.abc import Callable, Mapping
@@ -53,7 +52,7 @@ from typing import Any
 from .._api import load_spec
 from ..audit import spec_hash
 from ..errors import EthimonError
-from ..runtime import Decision, Monitor
+from ..runtime import Decision, Fault, Monitor
 from ..spec._model import Spec
 from ._process import ProcessEstimator
 from ._source import AsyncRiskSource, RiskReading
@@ -106,11 +105,7 @@ def _verify_smt(spec: Spec) -> None:
         raise EthimonError("verification failed: " + ("; ".join(bad) if bad else str(rep.error)))
 
 
-_NUM = re.compile(r"[-+]?(?:\d+\.?\d*(?:e[-+]?\d+)?|nan|inf)", re.IGNORECASE)
-
-
-def _fault_kind(faults: tuple[str, ...]) -> tuple[str, ...]:
-    return tuple(_NUM.sub("#", f) for f in faults)
+_CARRIED = Fault("reload", "override latched before the spec reload is carried over")
 
 
 class GovernedLoop:
@@ -137,7 +132,9 @@ class GovernedLoop:
             the resuming cycle overrides and ``stats.stalls`` counts it (default:
             ``period_s + deadline_s``).
         max_risk_age_s: oldest usable estimate when the spec has no ``risk.max_age_s``
-            (when it has one, the monitor enforces that). ``None``: no limit here.
+            (and the monitor was not built with its own ``max_age_s``). Either way the
+            monitor judges the age, with one limit: see :attr:`~ethimon.Monitor.max_age_s`.
+            ``None``: no limit here. Used only with a ``risk`` source.
         audit: an :class:`~ethimon.audit.AuditLog`; state changes are always logged.
             Every cycle overrides while the log is unusable (its ``fault``: closed,
             writer failed or dead, writer behind its lag bounds) or refused a record.
@@ -166,7 +163,7 @@ class GovernedLoop:
         False
         >>> src.set_text("new task")      # no estimate for it yet: fail closed
         >>> loop.cycle({}).faults[-1]
-        'no risk estimate yet for the current task text'
+        Fault('estimator', 'no risk estimate yet for the current task text')
     """
 
     def __init__(self, monitor: Monitor | Spec, *, signals: Callable[[], Mapping[str, Any]] | None = None,
@@ -199,7 +196,7 @@ class GovernedLoop:
         elif risk_kwargs is not None or risk_env is not None:
             raise ValueError("risk_kwargs/risk_env need risk='module:function'")
         if isinstance(risk, ProcessEstimator):
-            risk = AsyncRiskSource(risk, text=None, classes=monitor.spec.risk.classes)
+            risk = AsyncRiskSource(risk, text=None)
         if risk is not None and not callable(getattr(risk, "snapshot", None)):
             raise TypeError(f"risk must be an AsyncRiskSource, a ProcessEstimator or 'module:function', "
                             f"got {type(risk).__name__}")
@@ -224,11 +221,18 @@ class GovernedLoop:
         self._thread: threading.Thread | None = None
         self._state_key: tuple | None = None
         self._audit_failed = False
-        self._stall_reason: str | None = None
+        self._stall_reason: Fault | None = None
         self._last_end: float | None = None  # end of the previous cycle (stall detection)
         self._spec_hash_fn = spec_hash
         self.spec_sha256 = spec_hash(monitor.spec)
-        self._age_guard = self.max_risk_age_s if monitor.spec.risk.max_age_s is None else None
+        # staleness is judged by the monitor alone, with one limit: the spec's risk.max_age_s, else
+        # the monitor's own max_age_s, else (with a risk source) this loop's max_risk_age_s
+        self._age_fallback: float | None = None
+        if risk is not None:
+            own = monitor.max_age_s if monitor.plan.risk.max_age_s is None else None
+            self._age_fallback = own if own is not None else max_risk_age_s
+            if monitor.max_age_s is None and self._age_fallback is not None:
+                monitor._set_max_age(self._age_fallback)
         self._ids = monitor.obligation_ids
         self.watchdog: Watchdog | None = None
         if watchdog_s is not None:
@@ -266,7 +270,7 @@ class GovernedLoop:
             self._apply_reload()
         m = self.monitor
         st = self.stats
-        reasons: list[str] = []
+        reasons: list[Fault] = []
         if self.watchdog is not None:
             # a stall its thread could not report (it was frozen too) fires now, into this cycle
             self.watchdog.kick()
@@ -276,15 +280,16 @@ class GovernedLoop:
                 st.max_gap_s = gap
             if gap > self.stall_s:
                 st.stalls += 1
-                reasons.append(f"control loop stalled for {gap * 1e3:.1f} ms before cycle {st.cycles} "
-                               f"(stall_s {self.stall_s * 1e3:g} ms): no decision was made meanwhile")
+                reasons.append(Fault("stall", f"control loop stalled for {gap * 1e3:.1f} ms before cycle "
+                                     f"{st.cycles} (stall_s {self.stall_s * 1e3:g} ms): no decision was made "
+                                     "meanwhile"))
         if self.audit is not None:
             try:
                 afault = getattr(self.audit, "fault", None)
             except Exception as exc:  # noqa: BLE001 - a broken log is a fault, not a crash
                 afault = f"audit log health check raised {type(exc).__name__}: {exc}"[:300]
             if isinstance(afault, str) and afault:
-                reasons.append(afault)
+                reasons.append(Fault("audit", afault))
                 st.audit_faults += 1
         try:
             if signals is None:
@@ -293,7 +298,7 @@ class GovernedLoop:
                 signals = self._signals()
             inputs = dict(signals)
         except Exception as exc:  # noqa: BLE001
-            reasons.append(f"signal source raised {type(exc).__name__}: {exc}"[:300])
+            reasons.append(Fault("signals", f"signal source raised {type(exc).__name__}: {exc}"[:300]))
             inputs = {}
         reading = None
         if self.risk is not None:
@@ -304,29 +309,28 @@ class GovernedLoop:
             inputs.pop("risk", None)
             inputs.pop("p_unsafe", None)
             if reading.fault is None:
-                inputs["p"] = reading.probs
-                inputs["risk_age_s"] = reading.age_s
-                if self._age_guard is not None and reading.age_s > self._age_guard:
-                    reasons.append(f"risk estimate is stale: {reading.age_s:.3f} s > {self._age_guard:g} s")
+                inputs["p"] = reading.probs  # judged by the monitor (one rule for every risk input)
+                inputs["risk_age_s"] = reading.age_s  # judged by the monitor (one age limit)
             else:
                 inputs.pop("p", None)
                 inputs.pop("risk_age_s", None)
-                reasons.append(reading.fault)
+                reasons.append(Fault("estimator", reading.fault))
         d = m.step(inputs)
         if self._stall_reason is not None:
             reasons.append(self._stall_reason)
             self._stall_reason = None
         if self._audit_failed:
-            reasons.append(f"audit log failed or its queue is full, or its writer is behind its lag bounds "
-                           f"({self.stats.audit_drops} records refused)")
+            reasons.append(Fault("audit", f"audit log failed or its queue is full, or its writer is behind its "
+                                 f"lag bounds ({self.stats.audit_drops} records refused)"))
         if self._carry_latch:
-            reasons.append("override latched before the spec reload is carried over")
+            reasons.append(_CARRIED)
             self._carry_latch = False
         end = clock()
         late = end - sched
         if late > self.deadline_s:
-            reasons.append(f"control cycle {self.stats.cycles} missed its deadline: decision ready "
-                           f"{late * 1e3:.3f} ms after its start time (deadline {self.deadline_s * 1e3:g} ms)")
+            reasons.append(Fault("deadline", f"control cycle {self.stats.cycles} missed its deadline: decision "
+                                 f"ready {late * 1e3:.3f} ms after its start time (deadline "
+                                 f"{self.deadline_s * 1e3:g} ms)"))
             self.stats.deadline_misses += 1
         if reasons:
             d = m.fault(*reasons, decision=d)
@@ -339,11 +343,12 @@ class GovernedLoop:
             st.overrides += 1
         if d.faults:
             st.fault_cycles += 1
-            if reading is not None and (reading.fault is not None or
-                                        (self._age_guard is not None and reading.age_s > self._age_guard)):
-                st.risk_faults += 1
-            if any("stale" in f for f in d.faults):
+            stale = any(f.kind == "stale" for f in d.faults)
+            if stale:
                 st.stale_overrides += 1
+            # the reading faulted, or the monitor refused what it carried (stale, or p unusable: no R_e)
+            if reading is not None and (reading.fault is not None or stale or d.risk is None):
+                st.risk_faults += 1
         # schedule the next slot; after an overrun, skip to the first grid slot not yet
         # past (no burst of catch-up cycles)
         P = self.period_s
@@ -361,13 +366,13 @@ class GovernedLoop:
             try:
                 self._on_decision(d)
             except Exception as exc:  # noqa: BLE001 - recorded, and the next cycle overrides
-                self._stall_reason = f"on_decision callback raised {type(exc).__name__}: {exc}"[:300]
+                self._stall_reason = Fault("callback", f"on_decision callback raised {type(exc).__name__}: {exc}"[:300])
         return d
 
     _carry_latch = False
 
     def _audit(self, d: Decision, inputs: dict, reading: RiskReading | None) -> None:
-        key = (d.override, d.response, d.violations, _fault_kind(d.faults) if d.faults else ())
+        key = (d.override, d.response, d.violations, tuple(f.kind for f in d.faults) if d.faults else ())
         if not self.audit_every_cycle and key == self._state_key:
             return
         prev = self._state_key
@@ -379,7 +384,8 @@ class GovernedLoop:
             event = "change"
         ok = self._log("decision", event=event, loop_cycle=self.stats.cycles - 1, cycle=d.cycle,
                        override=d.override, response=d.response.value, violations=list(d.violations),
-                       faults=list(d.faults), latched=d.latched, risk=d.risk,
+                       faults=[f.message for f in d.faults], fault_kinds=[f.kind for f in d.faults],
+                       latched=d.latched, risk=d.risk,
                        margins=dict(zip(self._ids, d.margins)) if d.margins else {},
                        inputs=inputs, risk_age_s=reading.age_s if reading is not None else None,
                        spec_sha256=self.spec_sha256,
@@ -449,7 +455,7 @@ class GovernedLoop:
             t.join(timeout)
 
     def _stalled(self, reason: str) -> None:
-        self._stall_reason = reason
+        self._stall_reason = Fault("stall", reason)
         self._log("fault", reason=reason, source="watchdog")
         cb = getattr(self, "_user_on_stall", None)
         if cb is not None:
@@ -488,9 +494,8 @@ class GovernedLoop:
         unjudged: tuple[str, ...] = ()
         try:
             spec = source if isinstance(source, Spec) else load_spec(source)
-            new = Monitor(spec, margins=self.monitor._margins_on)
-            guard = self.max_risk_age_s if self.risk is not None else None
-            w, u = weakenings(self.monitor.spec, spec, loop_max_age_s=guard)
+            new = Monitor(spec, margins=self.monitor._margins_on, max_age_s=self._age_fallback)
+            w, u = weakenings(self.monitor.spec, spec, loop_max_age_s=self._age_fallback)
             weak, unjudged = tuple(w), tuple(u)
             if weak and not allow_weaker:
                 raise EthimonError("reload refused: the new spec weakens monitoring: " + "; ".join(weak)
@@ -541,7 +546,6 @@ class GovernedLoop:
         self.monitor = new
         old_hash, self.spec_sha256 = self.spec_sha256, res.spec_sha256
         self._ids = new.obligation_ids
-        self._age_guard = self.max_risk_age_s if new.spec.risk.max_age_s is None else None
         self._state_key = None
         self.stats.reloads_applied += 1
         res.applied_at_cycle = self.stats.cycles

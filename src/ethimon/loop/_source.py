@@ -39,26 +39,12 @@ class RiskReading(NamedTuple):
     count: int
 
 
-def _check_probs(out: Any, classes: int | None, tol: float) -> tuple[tuple[float, ...] | None, str | None]:
+def _as_floats(out: Any) -> tuple[tuple[float, ...] | None, str | None]:
+    """The estimator's output read once into a tuple of floats (its validity is the monitor's to judge)."""
     try:
-        p = tuple(float(v) for v in out)
+        return tuple(float(v) for v in out), None
     except Exception:  # noqa: BLE001 - any odd return value is a fault
         return None, f"risk estimator returned {type(out).__name__}, not a sequence of probabilities"
-    if len(p) < 2 or (classes is not None and len(p) != classes):
-        want = classes if classes is not None else "at least 2"
-        return None, f"risk estimator returned {len(p)} probabilities, expected {want}"
-    for v in p:
-        if not (0.0 <= v <= 1.0):
-            return None, f"risk estimator returned {_short(p)}: NaN/inf or outside [0, 1]"
-    s = math.fsum(p)
-    if abs(s - 1.0) > tol:
-        return None, f"risk estimator returned {_short(p)}, which sums to {s:.6g}, not 1"
-    return p, None
-
-
-def _short(p: tuple[float, ...]) -> str:
-    text = "(" + ", ".join(f"{v:.4g}" for v in p[:6]) + (", ..." if len(p) > 6 else "") + ")"
-    return text
 
 
 class AsyncRiskSource:
@@ -70,15 +56,15 @@ class AsyncRiskSource:
         rate_hz: estimates per second (an estimate that takes longer simply delays the next).
         hang_timeout_s: an inference running longer than this is reported as hung
             (default: ``max(0.25, 5 / rate_hz)``).
-        classes: expected number of probabilities (``None``: any ``>= 2``).
-        sum_tol: allowed ``|sum(p) - 1|``.
         clock: monotonic time source in seconds (inject a fake one in tests).
         start: start the worker thread now.
 
-    A returned value is checked before it is published: not a sequence of
-    numbers, NaN/inf, outside [0, 1] or not summing to 1 is a fault, as is an
-    exception. A fault replaces the previous estimate (never a silent fallback
-    to an older, lower risk). :meth:`restart` abandons a hung worker and
+    A returned value is read once into a tuple of floats before it is published;
+    one that is not a sequence of numbers is a fault, as is an exception. A
+    fault replaces the previous estimate (never a silent fallback to an older,
+    lower risk). Whether the probabilities are usable (count, NaN/inf, [0, 1],
+    sum 1) is judged in one place, by the monitor that reads them (the same rule
+    for every risk input: :func:`ethimon.runtime._inputs.as_probs`). :meth:`restart` abandons a hung worker and
     starts a fresh one (optionally with a new estimator) while readers keep
     reading; a thread blocked inside the estimator cannot be killed, so it is
     left as an abandoned daemon and its late result is discarded.
@@ -96,8 +82,8 @@ class AsyncRiskSource:
     """
 
     def __init__(self, estimator: ProbEstimator, *, text: str | None = None, rate_hz: float = 20.0,
-                 hang_timeout_s: float | None = None, classes: int | None = None, sum_tol: float = 1e-3,
-                 clock: Callable[[], float] = time.monotonic, start: bool = True) -> None:
+                 hang_timeout_s: float | None = None, clock: Callable[[], float] = time.monotonic,
+                 start: bool = True) -> None:
         if not callable(getattr(estimator, "probs", None)):
             raise TypeError(f"estimator needs a probs(text) method, got {type(estimator).__name__}")
         if not (isinstance(rate_hz, (int, float)) and 0.0 < rate_hz <= 10_000.0):
@@ -105,8 +91,6 @@ class AsyncRiskSource:
         self._est = estimator
         self.rate_hz = float(rate_hz)
         self.hang_timeout_s = float(hang_timeout_s) if hang_timeout_s is not None else max(0.25, 5.0 / rate_hz)
-        self.classes = classes
-        self.sum_tol = float(sum_tol)
         self._clock = clock
         self._text = text
         self._text_gen = 0
@@ -267,7 +251,7 @@ class AsyncRiskSource:
         except Exception as exc:  # noqa: BLE001 - every failure is a published fault
             probs, fault = None, f"risk estimator raised {type(exc).__name__}: {exc}"[:300]
         else:
-            probs, fault = _check_probs(out, self.classes, self.sum_tol)
+            probs, fault = _as_floats(out)
         finally:
             if self._busy is not None and self._busy[0] == gen:
                 self._busy = None

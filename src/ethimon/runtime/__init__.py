@@ -5,7 +5,8 @@ up, in :mod:`ethimon.loop`.
 """
 
 from ._decision import Decision
+from ._fault import FAULT_KINDS, Fault
 from ._monitor import Monitor
 from ._reference import ReferenceMonitor
 
-__all__ = ["Decision", "Monitor", "ReferenceMonitor"]
+__all__ = ["Decision", "FAULT_KINDS", "Fault", "Monitor", "ReferenceMonitor"]

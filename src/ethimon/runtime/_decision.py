@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 from ..spec._model import Response
+from ._fault import Fault
 
-__all__ = ["Decision", "Response"]
+__all__ = ["Decision", "Fault", "Response"]
 
 
 class Decision:
@@ -21,7 +22,8 @@ class Decision:
         risk: R_e used this cycle, or ``None`` if no usable risk input arrived.
         cycle: the cycle number (0 after construction or ``reset()``).
         latched: the override is held by the release rule, not by a current violation.
-        faults: fail-closed reasons (missing/NaN/out-of-range/stale input, internal error).
+        faults: fail-closed reasons, each a :class:`Fault` (``kind`` such as ``"missing"``,
+            ``"range"``, ``"stale"``, ``"internal"``, and a ``message``); empty when none.
 
     Example:
         >>> d = Decision(True, Response.SAFE_POSE, ("risk",), (), 0.62, 3, False, ())
@@ -33,7 +35,7 @@ class Decision:
 
     def __init__(self, override: bool, response: Response, violations: tuple[str, ...],
                  margins: tuple[float, ...], risk: float | None, cycle: int, latched: bool,
-                 faults: tuple[str, ...]) -> None:
+                 faults: tuple[Fault, ...]) -> None:
         self.override = override
         self.response = response
         self.violations = violations
@@ -47,17 +49,17 @@ class Decision:
     def reasons(self) -> tuple[str, ...]:
         """Human-readable reasons for an override (violations, faults, latch)."""
         out = [f"violated: {v}" for v in self.violations]
-        out += [f"fault: {f}" for f in self.faults]
+        out += [f"fault: {f.message}" for f in self.faults]
         if self.latched:
             out.append("latched: waiting for the release rule")
         return tuple(out)
 
     def as_dict(self) -> dict:
-        """A JSON-ready dict of this decision."""
+        """A JSON-ready dict of this decision (``faults``: the messages, ``fault_kinds``: their kinds)."""
         return {
             "cycle": self.cycle, "override": self.override, "response": self.response.value,
             "violations": list(self.violations), "risk": self.risk, "latched": self.latched,
-            "faults": list(self.faults),
+            "faults": [f.message for f in self.faults], "fault_kinds": [f.kind for f in self.faults],
             "margins": [m if m == m and abs(m) != float("inf") else (None if m != m else (
                 "inf" if m > 0 else "-inf")) for m in self.margins],
         }

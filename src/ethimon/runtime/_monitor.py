@@ -20,12 +20,16 @@ from ..compiler._plans import plan_of, stateless_slots
 from ..spec._model import Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_probs, risk_range
 from ._decision import Decision
+from ._fault import Fault
 from ._inputs import as_bool, as_number, as_probs
 
 __all__ = ["Monitor"]
 
 _RESPONSES = (Response.NONE, Response.SAFE_POSE, Response.STOP_2, Response.STOP_1, Response.STOP_0)
 _EMPTY: tuple = ()
+_EXTERNAL = Fault("external", "external fault")
+_INTERNAL = Fault("internal", "internal error")
+_NO_RISK = Fault("missing", "no risk input this cycle (give risk, p_unsafe or p)")
 
 
 def _all_margins(fns: tuple) -> tuple[float, ...]:
@@ -56,8 +60,14 @@ class Monitor:
     Each cycle pass a mapping with the spec's signals and one risk input:
     ``risk`` (R_e itself), or ``p_unsafe`` (two classes), or ``p`` (the class
     probability vector); the monitor then forms R_e with the spec's formula.
-    With ``risk.max_age_s`` set, ``risk_age_s`` (seconds since the estimate)
-    is required too. Keys the spec does not declare are ignored.
+    With an age limit (the spec's ``risk.max_age_s``, else ``max_age_s`` here),
+    ``risk_age_s`` (seconds since the estimate) is required too, and an older
+    estimate is a ``"stale"`` fault. Keys the spec does not declare are ignored.
+
+    Args:
+        max_age_s: oldest usable risk estimate in seconds when the spec sets no
+            ``risk.max_age_s`` (the spec's value wins when it has one); ``None``:
+            no limit. :class:`~ethimon.loop.GovernedLoop` passes its ``max_risk_age_s``.
 
     Example:
         >>> import ethimon
@@ -79,16 +89,18 @@ class Monitor:
     __slots__ = ("spec", "plan", "obligation_ids", "_m", "_sig", "_vals", "_rslot", "_updates", "_obs",
                  "_margin_fns", "_nan_margins", "_tau", "_risk_sev", "_fault_sev", "_auto", "_below",
                  "_hold", "_alpha", "_beta", "_gamma", "_sample", "_k", "_uidx", "_rlo", "_rhi",
-                 "_max_age", "_cycle", "_latched", "_clean", "_margins_on", "_stateless")
+                 "_max_age", "_age_missing", "_cycle", "_latched", "_clean", "_margins_on", "_stateless")
 
-    def __init__(self, plan: Plan | Spec, *, margins: bool = True) -> None:
+    def __init__(self, plan: Plan | Spec, *, margins: bool = True, max_age_s: float | None = None) -> None:
         plan = plan_of(plan)
         self.plan = plan
         self.spec = plan.spec
         m = build_machine(plan)
         self._m = m
         self._vals = m.vals
-        self._sig = tuple((s.name, s.slot, s.kind == "bool", s.lo, s.hi) for s in plan.signals)
+        self._sig = tuple((s.name, s.slot, s.kind == "bool", s.lo, s.hi,
+                           Fault("missing", f"signal {s.name!r} is missing"))  # built once, not per cycle
+                          for s in plan.signals)
         self._rslot = plan.risk_slot
         self._updates = m.updates
         self._obs = tuple((fn, ob.id, ob.response.severity) for fn, ob in zip(m.violated, plan.obligations))
@@ -112,10 +124,31 @@ class Monitor:
         self._uidx = int(r.unsafe_index)
         lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)  # exact, any K
         self._rlo, self._rhi = min(0.0, lo), max(1.0, hi)
-        self._max_age = float(r.max_age_s) if r.max_age_s is not None else None
+        self._max_age = None
+        self._age_missing = None
+        self._set_max_age(max_age_s)
         self._cycle = 0
         self._latched = 0  # severity of the latched response, 0 = not latched
         self._clean = 0
+
+    def _set_max_age(self, fallback: float | None) -> None:
+        """The one age limit: the spec's ``risk.max_age_s``, else ``fallback`` (GovernedLoop's)."""
+        spec_age = self.plan.risk.max_age_s
+        if spec_age is not None:
+            self._max_age, why = float(spec_age), "the spec sets risk.max_age_s"
+        elif fallback is not None:
+            if not (isinstance(fallback, (int, float)) and not isinstance(fallback, bool) and fallback > 0
+                    and math.isfinite(fallback)):
+                raise ValueError(f"max_age_s={fallback!r}; expected a positive number of seconds or None")
+            self._max_age, why = float(fallback), "an estimate age limit is set"
+        else:
+            self._max_age, why = None, ""
+        self._age_missing = Fault("missing", f"risk_age_s is missing ({why})") if why else None
+
+    @property
+    def max_age_s(self) -> float | None:
+        """The age limit in force for risk estimates (the spec's ``risk.max_age_s`` first), or ``None``."""
+        return self._max_age
 
     # -- public state ------------------------------------------------------------
     @property
@@ -145,31 +178,35 @@ class Monitor:
         self._clean = 0
 
     # -- the hot path --------------------------------------------------------------
-    def _risk(self, get) -> tuple[float | None, str | None]:
+    def _risk(self, get) -> tuple[float | None, Fault | None]:
         """R_e from this cycle's risk input, converted once at the boundary (see ``_inputs``)."""
         r = get("risk")
         if r is not None:
             f = r if type(r) is float else as_number(r)
             if f is None or not self._rlo <= f <= self._rhi:
-                return None, f"risk input R_e={r!r} is NaN, not a number or outside [{self._rlo:g}, {self._rhi:g}]"
+                return None, Fault("invalid" if f is None else "range",
+                                   f"risk input R_e={r!r} is NaN, not a number or outside "
+                                   f"[{self._rlo:g}, {self._rhi:g}]")
             return f, None
         q = get("p_unsafe")
         if q is not None:
             if self._k != 2:
-                return None, f"p_unsafe alone needs a 2-class spec (risk.classes is {self._k}); pass p"
+                return None, Fault("invalid",
+                                   f"p_unsafe alone needs a 2-class spec (risk.classes is {self._k}); pass p")
             f = q if type(q) is float else as_number(q)
             if f is None or not 0.0 <= f <= 1.0:
-                return None, f"p_unsafe={q!r} is NaN, not a number or outside [0, 1]"
+                return None, Fault("invalid" if f is None or not _isfinite(f) else "range",
+                                   f"p_unsafe={q!r} is NaN, not a number or outside [0, 1]")
             d = f - 0.5
             var = 2.0 * d * d if self._sample else d * d
             top = f if f >= 0.5 else 1.0 - f
             return self._alpha * f + self._beta * (1.0 - top) + self._gamma * var, None
         p = get("p")
         if p is None:
-            return None, "no risk input this cycle (give risk, p_unsafe or p)"
+            return None, _NO_RISK
         probs, why = as_probs(p, self._k)
         if why is not None:
-            return None, why
+            return None, Fault("invalid", why)
         return risk_from_probs(probs, self._alpha, self._beta, self._gamma,
                                "sample" if self._sample else "population", self._uidx), None
 
@@ -191,15 +228,16 @@ class Monitor:
             vals = self._vals
             faults = None
             bad = None  # slots whose input is unusable this cycle (fault path only)
-            for name, slot, is_bool, lo, hi in self._sig:
+            for name, slot, is_bool, lo, hi, missing in self._sig:
                 v = get(name)
                 if v is None:
-                    (faults := faults or []).append(f"signal {name!r} is missing")
+                    (faults := faults or []).append(missing)
                     (bad := bad or []).append(slot)
                 elif is_bool:
                     b = v if (v is True or v is False) else as_bool(v)
                     if b is None:
-                        (faults := faults or []).append(f"signal {name!r} must be true/false, got {v!r}")
+                        (faults := faults or []).append(
+                            Fault("invalid", f"signal {name!r} must be true/false, got {v!r}"))
                         (bad := bad or []).append(slot)
                     else:
                         vals[slot] = b
@@ -207,19 +245,20 @@ class Monitor:
                     # the common case (a built-in float) first; anything else is converted once
                     f = v if type(v) is float else as_number(v)
                     if f is None:
-                        (faults := faults or []).append(
-                            f"signal {name!r} must be a number, got {v!r} (a finite int, float or numpy scalar; "
-                            f"not a bool, string or NaN)")
+                        (faults := faults or []).append(Fault(
+                            "invalid", f"signal {name!r} must be a number, got {v!r} (a finite int, float or "
+                            f"numpy scalar; not a bool, string or NaN)"))
                         (bad := bad or []).append(slot)
                     elif lo <= f <= hi:
                         vals[slot] = f
                     else:
-                        (faults := faults or []).append(
-                            f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]")
+                        (faults := faults or []).append(Fault(
+                            "range" if _isfinite(f) else "invalid",
+                            f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]"))
                         (bad := bad or []).append(slot)
             r, why = self._risk(get)
             if why is None and not _isfinite(r):  # weights and inputs are finite; never trust it blindly
-                r, why = None, f"R_e={r!r} is not finite"
+                r, why = None, Fault("internal", f"R_e={r!r} is not finite")
             if why is not None:
                 (faults := faults or []).append(why)
                 (bad := bad or []).append(self._rslot)
@@ -227,11 +266,12 @@ class Monitor:
                 age = get("risk_age_s")
                 a = None if age is None else as_number(age)
                 if age is None:
-                    (faults := faults or []).append("risk_age_s is missing (the spec sets risk.max_age_s)")
+                    (faults := faults or []).append(self._age_missing)
                     (bad := bad or []).append(self._rslot)
                 elif a is None or not 0.0 <= a <= self._max_age:
-                    (faults := faults or []).append(
-                        f"risk estimate is stale or its age is invalid: {age!r} s > max_age_s {self._max_age:g}")
+                    (faults := faults or []).append(Fault(
+                        "stale",
+                        f"risk estimate is stale or its age is invalid: {age!r} s > max_age_s {self._max_age:g}"))
                     (bad := bad or []).append(self._rslot)
             if faults is not None:
                 return self._fault(cycle, tuple(faults), r, bad)
@@ -278,16 +318,17 @@ class Monitor:
         except BaseException as exc:  # fail closed: nothing escapes into the control loop, not even
             # a KeyboardInterrupt raised by a hostile input's __float__: the arm is told to stop instead
             try:
-                reason = f"internal error: {type(exc).__name__}: {exc}"
+                reason = Fault("internal", f"internal error: {type(exc).__name__}: {exc}")
             except BaseException:  # pragma: no cover - a broken __str__
-                reason = "internal error"
+                reason = _INTERNAL
             return self._fault(cycle, (reason,), r if type(r) is float else None)
 
-    def fault(self, *reasons: str, decision: Decision | None = None) -> Decision:
+    def fault(self, *reasons: Fault | str, decision: Decision | None = None) -> Decision:
         """Fail closed on a fault found outside the monitor (watchdog, estimator, audit).
 
         Args:
-            reasons: why, one line each (e.g. ``"control cycle missed its deadline"``).
+            reasons: why: each a :class:`~ethimon.runtime.Fault`, or a line of text
+                (it becomes ``Fault("external", text)``).
             decision: the :class:`Decision` that :meth:`step` just returned for this
                 cycle. If given, that cycle is escalated in place: same cycle number,
                 violations and margins kept, ``override`` forced, the response raised to
@@ -304,9 +345,9 @@ class Monitor:
             >>> m = ethimon.Monitor(ethimon.load_spec_text("{ethimon: 1, name: demo}"))
             >>> d = m.fault("risk estimator hung")
             >>> d.override, d.faults
-            (True, ('risk estimator hung',))
+            (True, (Fault('external', 'risk estimator hung'),))
         """
-        reasons = tuple(str(r) for r in reasons) or ("external fault",)
+        reasons = tuple(r if type(r) is Fault else Fault("external", str(r)) for r in reasons) or (_EXTERNAL,)
         if decision is None:
             cycle = self._cycle
             self._cycle = cycle + 1
@@ -317,7 +358,7 @@ class Monitor:
         return Decision(True, _RESPONSES[sev], decision.violations, decision.margins, decision.risk,
                         decision.cycle, decision.latched, decision.faults + reasons)
 
-    def _fault(self, cycle: int, reasons: tuple[str, ...], r: float | None,
+    def _fault(self, cycle: int, reasons: tuple[Fault, ...], r: float | None,
                bad: list[int] | None = None) -> Decision:
         """Fail closed: override with the spec's fault response; history is invalid.
 

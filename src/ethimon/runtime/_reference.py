@@ -52,11 +52,15 @@ from ..spec._expr import TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary
 from ..spec._model import Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
 from ._decision import Decision
+from ._fault import Fault
 from ._inputs import as_bool, as_number, as_probs
 
 __all__ = ["ReferenceMonitor"]
 
 _BY_SEV = {r.severity: r for r in Response}
+# the reference tells that a cycle faulted, not the compiled monitor's wording
+_BAD_INPUT = (Fault("invalid", "fault: a bad or missing input (reference interpreter)"),)
+_EVAL_ERROR = (Fault("internal", "fault: an evaluation error (reference interpreter)"),)
 
 
 class ReferenceMonitor:
@@ -301,7 +305,8 @@ class ReferenceMonitor:
             v: tuple[str, ...] = tuple(found)
             self.latched = max(self.latched, fsev)
             self.clean = 0
-            return Decision(True, _BY_SEV[self.latched], v, (), r, cycle, False, ("fault",))
+            return Decision(True, _BY_SEV[self.latched], v, (), r, cycle, False,
+                            _BAD_INPUT if bad_input else _EVAL_ERROR)
         if r >= tau:
             violations.append("risk")
             sev = max(sev, Response(spec.risk.response).severity)

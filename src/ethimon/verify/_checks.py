@@ -227,7 +227,7 @@ class Verifier:
         d = decisions[cycle]
         ok = bool(broken(d))
         note = (f"Monitor at cycle {cycle}: override={d.override}, response={d.response.value}, "
-                f"violations={list(d.violations)}, faults={list(d.faults)}")
+                f"violations={list(d.violations)}, faults={[f.message for f in d.faults]}")
         return Counterexample(prop, frames, cycle, expect, [x.as_dict() for x in decisions], ok, note)
 
     # -- properties -------------------------------------------------------------------------
@@ -494,7 +494,7 @@ class Verifier:
                 if st == "sat":
                     cex = self.counterexample(
                         name, model, enc, t, {"fault": False},
-                        lambda d: any(f.startswith("internal error") for f in d.faults))
+                        lambda d: any(f.kind == "internal" for f in d.faults))
                     return Finding("property", name, REFUTED,
                                    f"evaluation fails (division by zero or sqrt of a negative) on in-range "
                                    f"input at cycle {t}: the monitor stops the arm with a fault", counterexample=cex)
