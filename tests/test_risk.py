@@ -366,7 +366,7 @@ def test_tracing_is_lazy_by_default(tiny, monkeypatch):
     assert e.jit is False and not calls
     first = e.probs(TEXTS[0])
     assert e.jit is False and not calls                  # one sentence: eager, no trace
-    e.probs_batch(TEXTS)                                 # traced only before a pass, once 7 rows are done
+    e.probs_batch(TEXTS)                                 # 7 rows: not past 7 yet
     assert e.jit is False and not calls
     got = e.probs_batch(TEXTS)                           # the next forward pass traces first
     assert e.jit is True and len(calls) == 1
@@ -374,9 +374,12 @@ def test_tracing_is_lazy_by_default(tiny, monkeypatch):
         assert a == pytest.approx(b, abs=1e-5)
     e.probs_batch(TEXTS * 3)
     assert len(calls) == 1 and first == pytest.approx(e.probs(TEXTS[0]), abs=1e-5)
+    big = load_estimator(tiny[1], cache_size=0)          # one call past the count: traced first
+    big.logits_batch(TEXTS * 2)
+    assert big.jit is True and len(calls) == 2
     never = load_estimator(tiny[1], cache_size=0, jit=False)
     never.probs_batch(TEXTS * 3)
-    assert never.jit is False and len(calls) == 1
+    assert never.jit is False and len(calls) == 2
 
 
 def test_process_estimator_traces_at_start():

@@ -27,7 +27,7 @@ __all__ = ["DEFAULT_TAU", "RiskEstimate", "RiskEstimator", "RiskInferenceError",
 
 QUANTIZE_MODES = (None, "fp32", "int8")
 
-#: rows an estimator scores eagerly before it traces itself (``jit=None``). Tracing
+#: rows an estimator scores eagerly at most before it traces itself (``jit=None``). Tracing
 #: (TorchScript trace + freeze + a check against the eager model) costs about 0.5 s
 #: on one quiet core and saves about 1.5–5 ms per sentence, so it pays after a few
 #: hundred sentences: in an evaluation or a long-running service, never in a
@@ -295,8 +295,8 @@ class RiskEstimator:
         pad = m.tokenizer.pad_token_id or 0
         ui = m.unsafe_index
         with self._lock:
-            if self._trace_after is not None and self._rows >= self._trace_after:
-                self.trace()          # lazily, once enough rows were scored for it to pay
+            if self._trace_after is not None and self._rows + len(seqs) > self._trace_after:
+                self.trace()          # lazily: before the pass that takes the count past trace_after
             self._rows += len(seqs)
             try:
                 with torch.inference_mode():
@@ -348,9 +348,10 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
             eager one; per sentence on 2 CPU cores fp32 8.7 → 7.2 ms, int8
             3.9 → 1.7 ms). ``True``: trace now, at load (a control loop or a
             service: no pause later; :class:`ethimon.loop.ProcessEstimator`
-            asks for it); ``None`` (default): trace lazily, before the first
-            forward pass after :data:`JIT_AFTER_ROWS` rows were scored eagerly
-            (a one-shot command never pays the ~0.5 s); ``False``: never.
+            asks for it); ``None`` (default): trace lazily, before the forward
+            pass that takes the rows scored past :data:`JIT_AFTER_ROWS` (one
+            call of that many rows traces first; a one-shot command that scores
+            a few texts never pays the ~0.5 s); ``False``: never.
             If tracing fails or disagrees, the eager model is used and
             ``RiskEstimator.jit`` is ``False``.
 
