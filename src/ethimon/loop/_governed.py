@@ -132,9 +132,10 @@ class GovernedLoop:
             the resuming cycle overrides and ``stats.stalls`` counts it (default:
             ``period_s + deadline_s``).
         max_risk_age_s: oldest usable estimate when the spec has no ``risk.max_age_s``
-            (and the monitor was not built with its own ``max_age_s``). Either way the
-            monitor judges the age, with one limit: see :attr:`~ethimon.Monitor.max_age_s`.
-            ``None``: no limit here. Used only with a ``risk`` source.
+            (and the monitor was not built with its own ``max_age_s``): the loop sets it on
+            the monitor, which alone judges the age, with one limit (see
+            :attr:`~ethimon.Monitor.max_age_s`). ``None``: no limit here. Used only with a
+            ``risk`` source.
         audit: an :class:`~ethimon.audit.AuditLog`; state changes are always logged.
             Every cycle overrides while the log is unusable (its ``fault``: closed,
             writer failed or dead, writer behind its lag bounds) or refused a record.
