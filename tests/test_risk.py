@@ -587,6 +587,9 @@ def test_average_is_exactly_the_weight_average(tiny, tmp_path):
     assert moved > 10  # the two runs really differ, in the LoRA layers and the head
     est = load_estimator(tmp_path / "avg", cache_size=0)
     assert est.temperature == 1.5 and math.isclose(sum(est.probs(TEXTS[0])), 1.0, abs_tol=1e-6)
+    umask = os.umask(0)
+    os.umask(umask)
+    assert stat.S_IMODE((tmp_path / "avg" / "adapter.safetensors").stat().st_mode) == 0o666 & ~umask
 
 
 def test_average_of_a_run_with_itself_is_that_run(tiny, tmp_path):
