@@ -87,13 +87,15 @@ def make_messages(seed: int = 0, n_js: int = 160, dropout: tuple[float, float] |
     return msgs
 
 
-def write_bag(path: Path, fmt: str, msgs) -> Path:
-    """Write ``msgs`` as a ROS 2 sqlite3 / MCAP folder or a ROS 1 .bag file."""
+def write_bag(path: Path, fmt: str, msgs, stamp_offset_ns=lambda t: 0) -> Path:
+    """Write ``msgs`` as a ROS 2 sqlite3 / MCAP folder or a ROS 1 .bag file (header stamps: log time +
+    ``stamp_offset_ns(t)``)."""
     ts = get_typestore(Stores.ROS1_NOETIC if fmt == "ros1" else Stores.ROS2_HUMBLE)
     T = ts.types
     ros1 = fmt == "ros1"
 
     def header(t):
+        t = t + stamp_offset_ns(t)
         stamp = T["builtin_interfaces/msg/Time"](sec=t // 10**9, nanosec=t % 10**9)
         if ros1:
             return T["std_msgs/msg/Header"](seq=0, stamp=stamp, frame_id="")
@@ -213,14 +215,27 @@ def spec():
     return ethimon.load_spec_text(SPEC)
 
 
+def _engines():
+    try:
+        import ethimon.offline  # noqa: F401
+        return ["step", "offline"]
+    except ImportError:
+        return ["step"]
+
+
+@pytest.mark.parametrize("engine", _engines())
 @pytest.mark.parametrize("fmt", ["sqlite3", "mcap", "ros1"])
-def test_cycle_exact_against_monitor_step(tmp_path, spec, fmt):
+def test_cycle_exact_against_monitor_step(tmp_path, spec, fmt, engine):
     msgs = make_messages(seed=1)
     bag = write_bag(tmp_path / ("b.bag" if fmt == "ros1" else "b"), fmt, msgs)
-    res = replay_bag(bag, spec, load_mapping_text(MAPPING), score=_score, keep_trace=True)
+    res = replay_bag(bag, spec, load_mapping_text(MAPPING), score=_score, keep_trace=True, engine=engine)
+    assert res.engine.startswith("Monitor.step" if engine == "step" else "ethimon.offline.check_trace")
     grid, decisions = reference(msgs, MAPPING, spec)
     assert res.storage == {"sqlite3": "ROS 2 sqlite3", "mcap": "ROS 2 MCAP", "ros1": "ROS 1"}[fmt]
     assert_same(res, grid, decisions, spec)
+    for k, d in enumerate(decisions):
+        if d.faults:
+            assert tuple(map(str, res.trace.faults_at(k))) == tuple(map(str, d.faults)), k
     # the trace exercises what it should: every obligation, the risk rule and staleness
     for cid in ("separation", "slow_near", "joint_speed", "risk", "inputs"):
         assert res.check(cid).cycles > 0, cid
@@ -240,14 +255,74 @@ def test_three_formats_agree(tmp_path, spec):
     assert out[0] == out[1] == out[2]
 
 
-def test_other_seeds_and_header_time(tmp_path, spec):
+@pytest.mark.parametrize("engine", _engines())
+def test_other_seeds_and_header_time(tmp_path, spec, engine):
     mapping = MAPPING.replace("reduce: norm}", "reduce: norm, time: header}")
     for seed in (3, 4):
         msgs = make_messages(seed=seed, dropout=None)
         bag = write_bag(tmp_path / f"s{seed}", "mcap", msgs)
-        res = replay_bag(bag, spec, load_mapping_text(mapping), score=_score, keep_trace=True)
+        res = replay_bag(bag, spec, load_mapping_text(mapping), score=_score, keep_trace=True, engine=engine)
         grid, decisions = reference(msgs, MAPPING, spec)  # header stamps equal the log times here
         assert_same(res, grid, decisions, spec)
+
+
+def test_header_time_is_the_stamp_and_sorted(tmp_path, spec):
+    from ethimon.replay import read_bag
+    msgs = make_messages(seed=15)
+    shift = lambda t: -40_000_000 if (t // 10_000_000) % 2 else 0  # noqa: E731 - some stamps 40 ms earlier
+    bag = write_bag(tmp_path / "b", "sqlite3", msgs, stamp_offset_ns=shift)
+    mapping = load_mapping_text(MAPPING.replace("reduce: norm}", "reduce: norm, time: header}"))
+    got = read_bag(bag, mapping).series["ee_speed"]
+    want = sorted(t + shift(t) for t, topic, _, _ in msgs if topic == "/ee/twist")
+    assert got.times.tolist() == want and want != sorted(t for t, topic, _, _ in msgs if topic == "/ee/twist")
+    assert read_bag(bag, load_mapping_text(MAPPING)).series["ee_speed"].times.tolist() == sorted(
+        t for t, topic, _, _ in msgs if topic == "/ee/twist")
+    with pytest.raises(BagError, match="no header.stamp"):
+        read_bag(bag, load_mapping_text(MAPPING.replace("field: data, scale", "field: data, time: header, scale")))
+
+
+def test_bool_signal_and_index(tmp_path):
+    spec = ethimon.load_spec_text("""
+ethimon: 1
+name: gripper
+signals:
+  gripper_closed: {type: bool}
+  j3: {unit: rad/s, range: [-5, 5]}
+obligations:
+  - {id: open_gripper, require: not gripper_closed}
+  - {id: j3_slow, require: j3 <= 0.5}
+""")
+    ts = get_typestore(Stores.ROS2_HUMBLE)
+    Bool, JS = ts.types["std_msgs/msg/Bool"], ts.types["sensor_msgs/msg/JointState"]
+    Hdr, Time = ts.types["std_msgs/msg/Header"], ts.types["builtin_interfaces/msg/Time"]
+    with Writer(tmp_path / "b", version=9, storage_plugin=StoragePlugin.MCAP) as w:
+        cb = w.add_connection("/gripper", Bool.__msgtype__, typestore=ts)
+        cj = w.add_connection("/joint_states", JS.__msgtype__, typestore=ts)
+        for i in range(20):
+            t = T0 + i * 10_000_000
+            w.write(cb, t, ts.serialize_cdr(Bool(data=10 <= i < 13), Bool.__msgtype__))
+            vel = np.array([0.0, 0.0, 0.0, 0.9 if i == 5 else 0.1]) if i != 7 else np.zeros(2)
+            w.write(cj, t, ts.serialize_cdr(JS(header=Hdr(stamp=Time(sec=0, nanosec=0), frame_id=""), name=[],
+                                               position=np.zeros(0), velocity=vel, effort=np.zeros(0)),
+                                            JS.__msgtype__))
+    mapping = load_mapping_text("""
+ethimon: 1
+rate_hz: 100
+max_age_s: 0.05
+signals:
+  gripper_closed: {topic: /gripper}
+  j3: {topic: /joint_states, field: velocity, reduce: index, index: 3}
+""")
+    res = replay_bag(tmp_path / "b", spec, mapping, p=(0.9, 0.1), keep_trace=True)
+    assert res.check("open_gripper").cycles == 3 and res.check("open_gripper").first_cycle == 10
+    assert res.check("j3_slow").cycles == 1 and res.check("j3_slow").first_cycle == 5
+    assert res.check("inputs").cycles == 1 and res.trace.fault[7]  # index 3 of a 2-element array: no value
+    assert "j3: the /joint_states message held has no usable value" in res.check("inputs").detail
+    from ethimon.replay import check_against_spec
+    bad = load_mapping_text("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.05\nsignals:\n"
+                            "  gripper_closed: {topic: /gripper, scale: 2.0}\n  j3: {topic: /j}\n")
+    with pytest.raises(SpecError, match="is a bool"):
+        check_against_spec(bad, spec, risk_given=True)
 
 
 def test_sample_at_cycle_time_counts_and_stale_boundary():
@@ -393,6 +468,12 @@ def test_corrupt_and_odd_bags_are_bag_errors(tmp_path, spec):
     cases = [(junk, "cannot"), (folder, "cannot"), (tmp_path / "nope", "no such file"),
              (tmp_path, "no metadata.yaml"), (tmp_path / "x.txt", "unknown bag file type")]
     (tmp_path / "x.txt").write_text("x")
+    if hasattr(__import__("os"), "mkfifo"):
+        __import__("os").mkfifo(tmp_path / "fifo.bag")
+        cases.append((tmp_path / "fifo.bag", "found a named pipe"))
+    named_bag = tmp_path / "ros2.bag"
+    write_bag(named_bag, "mcap", make_messages(seed=13))
+    cases.append((named_bag, "rename the folder"))
     for path, words in cases:
         with pytest.raises(BagError, match=words):
             replay_bag(path, spec, m, score=_score)
@@ -458,6 +539,21 @@ def test_cli_pass_exit_0_and_usage_errors(tmp_path):
     assert r.returncode == 2 and f"{tmp_path / 'bad.yaml'}:" in r.stderr and "Traceback" not in r.stderr
     r = run_cli("replay", "--schema")
     assert r.returncode == 0 and json.loads(r.stdout)["title"].startswith("ethimon replay mapping")
+
+
+def test_without_rosbags_each_bag_is_an_error_row(tmp_path):
+    (tmp_path / "spec.yaml").write_text(CLI_SPEC)
+    (tmp_path / "map.yaml").write_text(CLI_MAP)
+    code = ("import sys; sys.modules['rosbags'] = None; sys.modules['rosbags.highlevel'] = None; "
+            "from ethimon.cli import main; sys.exit(main(sys.argv[1:]))")
+    _cli_bag(tmp_path / "a.bag", "ros1")
+    _cli_bag(tmp_path / "b", "mcap")
+    r = subprocess.run([sys.executable, "-c", code, "replay", str(tmp_path / "a.bag"), str(tmp_path / "b"),
+                        "--spec", str(tmp_path / "spec.yaml"), "--map", str(tmp_path / "map.yaml")],
+                       capture_output=True, text=True, cwd=tmp_path)
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert "0 passed, 0 failed, 2 errors" in r.stdout
+    assert r.stderr.count("pip install 'ethimon[ros]'") == 2
 
 
 def test_readme_example_command():

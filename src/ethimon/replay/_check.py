@@ -2,15 +2,20 @@
 
 :func:`check_columns` takes one column per monitor input (float64, NaN =
 unusable: missing, stale or a bad recorded value) plus the risk input, and
-returns per-cycle verdicts. It runs :meth:`ethimon.Monitor.step` over the
-cycles (the reference semantics; a vectorised checker can replace this one
-function without touching the rest of replay).
+returns per-cycle verdicts. An unusable input is left out of its cycle, so the
+monitor fails closed on it exactly as on an input that did not arrive.
+
+Two engines give the same verdicts: :func:`ethimon.offline.check_trace` (numpy,
+whole columns at once; NaN entries passed as masked = missing) when that module
+is available, else :meth:`ethimon.Monitor.step` over the cycles (the reference
+semantics). ``engine="step"`` forces the latter.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -48,17 +53,20 @@ class CycleResults:
     latched: np.ndarray
     faults: dict[int, tuple]
     engine: str = "Monitor.step"
+    _faults_at: Any = None
 
     def faults_at(self, k: int) -> tuple:
         """The monitor's fault reasons of cycle ``k`` (empty if it did not fail closed)."""
         if not self.fault[k]:
             return ()
+        if self._faults_at is not None:
+            return tuple(self._faults_at(k))
         keys = [c for c in self.faults if c <= k]
         return self.faults[max(keys)] if keys else ()
 
 
 def check_columns(spec: Spec, columns: dict[str, np.ndarray], n: int, *,
-                  risk_key: str = "p") -> CycleResults:
+                  risk_key: str = "p", engine: str = "auto") -> CycleResults:
     """Check ``n`` cycles of resampled inputs.
 
     Args:
@@ -67,10 +75,48 @@ def check_columns(spec: Spec, columns: dict[str, np.ndarray], n: int, *,
             input is unusable; the risk input under ``risk_key``: ``"p"`` a float64[n, K] array
             (a NaN row: no estimate), ``"p_unsafe"``/``"risk"`` a float64[n] column; and
             ``"risk_age_s"`` when the spec sets ``risk.max_age_s``.
+        engine: ``"auto"`` (the offline checker if available, else the step loop), ``"offline"``
+            or ``"step"``.
 
     A NaN input is left out of that cycle's inputs, so the monitor fails closed on it
     ("signal ... is missing") exactly as for an input that did not arrive.
     """
+    if engine not in ("auto", "offline", "step"):
+        raise ValueError(f"engine must be 'auto', 'offline' or 'step', got {engine!r}")
+    if engine != "step" and n > 0:
+        try:
+            from ..offline import check_trace
+        except ImportError:
+            if engine == "offline":
+                raise
+        else:
+            if engine == "offline":
+                return _offline(check_trace, spec, columns, n, risk_key)
+            try:
+                return _offline(check_trace, spec, columns, n, risk_key)
+            except Exception as exc:  # noqa: BLE001 - the reference loop still checks the bag
+                res = _step(spec, columns, n, risk_key)
+                res.engine = f"Monitor.step (the offline checker failed: {type(exc).__name__}: {exc})"[:300]
+                return res
+    return _step(spec, columns, n, risk_key)
+
+
+def _offline(check_trace: Any, spec: Spec, columns: dict[str, np.ndarray], n: int, risk_key: str) -> CycleResults:
+    cols: dict[str, Any] = {name: np.ma.masked_invalid(columns[name]) for name in spec.signals}
+    if risk_key in columns:
+        cols[risk_key] = np.ma.masked_invalid(columns[risk_key])
+    if "risk_age_s" in columns:
+        cols["risk_age_s"] = np.ma.masked_invalid(columns["risk_age_s"])
+    off = check_trace(spec, cols, length=n)
+    ids = tuple(off.obligation_ids) + ("risk",)
+    violated = np.concatenate([off.violated, off.risk_violated[:, None]], axis=1)
+    margins = off.margins if off.margins is not None else np.full((n, len(ids) - 1), math.nan)
+    return CycleResults(ids, off.override.copy(), off.response.astype(np.int8), violated, margins,
+                        np.asarray(off.risk, dtype=np.float64), off.fault.copy(), off.latched.copy(), {},
+                        f"ethimon.offline.check_trace ({off.method})", off.faults_at)
+
+
+def _step(spec: Spec, columns: dict[str, np.ndarray], n: int, risk_key: str) -> CycleResults:
     mon = Monitor(spec)
     ids = tuple(mon.obligation_ids) + ("risk",)
     col_of = {oid: j for j, oid in enumerate(ids)}

@@ -252,11 +252,12 @@ class _Lazy:
 
 
 def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | None = None,
-                p: Sequence[float] | None = None, audit: Any = None, keep_trace: bool = False) -> BagReplay:
-    """Check the samples of one bag (already read) against ``spec``."""
+                p: Sequence[float] | None = None, audit: Any = None, keep_trace: bool = False,
+                engine: str = "auto") -> BagReplay:
+    """Check the samples of one bag (already read) against ``spec`` (``engine``: see :func:`check_columns`)."""
     rs = resample(data, mapping, spec, score=score, p=p)
     n = rs.grid.size
-    tr = check_columns(spec, rs.columns, n, risk_key=rs.risk_key)
+    tr = check_columns(spec, rs.columns, n, risk_key=rs.risk_key, engine=engine)
     grid = rs.grid
     t0 = int(grid[0])
 
@@ -399,7 +400,7 @@ def _fault_dict(f: Any) -> Any:
 
 def replay_bag(bag: str | os.PathLike, spec: Spec, mapping: Mapping | str | os.PathLike, *,
                score: Scorer | None = None, p: Sequence[float] | None = None, audit: Any = None,
-               keep_trace: bool = False) -> BagReplay:
+               keep_trace: bool = False, engine: str = "auto") -> BagReplay:
     """Replay one ROS bag through the monitor of ``spec``.
 
     Args:
@@ -412,6 +413,9 @@ def replay_bag(bag: str | os.PathLike, spec: Spec, mapping: Mapping | str | os.P
             bag without a task topic).
         audit: an :class:`ethimon.audit.AuditLog` to append the decisions to (one record per change).
         keep_trace: keep the per-cycle verdicts, grid and columns on the result.
+        engine: what checks the resampled cycles: ``"auto"`` (:func:`ethimon.offline.check_trace`
+            when available, else ``Monitor.step`` per cycle), ``"offline"`` or ``"step"``; the
+            verdicts are the same.
 
     Raises:
         SpecError: a bad mapping file, or one that does not fit the spec.
@@ -424,4 +428,4 @@ def replay_bag(bag: str | os.PathLike, spec: Spec, mapping: Mapping | str | os.P
         raise SpecError(f"replay_bag needs a loaded spec (ethimon.load_spec), got {type(spec).__name__}")
     check_against_spec(mapping, spec, risk_given=p is not None)
     data = read_bag(bag, mapping)
-    return replay_data(data, spec, mapping, score=score, p=p, audit=audit, keep_trace=keep_trace)
+    return replay_data(data, spec, mapping, score=score, p=p, audit=audit, keep_trace=keep_trace, engine=engine)
