@@ -1,0 +1,472 @@
+"""``check_trace``: a whole recorded trace through a spec's obligations at once, with numpy.
+
+What :class:`~ethimon.Monitor` does cycle by cycle, done column by column:
+
+1. The input boundary (:mod:`._columns`): which cycles have a missing, NaN,
+   out-of-range or mistyped input (those are fault cycles), and R_e per cycle.
+2. The obligations on the valid cycles (:mod:`._eval`): segments between faults
+   are independent histories; every operator is a linear scan. Where an
+   expression raises (division by zero, square root of a negative number) the
+   monitor has an internal fault that also clears the history, so the cycles
+   after the first such fault of a segment are evaluated again as a fresh
+   segment; a run of cycles that raise even as the first cycle of a segment is
+   taken in one go. After ``_MAX_PASSES`` rounds the rest of such a segment is
+   stepped through a fresh :class:`~ethimon.Monitor` (the only fallback; the
+   result says how many cycles took it).
+3. On fault cycles the stateless obligations whose inputs are valid are judged
+   (as the monitor does), vectorised over those cycles.
+4. The latch and its release (hysteresis, ``hold_cycles``, the exact bound
+   τ − δ) from per-cycle events, with running maxima instead of a loop.
+
+Fault reasons are the monitor's own: they are produced on demand
+(:meth:`OfflineResult.faults_at`) by stepping a :class:`~ethimon.Monitor` over
+the cycle (an input fault) or over its segment (an internal fault), so they are
+worded exactly as the monitor words them.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Iterator, Mapping
+from typing import Any
+
+import numpy as np
+
+from ..runtime._decision import Decision
+from ..runtime._monitor import Monitor
+from ..spec._expr import TEMPORAL, Call, Name, walk
+from ..spec._model import Response, Spec
+from ..compiler._risk_formula import release_bound
+from ._columns import Inputs, read_inputs, row
+from ._eval import Evaluator, last_index
+
+__all__ = ["check_trace", "OfflineResult", "iter_rows"]
+
+_RESPONSES = (Response.NONE, Response.SAFE_POSE, Response.STOP_2, Response.STOP_1, Response.STOP_0)
+#: rounds of "an expression raised: evaluate the rest of the segment again" before the rest is stepped
+_MAX_PASSES = 8
+
+
+def _plan(spec: Any):
+    try:
+        from ..compiler._plans import plan_of
+    except ImportError:  # pragma: no cover - before plan_of moved to the compiler
+        from ..runtime._monitor import plan_of  # type: ignore[no-redef]
+    return plan_of(spec)
+
+
+class OfflineResult:
+    """Every cycle's verdicts for a recorded trace (see :func:`check_trace`).
+
+    Arrays have one row per cycle (``n_cycles``):
+
+    Attributes:
+        obligation_ids: obligation ids in spec order (the columns of ``violated`` and ``margins``).
+        override: the monitor's ``Decision.override``.
+        response: severity of ``Decision.response`` (0 none, 1 safe_pose, 2 stop_2, 3 stop_1,
+            4 stop_0); :meth:`response_at` gives the :class:`~ethimon.Response`.
+        latched: ``Decision.latched`` (held by the release rule, no current violation).
+        fault: the cycle failed closed (``Decision.faults`` non-empty).
+        internal_error: the fault came from evaluating an expression (division by zero, ...),
+            not from an input.
+        violated: ``(n_cycles, n_obligations)`` verdicts: obligation ``k`` is in
+            ``Decision.violations`` at cycle ``t`` (on a fault cycle: a stateless obligation
+            with valid inputs that the monitor still judged).
+        risk_violated: ``"risk"`` (R_e ≥ τ) is in ``Decision.violations``.
+        risk: ``Decision.risk``, NaN where it is ``None``.
+        margins: ``(n_cycles, n_obligations)`` ``Decision.margins`` (NaN on fault cycles), or
+            ``None`` when checked with ``margins=False``.
+        fallback_cycles: cycles that were stepped through :class:`~ethimon.Monitor` instead of
+            being vectorised (0 unless expressions raised on many cycles; see ``fallback_reason``).
+    """
+
+    def __init__(self, spec: Spec, inputs: Inputs, obligation_ids: tuple[str, ...], margins_on: bool,
+                 max_age_s: float | None = None) -> None:
+        n, k = inputs.n, len(obligation_ids)
+        self.spec = spec
+        self.obligation_ids = obligation_ids
+        self.n_cycles = n
+        self.override = np.zeros(n, bool)
+        self.response = np.zeros(n, np.int8)
+        self.latched = np.zeros(n, bool)
+        self.fault = inputs.input_fault.copy()
+        self.internal_error = np.zeros(n, bool)
+        self.violated = np.zeros((n, k), bool)
+        self.risk_violated = np.zeros(n, bool)
+        self.risk = inputs.risk
+        self.margins = np.full((n, k), np.nan) if margins_on else None
+        self.fallback_cycles = 0
+        self.fallback_reason: str | None = None
+        self.method = "vector"
+        self._inputs = inputs
+        self._max_age_s = max_age_s
+        self._faults: dict[int, tuple] = {}
+
+    def _monitor(self, margins: bool = False) -> Monitor:
+        return Monitor(self.spec, margins=margins, max_age_s=self._max_age_s)
+
+    # -- per cycle, as the monitor reports it ------------------------------------
+    def response_at(self, t: int) -> Response:
+        """The :class:`~ethimon.Response` of cycle ``t``."""
+        return _RESPONSES[int(self.response[t])]
+
+    def violations_at(self, t: int) -> tuple[str, ...]:
+        """``Decision.violations`` of cycle ``t`` (obligation ids in spec order, then ``"risk"``)."""
+        out = [self.obligation_ids[k] for k in np.flatnonzero(self.violated[t])]
+        if self.risk_violated[t]:
+            out.append("risk")
+        return tuple(out)
+
+    def row(self, t: int) -> dict[str, Any]:
+        """The inputs of cycle ``t`` as ``Monitor.step`` is given them."""
+        return row(self._inputs, t)
+
+    def faults_at(self, t: int) -> tuple:
+        """``Decision.faults`` of cycle ``t``, worded by the monitor itself (empty if no fault)."""
+        t = int(t)
+        if not self.fault[t]:
+            return ()
+        got = self._faults.get(t)
+        if got is None:
+            if not self.internal_error[t]:
+                got = self._monitor().step(self.row(t)).faults  # depends on this cycle only
+            else:  # depends on the history since the last fault: replay that segment
+                before = np.flatnonzero(self.fault[:t])
+                start = int(before[-1]) + 1 if len(before) else 0
+                m = self._monitor()
+                for s in range(start, t):
+                    m.step(self.row(s))
+                got = m.step(self.row(t)).faults
+                if not got:  # pragma: no cover - a disagreement with the monitor is a bug
+                    raise RuntimeError(f"offline checker bug: cycle {t} should be an internal fault")
+            self._faults[t] = got
+        return got
+
+    def decision(self, t: int) -> Decision:
+        """The :class:`~ethimon.Decision` the monitor returns at cycle ``t`` of this trace."""
+        t = int(t)
+        risk = float(self.risk[t]) if self.risk[t] == self.risk[t] else None
+        margins: tuple = ()
+        if self.margins is not None:
+            margins = tuple(float(x) for x in self.margins[t])
+        return Decision(bool(self.override[t]), self.response_at(t), self.violations_at(t), margins, risk, t,
+                        bool(self.latched[t]), self.faults_at(t))
+
+    def decisions(self) -> Iterator[Decision]:
+        """Every cycle's :class:`~ethimon.Decision`, in order."""
+        for t in range(self.n_cycles):
+            yield self.decision(t)
+
+    # -- per obligation ------------------------------------------------------------
+    def summary(self) -> dict[str, dict[str, Any]]:
+        """Per obligation (and ``"risk"``): first violation cycle, cycles violated, worst margin.
+
+        The worst margin is the smallest margin over the cycles without a fault (``None``
+        without margins or where every margin is NaN).
+        """
+        out: dict[str, dict[str, Any]] = {}
+        ok = ~self.fault
+        for k, oid in enumerate(self.obligation_ids):
+            col = self.violated[:, k]
+            hits = np.flatnonzero(col)
+            worst = None
+            if self.margins is not None and ok.any():
+                m = self.margins[ok, k]
+                m = m[~np.isnan(m)]
+                if len(m):
+                    worst = float(m.min())
+            out[oid] = {"first_violation": int(hits[0]) if len(hits) else None,
+                        "cycles_violated": int(len(hits)), "worst_margin": worst}
+        hits = np.flatnonzero(self.risk_violated)
+        out["risk"] = {"first_violation": int(hits[0]) if len(hits) else None, "cycles_violated": int(len(hits)),
+                       "worst_margin": None}
+        return out
+
+    def __repr__(self) -> str:
+        return (f"OfflineResult(spec={self.spec.name!r}, cycles={self.n_cycles}, "
+                f"overrides={int(self.override.sum())}, faults={int(self.fault.sum())}, method={self.method!r})")
+
+
+def iter_rows(spec: Spec | str | os.PathLike, columns: Mapping[str, Any], *,
+              length: int | None = None) -> Iterator[dict[str, Any]]:
+    """Each cycle's inputs as :func:`check_trace` defines them (``Monitor.step(row)`` checks the same)."""
+    if not isinstance(spec, Spec):
+        from .._api import load_spec
+        spec = load_spec(spec)
+    inp = read_inputs(_plan(spec), columns, length)
+    for t in range(inp.n):
+        yield row(inp, t)
+
+
+def check_trace(spec: Spec | str | os.PathLike, columns: Mapping[str, Any], *, margins: bool = True,
+                length: int | None = None, method: str = "vector",
+                max_age_s: float | None = None) -> OfflineResult:
+    """Check a whole recorded trace, equal cycle by cycle to ``Monitor.step`` over it.
+
+    Args:
+        spec: a :class:`~ethimon.Spec` (or the path of a spec file).
+        columns: column name → one value per cycle: the spec's signals, one risk input
+            (``risk``, ``p_unsafe``, or ``p`` as a 2-d array of class probabilities), and
+            ``risk_age_s`` if the spec sets ``risk.max_age_s``. A missing column, a masked
+            entry or ``None`` is a missing input; NaN, out-of-range and mistyped values fail
+            closed exactly where the monitor fails closed. Other columns are ignored.
+        margins: compute every obligation's margin per cycle (as ``Monitor(spec, margins=True)``).
+        length: the number of cycles, needed only if no column the spec reads is given.
+        method: ``"vector"`` (numpy), or ``"step"`` (``Monitor.step`` over every cycle; the
+            reference it equals, slower).
+        max_age_s: the age limit of risk estimates when the spec sets no ``risk.max_age_s``
+            (as ``Monitor(spec, max_age_s=...)``); then a ``risk_age_s`` column is read.
+
+    Returns:
+        An :class:`OfflineResult`.
+
+    Raises:
+        ValueError: a column of the wrong shape or length (the message names it).
+
+    Example:
+        >>> import ethimon, numpy as np
+        >>> from ethimon.offline import check_trace
+        >>> spec = ethimon.load_spec_text('''
+        ... ethimon: 1
+        ... name: demo
+        ... signals: {speed: {unit: m/s, range: [0, 3]}}
+        ... obligations:
+        ...   - {id: slow, require: "speed <= 1.0"}
+        ... ''')
+        >>> res = check_trace(spec, {"speed": np.array([0.5, 1.5, 0.2, np.nan]), "p_unsafe": np.full(4, 0.05)})
+        >>> res.violated[:, 0].tolist(), res.fault.tolist()
+        ([False, True, False, False], [False, False, False, True])
+        >>> res.summary()["slow"]["first_violation"]
+        1
+    """
+    if not isinstance(spec, Spec):
+        from .._api import load_spec
+        spec = load_spec(spec)
+    if method not in ("vector", "step"):
+        raise ValueError(f"method must be 'vector' or 'step', got {method!r}")
+    plan = _plan(spec)
+    Monitor(spec, margins=False, max_age_s=max_age_s)  # the same argument checks as the monitor's
+    inp = read_inputs(plan, columns, length, max_age_s=max_age_s)
+    ids = tuple(ob.id for ob in plan.obligations)
+    res = OfflineResult(spec, inp, ids, margins, max_age_s)
+    if inp.n == 0:
+        return res
+    with np.errstate(all="ignore"):
+        if method == "step":
+            _step_all(res, inp, margins)
+            return res
+        _valid_cycles(res, plan, inp, margins)
+        _fault_cycles(res, plan, inp)
+    _latch(res, plan, inp)
+    return res
+
+
+# -- valid cycles ------------------------------------------------------------------------
+
+def _evaluate(plan, inp: Inputs, cycles: np.ndarray, starts: np.ndarray, margins: bool):
+    """``(violated per obligation, margins per obligation or None, err or None)`` on ``cycles``."""
+    ev = Evaluator(plan, inp, cycles, starts)
+    ev.touch_temporal()
+    err = ev.update_err
+    viol = []
+    for ob in plan.obligations:
+        v, e = ev.obligation(ob)
+        viol.append(v)
+        if e is not None:
+            err = e if err is None else err | e
+    marg = [ev.margin(ob) for ob in plan.obligations] if margins else None
+    return viol, marg, err
+
+
+def _commit(res: OfflineResult, cycles: np.ndarray, sel, viol, marg) -> None:
+    c = cycles[sel]
+    for k, v in enumerate(viol):
+        res.violated[c, k] = v[sel]
+        if marg is not None:
+            res.margins[c, k] = marg[k][sel]
+
+
+def _valid_cycles(res: OfflineResult, plan, inp: Inputs, margins: bool) -> None:
+    n = inp.n
+    todo = np.flatnonzero(~inp.input_fault)
+    fresh_err = None  # per cycle: raises even as the first cycle of a segment
+    passes = 0
+    while len(todo):
+        starts = np.ones(len(todo), bool)
+        starts[1:] = np.diff(todo) != 1
+        viol, marg, err = _evaluate(plan, inp, todo, starts, margins)
+        if err is None or not err.any():
+            _commit(res, todo, slice(None), viol, marg)
+            return
+        seg = np.cumsum(starts) - 1
+        first = np.full(int(seg[-1]) + 1, len(todo))
+        bad = np.flatnonzero(err)
+        segs, at = np.unique(seg[bad], return_index=True)
+        first[segs] = bad[at]
+        keep = np.arange(len(todo)) < first[seg]
+        _commit(res, todo, keep, viol, marg)
+        if fresh_err is None:
+            ok = np.flatnonzero(~inp.input_fault)
+            _, _, e0 = _evaluate(plan, inp, ok, np.ones(len(ok), bool), False)
+            fresh_err = np.zeros(n + 1, bool)
+            if e0 is not None:
+                fresh_err[ok] = e0
+        # the first raise of each segment is an internal fault; so is every following cycle that
+        # raises even with an empty history; the rest of the segment starts afresh after them
+        nxt = np.minimum.accumulate(np.where(~fresh_err, np.arange(n + 1), n)[::-1])[::-1]
+        errs = todo[first[segs]]
+        restart = nxt[errs + 1]
+        mark = np.zeros(n + 1, np.int64)
+        np.add.at(mark, errs, 1)
+        np.add.at(mark, restart, -1)
+        res.internal_error |= np.cumsum(mark)[:n] > 0
+        res.fault |= res.internal_error
+        lim = np.full(int(seg[-1]) + 1, n)
+        lim[segs] = restart
+        rest = (~keep) & (todo >= lim[seg])
+        todo = todo[rest]
+        passes += 1
+        if passes >= _MAX_PASSES and len(todo):
+            _step_segments(res, todo, margins)
+            res.fallback_reason = (f"expressions raised in {passes} rounds of re-evaluation; the rest of "
+                                   "those segments was stepped through Monitor.step")
+            return
+
+
+def _step_segments(res: OfflineResult, todo: np.ndarray, margins: bool) -> None:
+    """The fallback: step each run of consecutive cycles in ``todo`` through a fresh Monitor."""
+    ids = {oid: k for k, oid in enumerate(res.obligation_ids)}
+    breaks = np.flatnonzero(np.diff(todo) != 1) + 1
+    for run in np.split(todo, breaks):
+        m = res._monitor(margins)
+        for t in run.tolist():
+            d = m.step(res.row(t))
+            res.fallback_cycles += 1
+            if d.faults:
+                res.internal_error[t] = True
+                res.fault[t] = True
+                res._faults[t] = d.faults
+                continue
+            for v in d.violations:
+                if v != "risk":
+                    res.violated[t, ids[v]] = True
+            if margins:
+                res.margins[t] = d.margins
+
+
+def _step_all(res: OfflineResult, inp: Inputs, margins: bool) -> None:
+    """``method="step"``: every cycle through one Monitor, read back into the arrays."""
+    res.method = "step"
+    ids = {oid: k for k, oid in enumerate(res.obligation_ids)}
+    m = res._monitor(margins)
+    risk = np.full(inp.n, np.nan)
+    for t in range(inp.n):
+        d = m.step(row(inp, t))
+        res.override[t] = d.override
+        res.response[t] = d.response.severity
+        res.latched[t] = d.latched
+        res.fault[t] = bool(d.faults)
+        if d.faults:
+            res._faults[t] = d.faults
+            res.internal_error[t] = not inp.input_fault[t]
+        for v in d.violations:
+            if v == "risk":
+                res.risk_violated[t] = True
+            else:
+                res.violated[t, ids[v]] = True
+        if margins and d.margins:
+            res.margins[t] = d.margins
+        if d.risk is not None:
+            risk[t] = d.risk
+    res.risk = risk
+    res.fallback_cycles = inp.n
+    res.fallback_reason = "method='step'"
+
+
+# -- fault cycles --------------------------------------------------------------------------
+
+def _stateless_names(plan, ob) -> set[str] | None:
+    """Inputs a stateless obligation reads (signal names, ``risk``), or ``None`` if it keeps state."""
+    if ob.within_cycles:
+        return None
+    inputs = {s.name for s in plan.signals} | {"risk"}
+    used = set()
+    for root in (ob.when, ob.require):
+        if root is None:
+            continue
+        for node in walk(root):
+            if isinstance(node, Call) and node.func in TEMPORAL:
+                return None
+            if isinstance(node, Name) and node.id in inputs and node.id not in plan.constants:
+                used.add(node.id)
+    return used
+
+
+def _fault_cycles(res: OfflineResult, plan, inp: Inputs) -> None:
+    """On input-fault cycles, the stateless obligations whose inputs are all valid are still judged."""
+    cycles = np.flatnonzero(inp.input_fault)
+    if not len(cycles):
+        return
+    stateless = [(k, ob, names) for k, ob in enumerate(plan.obligations)
+                 if (names := _stateless_names(plan, ob)) is not None]
+    if not stateless:
+        return
+    ev = Evaluator(plan, inp, cycles, np.ones(len(cycles), bool))
+    risk_ok = (inp.risk_ok & inp.age_ok)[cycles]
+    for k, ob, names in stateless:
+        v, e = ev.obligation(ob)
+        hit = v.copy()
+        if e is not None:
+            hit &= ~e  # one that raises is skipped: the cycle fails closed anyway
+        for name in names:
+            hit &= risk_ok if name == "risk" else inp.ok[name][cycles]
+        res.violated[cycles, k] = hit
+
+
+# -- the latch -----------------------------------------------------------------------------
+
+def _latch(res: OfflineResult, plan, inp: Inputs) -> None:
+    """Override, response and the latched flag from the per-cycle events, without a loop.
+
+    An event is a fault or a violation; the latched severity is the largest since the
+    last release; a release is the first cycle after an event that completes
+    ``hold_cycles`` consecutive cycles with no event and R_e below τ − δ.
+    """
+    spec = plan.spec
+    r = spec.risk
+    n = inp.n
+    idx = np.arange(n)
+    tau = float(r.threshold)
+    res.risk_violated = inp.risk_ok & (np.where(inp.risk_ok, inp.risk, -np.inf) >= tau)
+    sev = np.zeros(n, np.int8)
+    for k, ob in enumerate(plan.obligations):
+        s = ob.response.severity
+        sev = np.where(res.violated[:, k] & (sev < s), s, sev)
+    rs = Response(r.response).severity
+    sev = np.where(res.risk_violated & (sev < rs), rs, sev)
+    fs = Response(spec.on_fault).severity
+    sev = np.where(res.fault & (sev < fs), fs, sev)
+    event = sev > 0
+    if not event.any():
+        return
+    last_event = last_index(event, idx)
+    rel = np.zeros(n, bool)
+    if r.release.mode == "auto":
+        below = ~res.fault & inp.risk_ok & (np.where(inp.risk_ok, inp.risk, np.inf) < release_bound(
+            r.threshold, r.release.hysteresis)[1])
+        run = idx - last_index(event | ~below, idx)
+        cand = np.flatnonzero((run == int(r.release.hold_cycles)) & ~event & (last_event >= 0))
+        if len(cand):
+            le = last_event[cand]
+            first = np.ones(len(cand), bool)
+            first[1:] = le[1:] != le[:-1]
+            rel[cand[first]] = True
+    last_rel = last_index(rel, idx)
+    active = last_event > last_rel
+    level = np.zeros(n, np.int8)
+    for s in range(1, 5):
+        level = np.where(active & (last_index(sev >= s, idx) > last_rel), s, level)
+    res.override = active
+    res.response = level
+    res.latched = active & ~event

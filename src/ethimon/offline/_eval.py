@@ -1,0 +1,314 @@
+"""Vectorised evaluation of a plan's expressions over many cycles at once.
+
+The cycles evaluated together are given as sorted original cycle numbers plus
+segment starts: a segment is a run of cycles with no fault in between, the
+history a :class:`~ethimon.Monitor` keeps (it clears it on every fault). Every
+array here is indexed by position in that list.
+
+Each expression node gives ``(value, err)``: the value on every cycle (garbage
+where the monitor would raise), and where evaluating it raises the way the
+compiled closures evaluate it (``and``/``or``/``implies`` short-circuit, a
+division by zero or the square root of a negative number raises), ``None`` if
+it cannot raise. The temporal operators follow the compiled state machines
+(:mod:`ethimon.compiler._codegen`), written as scans that are linear in the
+trace and independent of the window length:
+
+* ``prev``: a shift; the initial value at each segment start;
+* ``held(e, n)``: the run of ``e`` since its last false cycle (a running maximum
+  of indices) reaches ``n``;
+* ``once(e, n)``: the last cycle with ``e`` lies within the window and the segment;
+* ``since(a, b[, n])``: the last ``b`` lies in the segment (and the window) and no
+  cycle after it had ``not a``;
+* bounded response: the first trigger after the last cycle that met ``require``
+  is ``n`` cycles old or more.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary
+
+__all__ = ["Evaluator", "TEMPORAL_FUNCS"]
+
+TEMPORAL_FUNCS = ("prev", "held", "once", "since")
+INF = math.inf
+_CMP = {"<": np.less, "<=": np.less_equal, ">": np.greater, ">=": np.greater_equal, "==": np.equal,
+        "!=": np.not_equal}
+_ARITH = {"+": np.add, "-": np.subtract, "*": np.multiply, "/": np.divide}
+
+
+def _or(a, b):
+    if a is None:
+        return b
+    if b is None:
+        return a
+    return a | b
+
+
+def last_index(mask: np.ndarray, idx: np.ndarray) -> np.ndarray:
+    """For each position, the last position ``<= i`` where ``mask`` holds (-1 if none)."""
+    return np.maximum.accumulate(np.where(mask, idx, -1))
+
+
+def window_max(x: np.ndarray, w: int) -> np.ndarray:
+    """``max(x[i-w+1 .. i])`` for every ``i`` (the window clipped at 0): van Herk/Gil-Werman, O(len) for any ``w``."""
+    n = len(x)
+    if n == 0:
+        return x.copy()
+    if w >= n:
+        return np.maximum.accumulate(x)
+    blocks = -(-n // w)
+    pad = np.full(blocks * w, -INF)
+    pad[:n] = x
+    b = pad.reshape(blocks, w)
+    pre = np.maximum.accumulate(b, axis=1).ravel()
+    suf = np.maximum.accumulate(b[:, ::-1], axis=1)[:, ::-1].ravel()
+    out = pre[:n].copy()
+    i = np.arange(w - 1, n)
+    out[w - 1:] = np.maximum(suf[i - w + 1], pre[i])
+    return out
+
+
+class Evaluator:
+    """Values of every node of a plan on a set of cycles (see the module docstring)."""
+
+    def __init__(self, plan, inputs, cycles: np.ndarray, starts: np.ndarray) -> None:
+        self.plan = plan
+        self.n = n = len(cycles)
+        self.idx = np.arange(n)
+        self.starts = starts
+        self.seg_first = np.maximum.accumulate(np.where(starts, self.idx, 0)) if n else self.idx
+        self.pos = self.idx - self.seg_first
+        self.env: dict[str, np.ndarray] = {s.name: inputs.values[s.name][cycles] for s in plan.signals}
+        self.env["risk"] = inputs.risk[cycles]
+        self.consts = plan.constants
+        self.memo: dict[int, tuple] = {}
+        self.rmemo: dict[int, tuple] = {}
+        self.update_err = None  # where a temporal operator's arguments raise
+
+    # -- values -------------------------------------------------------------------
+    def full(self, v, kind: str) -> np.ndarray:
+        dtype = bool if kind == "bool" else np.float64
+        a = np.asarray(v, dtype=dtype)
+        return np.broadcast_to(a, (self.n,)) if a.ndim == 0 else a
+
+    def ev(self, node: Node):
+        key = id(node)
+        got = self.memo.get(key)
+        if got is None:
+            got = self._ev(node)
+            self.memo[key] = got
+        return got
+
+    def _ev(self, node: Node):
+        if isinstance(node, Num):
+            return np.float64(node.value), None
+        if isinstance(node, BoolLit):
+            return np.bool_(node.value), None
+        if isinstance(node, Name):
+            if node.id in self.consts:
+                return np.float64(self.consts[node.id]), None
+            return self.env[node.id], None
+        if isinstance(node, Unary):
+            v, e = self.ev(node.operand)
+            return (np.logical_not(v) if node.op == "not" else np.negative(v)), e
+        if isinstance(node, Binary):
+            op = node.op
+            lv, le = self.ev(node.left)
+            rv, re = self.ev(node.right)
+            if op == "and":
+                return np.logical_and(lv, rv), _or(le, None if re is None else lv & re)
+            if op == "or":
+                return np.logical_or(lv, rv), _or(le, None if re is None else ~lv & re)
+            if op == "implies":
+                return np.logical_or(np.logical_not(lv), rv), _or(le, None if re is None else lv & re)
+            if op in _CMP:
+                return _CMP[op](lv, rv), _or(le, re)
+            v = _ARITH[op](lv, rv)
+            e = _or(le, re)
+            if op == "/":
+                e = _or(e, self.full(rv == 0.0, "bool"))
+            return v, e
+        if isinstance(node, Call):
+            f = node.func
+            if f in TEMPORAL_FUNCS:
+                return self.temporal(node), None
+            vals = [self.ev(a) for a in node.args]
+            e = None
+            for _, ae in vals:
+                e = _or(e, ae)
+            if f == "abs":
+                return np.abs(vals[0][0]), e
+            if f == "sqrt":
+                x = vals[0][0]
+                return np.sqrt(x), _or(e, self.full(x < 0.0, "bool"))
+            cur = vals[0][0]
+            for v, _ in vals[1:]:  # Python's min/max: keep the first unless a later one is strictly better
+                cur = np.where(v < cur, v, cur) if f == "min" else np.where(v > cur, v, cur)
+            return cur, e
+        raise TypeError(f"cannot evaluate {node!r}")  # pragma: no cover
+
+    # -- temporal operators ------------------------------------------------------
+    def temporal(self, node: Call) -> np.ndarray:
+        f = node.func
+        n = self.plan.windows.get(id(node))
+        idx, seg_first = self.idx, self.seg_first
+        args = [self.ev(a) for a in node.args if not (f in ("held", "once") and a is node.args[1])
+                and not (f == "since" and len(node.args) == 3 and a is node.args[2])]
+        for _, e in args:
+            self.update_err = _or(self.update_err, e)
+        if f == "prev":
+            kind = self.plan.type_of(node).kind
+            cur = self.full(args[0][0], kind)
+            out = np.empty(self.n, dtype=cur.dtype)
+            out[1:] = cur[:-1]
+            st = self.starts
+            if len(args) == 2:
+                out[st] = self.full(args[1][0], kind)[st]
+            elif kind == "bool":
+                out[st] = False
+            else:
+                out[st] = cur[st]
+            return out
+        if f == "held":
+            e = self.full(args[0][0], "bool")
+            base = np.maximum(last_index(~e, idx), seg_first - 1)
+            return idx - base >= n
+        if f == "once":
+            e = self.full(args[0][0], "bool")
+            return last_index(e, idx) >= np.maximum(seg_first, idx - n + 1)
+        # since
+        a = self.full(args[0][0], "bool")
+        b = self.full(args[1][0], "bool")
+        lb = last_index(b, idx)
+        out = (lb >= seg_first) & (last_index(~a, idx) <= lb)
+        if n is not None:
+            out &= idx - lb < n
+        return out
+
+    def touch_temporal(self) -> None:
+        """Evaluate every temporal operator (the monitor updates them all every cycle)."""
+        for node in self.plan.temporal:
+            self.ev(node)
+
+    # -- obligations -------------------------------------------------------------
+    def obligation(self, ob) -> tuple[np.ndarray, np.ndarray | None]:
+        """``(violated, err)`` of one obligation, as its compiled closure judges it."""
+        rv, re = self.ev(ob.require)
+        req = self.full(rv, "bool")
+        n = ob.within_cycles
+        if not n:
+            if ob.when is None:
+                return ~req, re
+            wv, we = self.ev(ob.when)
+            w = self.full(wv, "bool")
+            return w & ~req, _or(we, None if re is None else w & re)
+        if ob.when is None:
+            w, we = np.ones(self.n, bool), None
+        else:
+            wv, we = self.ev(ob.when)
+            w = self.full(wv, "bool")
+        idx = self.idx
+        base = np.maximum(last_index(req, idx), self.seg_first - 1)  # last cycle that met require
+        nxt = np.empty(self.n + 1, dtype=np.int64)  # first trigger at or after each position
+        nxt[-1] = self.n
+        nxt[:-1] = np.minimum.accumulate(np.where(w, idx, self.n)[::-1])[::-1]
+        return nxt[base + 1] <= idx - n, _or(we, re)
+
+    # -- margins -----------------------------------------------------------------
+    def rob(self, node: Node):
+        key = id(node)
+        got = self.rmemo.get(key)
+        if got is None:
+            got = self._rob(node)
+            self.rmemo[key] = got
+        return got
+
+    def _rob(self, node: Node):
+        """Robustness ``(value, err)`` as the compiled margins compute it (no short-circuit)."""
+        if isinstance(node, Binary):
+            op = node.op
+            if op in _CMP and self.plan.type_of(node.left).kind == "num":
+                (a, ae), (b, be) = self.ev(node.left), self.ev(node.right)
+                e = _or(ae, be)
+                if op in ("<", "<="):
+                    return self.full(b - a, "num"), e
+                if op in (">", ">="):
+                    return self.full(a - b, "num"), e
+                if op == "==":
+                    return self.full(-np.abs(a - b), "num"), e
+                return self.full(np.abs(a - b), "num"), e
+            if op in ("and", "or", "implies"):
+                (f, fe), (g, ge) = self.rob(node.left), self.rob(node.right)
+                if op == "implies":
+                    f = -f
+                pick = (g < f) if op == "and" else (g > f)
+                return np.where(pick, g, f), _or(fe, ge)
+        if isinstance(node, Unary) and node.op == "not":
+            f, fe = self.rob(node.operand)
+            return -f, fe
+        v, e = self.ev(node)
+        return np.where(self.full(v, "bool"), INF, -INF), e
+
+    def margin(self, ob) -> np.ndarray:
+        """The obligation's margin on every cycle (NaN where it cannot be computed)."""
+        rr, re = self.rob(ob.require)
+        a = we = None
+        if ob.when is not None:
+            rw, we = self.rob(ob.when)
+            a = -rw
+        n = ob.within_cycles
+        if not n:
+            out = rr if a is None else np.where(rr > a, rr, a)  # Python's max(-rw, rr)
+            err = _or(re, we)
+            return out if err is None else np.where(err, np.nan, out)
+        # a bounded response treats a term that raised like a NaN term
+        if re is not None:
+            rr = np.where(re, np.nan, rr)
+        if a is None:
+            a = np.full(self.n, -INF)
+        elif we is not None:
+            a = np.where(we, np.nan, a)
+        return self._bounded_margin(a, rr, n)
+
+    def _bounded_margin(self, a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
+        """``M(t) = min(max(M(t−1), b(t)), max(a(t−n), max b(t−n..t)))`` per segment, +inf for the first
+        ``n`` cycles, NaN from the first due window holding a NaN (as ``_codegen._bounded_margin``).
+
+        ``x ↦ min(max(x, lo), hi)`` with ``lo <= hi`` is a clamp, and clamps compose into clamps,
+        so the recurrence is a prefix scan (log-step); a segment's first cycle is the constant +inf,
+        which also cuts the scan at every segment boundary.
+        """
+        N = self.n
+        idx, sf, pos = self.idx, self.seg_first, self.pos
+        nan_b = np.isnan(b)
+        cb = np.concatenate(([0], np.cumsum(nan_b)))
+        ca = np.concatenate(([0], np.cumsum(np.isnan(a))))
+        due = pos >= n
+        lag = np.where(due, idx - n, idx)  # the trigger that falls due at each position
+        unknown = due & ((cb[idx + 1] - cb[sf] > 0) | (ca[lag + 1] - ca[sf] > 0))
+        bz = np.where(nan_b, -INF, b)
+        top = window_max(bz, n + 1)
+        cand = a[lag]
+        hi = np.where(top > cand, top, cand)
+        lo = bz
+        ok = due & ~unknown
+        lo = np.where(ok, lo, INF)
+        hi = np.where(ok, hi, INF)
+        lo = np.where(np.isnan(lo), 0.0, lo)
+        hi = np.where(np.isnan(hi), 0.0, hi)
+        k = 1
+        longest = int(pos.max()) + 1 if N else 0
+        while k < longest:
+            plo, phi = lo[:-k], hi[:-k]
+            clo, chi = lo[k:], hi[k:]
+            nlo = np.minimum(np.maximum(plo, clo), chi)
+            nhi = np.minimum(np.maximum(phi, clo), chi)
+            lo = np.concatenate((lo[:k], nlo))
+            hi = np.concatenate((hi[:k], nhi))
+            k *= 2
+        out = np.where(due, hi, INF)
+        return np.where(unknown, np.nan, out)
