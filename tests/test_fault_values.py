@@ -72,7 +72,9 @@ def test_a_fault_is_an_immutable_value_not_a_string():
         "stale" in f  # noqa: B015 - text matching is exactly what must not work silently
     with pytest.raises(ValueError, match="not one of"):
         Fault("nan-ish", "x")
-    assert f.as_dict() == {"kind": "stale", "message": f.message}
+    assert f.as_dict() == {"kind": "stale", "message": f.message, "subject": ""}
+    g = Fault("missing", "signal 'a' is missing", "a")
+    assert g.subject == "a" and g != Fault("missing", g.message) and "subject='a'" in repr(g)
     assert repr(f) == "Fault('stale', 'risk estimate is stale: 0.6 s > 0.5 s')"
 
 

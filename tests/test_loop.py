@@ -373,6 +373,29 @@ def test_loop_logs_state_changes_only_by_default(tmp_path):
     assert on["model_id"] == "scripted-fake@0" and len(on["spec_sha256"]) == 64
 
 
+TWO = CELL.replace("  human_distance: {unit: m, range: [0, 10]}",
+                   "  human_distance: {unit: m, range: [0, 10]}\n  grip_force: {unit: N, range: [0, 200]}")
+
+
+def test_loop_logs_which_input_faults_when_it_changes(tmp_path):
+    """A fault moving from one input to another is a state change (nothing lost in the default log)."""
+    p = tmp_path / "f.jsonl"
+    log = AuditLog(p)
+    loop, clock = _loop(audit=log, spec=TWO)
+    cycles = [{"human_distance": 2.0, "grip_force": 5.0}] * 3 + [{"grip_force": 5.0}] * 3 \
+        + [{"human_distance": 2.0}] * 3 + [{"human_distance": 2.0, "grip_force": float("nan")}] * 3
+    for sig in cycles:
+        clock.advance(0.001)
+        loop.cycle(sig)
+    log.close()
+    recs = [r for r in read_log(p) if r["kind"] == "decision"]
+    seen = [r["faults"] for r in recs if r["faults"]]
+    assert any("'human_distance' is missing" in " ".join(f) for f in seen)
+    assert any("'grip_force' is missing" in " ".join(f) for f in seen)
+    assert any("'grip_force'" in " ".join(f) and "NaN" in " ".join(f) for f in seen)
+    assert [r["fault_kinds"] for r in recs if r["faults"]] == [["missing"], ["missing"], ["invalid"]]
+
+
 def test_loop_can_log_every_cycle(tmp_path):
     p = tmp_path / "e.jsonl"
     log = AuditLog(p, fsync="never")

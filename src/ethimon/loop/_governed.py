@@ -373,7 +373,7 @@ class GovernedLoop:
     _carry_latch = False
 
     def _audit(self, d: Decision, inputs: dict, reading: RiskReading | None) -> None:
-        key = (d.override, d.response, d.violations, tuple(f.kind for f in d.faults) if d.faults else ())
+        key = (d.override, d.response, d.violations, tuple((f.kind, f.subject) for f in d.faults) if d.faults else ())
         if not self.audit_every_cycle and key == self._state_key:
             return
         prev = self._state_key

@@ -33,6 +33,9 @@ class Fault:
     Attributes:
         kind: one of :data:`FAULT_KINDS` (``"missing"``, ``"stale"``, ...).
         message: the human-readable reason (``str(fault)`` gives it too).
+        subject: the input the fault is about (a signal name, ``"risk"``,
+            ``"risk_age_s"``), or ``""``. Code that tracks *which* input failed
+            (the audit log's state changes) uses ``(kind, subject)``, never the text.
 
     Immutable, compared and hashed by ``(kind, message)``. It is deliberately
     not a string: ``"stale" in fault`` raises instead of matching text; test
@@ -44,15 +47,17 @@ class Fault:
         ('stale', 'risk estimate is stale: 0.612 s > 0.5 s')
     """
 
-    __slots__ = ("kind", "message")
+    __slots__ = ("kind", "message", "subject")
     kind: str
     message: str
+    subject: str
 
-    def __init__(self, kind: str, message: str) -> None:
+    def __init__(self, kind: str, message: str, subject: str = "") -> None:
         if kind not in FAULT_KINDS:
             raise ValueError(f"fault kind {kind!r} is not one of {sorted(FAULT_KINDS)}")
         object.__setattr__(self, "kind", kind)
         object.__setattr__(self, "message", str(message))
+        object.__setattr__(self, "subject", str(subject))
 
     def __setattr__(self, name: str, value: object) -> None:
         raise AttributeError("Fault is immutable")
@@ -63,20 +68,22 @@ class Fault:
     def __eq__(self, other: object) -> bool:
         if type(other) is not Fault:
             return NotImplemented
-        return self.kind == other.kind and self.message == other.message
+        return self.kind == other.kind and self.message == other.message and self.subject == other.subject
 
     def __hash__(self) -> int:
-        return hash((self.kind, self.message))
+        return hash((self.kind, self.message, self.subject))
 
     def __str__(self) -> str:
         return self.message
 
     def __repr__(self) -> str:
+        if self.subject:
+            return f"Fault({self.kind!r}, {self.message!r}, subject={self.subject!r})"
         return f"Fault({self.kind!r}, {self.message!r})"
 
     def __reduce__(self):
-        return (Fault, (self.kind, self.message))
+        return (Fault, (self.kind, self.message, self.subject))
 
     def as_dict(self) -> dict:
-        """``{"kind": ..., "message": ...}`` (JSON-ready)."""
-        return {"kind": self.kind, "message": self.message}
+        """``{"kind": ..., "message": ..., "subject": ...}`` (JSON-ready)."""
+        return {"kind": self.kind, "message": self.message, "subject": self.subject}

@@ -29,7 +29,7 @@ _RESPONSES = (Response.NONE, Response.SAFE_POSE, Response.STOP_2, Response.STOP_
 _EMPTY: tuple = ()
 _EXTERNAL = Fault("external", "external fault")
 _INTERNAL = Fault("internal", "internal error")
-_NO_RISK = Fault("missing", "no risk input this cycle (give risk, p_unsafe or p)")
+_NO_RISK = Fault("missing", "no risk input this cycle (give risk, p_unsafe or p)", "risk")
 
 
 def _all_margins(fns: tuple) -> tuple[float, ...]:
@@ -99,7 +99,7 @@ class Monitor:
         self._m = m
         self._vals = m.vals
         self._sig = tuple((s.name, s.slot, s.kind == "bool", s.lo, s.hi,
-                           Fault("missing", f"signal {s.name!r} is missing"))  # built once, not per cycle
+                           Fault("missing", f"signal {s.name!r} is missing", s.name))  # built once, not per cycle
                           for s in plan.signals)
         self._rslot = plan.risk_slot
         self._updates = m.updates
@@ -143,7 +143,7 @@ class Monitor:
             self._max_age, why = float(fallback), "an estimate age limit is set"
         else:
             self._max_age, why = None, ""
-        self._age_missing = Fault("missing", f"risk_age_s is missing ({why})") if why else None
+        self._age_missing = Fault("missing", f"risk_age_s is missing ({why})", "risk_age_s") if why else None
 
     @property
     def max_age_s(self) -> float | None:
@@ -186,17 +186,17 @@ class Monitor:
             if f is None or not self._rlo <= f <= self._rhi:
                 return None, Fault("invalid" if f is None else "range",
                                    f"risk input R_e={r!r} is NaN, not a number or outside "
-                                   f"[{self._rlo:g}, {self._rhi:g}]")
+                                   f"[{self._rlo:g}, {self._rhi:g}]", "risk")
             return f, None
         q = get("p_unsafe")
         if q is not None:
             if self._k != 2:
                 return None, Fault("invalid",
-                                   f"p_unsafe alone needs a 2-class spec (risk.classes is {self._k}); pass p")
+                                   f"p_unsafe alone needs a 2-class spec (risk.classes is {self._k}); pass p", "p_unsafe")
             f = q if type(q) is float else as_number(q)
             if f is None or not 0.0 <= f <= 1.0:
                 return None, Fault("invalid" if f is None or not _isfinite(f) else "range",
-                                   f"p_unsafe={q!r} is NaN, not a number or outside [0, 1]")
+                                   f"p_unsafe={q!r} is NaN, not a number or outside [0, 1]", "p_unsafe")
             d = f - 0.5
             var = 2.0 * d * d if self._sample else d * d
             top = f if f >= 0.5 else 1.0 - f
@@ -206,7 +206,7 @@ class Monitor:
             return None, _NO_RISK
         probs, why = as_probs(p, self._k)
         if why is not None:
-            return None, Fault("invalid", why)
+            return None, Fault("invalid", why, "p")
         return risk_from_probs(probs, self._alpha, self._beta, self._gamma,
                                "sample" if self._sample else "population", self._uidx), None
 
@@ -237,7 +237,7 @@ class Monitor:
                     b = v if (v is True or v is False) else as_bool(v)
                     if b is None:
                         (faults := faults or []).append(
-                            Fault("invalid", f"signal {name!r} must be true/false, got {v!r}"))
+                            Fault("invalid", f"signal {name!r} must be true/false, got {v!r}", name))
                         (bad := bad or []).append(slot)
                     else:
                         vals[slot] = b
@@ -247,14 +247,14 @@ class Monitor:
                     if f is None:
                         (faults := faults or []).append(Fault(
                             "invalid", f"signal {name!r} must be a number, got {v!r} (a finite int, float or "
-                            f"numpy scalar; not a bool, string or NaN)"))
+                            f"numpy scalar; not a bool, string or NaN)", name))
                         (bad := bad or []).append(slot)
                     elif lo <= f <= hi:
                         vals[slot] = f
                     else:
                         (faults := faults or []).append(Fault(
                             "range" if _isfinite(f) else "invalid",
-                            f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]"))
+                            f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]", name))
                         (bad := bad or []).append(slot)
             r, why = self._risk(get)
             if why is None and not _isfinite(r):  # weights and inputs are finite; never trust it blindly
@@ -271,7 +271,7 @@ class Monitor:
                 elif a is None or not 0.0 <= a <= self._max_age:
                     (faults := faults or []).append(Fault(
                         "stale",
-                        f"risk estimate is stale or its age is invalid: {age!r} s > max_age_s {self._max_age:g}"))
+                        f"risk estimate is stale or its age is invalid: {age!r} s > max_age_s {self._max_age:g}", "risk_age_s"))
                     (bad := bad or []).append(self._rslot)
             if faults is not None:
                 return self._fault(cycle, tuple(faults), r, bad)
