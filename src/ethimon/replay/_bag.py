@@ -147,11 +147,10 @@ def _storage(reader: Any, p: Path, ros1: bool) -> str:
 
 
 def _read(reader: Any, spath: str, p: Path, ros1: bool, mapping: Mapping) -> BagData:
-    topics = {c.topic: (c.msgtype, 0) for c in reader.connections}
-    counts: dict[str, int] = {}
+    topics: dict[str, tuple[str, int]] = {}  # every topic in the bag: (type, message count)
     for c in reader.connections:
-        counts[c.topic] = counts.get(c.topic, 0) + int(getattr(c, "msgcount", 0) or 0)
-    topics = {t: (ty, counts.get(t, 0)) for t, (ty, _) in topics.items()}
+        _, cnt = topics.get(c.topic, (c.msgtype, 0))
+        topics[c.topic] = (c.msgtype, cnt + int(getattr(c, "msgcount", 0) or 0))
     by_topic: dict[str, list[tuple[str, SignalMap, tuple]]] = {}
     for name, sm in mapping.signals.items():
         by_topic.setdefault(sm.topic, []).append((name, sm, parse_field_path(sm.field)))

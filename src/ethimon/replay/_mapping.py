@@ -142,6 +142,10 @@ def load_mapping_text(text: str, path: str = "<string>") -> Mapping:
 def _validate(data: Any, smap: SourceMap) -> Mapping:
     # unknown keys first, with "did you mean": a misspelt key would otherwise be reported as
     # the required key it was meant to be ("missing required key 'topic'")
+    if not isinstance(data, dict):
+        kind = type(data).__name__ if data is not None else "nothing"
+        raise smap.error(f"a mapping file must be a mapping of keys, but this file holds {kind}", (),
+                         hint="start with 'ethimon: 1', 'rate_hz: ...', 'max_age_s: ...' and 'signals:'")
     if isinstance(data, dict):
         _known_keys(data, Mapping, (), smap)
         sigs = data.get("signals")
