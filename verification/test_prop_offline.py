@@ -189,6 +189,62 @@ def test_offline_equals_monitor_on_long_windows(spec_and_text, n, seed, p_bad):
     assert_equal_to_monitor(spec, cols, list(iter_rows(spec, cols)))
 
 
+# -- expressions that raise ----------------------------------------------------------------------
+
+RAISING = ("x / y", "sqrt(x)", "x / prev(y, 1)", "1 / (y - prev(y))", "sqrt(x - prev(x))", "z / min(y, x)")
+
+
+@st.composite
+def raising_specs(draw):
+    """Specs whose expressions divide by zero or take the root of a negative number on some cycles.
+
+    The monitor turns such a cycle into a fault and clears its history; some of these raise only
+    with some history (``prev``), so the offline checker's re-evaluation after a fault, and its
+    fallback to ``Monitor.step``, are both exercised.
+    """
+    atom = bool_expr(1)
+    obligations = []
+    for i in range(draw(st.integers(1, 3))):
+        num = draw(st.sampled_from(RAISING))
+        cmp = f"{num} {draw(st.sampled_from(('<', '>=', '!=')))} {draw(st.sampled_from(('0.5', '2', 'x')))}"
+        guard = to_source(draw(atom))
+        form = draw(st.sampled_from(("plain", "guarded", "held", "once", "since", "within", "prev")))
+        n = draw(st.sampled_from((1, 2, 3, 7)))
+        ob = {"id": f"ob{i}", "response": draw(st.sampled_from(RESPONSES))}
+        if form == "plain":
+            ob["require"] = cmp
+        elif form == "guarded":  # the division is skipped where the guard decides
+            ob["require"] = f"{guard} {draw(st.sampled_from(('or', 'and', 'implies')))} {cmp}"
+        elif form == "held":
+            ob["require"] = f"not held({cmp}, {n})"
+        elif form == "once":
+            ob["require"] = f"once({cmp}, {n}) implies {guard}"
+        elif form == "since":
+            ob["require"] = f"not since({guard}, {cmp}, {n})"
+        elif form == "prev":
+            ob["require"] = f"prev({cmp}) or {guard}"
+        else:
+            ob["when"] = guard
+            ob["require"] = cmp
+            ob["within_cycles"] = n
+        obligations.append(ob)
+    signals = {k: {"range": [lo, hi]} for k, (lo, hi) in NUM_SIGNALS.items()}
+    signals.update({k: {"type": "bool"} for k in BOOL_SIGNALS})
+    doc = {"ethimon": 1, "name": "raising", "signals": signals,
+           "risk": {"release": {"mode": "auto", "hold_cycles": draw(st.sampled_from((1, 2, 5)))}},
+           "on_fault": draw(st.sampled_from(RESPONSES)), "obligations": obligations}
+    text = yaml.safe_dump(doc, sort_keys=False)
+    return text, ethimon.load_spec_text(text, "<raising>")
+
+
+@given(raising_specs(), st.integers(1, 150), st.integers(0, 2 ** 32 - 1), st.sampled_from((0.0, 0.02)))
+def test_offline_equals_monitor_where_expressions_raise(spec_and_text, n, seed, p_bad):
+    text, spec = spec_and_text
+    note(text)
+    cols = numeric_columns(spec, n, seed, p_bad, "p_unsafe")
+    assert_equal_to_monitor(spec, cols, list(iter_rows(spec, cols)))
+
+
 @given(st.data())
 def test_offline_step_method_equals_vector(data):
     gen = data.draw(specs(max_obligations=2, depth=2))

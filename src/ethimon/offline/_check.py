@@ -280,6 +280,11 @@ def _evaluate(plan, inp: Inputs, cycles: np.ndarray, starts: np.ndarray, margins
 
 
 def _commit(res: OfflineResult, cycles: np.ndarray, sel, viol, marg) -> None:
+    if isinstance(sel, slice) and len(cycles) == res.n_cycles and viol:  # every cycle, in order
+        res.violated = np.stack(viol, axis=1)
+        if marg is not None:
+            res.margins = np.stack(marg, axis=1)
+        return
     c = cycles[sel]
     for k, v in enumerate(viol):
         res.violated[c, k] = v[sel]
@@ -436,25 +441,26 @@ def _latch(res: OfflineResult, plan, inp: Inputs) -> None:
     spec = plan.spec
     r = spec.risk
     n = inp.n
-    idx = np.arange(n)
+    idx = np.arange(n, dtype=np.int32 if n < 2 ** 31 - 1 else np.int64)
     tau = float(r.threshold)
     res.risk_violated = inp.risk_ok & (np.where(inp.risk_ok, inp.risk, -np.inf) >= tau)
-    sev = np.zeros(n, np.int8)
-    for k, ob in enumerate(plan.obligations):
-        s = ob.response.severity
-        sev = np.where(res.violated[:, k] & (sev < s), s, sev)
-    rs = Response(r.response).severity
-    sev = np.where(res.risk_violated & (sev < rs), rs, sev)
-    fs = Response(spec.on_fault).severity
-    sev = np.where(res.fault & (sev < fs), fs, sev)
+    if res.violated.shape[1]:
+        sevs = np.array([ob.response.severity for ob in plan.obligations], np.int8)
+        sev = np.max(res.violated * sevs, axis=1).astype(np.int8)
+    else:
+        sev = np.zeros(n, np.int8)
+    rs = np.int8(Response(r.response).severity)
+    np.maximum(sev, np.where(res.risk_violated, rs, np.int8(0)), out=sev)
+    fs = np.int8(Response(spec.on_fault).severity)
+    np.maximum(sev, np.where(res.fault, fs, np.int8(0)), out=sev)
     event = sev > 0
     if not event.any():
         return
     last_event = last_index(event, idx)
     rel = np.zeros(n, bool)
     if r.release.mode == "auto":
-        below = ~res.fault & inp.risk_ok & (np.where(inp.risk_ok, inp.risk, np.inf) < release_bound(
-            r.threshold, r.release.hysteresis)[1])
+        cut = release_bound(r.threshold, r.release.hysteresis)[1]
+        below = ~res.fault & inp.risk_ok & (np.where(inp.risk_ok, inp.risk, np.inf) < cut)
         run = idx - last_index(event | ~below, idx)
         cand = np.flatnonzero((run == int(r.release.hold_cycles)) & ~event & (last_event >= 0))
         if len(cand):
@@ -465,8 +471,8 @@ def _latch(res: OfflineResult, plan, inp: Inputs) -> None:
     last_rel = last_index(rel, idx)
     active = last_event > last_rel
     level = np.zeros(n, np.int8)
-    for s in range(1, 5):
-        level = np.where(active & (last_index(sev >= s, idx) > last_rel), s, level)
+    for s in np.unique(sev[event]).tolist():  # the latched level: the largest since the last release
+        level[active & (last_index(sev >= s, idx) > last_rel)] = s
     res.override = active
     res.response = level
     res.latched = active & ~event

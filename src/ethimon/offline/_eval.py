@@ -50,7 +50,7 @@ def _or(a, b):
 
 def last_index(mask: np.ndarray, idx: np.ndarray) -> np.ndarray:
     """For each position, the last position ``<= i`` where ``mask`` holds (-1 if none)."""
-    return np.maximum.accumulate(np.where(mask, idx, -1))
+    return np.maximum.accumulate(np.where(mask, idx, idx.dtype.type(-1)))
 
 
 def window_max(x: np.ndarray, w: int) -> np.ndarray:
@@ -67,9 +67,43 @@ def window_max(x: np.ndarray, w: int) -> np.ndarray:
     pre = np.maximum.accumulate(b, axis=1).ravel()
     suf = np.maximum.accumulate(b[:, ::-1], axis=1)[:, ::-1].ravel()
     out = pre[:n].copy()
-    i = np.arange(w - 1, n)
-    out[w - 1:] = np.maximum(suf[i - w + 1], pre[i])
+    np.maximum(suf[:n - w + 1], pre[w - 1:n], out=out[w - 1:])
     return out
+
+
+def clamp_scan(lo: np.ndarray, hi: np.ndarray, block: int = 64) -> tuple[np.ndarray, np.ndarray]:
+    """Inclusive prefix composition of the clamps ``x ↦ min(max(x, lo[i]), hi[i])`` (``lo <= hi``).
+
+    Applying clamp ``f`` then clamp ``g`` is the clamp ``(clip(lo_f, lo_g, hi_g), clip(hi_f, lo_g, hi_g))``;
+    the identity is ``(-inf, +inf)``. Blocked: a log-step scan inside blocks of ``block``, the
+    same scan over the block totals, then one pass to apply each block's prefix.
+    """
+    n = len(lo)
+    nb = -(-n // block)
+    L = np.full(nb * block, -INF)
+    H = np.full(nb * block, INF)
+    L[:n] = lo
+    H[:n] = hi
+    L = L.reshape(nb, block)
+    H = H.reshape(nb, block)
+    k = 1
+    while k < block:
+        cl, ch = L[:, k:], H[:, k:]
+        nl = np.minimum(np.maximum(L[:, :-k], cl), ch)
+        nh = np.minimum(np.maximum(H[:, :-k], cl), ch)
+        cl[...] = nl
+        ch[...] = nh
+        k *= 2
+    if nb == 1:
+        return L.ravel()[:n], H.ravel()[:n]
+    tl, th = clamp_scan(L[:, -1].copy(), H[:, -1].copy(), block)
+    pl = np.empty(nb)
+    ph = np.empty(nb)
+    pl[0], ph[0] = -INF, INF
+    pl[1:], ph[1:] = tl[:-1], th[:-1]
+    lo_out = np.minimum(np.maximum(pl[:, None], L), H)
+    hi_out = np.minimum(np.maximum(ph[:, None], L), H)
+    return lo_out.ravel()[:n], hi_out.ravel()[:n]
 
 
 class Evaluator:
@@ -78,12 +112,19 @@ class Evaluator:
     def __init__(self, plan, inputs, cycles: np.ndarray, starts: np.ndarray) -> None:
         self.plan = plan
         self.n = n = len(cycles)
-        self.idx = np.arange(n)
+        self.idx = np.arange(n, dtype=np.int32 if n < 2 ** 31 - 1 else np.int64)
         self.starts = starts
-        self.seg_first = np.maximum.accumulate(np.where(starts, self.idx, 0)) if n else self.idx
-        self.pos = self.idx - self.seg_first
-        self.env: dict[str, np.ndarray] = {s.name: inputs.values[s.name][cycles] for s in plan.signals}
-        self.env["risk"] = inputs.risk[cycles]
+        self.single = n == 0 or not starts[1:].any()  # one segment: seg_first is 0 everywhere
+        if self.single:
+            self.seg_first = np.zeros(n, self.idx.dtype)
+            self.pos = self.idx
+        else:
+            self.seg_first = np.maximum.accumulate(np.where(starts, self.idx, 0))
+            self.pos = self.idx - self.seg_first
+        everything = n == inputs.n  # every cycle, in order: the columns themselves
+        self.env: dict[str, np.ndarray] = {s.name: inputs.values[s.name] if everything else
+                                           inputs.values[s.name][cycles] for s in plan.signals}
+        self.env["risk"] = inputs.risk if everything else inputs.risk[cycles]
         self.consts = plan.constants
         self.memo: dict[int, tuple] = {}
         self.rmemo: dict[int, tuple] = {}
@@ -175,11 +216,13 @@ class Evaluator:
             return out
         if f == "held":
             e = self.full(args[0][0], "bool")
-            base = np.maximum(last_index(~e, idx), seg_first - 1)
+            base = last_index(~e, idx)
+            if not self.single:
+                base = np.maximum(base, seg_first - 1)
             return idx - base >= n
         if f == "once":
             e = self.full(args[0][0], "bool")
-            return last_index(e, idx) >= np.maximum(seg_first, idx - n + 1)
+            return last_index(e, idx) >= np.maximum(seg_first, idx - (n - 1))
         # since
         a = self.full(args[0][0], "bool")
         b = self.full(args[1][0], "bool")
@@ -212,8 +255,10 @@ class Evaluator:
             wv, we = self.ev(ob.when)
             w = self.full(wv, "bool")
         idx = self.idx
-        base = np.maximum(last_index(req, idx), self.seg_first - 1)  # last cycle that met require
-        nxt = np.empty(self.n + 1, dtype=np.int64)  # first trigger at or after each position
+        base = last_index(req, idx)  # last cycle that met require
+        if not self.single:
+            base = np.maximum(base, self.seg_first - 1)
+        nxt = np.empty(self.n + 1, dtype=idx.dtype)  # first trigger at or after each position
         nxt[-1] = self.n
         nxt[:-1] = np.minimum.accumulate(np.where(w, idx, self.n)[::-1])[::-1]
         return nxt[base + 1] <= idx - n, _or(we, re)
@@ -279,36 +324,28 @@ class Evaluator:
         ``n`` cycles, NaN from the first due window holding a NaN (as ``_codegen._bounded_margin``).
 
         ``x ↦ min(max(x, lo), hi)`` with ``lo <= hi`` is a clamp, and clamps compose into clamps,
-        so the recurrence is a prefix scan (log-step); a segment's first cycle is the constant +inf,
-        which also cuts the scan at every segment boundary.
+        so the recurrence is a prefix scan (:func:`clamp_scan`); a segment's first cycle is the
+        constant +inf, which also cuts the scan at every segment boundary.
         """
-        N = self.n
         idx, sf, pos = self.idx, self.seg_first, self.pos
-        nan_b = np.isnan(b)
-        cb = np.concatenate(([0], np.cumsum(nan_b)))
-        ca = np.concatenate(([0], np.cumsum(np.isnan(a))))
         due = pos >= n
         lag = np.where(due, idx - n, idx)  # the trigger that falls due at each position
-        unknown = due & ((cb[idx + 1] - cb[sf] > 0) | (ca[lag + 1] - ca[sf] > 0))
-        bz = np.where(nan_b, -INF, b)
-        top = window_max(bz, n + 1)
+        nan_b = np.isnan(b)
+        nan_a = np.isnan(a)
+        unknown = None
+        if nan_b.any() or nan_a.any():
+            cb = np.concatenate(([0], np.cumsum(nan_b)))
+            ca = np.concatenate(([0], np.cumsum(nan_a)))
+            unknown = due & ((cb[idx + 1] - cb[sf] > 0) | (ca[lag + 1] - ca[sf] > 0))
+            b = np.where(nan_b, -INF, b)
+        top = window_max(b, n + 1)
         cand = a[lag]
-        hi = np.where(top > cand, top, cand)
-        lo = bz
-        ok = due & ~unknown
-        lo = np.where(ok, lo, INF)
-        hi = np.where(ok, hi, INF)
-        lo = np.where(np.isnan(lo), 0.0, lo)
-        hi = np.where(np.isnan(hi), 0.0, hi)
-        k = 1
-        longest = int(pos.max()) + 1 if N else 0
-        while k < longest:
-            plo, phi = lo[:-k], hi[:-k]
-            clo, chi = lo[k:], hi[k:]
-            nlo = np.minimum(np.maximum(plo, clo), chi)
-            nhi = np.minimum(np.maximum(phi, clo), chi)
-            lo = np.concatenate((lo[:k], nlo))
-            hi = np.concatenate((hi[:k], nhi))
-            k *= 2
-        out = np.where(due, hi, INF)
-        return np.where(unknown, np.nan, out)
+        ok = due if unknown is None else due & ~unknown
+        hi = np.where(ok, np.where(top > cand, top, cand), INF)
+        lo = np.where(ok, b, INF)
+        if unknown is not None:
+            lo = np.where(np.isnan(lo), 0.0, lo)
+            hi = np.where(np.isnan(hi), 0.0, hi)
+        _, out = clamp_scan(lo, hi)
+        out = np.where(due, out, INF)
+        return out if unknown is None else np.where(unknown, np.nan, out)
