@@ -26,7 +26,7 @@ worded exactly as the monitor words them.
 
 from __future__ import annotations
 
-import math
+import functools
 import os
 from collections.abc import Iterator, Mapping
 from typing import Any
@@ -429,6 +429,11 @@ def _fault_cycles(res: OfflineResult, plan, inp: Inputs) -> None:
         res.violated[cycles, k] = hit
 
 
+@functools.lru_cache(maxsize=64)
+def _release_cut(threshold: float, hysteresis: float) -> float:
+    return release_bound(threshold, hysteresis)[1]
+
+
 # -- the latch -----------------------------------------------------------------------------
 
 def _latch(res: OfflineResult, plan, inp: Inputs) -> None:
@@ -444,11 +449,10 @@ def _latch(res: OfflineResult, plan, inp: Inputs) -> None:
     idx = np.arange(n, dtype=np.int32 if n < 2 ** 31 - 1 else np.int64)
     tau = float(r.threshold)
     res.risk_violated = inp.risk_ok & (np.where(inp.risk_ok, inp.risk, -np.inf) >= tau)
-    if res.violated.shape[1]:
-        sevs = np.array([ob.response.severity for ob in plan.obligations], np.int8)
-        sev = np.max(res.violated * sevs, axis=1).astype(np.int8)
-    else:
-        sev = np.zeros(n, np.int8)
+    sev = np.zeros(n, np.int8)
+    zero = np.int8(0)
+    for k, ob in enumerate(plan.obligations):
+        np.maximum(sev, np.where(res.violated[:, k], np.int8(ob.response.severity), zero), out=sev)
     rs = np.int8(Response(r.response).severity)
     np.maximum(sev, np.where(res.risk_violated, rs, np.int8(0)), out=sev)
     fs = np.int8(Response(spec.on_fault).severity)
@@ -459,7 +463,7 @@ def _latch(res: OfflineResult, plan, inp: Inputs) -> None:
     last_event = last_index(event, idx)
     rel = np.zeros(n, bool)
     if r.release.mode == "auto":
-        cut = release_bound(r.threshold, r.release.hysteresis)[1]
+        cut = _release_cut(float(r.threshold), float(r.release.hysteresis))
         below = ~res.fault & inp.risk_ok & (np.where(inp.risk_ok, inp.risk, np.inf) < cut)
         run = idx - last_index(event | ~below, idx)
         cand = np.flatnonzero((run == int(r.release.hold_cycles)) & ~event & (last_event >= 0))

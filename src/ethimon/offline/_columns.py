@@ -22,6 +22,7 @@ would.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping
 from typing import Any
 
@@ -193,11 +194,17 @@ def read_inputs(plan, columns: Mapping[str, Any], length: int | None = None, *,
     return inp
 
 
+@functools.lru_cache(maxsize=64)
+def _risk_range(alpha: float, beta: float, gamma: float, variance: str, classes: int) -> tuple[float, float]:
+    """The range a ``risk`` input must lie in (as the monitor's), cached: it is exact rational arithmetic."""
+    lo, hi = risk_range(alpha, beta, gamma, variance, classes)
+    return min(0.0, lo), max(1.0, hi)
+
+
 def _risk(inp: Inputs, cols, r) -> None:
     """R_e per cycle, from the first of ``risk``, ``p_unsafe``, ``p`` present that cycle (as ``Monitor._risk``)."""
     n = inp.n
-    lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)
-    lo, hi = min(0.0, lo), max(1.0, hi)
+    lo, hi = _risk_range(float(r.alpha), float(r.beta), float(r.gamma), r.variance, int(r.classes))
     alpha, beta, gamma = float(r.alpha), float(r.beta), float(r.gamma)
     sample = r.variance == "sample"
     k = int(r.classes)

@@ -71,7 +71,7 @@ def window_max(x: np.ndarray, w: int) -> np.ndarray:
     return out
 
 
-def clamp_scan(lo: np.ndarray, hi: np.ndarray, block: int = 64) -> tuple[np.ndarray, np.ndarray]:
+def clamp_scan(lo: np.ndarray, hi: np.ndarray, block: int = 32) -> tuple[np.ndarray, np.ndarray]:
     """Inclusive prefix composition of the clamps ``x ↦ min(max(x, lo[i]), hi[i])`` (``lo <= hi``).
 
     Applying clamp ``f`` then clamp ``g`` is the clamp ``(clip(lo_f, lo_g, hi_g), clip(hi_f, lo_g, hi_g))``;
