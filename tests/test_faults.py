@@ -102,7 +102,10 @@ def test_estimator_hang_past_deadline_overrides(tmp_path):
         src.restart(ScriptedEstimator())
         assert wait_for(lambda: src.fault is None)
         decisions = [loop.cycle(GOOD) for _ in range(5)]
-        assert not decisions[-1].override  # released after hold_cycles clean cycles
+        # the fault latch is manual (the default): held, then ready after hold_cycles clean cycles
+        assert decisions[-1].override and decisions[-1].awaiting_release
+        assert loop.monitor.acknowledge()
+        assert not loop.cycle(GOOD).override
     finally:
         est.release()
         src.stop()

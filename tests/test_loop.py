@@ -181,8 +181,13 @@ def test_late_call_is_a_missed_deadline_and_override_latches_until_release():
     clock.advance(0.001)
     d = loop.cycle(inputs)
     assert d.override and d.latched and not d.faults  # held by the release rule
+    assert not d.awaiting_release
     clock.advance(0.001)
-    assert not loop.cycle(inputs).override  # hold_cycles = 2 clean cycles
+    d = loop.cycle(inputs)  # hold_cycles = 2 clean cycles: the fault latch (manual, the default) is ready
+    assert d.override and d.awaiting_release
+    assert loop.monitor.acknowledge()
+    clock.advance(0.001)
+    assert not loop.cycle(inputs).override
 
 
 def test_escalation_keeps_more_severe_violation():

@@ -218,10 +218,13 @@ def test_loop_overrides_every_cycle_while_the_writer_lags_without_a_full_queue(t
     finally:
         gate.set()
     assert wait_for(lambda: log.fault is None)
-    for _ in range(3):  # the writer caught up: the override releases by the spec's release rule
+    for _ in range(3):  # the writer caught up: the fault latch (manual, the default) becomes ready
         clock.advance(0.001)
         d = loop.cycle(SAFE)
-    assert not d.override
+    assert d.override and d.awaiting_release and not d.faults
+    assert loop.monitor.acknowledge()
+    clock.advance(0.001)
+    assert not loop.cycle(SAFE).override
     log.close()
     assert verify_log(tmp_path / "d.jsonl", require_closed=True).ok
 

@@ -181,7 +181,9 @@ def test_temporal_operators_semantics():
 
 
 def test_fault_clears_temporal_history():
-    m = mon("  - {id: h, require: 'not held(d < 1, 3)'}\n", extra="risk: {release: {hold_cycles: 1}}\n")
+    # the fault latch releases by itself here (the default is manual): this test is about history
+    m = mon("  - {id: h, require: 'not held(d < 1, 3)'}\n",
+            extra="risk: {release: {hold_cycles: 1}}\non_fault: {response: safe_pose, release: auto}\n")
     m.step(inp(d=0.5))
     m.step(inp(d=0.5))
     assert m.step(inp(d=math.nan)).faults

@@ -62,6 +62,10 @@ class ObligationPlan:
     response: Response
     when_text: str | None
     require_text: str
+    #: ``"auto"`` or ``"manual"``: how this rule's latch is released (defaults filled in)
+    release_mode: str = "auto"
+    #: N: the obligation must hold N consecutive valid cycles before its latch releases
+    release_hold: int = 10
 
 
 @dataclass
@@ -81,6 +85,7 @@ class Plan:
             built once here for every consumer (code generation, fault-path evaluation).
         risk: the spec's risk settings (τ, weights, classes, release, max age).
         on_fault: the response to a fault.
+        fault_release: ``(mode, hold_cycles)`` of the fault latch (defaults filled in).
 
     The plan points at its spec (``spec``, where it came from); the spec never
     points at its plan: :func:`~ethimon.compiler.plan_of` finds or compiles it.
@@ -97,6 +102,7 @@ class Plan:
     slots: dict[str, int] = field(default_factory=dict)
     risk: RiskConfig = field(default_factory=RiskConfig)
     on_fault: Response = Response.SAFE_POSE
+    fault_release: tuple[str, int] = ("manual", 10)
 
     @property
     def n_slots(self) -> int:
@@ -418,8 +424,9 @@ def compile_plan(spec: Spec) -> Plan:
             ck.check_bool(when, f"'when' of obligation {ob.id!r}")
         require = ck.parse(ob.require, ("obligations", i, "require"))
         ck.check_bool(require, f"'require' of obligation {ob.id!r}")
+        mode, hold = spec.obligation_release(ob)
         obligations.append(ObligationPlan(i, ob.id, ob.description, when, require, ob.within_cycles,
-                                          Response(ob.response), ob.when, ob.require))
+                                          Response(ob.response), ob.when, ob.require, mode, hold))
     signals = []
     big = 1.7976931348623157e308
     for slot, (name, sig) in enumerate(spec.signals.items()):
@@ -430,4 +437,5 @@ def compile_plan(spec: Spec) -> Plan:
     slots[RISK_NAME] = len(signals)
     return Plan(spec=spec, signals=tuple(signals), risk_slot=len(signals), constants=dict(ck.consts),
                 obligations=tuple(obligations), temporal=tuple(ck.temporal), types=ck.types,
-                windows=ck.windows, slots=slots, risk=spec.risk, on_fault=Response(spec.on_fault))
+                windows=ck.windows, slots=slots, risk=spec.risk, on_fault=Response(spec.on_fault),
+                fault_release=spec.fault_release())

@@ -5,7 +5,7 @@ from __future__ import annotations
 from ..spec._model import Response
 from ._fault import Fault
 
-__all__ = ["Decision", "Fault", "Response"]
+__all__ = ["Decision", "Acknowledgement", "Fault", "Response"]
 
 
 class Decision:
@@ -24,6 +24,9 @@ class Decision:
         latched: the override is held by the release rule, not by a current violation.
         faults: fail-closed reasons, each a :class:`Fault` (``kind`` such as ``"missing"``,
             ``"range"``, ``"stale"``, ``"internal"``, and a ``message``); empty when none.
+        awaiting_release: a manual latch is ready for the operator: every rule latched with
+            ``release: manual`` has met its release condition for its ``hold_cycles``, so
+            :meth:`Monitor.acknowledge` would release it now (``False`` when none is latched).
 
     Example:
         >>> d = Decision(True, Response.SAFE_POSE, ("risk",), (), 0.62, 3, False, ())
@@ -31,11 +34,12 @@ class Decision:
         (True, 'safe_pose', ('risk',))
     """
 
-    __slots__ = ("override", "response", "violations", "margins", "risk", "cycle", "latched", "faults")
+    __slots__ = ("override", "response", "violations", "margins", "risk", "cycle", "latched", "faults",
+                 "awaiting_release")
 
     def __init__(self, override: bool, response: Response, violations: tuple[str, ...],
                  margins: tuple[float, ...], risk: float | None, cycle: int, latched: bool,
-                 faults: tuple[Fault, ...]) -> None:
+                 faults: tuple[Fault, ...], awaiting_release: bool = False) -> None:
         self.override = override
         self.response = response
         self.violations = violations
@@ -44,13 +48,16 @@ class Decision:
         self.cycle = cycle
         self.latched = latched
         self.faults = faults
+        self.awaiting_release = awaiting_release
 
     @property
     def reasons(self) -> tuple[str, ...]:
         """Human-readable reasons for an override (violations, faults, latch)."""
         out = [f"violated: {v}" for v in self.violations]
         out += [f"fault: {f.message}" for f in self.faults]
-        if self.latched:
+        if self.awaiting_release:
+            out.append("latched: waiting for an operator acknowledgement (Monitor.acknowledge())")
+        elif self.latched:
             out.append("latched: waiting for the release rule")
         return tuple(out)
 
@@ -60,6 +67,7 @@ class Decision:
             "cycle": self.cycle, "override": self.override, "response": self.response.value,
             "violations": list(self.violations), "risk": self.risk, "latched": self.latched,
             "faults": [f.message for f in self.faults], "fault_kinds": [f.kind for f in self.faults],
+            "awaiting_release": self.awaiting_release,
             "margins": [m if m == m and abs(m) != float("inf") else (None if m != m else (
                 "inf" if m > 0 else "-inf")) for m in self.margins],
         }
@@ -68,12 +76,54 @@ class Decision:
         if not isinstance(other, Decision):
             return NotImplemented
         return (self.override, self.response, self.violations, self.risk, self.cycle, self.latched,
-                self.faults) == (other.override, other.response, other.violations, other.risk,
-                                 other.cycle, other.latched, other.faults)
+                self.faults, self.awaiting_release) == (other.override, other.response, other.violations,
+                                                        other.risk, other.cycle, other.latched, other.faults,
+                                                        other.awaiting_release)
 
     __hash__ = None  # type: ignore[assignment]
 
     def __repr__(self) -> str:
         return (f"Decision(cycle={self.cycle}, override={self.override}, response={self.response.value!r}, "
                 f"violations={self.violations!r}, risk={self.risk!r}, latched={self.latched}, "
-                f"faults={self.faults!r})")
+                f"faults={self.faults!r}" + (", awaiting_release=True)" if self.awaiting_release else ")"))
+
+
+class Acknowledgement:
+    """The answer to :meth:`Monitor.acknowledge` (an operator's release of manual latches).
+
+    Attributes:
+        released: the manual latches were released (truthiness is this flag).
+        rules: the rules released (obligation ids, ``"risk"``, ``"fault"``) when ``released``;
+            otherwise the rules that refused, each still violated or not yet held for its
+            ``hold_cycles`` (empty when nothing awaited an acknowledgement).
+        message: one line for the operator.
+
+    Example:
+        >>> a = Acknowledgement(False, ("clamping",), "refused: clamping still fails")
+        >>> bool(a), a.rules
+        (False, ('clamping',))
+    """
+
+    __slots__ = ("released", "rules", "message")
+
+    def __init__(self, released: bool, rules: tuple[str, ...], message: str) -> None:
+        self.released = released
+        self.rules = rules
+        self.message = message
+
+    def __bool__(self) -> bool:
+        return self.released
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Acknowledgement):
+            return NotImplemented
+        return (self.released, self.rules, self.message) == (other.released, other.rules, other.message)
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def as_dict(self) -> dict:
+        """A JSON-ready dict."""
+        return {"released": self.released, "rules": list(self.rules), "message": self.message}
+
+    def __repr__(self) -> str:
+        return f"Acknowledgement(released={self.released}, rules={self.rules!r}, message={self.message!r})"

@@ -19,7 +19,7 @@ from ..compiler._codegen import build_machine
 from ..compiler._plans import plan_of, stateless_slots
 from ..spec._model import Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_probs, risk_range
-from ._decision import Decision
+from ._decision import Acknowledgement, Decision
 from ._fault import Fault
 from ._inputs import as_bool, as_number, as_probs
 
@@ -87,9 +87,10 @@ class Monitor:
     """
 
     __slots__ = ("spec", "plan", "obligation_ids", "_m", "_sig", "_vals", "_rslot", "_updates", "_obs",
-                 "_margin_fns", "_nan_margins", "_tau", "_risk_sev", "_fault_sev", "_auto", "_below",
-                 "_hold", "_alpha", "_beta", "_gamma", "_sample", "_k", "_uidx", "_rlo", "_rhi",
-                 "_max_age", "_age_missing", "_cycle", "_latched", "_clean", "_margins_on", "_stateless")
+                 "_margin_fns", "_nan_margins", "_tau", "_risk_sev", "_fault_sev", "_below",
+                 "_alpha", "_beta", "_gamma", "_sample", "_k", "_uidx", "_rlo", "_rhi",
+                 "_max_age", "_age_missing", "_cycle", "_margins_on", "_stateless",
+                 "_lat", "_run", "_sevs", "_holds", "_manual", "_names", "_nlat", "_ri", "_fi", "_nsrc")
 
     def __init__(self, plan: Plan | Spec, *, margins: bool = True, max_age_s: float | None = None) -> None:
         plan = plan_of(plan)
@@ -103,9 +104,10 @@ class Monitor:
                           for s in plan.signals)
         self._rslot = plan.risk_slot
         self._updates = m.updates
-        self._obs = tuple((fn, ob.id, ob.response.severity) for fn, ob in zip(m.violated, plan.obligations))
-        self._stateless = tuple((fn, ob.id, ob.response.severity, slots)
-                                for fn, ob in zip(m.violated, plan.obligations)
+        self._obs = tuple((fn, ob.id, ob.response.severity, i)
+                          for i, (fn, ob) in enumerate(zip(m.violated, plan.obligations)))
+        self._stateless = tuple((fn, ob.id, ob.response.severity, slots, i)
+                                for i, (fn, ob) in enumerate(zip(m.violated, plan.obligations))
                                 if (slots := stateless_slots(plan, ob)) is not None)
         self.obligation_ids: tuple[str, ...] = tuple(ob.id for ob in plan.obligations)
         self._margins_on = margins
@@ -115,9 +117,21 @@ class Monitor:
         self._tau = float(r.threshold)
         self._risk_sev = Response(r.response).severity
         self._fault_sev = plan.on_fault.severity
-        self._auto = r.release.mode == "auto"
         self._below = release_bound(r.threshold, r.release.hysteresis)[1]  # exact: 0.27 - 0.05 is 0.22
-        self._hold = int(r.release.hold_cycles)
+        # one latch per rule, in preallocated slots: the obligations in order, then the risk
+        # rule, then the fault latch. _lat[k]: the rule's severity while latched, else 0;
+        # _run[k]: consecutive cycles its release condition has held (-1: it fired this cycle)
+        n = len(plan.obligations)
+        self._ri, self._fi, self._nsrc = n, n + 1, n + 2
+        self._names = tuple(ob.id for ob in plan.obligations) + ("risk", "fault")
+        fmode, fhold = plan.fault_release
+        self._holds = tuple(ob.release_hold for ob in plan.obligations) + (int(r.release.hold_cycles), fhold)
+        self._manual = tuple(ob.release_mode == "manual" for ob in plan.obligations) + (
+            r.release.mode == "manual", fmode == "manual")
+        self._sevs = tuple(ob.response.severity for ob in plan.obligations) + (self._risk_sev, self._fault_sev)
+        self._lat = [0] * (n + 2)
+        self._run = [0] * (n + 2)
+        self._nlat = 0
         self._alpha, self._beta, self._gamma = float(r.alpha), float(r.beta), float(r.gamma)
         self._sample = r.variance == "sample"
         self._k = int(r.classes)
@@ -128,8 +142,6 @@ class Monitor:
         self._age_missing = None
         self._set_max_age(max_age_s)
         self._cycle = 0
-        self._latched = 0  # severity of the latched response, 0 = not latched
-        self._clean = 0
 
     def _set_max_age(self, fallback: float | None) -> None:
         """The one age limit: the spec's ``risk.max_age_s``, else ``fallback`` (GovernedLoop's)."""
@@ -159,23 +171,120 @@ class Monitor:
     @property
     def latched(self) -> bool:
         """Whether an override is latched right now."""
-        return self._latched > 0
+        return self._nlat > 0
+
+    @property
+    def latched_rules(self) -> tuple[str, ...]:
+        """The rules whose latch holds the override now: obligation ids, ``"risk"``, ``"fault"``."""
+        return tuple(name for name, s in zip(self._names, self._lat) if s)
+
+    def _clear(self) -> None:
+        for k in range(self._nsrc):
+            self._lat[k] = 0
+            self._run[k] = 0
+        self._nlat = 0
 
     def reset(self) -> None:
         """Start a fresh trace: cycle 0, no latch, empty temporal history."""
         self._m.reset()
         self._cycle = 0
-        self._latched = 0
-        self._clean = 0
+        self._clear()
 
     def release(self) -> None:
-        """Explicitly release a latched override (operator acknowledgement).
+        """Force the release of every latch, automatic and manual, with no check (commissioning,
+        tests); an operator acknowledges with :meth:`acknowledge`, which checks.
 
         Temporal history is kept; the next :meth:`step` still overrides if a
         rule is violated or an input is bad.
         """
-        self._latched = 0
-        self._clean = 0
+        self._clear()
+
+    def acknowledge(self) -> Acknowledgement:
+        """An operator's acknowledgement: release the rules latched with ``release: manual``.
+
+        Refused (nothing is released) while any of them has not met its release
+        condition on the last ``hold_cycles`` consecutive cycles: the obligation held,
+        R_e < τ − δ for the risk rule, no fault for the fault latch. Automatic latches
+        keep their own rule. Takes effect from the next :meth:`step`, which overrides
+        again if a rule is violated or an input is bad.
+
+        Returns:
+            An :class:`~ethimon.runtime.Acknowledgement`: ``released`` (also its truth
+            value), the rules released or refused, and a message for the operator.
+
+        Example:
+            >>> import ethimon
+            >>> m = ethimon.Monitor(ethimon.load_spec_text('''
+            ... ethimon: 1
+            ... name: demo
+            ... signals: {contact_force: {unit: N, range: [0, 1000]}}
+            ... obligations:
+            ...   - {id: contact, require: contact_force <= 140, response: stop_0}
+            ... risk: {release: {hold_cycles: 2}}
+            ... '''))
+            >>> m.step({"p_unsafe": 0.0, "contact_force": 300.0}).response
+            <Response.STOP_0: 'stop_0'>
+            >>> m.acknowledge().message
+            'refused: contact still fails'
+            >>> for _ in range(2):
+            ...     d = m.step({"p_unsafe": 0.0, "contact_force": 0.0})
+            >>> d.override, d.awaiting_release, bool(m.acknowledge())
+            (True, True, True)
+            >>> m.step({"p_unsafe": 0.0, "contact_force": 0.0}).override
+            False
+        """
+        lat, run, holds, manual, names = self._lat, self._run, self._holds, self._manual, self._names
+        ready = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] >= holds[k]]
+        waiting = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] < holds[k]]
+        if waiting:
+            return Acknowledgement(False, tuple(names[k] for k in waiting), "refused: " + "; ".join(
+                f"{names[k]} still fails" if run[k] <= 0 else
+                f"{names[k]} has held {run[k]} of {holds[k]} cycles" for k in waiting))
+        if not ready:
+            return Acknowledgement(False, (), "nothing awaits an acknowledgement" + (
+                " (the override is held by automatic releases)" if self._nlat else ""))
+        for k in ready:
+            lat[k] = 0
+            run[k] = 0
+        self._nlat -= len(ready)
+        return Acknowledgement(True, tuple(names[k] for k in ready),
+                               "released: " + ", ".join(names[k] for k in ready))
+
+    def _release_pass(self, below: bool) -> tuple[int, bool]:
+        """After a valid cycle: count each latched rule's release condition, release the
+        automatic ones whose count reached their hold. O(rules), only while latched.
+
+        Returns:
+            ``(severity still latched, awaiting_release)``.
+        """
+        lat, run, holds, manual = self._lat, self._run, self._holds, self._manual
+        ri = self._ri
+        sev = 0
+        n_manual = ready = 0
+        for k in range(self._nsrc):
+            s = lat[k]
+            if not s:
+                continue
+            c = run[k]
+            if c < 0 or (k == ri and not below):  # fired this cycle, or R_e not below τ − δ
+                c = 0
+            else:
+                c += 1
+                if c >= holds[k]:
+                    if not manual[k]:
+                        lat[k] = 0
+                        run[k] = 0
+                        self._nlat -= 1
+                        continue
+                    c = holds[k]  # a manual count stops at its hold: ready for acknowledge()
+            run[k] = c
+            if s > sev:
+                sev = s
+            if manual[k]:
+                n_manual += 1
+                if c >= holds[k]:
+                    ready += 1
+        return sev, n_manual > 0 and ready == n_manual
 
     # -- the hot path --------------------------------------------------------------
     def _risk(self, get) -> tuple[float | None, Fault | None]:
@@ -279,42 +388,41 @@ class Monitor:
             for u in self._updates:
                 u()
             violations = None
-            sev = 0
-            for fn, oid, s in self._obs:
+            hits = None  # latched only once every obligation was judged (a later one may raise)
+            for fn, oid, s, i in self._obs:
                 if fn():
                     if violations is None:
                         violations = [oid]
+                        hits = [i]
                     else:
                         violations.append(oid)
-                    if s > sev:
-                        sev = s
+                        hits.append(i)
             if r >= self._tau:
                 if violations is None:
                     violations = ["risk"]
+                    hits = [self._ri]
                 else:
                     violations.append("risk")
-                if self._risk_sev > sev:
-                    sev = self._risk_sev
+                    hits.append(self._ri)
+            if hits is not None:
+                lat, run, sevs = self._lat, self._run, self._sevs
+                for i in hits:
+                    if not lat[i]:
+                        lat[i] = sevs[i]
+                        self._nlat += 1
+                    run[i] = -1
             margins = _EMPTY
             if self._margins_on:
                 margins = _all_margins(self._margin_fns)  # a margin that cannot be computed is NaN
-            if sev:
-                if sev > self._latched:
-                    self._latched = sev
-                self._clean = 0
-                return Decision(True, _RESPONSES[self._latched], tuple(violations), margins, r, cycle,
-                                False, _EMPTY)
-            if self._latched:
-                if self._auto and r < self._below:
-                    self._clean += 1
-                    if self._clean >= self._hold:
-                        self._latched = 0
-                        self._clean = 0
-                        return Decision(False, Response.NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
-                else:
-                    self._clean = 0
-                return Decision(True, _RESPONSES[self._latched], _EMPTY, margins, r, cycle, True, _EMPTY)
-            return Decision(False, Response.NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
+            if not self._nlat:
+                return Decision(False, Response.NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
+            sev, awaiting = self._release_pass(r < self._below)
+            if violations is not None:
+                return Decision(True, _RESPONSES[sev], tuple(violations), margins, r, cycle, False, _EMPTY,
+                                awaiting)
+            if not self._nlat:  # the last latch released this cycle
+                return Decision(False, Response.NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
+            return Decision(True, _RESPONSES[sev], _EMPTY, margins, r, cycle, True, _EMPTY, awaiting)
         except BaseException as exc:  # fail closed: nothing escapes into the control loop, not even
             # a KeyboardInterrupt raised by a hostile input's __float__: the arm is told to stop instead
             try:
@@ -352,11 +460,24 @@ class Monitor:
             cycle = self._cycle
             self._cycle = cycle + 1
             return self._fault(cycle, reasons, None)
-        sev = max(self._fault_sev, decision.response.severity, self._latched)
-        self._latched = sev
-        self._clean = 0
+        sev = max(decision.response.severity, self._latch_fault())
         return Decision(True, _RESPONSES[sev], decision.violations, decision.margins, decision.risk,
                         decision.cycle, decision.latched, decision.faults + reasons)
+
+    def _latch_fault(self) -> int:
+        """Latch the fault rule; every release count restarts (the cycle is not a clean one).
+        Returns the most severe latched response."""
+        lat, run = self._lat, self._run
+        fi = self._fi
+        if not lat[fi]:
+            lat[fi] = self._fault_sev
+            self._nlat += 1
+        sev = 0
+        for k in range(self._nsrc):
+            run[k] = 0
+            if lat[k] > sev:
+                sev = lat[k]
+        return sev
 
     def _fault(self, cycle: int, reasons: tuple[Fault, ...], r: float | None,
                bad: list[int] | None = None) -> Decision:
@@ -370,13 +491,13 @@ class Monitor:
             self._m.reset()
         except Exception:  # pragma: no cover
             pass
-        sev = self._fault_sev
         found: list[str] = []
+        lat = self._lat
         if bad is not None and self._stateless:
             badset = set(bad)
             if r is not None and self._rslot not in badset:
                 self._vals[self._rslot] = r
-            for fn, oid, s, slots in self._stateless:
+            for fn, oid, s, slots, i in self._stateless:
                 if badset.isdisjoint(slots):
                     try:
                         hit = fn()
@@ -384,18 +505,18 @@ class Monitor:
                         continue  # this cycle fails closed anyway
                     if hit:
                         found.append(oid)
-                        if s > sev:
-                            sev = s
+                        if not lat[i]:
+                            lat[i] = s
+                            self._nlat += 1
         if r is not None and r >= self._tau:
             found.append("risk")
-            if self._risk_sev > sev:
-                sev = self._risk_sev
+            if not lat[self._ri]:
+                lat[self._ri] = self._risk_sev
+                self._nlat += 1
         violations = tuple(found) if found else _EMPTY
-        if sev > self._latched:
-            self._latched = sev
-        self._clean = 0
+        sev = self._latch_fault()
         margins = self._nan_margins if self._margins_on else _EMPTY
-        return Decision(True, _RESPONSES[self._latched], violations, margins, r, cycle, False, reasons)
+        return Decision(True, _RESPONSES[sev], violations, margins, r, cycle, False, reasons)
 
     def __repr__(self) -> str:
         return f"Monitor(spec={self.spec.name!r}, obligations={len(self.obligation_ids)}, cycle={self._cycle})"

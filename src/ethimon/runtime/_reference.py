@@ -28,10 +28,25 @@ Semantics (the definition both implementations follow), for a history
   ``within_cycles``) whose inputs are all valid are still judged, and a more
   severe response they demand wins (a stale risk estimate must not hide a
   stop 0 on a contact force); one that raises is skipped.
-* Override latches at the most severe response seen; with ``release.mode: auto``
-  it releases at the cycle that completes ``hold_cycles`` consecutive cycles
-  with no violation and R_e < τ − δ, where τ − δ is exact (the decimals the
-  spec writes, so 0.27 − 0.05 is 0.22) and R_e is compared as a rational.
+* Latches, one per rule: each obligation, the risk rule and the fault rule. A
+  rule's latch is set at a cycle where it fires (the obligation is violated;
+  R_e ≥ τ; the cycle faults). Its release condition at a valid cycle: the
+  obligation is not violated; R_e < τ − δ (exact: the decimals the spec writes,
+  so 0.27 − 0.05 is 0.22; R_e compared as a rational); for the fault rule, any
+  valid cycle. A latched rule's count is the number of consecutive cycles, up to
+  this one, at which its condition held (a cycle where it fires, or a fault
+  cycle, makes it 0). An ``auto`` rule releases at the cycle where its count
+  reaches its ``hold_cycles``; a ``manual`` rule only by ``acknowledge()``,
+  which releases every latched manual rule if each has a count ≥ its
+  ``hold_cycles`` and otherwise releases nothing; ``release()`` and ``reset()``
+  clear every latch. Defaults: obligations with stop_0/stop_1 and the fault rule
+  are manual, the others auto; the hold defaults to ``risk.release.hold_cycles``;
+  the risk rule follows ``risk.release``.
+* The decision overrides while any latch is set, with the most severe response
+  among the latched rules; ``latched`` when none fired and the cycle did not fault;
+  ``awaiting_release`` when some manual rule is latched and every latched manual
+  rule's count reached its hold. ``Monitor.fault(decision=d)`` latches the fault
+  rule after ``d``'s cycle and restarts every count.
 * Inputs are read through :mod:`ethimon.runtime._inputs` (the one boundary rule:
   a finite built-in float, or a bool for a bool signal, converted once).
 * Margins: robustness of ``require`` (``max(−when, require)`` with a ``when``);
@@ -75,12 +90,87 @@ class ReferenceMonitor:
     def reset(self) -> None:
         self.history: list[dict[str, Any]] = []
         self.cycle = 0
-        self.latched = 0
-        self.clean = 0
+        self.release()
 
     def release(self) -> None:
-        self.latched = 0
-        self.clean = 0
+        #: rule name -> its count while latched (absent: not latched)
+        self.latches: dict[str, int] = {}
+
+    @property
+    def latched(self) -> bool:
+        return bool(self.latches)
+
+    def _rules(self) -> dict[str, tuple[int, bool, int]]:
+        """Every rule: name -> (severity, manual, hold_cycles), from the spec with its defaults."""
+        spec = self.spec
+        rules = {}
+        for ob in spec.obligations:
+            mode, hold = spec.obligation_release(ob)
+            rules[ob.id] = (Response(ob.response).severity, mode == "manual", hold)
+        rel = spec.risk.release
+        rules["risk"] = (Response(spec.risk.response).severity, rel.mode == "manual", rel.hold_cycles)
+        mode, hold = spec.fault_release()
+        rules["fault"] = (Response(spec.on_fault).severity, mode == "manual", hold)
+        return rules
+
+    def acknowledge(self):
+        from ._decision import Acknowledgement
+        rules = self._rules()
+        manual = [k for k in self.latches if rules[k][1]]
+        waiting = tuple(k for k in self._order(manual) if self.latches[k] < rules[k][2])
+        if waiting:
+            return Acknowledgement(False, waiting, "refused: " + "; ".join(
+                f"{k} still fails" if self.latches[k] == 0 else
+                f"{k} has held {self.latches[k]} of {rules[k][2]} cycles" for k in waiting))
+        if not manual:
+            return Acknowledgement(False, (), "nothing awaits an acknowledgement" + (
+                " (the override is held by automatic releases)" if self.latches else ""))
+        for k in manual:
+            del self.latches[k]
+        return Acknowledgement(True, self._order(manual), "released: " + ", ".join(self._order(manual)))
+
+    def _order(self, names) -> tuple[str, ...]:
+        order = list(self.obligation_ids) + ["risk", "fault"]
+        return tuple(sorted(names, key=order.index))
+
+    def _decide(self, fired: list[str], faulted: bool, below: bool) -> tuple[int, bool]:
+        """Update the latches after a cycle; ``(latched severity, awaiting_release)``."""
+        rules = self._rules()
+        if faulted:
+            for k in fired + ["fault"]:
+                self.latches[k] = 0
+            for k in self.latches:
+                self.latches[k] = 0
+        else:
+            for k in list(self.latches):
+                if k in fired or (k == "risk" and not below):
+                    self.latches[k] = 0
+                    continue
+                sev, manual, hold = rules[k]
+                self.latches[k] = min(self.latches[k] + 1, hold)
+                if not manual and self.latches[k] >= hold:
+                    del self.latches[k]
+            for k in fired:
+                self.latches[k] = 0
+        sev = max((rules[k][0] for k in self.latches), default=0)
+        manual = [k for k in self.latches if rules[k][1]]
+        awaiting = bool(manual) and all(self.latches[k] >= rules[k][2] for k in manual)
+        return sev, awaiting
+
+    def fault(self, *reasons, decision: Decision | None = None) -> Decision:
+        """Like :meth:`Monitor.fault`; the reference's own reasons are kept as given."""
+        reasons = tuple(r if isinstance(r, Fault) else Fault("external", str(r)) for r in reasons) or (
+            Fault("external", "external fault"),)
+        if decision is None:
+            cycle = self.cycle
+            self.cycle += 1
+            self.history = []
+            sev, _ = self._decide([], True, False)
+            return Decision(True, _BY_SEV[sev], (), (), None, cycle, False, reasons)
+        sev, _ = self._decide([], True, False)
+        sev = max(sev, decision.response.severity)
+        return Decision(True, _BY_SEV[sev], decision.violations, decision.margins, decision.risk,
+                        decision.cycle, decision.latched, decision.faults + reasons)
 
     # -- expression semantics -----------------------------------------------------
     def ev(self, node: Node, t: int) -> Any:
@@ -303,26 +393,15 @@ class ReferenceMonitor:
                 found.append("risk")
                 fsev = max(fsev, Response(spec.risk.response).severity)
             v: tuple[str, ...] = tuple(found)
-            self.latched = max(self.latched, fsev)
-            self.clean = 0
-            return Decision(True, _BY_SEV[self.latched], v, (), r, cycle, False,
+            lsev, _ = self._decide(found, True, False)
+            return Decision(True, _BY_SEV[lsev], v, (), r, cycle, False,
                             _BAD_INPUT if bad_input else _EVAL_ERROR)
         if r >= tau:
             violations.append("risk")
-            sev = max(sev, Response(spec.risk.response).severity)
-        if sev:
-            self.latched = max(self.latched, sev)
-            self.clean = 0
-            return Decision(True, _BY_SEV[self.latched], tuple(violations), margins, r, cycle, False, ())
-        if self.latched:
-            rel = spec.risk.release
-            if rel.mode == "auto" and Fraction(r) < release_bound(tau, rel.hysteresis)[0]:
-                self.clean += 1
-                if self.clean >= rel.hold_cycles:
-                    self.latched = 0
-                    self.clean = 0
-                    return Decision(False, Response.NONE, (), margins, r, cycle, False, ())
-            else:
-                self.clean = 0
-            return Decision(True, _BY_SEV[self.latched], (), margins, r, cycle, True, ())
+        below = Fraction(r) < release_bound(tau, spec.risk.release.hysteresis)[0]
+        lsev, awaiting = self._decide(violations, False, below)
+        if violations:
+            return Decision(True, _BY_SEV[lsev], tuple(violations), margins, r, cycle, False, (), awaiting)
+        if self.latches:
+            return Decision(True, _BY_SEV[lsev], (), margins, r, cycle, True, (), awaiting)
         return Decision(False, Response.NONE, (), margins, r, cycle, False, ())

@@ -23,7 +23,8 @@ from ..errors import SpecError
 from ._yaml import SourceMap
 
 __all__ = [
-    "Response", "Signal", "Constant", "Release", "RiskConfig", "Obligation", "SafePose", "Spec",
+    "Response", "Signal", "Constant", "Release", "RuleRelease", "OnFault", "RiskConfig", "Obligation",
+    "SafePose", "Spec", "MANUAL_BY_DEFAULT",
     "FORMAT_VERSION", "RESERVED_INPUTS", "validation_to_spec_error", "IDENT",
 ]
 
@@ -102,14 +103,62 @@ class Constant(BaseModel):
 
 
 class Release(BaseModel):
-    """How a latched override is released."""
+    """How the risk rule's latch is released (``risk.release``); its ``hold_cycles`` is also
+    the default hold of every other rule's release."""
 
     model_config = _CFG
     mode: Literal["auto", "manual"] = Field(
-        "auto", description="auto: hysteresis rule below; manual: only Monitor.reset()/release()")
+        "auto", description="auto: hysteresis rule below; manual: only Monitor.acknowledge()/release()/reset()")
     hysteresis: FiniteFloat = Field(0.05, ge=0.0, description="δ: release needs R_e < τ − δ")
     hold_cycles: int = Field(10, ge=1, le=10_000_000,
                              description="N: the release condition must hold N consecutive cycles")
+
+
+#: responses whose latch is released manually unless the rule says ``release: auto``
+#: (IEC 60204-1 stop categories 0 and 1 cut power: a restart is an operator's decision)
+MANUAL_BY_DEFAULT = frozenset({"stop_0", "stop_1"})
+
+_RELEASE_FORMS = "auto, manual or {mode: auto|manual, hold_cycles: N}"
+
+
+def _release_short_form(v: Any) -> Any:
+    """``auto``/``manual`` stand for ``{mode: auto}``/``{mode: manual}``."""
+    if isinstance(v, str):
+        if v in ("auto", "manual"):
+            return {"mode": v}
+        raise ValueError(f"expected {_RELEASE_FORMS}")
+    return v
+
+
+class RuleRelease(BaseModel):
+    """How one rule's latch (an obligation's, or the fault latch) is released.
+
+    ``auto``: by itself, once the rule's release condition (the obligation holds; for the
+    fault latch: a cycle without a fault) has held ``hold_cycles`` consecutive cycles.
+    ``manual``: only by the operator, :meth:`Monitor.acknowledge` (refused until that same
+    condition has held ``hold_cycles`` consecutive cycles), or by ``release()``/``reset()``.
+    """
+
+    model_config = _CFG
+    mode: Literal["auto", "manual"] = Field(
+        "auto", description="auto: releases by itself; manual: only Monitor.acknowledge()/release()/reset()")
+    hold_cycles: int | None = Field(
+        None, ge=1, le=10_000_000,
+        description="N: the rule's condition must hold N consecutive cycles (default: risk.release.hold_cycles)")
+
+
+class OnFault(BaseModel):
+    """The response to a fault and how the fault latch is released (``on_fault``)."""
+
+    model_config = _CFG
+    response: ACTIVE_RESPONSES = Field("safe_pose", description="response to missing/NaN/out-of-range/stale input")
+    release: RuleRelease | None = Field(
+        None, description=f"{_RELEASE_FORMS}; default manual (a fault stop is acknowledged by the operator)")
+
+    @field_validator("release", mode="before")
+    @classmethod
+    def _short(cls, v: Any) -> Any:
+        return _release_short_form(v)
 
 
 class EstimatorConfig(BaseModel):
@@ -184,6 +233,13 @@ class Obligation(BaseModel):
         None, ge=0, le=1_000_000,
         description="bounded response: after the trigger, require must hold within this many cycles")
     response: ACTIVE_RESPONSES = "safe_pose"
+    release: RuleRelease | None = Field(
+        None, description=f"{_RELEASE_FORMS}; default manual for stop_0/stop_1, else auto")
+
+    @field_validator("release", mode="before")
+    @classmethod
+    def _short(cls, v: Any) -> Any:
+        return _release_short_form(v)
 
     @field_validator("when", "require", mode="before")
     @classmethod
@@ -224,10 +280,38 @@ class Spec(BaseModel):
     constants: dict[Annotated[str, Field(pattern=IDENT)], FiniteFloat | Constant] = Field(default_factory=dict)
     risk: RiskConfig = Field(default_factory=RiskConfig)
     obligations: tuple[Obligation, ...] = Field((), **_SEQ)
-    on_fault: ACTIVE_RESPONSES = Field("safe_pose", description="response to missing/NaN/out-of-range/stale input")
+    fault_policy: OnFault = Field(
+        default_factory=OnFault, alias="on_fault",
+        description="response to missing/NaN/out-of-range/stale input: safe_pose | stop_2 | stop_1 | stop_0, "
+        "or {response: ..., release: auto | manual | {mode, hold_cycles}}")
     safe_pose: SafePose = Field(default_factory=SafePose)
 
     _source: SourceMap | None = PrivateAttr(default=None)
+
+    @field_validator("fault_policy", mode="before")
+    @classmethod
+    def _fault_short(cls, v: Any) -> Any:
+        if isinstance(v, str):
+            if v in _RESPONSE_NAMES:
+                return {"response": v}
+            raise ValueError("expected safe_pose, stop_2, stop_1 or stop_0, or a mapping "
+                             "{response: ..., release: auto|manual}")
+        return v
+
+    @property
+    def on_fault(self) -> str:
+        """The response to a fault (``on_fault`` or ``on_fault.response``), e.g. ``'stop_1'``."""
+        return self.fault_policy.response
+
+    def fault_release(self) -> tuple[str, int]:
+        """``(mode, hold_cycles)`` of the fault latch, defaults filled in (manual)."""
+        return _resolved(self.fault_policy.release, "manual", self.risk.release.hold_cycles)
+
+    def obligation_release(self, ob: "Obligation") -> tuple[str, int]:
+        """``(mode, hold_cycles)`` of an obligation's latch, defaults filled in (manual for
+        stop_0/stop_1, else auto; hold: ``risk.release.hold_cycles``)."""
+        default = "manual" if ob.response in MANUAL_BY_DEFAULT else "auto"
+        return _resolved(ob.release, default, self.risk.release.hold_cycles)
 
     @property
     def path(self) -> str | None:
@@ -264,6 +348,15 @@ class Spec(BaseModel):
         return self
 
 
+_RESPONSE_NAMES = ("safe_pose", "stop_2", "stop_1", "stop_0")
+
+
+def _resolved(rel: RuleRelease | None, default_mode: str, default_hold: int) -> tuple[str, int]:
+    if rel is None:
+        return default_mode, int(default_hold)
+    return rel.mode, int(rel.hold_cycles if rel.hold_cycles is not None else default_hold)
+
+
 class _LocError(ValueError):
     def __init__(self, msg: str, loc: tuple, hint: str | None = None) -> None:
         super().__init__(msg)
@@ -282,7 +375,7 @@ def _model_at(model: type[BaseModel], loc: tuple) -> type[BaseModel] | None:
             skip_key = False
             continue
         if isinstance(cur, type) and issubclass(cur, BaseModel):
-            field = cur.model_fields.get(part)
+            field = _field(cur, part)
             if field is None:
                 return None
             ann = field.annotation
@@ -291,6 +384,14 @@ def _model_at(model: type[BaseModel], loc: tuple) -> type[BaseModel] | None:
         else:
             cur = None
     return cur if isinstance(cur, type) and issubclass(cur, BaseModel) else None
+
+
+def _field(model: type[BaseModel], key: Any):
+    """The field a YAML key names (its name, or its alias: ``on_fault``)."""
+    field = model.model_fields.get(key)
+    if field is None:
+        field = next((f for f in model.model_fields.values() if f.alias == key), None)
+    return field
 
 
 def _unwrap(ann: Any) -> Any:
@@ -343,7 +444,7 @@ def validation_to_spec_error(exc: ValidationError, smap: SourceMap, model: type[
     if typ == "extra_forbidden":
         key = loc[-1]
         owner = _model_at(model, loc)
-        known = list(owner.model_fields) if owner else []
+        known = [f.alias or n for n, f in owner.model_fields.items()] if owner else []
         close = difflib.get_close_matches(str(key), known, n=1)
         hint = f"did you mean {close[0]!r}?" if close else (f"known keys: {', '.join(known)}" if known else None)
         return smap.error(f"unknown key {key!r} in {_fmt_loc(loc[:-1])}", loc, hint=hint, key=True)
@@ -394,5 +495,5 @@ def _field_help(model: type[BaseModel], loc: tuple) -> str | None:
         owner = _model_at(model, loc[:k + 1])
     except Exception:  # noqa: BLE001 - a hint is best effort
         return None
-    field = owner.model_fields.get(loc[k]) if owner is not None else None
+    field = _field(owner, loc[k]) if owner is not None else None
     return (field.description or None) if field is not None else None
