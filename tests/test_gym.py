@@ -241,6 +241,17 @@ def test_panda_cell_spaces_and_info(panda):
     assert reward == -info["distance_to_target"]
 
 
+def test_action_bounds_are_the_rated_joint_speeds():
+    from ethimon.gym import PANDA_RATED_JOINT_SPEED_RAD_S
+
+    assert PANDA_RATED_JOINT_SPEED_RAD_S == (2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61)  # Franka datasheet
+    try:
+        from ethimon.sim._limits import RATED_DQ_MAX
+    except ImportError:  # an older sim without its own table of rated limits
+        return
+    assert tuple(RATED_DQ_MAX) == PANDA_RATED_JOINT_SPEED_RAD_S
+
+
 @pytest.mark.sim
 @pytestmark_sim
 def test_panda_cell_tracks_joint_velocity_targets(panda):
