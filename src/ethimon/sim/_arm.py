@@ -17,9 +17,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import DependencyNotInstalled
+from ._limits import (BRAKE_DECEL_RAD_S2, BRAKE_ENGAGE_S, BRAKE_TORQUE_N_M, RATED_DDDQ_MAX,
+                      RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX, RATED_Q_MIN)
 from ._model import PHYSICS_HZ, Human, SimBlock, SimObject
 
-__all__ = ["ArmSim", "HOME_JOINTS_RAD", "ARM_JOINTS", "EE_LINK", "import_pybullet"]
+__all__ = ["ArmSim", "HOME_JOINTS_RAD", "ARM_JOINTS", "EE_LINK", "BRAKE_TORQUE_N_M", "import_pybullet"]
 
 #: Panda arm joint indices in ``panda.urdf`` (fingers are 9 and 10).
 ARM_JOINTS = (0, 1, 2, 3, 4, 5, 6)
@@ -30,13 +32,16 @@ EE_LINK = 11
 #: A comfortable start pose (the Panda "ready" pose).
 HOME_JOINTS_RAD = (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785)
 ARM_MAX_FORCE_N_M = (87.0, 87.0, 87.0, 87.0, 12.0, 12.0, 12.0)
-#: holding-brake torque per joint when motor power is removed (a friction brake: it
-#: holds the arm against gravity and brings a moving joint to rest; a larger external
-#: torque still slips it). Below the motor limits, above the Panda's gravity loads.
-BRAKE_TORQUE_N_M = (60.0, 60.0, 60.0, 60.0, 10.0, 10.0, 10.0)
+_RATED_DQ = np.array(RATED_DQ_MAX)
+_RATED_DDQ = np.array(RATED_DDQ_MAX)
+_RATED_DDDQ = np.array(RATED_DDDQ_MAX)
+_Q_MIN, _Q_MAX = np.array(RATED_Q_MIN), np.array(RATED_Q_MAX)
+_BRAKE_DECEL = np.array(BRAKE_DECEL_RAD_S2)
+#: position feedback of the joint servo (1/s): velocity command = reference velocity
+#: + _K_POS × (reference position − measured position), then the rated limits
+_K_POS = 30.0
 _DOWN_RPY = (math.pi, 0.0, 0.0)
 _NO_HUMAN_M = 10.0
-_KP, _KD = 0.2, 1.0  # PyBullet position-motor gains  # distance reported when no human is within range
 
 
 def import_pybullet():
@@ -154,7 +159,13 @@ class ArmSim:
         self.qd_cmd = np.zeros(7)
         self.gripper_cmd = 0.04
         self.max_velocity: float | None = None
+        self.speed_cap: np.ndarray | None = None
+        self._hermite = False
         self.powered = True
+        self._off_substeps = 0
+        self.max_joint_accel_substep = 0.0
+        self.max_accel_ratio_substep = 0.0
+        self.link_speed_max = 0.0
         self.brakes = brakes
         self.graspable: set[str] = set()
         self._status_id: int | None = None
@@ -270,6 +281,10 @@ class ArmSim:
             p.resetJointState(self.robot, j, 0.04, 0.0, physicsClientId=cid)
         self.q_cmd = np.asarray(q, dtype=float).copy()
         self._q_sub = self.q_cmd.copy()
+        self._qd_sub = np.zeros(7)
+        self.qd_cmd = np.zeros(7)
+        self._v_out = np.zeros(7)
+        self._a_out = np.zeros(7)
 
     def joint_state(self) -> tuple[np.ndarray, np.ndarray]:
         """Measured arm joint positions and velocities (7 each)."""
@@ -370,54 +385,100 @@ class ArmSim:
 
     def command_joints(self, q: Sequence[float], qd: Sequence[float] | None = None,
                        gripper_m: float | None = None, *,
-                       max_velocity: float | None = None) -> None:
-        """Position-control the arm towards ``q`` (feed-forward velocity ``qd``); powers motors on.
+                       max_velocity: float | None = None,
+                       speed_cap: Sequence[float] | None = None) -> None:
+        """Track the joint reference ``q`` (with reference velocity ``qd``) this cycle; powers motors on.
 
-        ``max_velocity`` (rad/s) makes each motor clamp its speed at that value.
+        The joint servo interpolates the reference at the physics rate (cubic Hermite from
+        the previous reference when ``qd`` is given, linear otherwise) and commands each
+        motor the velocity ``qd_ref + K (q_ref − q)``, clipped to the rated joint speed, to
+        ``max_velocity`` (rad/s, all joints) and to ``speed_cap`` (rad/s per joint; a stop
+        passes the speed at its command so that nothing can add speed), then rate-limited
+        to the rated acceleration and jerk. The reference is clipped to the rated position
+        range. So every controller keeps the Panda's rated limits
+        (:mod:`ethimon.sim._limits`).
         """
         self.max_velocity = max_velocity
-        if not self.powered:  # re-powering: interpolate from where the arm is
-            self._q_sub = self.joint_state()[0]
-        self.q_cmd = np.asarray(q, dtype=float)
+        self.speed_cap = None if speed_cap is None else np.abs(np.asarray(speed_cap, dtype=float))
+        if not self.powered:  # re-powering: interpolate from where the arm is, as it moves
+            self._q_sub, self._v_out = self.joint_state()
+            self._qd_sub = self._v_out.copy()
+            self._a_out = np.zeros(7)
+        self.q_cmd = np.clip(np.asarray(q, dtype=float), _Q_MIN, _Q_MAX)
+        self._hermite = qd is not None
         self.qd_cmd = np.zeros(7) if qd is None else np.asarray(qd, dtype=float)
         if gripper_m is not None:
             self.gripper_cmd = gripper_m
         self.powered = True
 
-    def command_torque_off(self) -> None:
+    def command_torque_off(self, *, brakes_already_engaged: bool = False) -> None:
         """Stop category 0 style: remove motor power at once.
 
-        The motors apply no torque any more. With ``brakes`` (the default, as on a
-        real Panda) the holding brakes engage at once: a friction torque of at most
-        :data:`BRAKE_TORQUE_N_M` per joint against any motion, so the arm comes to
-        rest and holds against gravity. Without brakes, gravity and contacts act
-        freely and the arm sags.
+        The motors apply no torque any more. With ``brakes`` (the default, as on a real
+        Panda) the holding brakes engage :data:`~ethimon.sim._limits.BRAKE_ENGAGE_S` later
+        (the joints coast meanwhile), then decelerate each joint at
+        :data:`~ethimon.sim._limits.BRAKE_DECEL_RAD_S2` with a friction torque of at most
+        :data:`BRAKE_TORQUE_N_M` (a larger external torque slips them) and hold it against
+        gravity: both values are assumed (see the sim README). Without brakes, gravity and
+        contacts act freely and the arm sags. ``brakes_already_engaged``: the brakes were
+        engaged while the motors still held the arm (a stop 1 at standstill), so there is
+        no coasting.
         """
+        if self.powered:
+            self.powered = False
+            self._off_substeps = 0
+            if brakes_already_engaged:  # a stop 1 engaged them at standstill, motors holding
+                self._off_substeps = int(math.ceil(BRAKE_ENGAGE_S * PHYSICS_HZ))
+        self._apply_unpowered()
+
+    @property
+    def brakes_engaged(self) -> bool:
+        """Motor power is off and the brakes have engaged (after their engagement delay)."""
+        return (not self.powered and self.brakes
+                and self._off_substeps / PHYSICS_HZ >= BRAKE_ENGAGE_S - 1e-9)
+
+    def _apply_unpowered(self) -> None:
         p, cid = self._p, self.cid
-        self.powered = False
-        forces = list(BRAKE_TORQUE_N_M) if self.brakes else [0.0] * 7
+        if self.brakes_engaged:
+            _, qd = self.joint_state()
+            step = _BRAKE_DECEL / PHYSICS_HZ
+            target = np.sign(qd) * np.maximum(np.abs(qd) - step, 0.0)
+            forces = list(BRAKE_TORQUE_N_M)
+        else:  # coasting: no motor torque, brakes not (yet) engaged
+            target = np.zeros(7)
+            forces = [0.0] * 7
         p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
-                                    targetVelocities=[0.0] * 7, forces=forces,
+                                    targetVelocities=target.tolist(), forces=forces,
                                     physicsClientId=cid)
 
-    def _apply_command(self, q: np.ndarray | None = None) -> None:
+    def _servo_velocity(self, q_ref: np.ndarray, qd_ref: np.ndarray, q_meas: np.ndarray) -> np.ndarray:
+        """The rated-limited motor velocity command for one physics step."""
+        h = 1.0 / PHYSICS_HZ
+        v = qd_ref + _K_POS * (q_ref - q_meas)
+        cap = _RATED_DQ
+        if self.max_velocity is not None:
+            cap = np.minimum(cap, self.max_velocity)
+        if self.speed_cap is not None:
+            cap = np.minimum(cap, self.speed_cap)
+        v = np.clip(v, -cap, cap)
+        a = np.clip((v - self._v_out) / h, -_RATED_DDQ, _RATED_DDQ)
+        a = np.clip(a, self._a_out - _RATED_DDDQ * h, self._a_out + _RATED_DDDQ * h)
+        self._a_out = a
+        self._v_out = self._v_out + a * h
+        return self._v_out
+
+    def _apply_command(self, q: np.ndarray | None = None, qd: np.ndarray | None = None) -> None:
         p, cid = self._p, self.cid
         if not self.powered:
+            self._apply_unpowered()
             return
-        q = self.q_cmd if q is None else q
-        if self.max_velocity is None:
-            p.setJointMotorControlArray(
-                self.robot, ARM_JOINTS, p.POSITION_CONTROL,
-                targetPositions=q.tolist(), targetVelocities=self.qd_cmd.tolist(),
-                forces=ARM_MAX_FORCE_N_M, positionGains=[_KP] * 7, velocityGains=[_KD] * 7,
-                physicsClientId=cid)
-        else:
-            for k, j in enumerate(ARM_JOINTS):
-                p.setJointMotorControl2(
-                    self.robot, j, p.POSITION_CONTROL, targetPosition=float(q[k]),
-                    targetVelocity=float(self.qd_cmd[k]), force=ARM_MAX_FORCE_N_M[k],
-                    positionGain=_KP, velocityGain=_KD, maxVelocity=self.max_velocity,
-                    physicsClientId=cid)
+        q_ref = self.q_cmd if q is None else q
+        qd_ref = self.qd_cmd if qd is None else qd
+        q_meas, _ = self.joint_state()
+        v = self._servo_velocity(q_ref, qd_ref, q_meas)
+        p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
+                                    targetVelocities=v.tolist(), forces=ARM_MAX_FORCE_N_M,
+                                    physicsClientId=cid)
         p.setJointMotorControlArray(self.robot, FINGER_JOINTS, p.POSITION_CONTROL,
                                     targetPositions=[self.gripper_cmd] * 2, forces=[40.0] * 2,
                                     physicsClientId=cid)
@@ -437,6 +498,7 @@ class ArmSim:
             self.robot, HAND_LINK, body, -1, p.JOINT_FIXED, (0, 0, 0), rel_pos, (0, 0, 0),
             parentFrameOrientation=rel_orn, physicsClientId=cid)
         p.changeConstraint(self._held_constraint, maxForce=500, physicsClientId=cid)
+        self._held_rel = (rel_pos, rel_orn)
         self.held = name
 
     def set_graspable(self, name: str) -> None:
@@ -458,31 +520,72 @@ class ArmSim:
             p, cid = self._p, self.cid
             p.removeConstraint(self._held_constraint, physicsClientId=cid)
         self._held_constraint = None
+        self._held_rel = None
         self.held = None
 
     # ------------------------------------------------------------ stepping
 
     def step(self) -> None:
-        """Advance one control cycle: move humans, run the physics substeps."""
+        """Advance one control cycle: move humans, run the physics substeps.
+
+        Afterwards :attr:`max_joint_speed_substep` (rad/s), :attr:`max_joint_accel_substep`
+        (rad/s², from the velocity change of each physics step), :attr:`max_accel_ratio_substep`
+        (the largest |q̈_j| / rated q̈_max,j) and :attr:`link_speed_max` (m/s, the fastest
+        link frame or held object at the end of the cycle) describe the cycle.
+        """
         p, cid = self._p, self.cid
         self.time_s = (self.cycle + 1) * self.dt
         for hb in self.humans.values():
             self._place_human(hb, self.time_s)
-        peak = 0.0
+        peak = peak_a = ratio_a = 0.0
         n = self.substeps
-        q_from = self._q_sub
+        T = self.dt
+        q0, v0 = self._q_sub, self._qd_sub
+        q1 = self.q_cmd
+        v1 = self.qd_cmd if self._hermite else (q1 - q0) / T
+        if not self._hermite:
+            v0 = v1
+        h = 1.0 / PHYSICS_HZ
+        _, qd_prev = self.joint_state()
         for k in range(1, n + 1):
-            if self.powered:  # interpolate the setpoint at the physics rate
-                self._q_sub = q_from + (k / n) * (self.q_cmd - q_from)
-                self._apply_command(self._q_sub)
+            if self.powered:  # interpolate the reference at the physics rate
+                s = k / n
+                s2, s3 = s * s, s * s * s
+                q_ref = ((2 * s3 - 3 * s2 + 1) * q0 + (s3 - 2 * s2 + s) * T * v0
+                         + (-2 * s3 + 3 * s2) * q1 + (s3 - s2) * T * v1)
+                qd_ref = ((6 * s2 - 6 * s) * q0 / T + (3 * s2 - 4 * s + 1) * v0
+                          + (-6 * s2 + 6 * s) * q1 / T + (3 * s2 - 2 * s) * v1)
+                self._q_sub, self._qd_sub = q_ref, qd_ref
+                self._apply_command(q_ref, qd_ref)
+            else:
+                self._apply_unpowered()
+                self._off_substeps += 1
             p.stepSimulation(physicsClientId=cid)
-            st = p.getJointStates(self.robot, ARM_JOINTS, physicsClientId=cid)
-            for s in st:
-                v = abs(s[1])
-                if v > peak:
-                    peak = v
+            _, qd = self.joint_state()
+            acc = np.abs(qd - qd_prev) / h
+            qd_prev = qd
+            peak = max(peak, float(np.max(np.abs(qd))))
+            peak_a = max(peak_a, float(np.max(acc)))
+            ratio_a = max(ratio_a, float(np.max(acc / _RATED_DDQ)))
+        if not self.powered:  # a later re-power starts from the measured state
+            self._q_sub, self._qd_sub = self.joint_state()
         self.max_joint_speed_substep = peak
+        self.max_joint_accel_substep = peak_a
+        self.max_accel_ratio_substep = ratio_a
+        self.link_speed_max = self.link_speed()
         self.cycle += 1
+
+    def link_speed(self) -> float:
+        """Largest linear speed (m/s) of any arm link frame (links 1..7, hand, fingers,
+        grasp frame) or of the held object, now."""
+        p, cid = self._p, self.cid
+        states = p.getLinkStates(self.robot, list(range(12)), computeLinkVelocity=1,
+                                 physicsClientId=cid)
+        best = max(math.sqrt(sum(c * c for c in st[6])) for st in states)
+        if self.held is not None:
+            lin, _ = p.getBaseVelocity(self.objects[self.held], physicsClientId=cid)
+            best = max(best, math.sqrt(sum(c * c for c in lin)))
+        return float(best)
 
     # ------------------------------------------------------------ kinematics
 
@@ -524,6 +627,107 @@ class ArmSim:
         for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
             p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
         return pos
+
+    # ------------------------------------------------------------ planning probes
+
+    def rebase_reference(self) -> None:
+        """Restart the joint servo's reference from the measured state (position and velocity).
+
+        Response controllers call it when they take over, so the previous controller's
+        reference (which may lead the arm) cannot pull it on."""
+        q, qd = self.joint_state()
+        self._q_sub, self._qd_sub = q, qd
+        self.q_cmd, self.qd_cmd = q.copy(), qd.copy()
+        self._v_out = qd.copy()
+        self._a_out = np.zeros(7)
+
+    def _held_pose_for_hand(self) -> tuple | None:
+        if self.held is None or getattr(self, "_held_rel", None) is None:
+            return None
+        p, cid = self._p, self.cid
+        hs = p.getLinkState(self.robot, HAND_LINK, computeForwardKinematics=1, physicsClientId=cid)
+        return p.multiplyTransforms(hs[0], hs[1], *self._held_rel)
+
+    def probe(self, qs: Sequence[Sequence[float]]) -> list[dict[str, float]]:
+        """Clearances of the arm at each joint configuration in ``qs`` (state restored after).
+
+        Each result: ``human`` (m, arm or held object to the nearest person), ``obstacle``
+        (m, arm or held object to any object the task does not pick, and arm links 3..8 to
+        the floor) and ``hazard`` (m, a held hazard-tagged object to the nearest person;
+        10 when none). People stand where they are now.
+        """
+        p, cid = self._p, self.cid
+        q_now, qd_now = self.joint_state()
+        held = self.objects.get(self.held) if self.held else None
+        held_pose = p.getBasePositionAndOrientation(held, physicsClientId=cid) if held is not None else None
+        hazardous = held is not None and bool(self.object_specs[self.held].hazard)
+        obstacles = [b for n, b in self.objects.items() if n not in self.graspable and b != held]
+        out = []
+        try:
+            for q in qs:
+                for j, v in zip(ARM_JOINTS, q):
+                    p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+                if held is not None:
+                    pose = self._held_pose_for_hand()
+                    if pose is not None:
+                        p.resetBasePositionAndOrientation(held, pose[0], pose[1], physicsClientId=cid)
+                bodies = [self.robot] + ([held] if held is not None else [])
+                h = hz = _NO_HUMAN_M
+                for hb in self.humans.values():
+                    for b in bodies:
+                        h = min(h, self.distance(b, hb.body, h))
+                    if hazardous:
+                        hz = min(hz, self.distance(held, hb.body, hz))
+                ob = 1.0
+                for o in obstacles:
+                    for b in bodies:
+                        ob = min(ob, self.distance(b, o, ob))
+                for link in range(2, 12):
+                    pts = p.getClosestPoints(self.robot, self.plane, ob, linkIndexA=link,
+                                             physicsClientId=cid)
+                    if pts:
+                        ob = min(ob, max(0.0, min(pt[8] for pt in pts)))
+                if held is not None:
+                    pts = p.getClosestPoints(held, self.plane, ob, physicsClientId=cid)
+                    if pts:
+                        ob = min(ob, max(0.0, min(pt[8] for pt in pts)))
+                out.append({"human": float(h), "obstacle": float(ob), "hazard": float(hz)})
+        finally:
+            for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
+                p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+            if held is not None:
+                p.resetBasePositionAndOrientation(held, held_pose[0], held_pose[1], physicsClientId=cid)
+        return out
+
+    def link_points(self, q: Sequence[float]) -> np.ndarray:
+        """World positions of the link frames (links 1..7, hand, fingers, grasp frame) at ``q``
+        (state restored afterwards); with a held object, its position too."""
+        p, cid = self._p, self.cid
+        q_now, qd_now = self.joint_state()
+        for j, v in zip(ARM_JOINTS, q):
+            p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+        states = p.getLinkStates(self.robot, list(range(12)), computeForwardKinematics=1,
+                                 physicsClientId=cid)
+        pts = [st[4] for st in states]
+        pose = self._held_pose_for_hand()
+        if pose is not None:
+            pts.append(pose[0])
+        for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
+            p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+        return np.array(pts, dtype=float)
+
+    def away_from_humans(self, xyz: Sequence[float], step_m: float) -> np.ndarray | None:
+        """``xyz`` moved ``step_m`` horizontally away from the nearest person and 0.1 m up
+        (``None`` with nobody in the scene)."""
+        if not self.humans:
+            return None
+        x = np.asarray(xyz, dtype=float)
+        best = min(self.humans.values(), key=lambda hb: float(np.linalg.norm(hb.xy_at(self.time_s) - x[:2])))
+        d = x[:2] - best.xy_at(self.time_s)
+        n = float(np.linalg.norm(d))
+        if n < 1e-6:
+            return None
+        return np.array([x[0] + step_m * d[0] / n, x[1] + step_m * d[1] / n, x[2] + 0.1])
 
     # ------------------------------------------------------------ rendering
 

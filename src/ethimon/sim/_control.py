@@ -13,6 +13,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ._arm import ArmSim, Segment
+from ._limits import BRAKE_ENGAGE_S, RATED_DDDQ_MAX, RATED_DDQ_MAX, RATED_DQ_MAX
 from ._model import SimError, HandOver, Pick, Place, Pour, Reach, SimBlock, Wait, Wipe
 
 __all__ = ["plan_task", "TaskController", "SafePoseController", "StopController",
@@ -24,7 +25,12 @@ SEVERITY = {"none": 0, "safe_pose": 1, "stop_2": 2, "stop_1": 3, "stop_0": 4}
 _MIN_SEGMENT_S = 0.25
 _IK_TOLERANCE_M = 0.02
 _GRIP_S = 0.3
-_FF = 0.0  # velocity feed-forward share (PyBullet motors overshoot with it)
+#: planned motions use at most this share of the rated acceleration and jerk (the servo's
+#: rate limiter is the hard bound; the share leaves it room to track)
+_LIMIT_SHARE = 0.8
+_DQ = np.array(RATED_DQ_MAX)
+_DDQ = np.array(RATED_DDQ_MAX)
+_DDDQ = np.array(RATED_DDDQ_MAX)
 
 
 def _min_jerk(u: float) -> tuple[float, float]:
@@ -36,8 +42,14 @@ def _min_jerk(u: float) -> tuple[float, float]:
 
 
 def _timed(q_from: np.ndarray, q_to: np.ndarray, duration_s: float | None, v_task: float) -> float:
-    # a min-jerk profile peaks at 1.875 × the mean speed
-    need = 1.875 * float(np.max(np.abs(q_to - q_from))) / v_task
+    """Duration of a min-jerk move: at least ``duration_s``, with every joint's peak speed
+    within ``v_task`` and its rated speed, and its peak acceleration and jerk within
+    ``_LIMIT_SHARE`` of the rated ones (min-jerk peaks: 1.875 d/T, 5.774 d/T², 60 d/T³)."""
+    d = np.abs(np.asarray(q_to, dtype=float) - np.asarray(q_from, dtype=float))
+    v = np.minimum(v_task, 0.98 * _DQ)
+    need = max(float(np.max(1.875 * d / v)),
+               float(np.max(np.sqrt(5.7735 * d / (_LIMIT_SHARE * _DDQ)))),
+               float(np.max(np.cbrt(60.0 * d / (_LIMIT_SHARE * _DDDQ)))))
     return max(duration_s or 0.0, need, _MIN_SEGMENT_S)
 
 
@@ -175,14 +187,14 @@ class TaskController:
     def command(self, sim: ArmSim) -> None:
         if self.done:
             last = self.segments[-1] if self.segments else None
-            sim.command_joints(self.setpoint, None, last.gripper_m if last else None)
+            sim.command_joints(self.setpoint, np.zeros(7), last.gripper_m if last else None)
             return
         seg = self.segments[self.index]
         s, ds = _min_jerk(self.t / self._dur)
         q = self._from + s * (seg.q - self._from)
         qd = (ds / self._dur) * (seg.q - self._from)
         self.setpoint = q
-        sim.command_joints(q, qd * _FF, seg.gripper_m)
+        sim.command_joints(q, qd, seg.gripper_m)
         self.t += sim.dt
         if self.t >= self._dur - 1e-9:
             if seg.attach:
@@ -197,76 +209,360 @@ class TaskController:
                 self._dur = nxt.duration_s
 
 
-class SafePoseController:
-    """Drives every joint to the safe pose on a synchronised, rate-limited path.
+# ---------------------------------------------------------------- response motions
 
-    The setpoint moves along the straight joint-space line from the pose at
-    the override to ``q_safe``; the path speed has a trapezoidal profile whose
-    cruise speed keeps the fastest joint at ``margin × max_joint_speed_rad_s``.
-    The motors also clamp their velocity at the limit.
+
+class _Decel:
+    """A rated-limited deceleration from the measured joint velocity ``qd0`` to rest.
+
+    Every joint follows ``qd(t) = qd0 · g(t/T)`` with ``g(u) = 1 − 3u² + 2u³``: the speed
+    only falls (nothing adds speed), the acceleration starts and ends at zero, its peak is
+    ``1.5 |qd0| / T`` and the jerk peak ``6 |qd0| / T²``. ``T`` is the shortest time that
+    keeps both within ``_LIMIT_SHARE`` of every joint's rated limits, and at least ``min_s``.
+    The joints come to rest at ``q0 + qd0 · T / 2``.
     """
 
-    name = "safe_pose"
+    def __init__(self, q0: np.ndarray, qd0: np.ndarray, min_s: float = 0.0) -> None:
+        self.q0 = np.asarray(q0, dtype=float).copy()
+        self.qd0 = np.asarray(qd0, dtype=float).copy()
+        v = np.abs(self.qd0)
+        t_a = float(np.max(1.5 * v / (_LIMIT_SHARE * _DDQ)))
+        t_j = float(np.max(np.sqrt(6.0 * v / (_LIMIT_SHARE * _DDDQ))))
+        self.T = max(t_a, t_j, min_s) if float(np.max(v)) > 0 else 0.0
+        self.q_end = self.q0 + 0.5 * self.qd0 * self.T
 
-    def __init__(self, q_now: np.ndarray, q_safe: Sequence[float], max_joint_speed_rad_s: float,
-                 *, margin: float = 0.98, accel_rad_s2: float = 8.0) -> None:
-        self.q0 = np.asarray(q_now, dtype=float)
-        self.q_safe = np.asarray(q_safe, dtype=float)
-        self.v_limit = float(max_joint_speed_rad_s)
-        self.v_cruise = margin * self.v_limit
-        self.accel = accel_rad_s2
-        delta = self.q_safe - self.q0
-        self.length = float(np.max(np.abs(delta)))          # path length of the fastest joint
-        self.dir = delta / self.length if self.length > 0 else np.zeros(7)
-        self.s = 0.0
-        self.v = 0.0
+    def at(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        if self.T <= 0 or t >= self.T:
+            return self.q_end.copy(), np.zeros(7)
+        u = max(t, 0.0) / self.T
+        g = 1.0 - 3.0 * u * u + 2.0 * u ** 3
+        big_g = u - u ** 3 + 0.5 * u ** 4
+        return self.q0 + self.qd0 * self.T * big_g, self.qd0 * g
 
-    @property
-    def done(self) -> bool:
-        """The setpoint has arrived (the measured pose may still be settling)."""
-        return self.s >= self.length
 
-    def command(self, sim: ArmSim) -> None:
-        dt = sim.dt
-        remaining = self.length - self.s
-        v_brake = math.sqrt(max(2.0 * self.accel * remaining, 0.0))
-        self.v = min(self.v_cruise, self.v + self.accel * dt, v_brake)
-        self.s = min(self.length, self.s + self.v * dt)
-        q = self.q0 + self.s * self.dir
-        qd = self.v * self.dir if not self.done else np.zeros(7)
-        sim.command_joints(q, qd * _FF, max_velocity=self.v_limit)
+class _Move:
+    """A synchronised straight joint-space move ``qa → qb``, rest to rest.
+
+    The path speed has a trapezoidal profile with sine-shaped acceleration phases
+    (acceleration peak ``π v / (2 Ta)``, jerk peak ``π² v / (2 Ta²)``), sized so that every
+    joint stays within ``v_max`` (per joint), ``a_max`` and the rated jerk share.
+    """
+
+    def __init__(self, qa: np.ndarray, qb: np.ndarray, v_max: np.ndarray, a_max: np.ndarray,
+                 j_max: np.ndarray) -> None:
+        self.qa = np.asarray(qa, dtype=float)
+        self.qb = np.asarray(qb, dtype=float)
+        delta = self.qb - self.qa
+        self.L = float(np.max(np.abs(delta)))
+        self.dir = delta / self.L if self.L > 0 else np.zeros(7)
+        if self.L <= 0:
+            self.v = self.Ta = self.T = 0.0
+            return
+        d = np.abs(self.dir)
+        nz = d > 1e-12
+        v = float(np.min(v_max[nz] / d[nz]))
+        a = float(np.min(a_max[nz] / d[nz]))
+        j = float(np.min(j_max[nz] / d[nz]))
+        ta = max(math.pi * v / (2 * a), math.sqrt(math.pi ** 2 * v / (2 * j)))
+        if v * ta > self.L:  # no cruise: lower the peak speed until both phases fit
+            lo, hi = 0.0, v
+            for _ in range(40):
+                mid = 0.5 * (lo + hi)
+                tm = max(math.pi * mid / (2 * a), math.sqrt(math.pi ** 2 * mid / (2 * j)))
+                lo, hi = (mid, hi) if mid * tm <= self.L else (lo, mid)
+            v = max(lo, 1e-9)
+            ta = max(math.pi * v / (2 * a), math.sqrt(math.pi ** 2 * v / (2 * j)))
+        self.v, self.Ta = v, ta
+        self.T = 2 * ta + (self.L - v * ta) / v
+
+    def _s(self, t: float) -> tuple[float, float]:
+        v, ta, T = self.v, self.Ta, self.T
+        if t <= 0:
+            return 0.0, 0.0
+        if t >= T:
+            return self.L, 0.0
+        if t < ta:
+            return 0.5 * v * (t - ta / math.pi * math.sin(math.pi * t / ta)), \
+                0.5 * v * (1 - math.cos(math.pi * t / ta))
+        if t <= T - ta:
+            return 0.5 * v * ta + v * (t - ta), v
+        s, sd = self._s(T - t)
+        return self.L - s, sd
+
+    def at(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        s, sd = self._s(t)
+        return self.qa + s * self.dir, sd * self.dir
 
 
 class StopController:
     """Stop categories (IEC 60204-1): 0 = power off at once; 1 = controlled stop, then
-    power off; 2 = controlled stop, then hold position with power on.
+    power off at standstill; 2 = controlled stop, then hold position with power on.
 
-    The controlled stop ramps the commanded joint velocity linearly from the
-    measured velocity to zero over ``ramp_s``.
+    The controlled stop decelerates every joint from its measured velocity to rest
+    (:class:`_Decel`: within the rated acceleration and jerk, never faster than at the
+    command; ``ramp_s`` is the shortest deceleration time). Stop 1 then waits for
+    standstill (every joint below ``standstill_speed_rad_s``, at most ``settle_s``),
+    engages the brakes while the motors still hold, and removes motor power once they have
+    engaged (``BRAKE_ENGAGE_S``): the arm does not sag. Stop 2 holds the pose with power on and
+    monitors standstill: a drift of any joint beyond ``standstill_tol_rad`` from the held
+    pose escalates to stop 0 (the monitored stop is no longer safe).
+
+    Attributes:
+        stop_time_s: the planned deceleration time.
+        standstill_s: controller time at which every joint came below the standstill
+            speed (``None``: not yet).
+        escalated: a stop 2 whose standstill monitoring tripped (now a stop 0).
     """
 
-    def __init__(self, category: int, q_now: np.ndarray, qd_now: np.ndarray, ramp_s: float) -> None:
+    def __init__(self, category: int, q_now: np.ndarray, qd_now: np.ndarray, ramp_s: float, *,
+                 standstill_tol_rad: float = 0.02, standstill_speed_rad_s: float = 0.01,
+                 settle_s: float = 0.3) -> None:
         self.category = category
         self.name = f"stop_{category}"
         self.q = np.asarray(q_now, dtype=float).copy()
         self.qd0 = np.asarray(qd_now, dtype=float).copy()
         self.ramp_s = ramp_s
+        self.decel = _Decel(self.q, self.qd0, ramp_s)
+        self.stop_time_s = self.decel.T
+        self.cap = np.abs(self.qd0) + 1e-3
+        self.standstill_tol_rad = standstill_tol_rad
+        self.standstill_speed_rad_s = standstill_speed_rad_s
+        self.settle_s = settle_s
         self.t = 0.0
         self.powered_off = False
+        self.standstill_s: float | None = None
+        self.escalated = False
+        self._hold: np.ndarray | None = None
+        self._brakes_at: float | None = None
+        self._started = False
 
     @property
     def done(self) -> bool:
-        return self.category == 0 or self.t >= self.ramp_s
+        """Stop 0/1: power is off; stop 2: decelerated and holding."""
+        if self.category in (0, 1):
+            return self.powered_off
+        return self.t >= self.decel.T
+
+    def _power_off(self, sim: ArmSim) -> None:
+        sim.command_torque_off()
+        self.powered_off = True
 
     def command(self, sim: ArmSim) -> None:
-        if self.category == 0 or (self.category == 1 and self.t >= self.ramp_s):
+        q_meas, qd_meas = sim.joint_state()
+        if self.standstill_s is None and float(np.max(np.abs(qd_meas))) < self.standstill_speed_rad_s:
+            self.standstill_s = self.t
+        if self.category == 0 or self.powered_off:
             if not self.powered_off:
+                self._power_off(sim)
+            else:
                 sim.command_torque_off()
-                self.powered_off = True
             self.t += sim.dt
             return
-        k = max(0.0, 1.0 - self.t / self.ramp_s)
-        k_next = max(0.0, 1.0 - (self.t + sim.dt) / self.ramp_s)
-        self.q = self.q + 0.5 * (k + k_next) * self.qd0 * sim.dt
-        sim.command_joints(self.q, k_next * self.qd0)
+        if not self._started:
+            sim.rebase_reference()  # the servo starts from the measured state, not the task's
+            self._started = True
+        t_next = self.t + sim.dt
+        if self.t >= self.decel.T:
+            if self.category == 1:
+                if self._brakes_at is None and (self.standstill_s is not None
+                                                or self.t >= self.decel.T + self.settle_s):
+                    self._brakes_at = self.t  # standstill: engage the brakes, motors still hold
+                if self._brakes_at is not None and self.t >= self._brakes_at + BRAKE_ENGAGE_S - 1e-9:
+                    sim.command_torque_off(brakes_already_engaged=True)
+                    self.powered_off = True
+                    self.t = t_next
+                    return
+            else:
+                if self._hold is None:
+                    self._hold = q_meas.copy()
+                if float(np.max(np.abs(q_meas - self._hold))) > self.standstill_tol_rad:
+                    self.escalated = True  # standstill monitoring tripped: safe operating stop lost
+                    self.category = 0
+                    self.name = "stop_0"
+                    self._power_off(sim)
+                    self.t = t_next
+                    return
+        q_ref, qd_ref = self.decel.at(t_next)
+        if self._hold is not None:
+            q_ref = self._hold
+        sim.command_joints(q_ref, qd_ref, speed_cap=self.cap)
+        self.t = t_next
+
+
+class SafePoseController:
+    """Takes the arm to the safe pose, around people and obstacles, or holds if it cannot.
+
+    At its first command it reads the measured joint state and (1) decelerates from the
+    current velocity (:class:`_Decel`, rated-limited, never adding speed) when the arm
+    moves; (2) plans the route from where that leaves the arm: the straight joint-space
+    line, else a fold-first, a lift-first or an away-from-the-person waypoint, each
+    sampled every ``sample_rad`` in the PyBullet scene (:meth:`ArmSim.probe`) and kept
+    only if it touches no obstacle, table or floor, never brings the arm (or a held
+    hazardous object) nearer any person than it is now (or than ``near_human[0]``), and
+    the fastest route of those that pass is taken; (3) when none passes it holds the pose
+    like a stop 2 (``name`` becomes ``"stop_2"``).
+
+    Every joint keeps ``margin × max_joint_speed_rad_s`` and the rated speed,
+    ``accel_rad_s2`` and the rated acceleration and jerk shares; with ``near_human =
+    (distance_m, speed_m_s)`` (the spec's near-human speed rule) a route that passes
+    within ``distance_m`` (+ 0.5 m, people move) of a person is slowed so that no link
+    frame or held object exceeds 0.8 × ``speed_m_s``.
+
+    Attributes (after the first command):
+        route: ``"direct"``, ``"fold"``, ``"lift"``, ``"away"``, ``"hold"`` or ``"none"`` (at rest there).
+        planned_closest_m: closest planned approach of the arm to a person on the route.
+        speed_cap_m_s: the Cartesian cap applied (``None``: none).
+        plan_s: planned time from the first command to the safe pose.
+    """
+
+    name = "safe_pose"
+
+    def __init__(self, q_now: np.ndarray, q_safe: Sequence[float], max_joint_speed_rad_s: float,
+                 *, margin: float = 0.98, accel_rad_s2: float = 8.0,
+                 near_human: tuple[float, float] | None = None, plan: bool = True,
+                 sample_rad: float = 0.05) -> None:
+        self.q0 = np.asarray(q_now, dtype=float)
+        self.q_safe = np.asarray(q_safe, dtype=float)
+        self.v_limit = float(max_joint_speed_rad_s)
+        self.v_joint = np.minimum(margin * self.v_limit, 0.98 * _DQ)
+        self.a_joint = np.minimum(accel_rad_s2, _LIMIT_SHARE * _DDQ)
+        self.j_joint = _LIMIT_SHARE * _DDDQ
+        self.near_human = near_human
+        self.plan = plan
+        self.sample_rad = sample_rad
+        self.route = ""
+        self.planned_closest_m: float | None = None
+        self.speed_cap_m_s: float | None = None
+        self.plan_s = 0.0
+        self.t = 0.0
+        self._decel: _Decel | None = None
+        self._moves: list[_Move] = []
+        self._hold: StopController | None = None
+        self._started = False
+
+    @property
+    def done(self) -> bool:
+        """The reference has arrived (the measured pose may still be settling) or it holds."""
+        return self._started and (self._hold is not None or self.t >= self.plan_s)
+
+    # -- planning
+
+    def _moves_for(self, waypoints: list[np.ndarray]) -> list[_Move]:
+        return [_Move(a, b, self.v_joint, self.a_joint, self.j_joint)
+                for a, b in zip(waypoints, waypoints[1:]) if np.max(np.abs(b - a)) > 1e-9]
+
+    def _samples(self, waypoints: list[np.ndarray]) -> list[np.ndarray]:
+        out = [waypoints[0]]
+        for a, b in zip(waypoints, waypoints[1:]):
+            n = max(1, int(math.ceil(float(np.max(np.abs(b - a))) / self.sample_rad)))
+            out += [a + (k / n) * (b - a) for k in range(1, n + 1)]
+        return out
+
+    def _candidates(self, sim: ArmSim, q_start: np.ndarray) -> list[tuple[str, list[np.ndarray]]]:
+        qs = self.q_safe
+        out = [("direct", [q_start, qs])]
+        fold = q_start.copy()
+        fold[[1, 3, 5]] = qs[[1, 3, 5]]  # shoulder, elbow and wrist pitch to the safe pose first
+        out.append(("fold", [q_start, fold, qs]))
+        try:
+            ee = sim.fk(q_start)
+            lift = sim.solve_ik((ee[0], ee[1], ee[2] + 0.2), seed=q_start)
+            if np.linalg.norm(sim.fk(lift) - (ee + (0, 0, 0.2))) < 0.03:
+                out.append(("lift", [q_start, lift, qs]))
+            away = sim.away_from_humans(ee, 0.25)
+            if away is not None:
+                q_away = sim.solve_ik(away, seed=q_start)
+                if np.linalg.norm(sim.fk(q_away) - away) < 0.03:
+                    out.append(("away", [q_start, q_away, qs]))
+        except Exception:  # noqa: BLE001 - IK trouble only removes candidates
+            pass
+        return out
+
+    def _plan(self, sim: ArmSim, q_start: np.ndarray) -> None:
+        if float(np.max(np.abs(self.q_safe - q_start))) <= 1e-6:
+            self.route, self._moves = "none", []
+            return
+        if not self.plan:
+            self.route, self._moves = "direct", self._moves_for([q_start, self.q_safe])
+            return
+        now = sim.probe([q_start])[0]
+        keep = self.near_human[0] if self.near_human else 0.3
+        need_h = min(now["human"], keep)
+        need_z = min(now["hazard"], keep)
+        best = None
+        for name, wps in self._candidates(sim, q_start):
+            pts = sim.probe(self._samples(wps))
+            h = min(p["human"] for p in pts)
+            if min(p["obstacle"] for p in pts) < 0.02 or h < need_h - 1e-3 or h < 0.05:
+                continue
+            if min(p["hazard"] for p in pts) < need_z - 1e-3:
+                continue
+            moves = self._moves_for(wps)
+            cap = None
+            if self.near_human is not None and h < self.near_human[0] + 0.5:
+                cap = 0.8 * self.near_human[1]
+                moves = self._capped(sim, wps, cap)
+            total = sum(m.T for m in moves)
+            if best is None or total < best[0]:
+                best = (total, name, moves, h, cap)
+        if best is None:
+            self.route = "hold"
+            self.planned_closest_m = now["human"]
+            return
+        _, self.route, self._moves, self.planned_closest_m, self.speed_cap_m_s = best
+
+    def _capped(self, sim: ArmSim, wps: list[np.ndarray], cap: float) -> list[_Move]:
+        """Moves whose joint speeds keep every link frame at or under ``cap`` m/s."""
+        moves = []
+        for a, b in zip(wps, wps[1:]):
+            L = float(np.max(np.abs(b - a)))
+            if L <= 1e-9:
+                continue
+            qs = [a + (k / 10) * (b - a) for k in range(11)]
+            pts = [sim.link_points(q) for q in qs]
+            ds = L / 10  # path length (rad of the fastest joint) between samples
+            gain = max(float(np.max(np.linalg.norm(q2 - q1, axis=1))) / ds
+                       for q1, q2 in zip(pts, pts[1:]))  # m per rad of path
+            scale = 1.0
+            if gain > 0:
+                d = np.abs(b - a) / L
+                v_path = float(np.min(self.v_joint[d > 1e-12] / d[d > 1e-12]))
+                scale = min(1.0, cap / (1.3 * gain * v_path))  # 1.3: chord vs arc, sampling
+            moves.append(_Move(a, b, self.v_joint * scale, self.a_joint, self.j_joint))
+        return moves
+
+    # -- execution
+
+    def command(self, sim: ArmSim) -> None:
+        if not self._started:
+            self._started = True
+            q, qd = sim.joint_state()
+            sim.rebase_reference()
+            self._decel = _Decel(q, qd) if float(np.max(np.abs(qd))) > 1e-3 else None
+            q_start = self._decel.q_end if self._decel else q
+            self._plan(sim, q_start)
+            if self.route == "hold":
+                self._hold = StopController(2, q, qd, 0.0)
+                self.name = "stop_2"
+            t_dec = self._decel.T if self._decel else 0.0
+            self.plan_s = t_dec + sum(m.T for m in self._moves)
+        if self._hold is not None:
+            self._hold.command(sim)
+            self.name = self._hold.name
+            return
         self.t += sim.dt
+        t = self.t
+        t_dec = self._decel.T if self._decel else 0.0
+        cap = None
+        if self._decel is not None and t < t_dec:
+            q, qd = self._decel.at(t)
+            cap = np.abs(self._decel.qd0) + 1e-3
+        else:
+            t -= t_dec
+            q, qd = self.q_safe, np.zeros(7)
+            for m in self._moves:
+                if t <= m.T:
+                    q, qd = m.at(t)
+                    break
+                t -= m.T
+        sim.command_joints(q, qd, max_velocity=self.v_limit, speed_cap=cap)
