@@ -269,6 +269,23 @@ def test_panda_cell_tracks_joint_velocity_targets(panda):
 
 @pytest.mark.sim
 @pytestmark_sim
+@pytest.mark.parametrize("n_humans", [0, 2])
+def test_panda_cell_with_no_or_several_people(n_humans):
+    env = gymnasium.make("ethimon/PandaCell-v0", n_humans=n_humans)
+    try:
+        obs, info = env.reset(seed=2)
+        assert obs.shape == (20 + 3 * n_humans,) and obs in env.observation_space
+        obs, *_, info = env.step(env.action_space.sample())
+        assert obs in env.observation_space
+        assert (info["human_distance"] == 10.0) == (n_humans == 0)  # 10 m: nobody in the cell
+    finally:
+        env.close()
+    with pytest.raises(ValueError, match="0 to 4 people"):
+        gymnasium.make("ethimon/PandaCell-v0", n_humans=5)
+
+
+@pytest.mark.sim
+@pytestmark_sim
 def test_panda_cell_is_deterministic_with_a_seed(panda):
     def rollout(env, seed):
         obs, _ = env.reset(seed=seed)
