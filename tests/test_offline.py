@@ -188,25 +188,45 @@ def test_fault_clears_the_history():
 
 # -- latch and release -------------------------------------------------------------------------------
 
-def test_latch_and_release_with_exact_hysteresis():
-    spec = make_spec('  - {id: s1, require: "x <= 5", response: stop_2}\n'
-                     '  - {id: s2, require: "x <= 8", response: stop_1}',
-                     risk="risk: {threshold: 0.27, release: {mode: auto, hysteresis: 0.05, hold_cycles: 2}}")
-    x = np.array([0.0, 6.0, 9.0, 0.0, 0.0, 0.0, 0.0, 0.0, 6.0, 0.0, 0.0, 0.0])
-    r = np.array([0.1, 0.1, 0.1, 0.1, 0.22, 0.1, 0.1, 0.1, 0.1, 0.1, 0.21, 0.1])
-    res = assert_same(spec, {"x": x, "y": np.zeros(12), "b": np.ones(12, bool), "risk": r})
+def test_risk_latch_releases_below_the_exact_hysteresis_bound():
+    spec = make_spec('  - {id: s1, require: "x <= 5"}',
+                     risk="risk: {threshold: 0.27, response: stop_2, "
+                          "release: {mode: auto, hysteresis: 0.05, hold_cycles: 2}}")
+    r = np.array([0.1, 0.3, 0.22, 0.1, 0.22, 0.1, 0.1, 0.1])
+    res = assert_same(spec, {"x": np.zeros(8), "y": np.zeros(8), "b": np.ones(8, bool), "risk": r})
     # 0.22 is not below 0.27 - 0.05 (exactly 0.22): the count restarts there
-    assert res.override.astype(int).tolist() == [0, 1, 1, 1, 1, 1, 0, 0, 1, 1, 0, 0]
-    assert res.response.tolist() == [0, 2, 3, 3, 3, 3, 0, 0, 2, 2, 0, 0]
-    assert res.latched.astype(int).tolist() == [0, 0, 0, 1, 1, 1, 0, 0, 0, 1, 0, 0]
+    assert res.override.astype(int).tolist() == [0, 1, 1, 1, 1, 1, 0, 0]
+    assert res.response.tolist() == [0, 2, 2, 2, 2, 2, 0, 0]
+    assert res.latched.astype(int).tolist() == [0, 0, 1, 1, 1, 1, 0, 0]
+
+
+def test_one_latch_per_rule_auto_and_manual():
+    # s1 (stop_2) releases by itself after 2 clean cycles; s2 (stop_1) is manual by default
+    spec = make_spec('  - {id: s1, require: "x <= 5", response: stop_2, release: {mode: auto, hold_cycles: 2}}\n'
+                     '  - {id: s2, require: "x <= 8", response: stop_1, release: {mode: manual, hold_cycles: 2}}')
+    x = np.array([0.0, 6.0, 0.0, 0.0, 0.0, 9.0, 0.0, 0.0, 0.0])
+    res = assert_same(spec, cols(9, x=x, y=np.zeros(9), b=np.ones(9, bool)))
+    assert res.override.astype(int).tolist() == [0, 1, 1, 0, 0, 1, 1, 1, 1]
+    assert res.response.tolist() == [0, 2, 2, 0, 0, 3, 3, 3, 3]
+    assert res.latched.astype(int).tolist() == [0, 0, 1, 0, 0, 0, 1, 1, 1]
+    assert res.awaiting_release.astype(int).tolist() == [0, 0, 0, 0, 0, 0, 0, 1, 1]
 
 
 def test_manual_release_never_releases():
-    spec = make_spec('  - {id: s1, require: "x <= 5"}', risk="risk: {release: {mode: manual}}")
+    spec = make_spec('  - {id: s1, require: "x <= 5", release: manual}')
     x = np.zeros(20)
     x[3] = 9.0
     res = assert_same(spec, cols(20, x=x, y=np.zeros(20), b=np.ones(20, bool)))
     assert not res.override[:3].any() and res.override[3:].all() and res.latched[4:].all()
+    assert not res.awaiting_release[:13].any() and res.awaiting_release[13:].all()  # hold: 10 cycles
+
+
+def test_a_fault_latches_until_acknowledged_by_default():
+    spec = make_spec('  - {id: s1, require: "x <= 5"}')
+    x = np.zeros(6)
+    x[1] = np.nan
+    res = assert_same(spec, cols(6, x=x, y=np.zeros(6), b=np.ones(6, bool)))
+    assert res.override.tolist() == [False] + [True] * 5 and res.latched[2:].all()
 
 
 # -- internal faults -----------------------------------------------------------------------------------

@@ -15,8 +15,9 @@ What :class:`~ethimon.Monitor` does cycle by cycle, done column by column:
    result says how many cycles took it).
 3. On fault cycles the stateless obligations whose inputs are valid are judged
    (as the monitor does), vectorised over those cycles.
-4. The latch and its release (hysteresis, ``hold_cycles``, the exact bound
-   τ − δ) from per-cycle events, with running maxima instead of a loop.
+4. The latches, one per rule (each obligation, the risk rule, the fault rule), and
+   their release (``auto``: hysteresis, ``hold_cycles``, the exact bound τ − δ;
+   ``manual``: held), from per-cycle firings with running maxima instead of a loop.
 
 Fault reasons are the monitor's own: they are produced on demand
 (:meth:`OfflineResult.faults_at`) by stepping a :class:`~ethimon.Monitor` over
@@ -66,7 +67,9 @@ class OfflineResult:
         override: the monitor's ``Decision.override``.
         response: severity of ``Decision.response`` (0 none, 1 safe_pose, 2 stop_2, 3 stop_1,
             4 stop_0); :meth:`response_at` gives the :class:`~ethimon.Response`.
-        latched: ``Decision.latched`` (held by the release rule, no current violation).
+        latched: ``Decision.latched`` (held by the release rules, no current violation).
+        awaiting_release: ``Decision.awaiting_release`` (every latched manual rule is ready for
+            ``Monitor.acknowledge()``).
         fault: the cycle failed closed (``Decision.faults`` non-empty).
         internal_error: the fault came from evaluating an expression (division by zero, ...),
             not from an input.
@@ -90,6 +93,7 @@ class OfflineResult:
         self.override = np.zeros(n, bool)
         self.response = np.zeros(n, np.int8)
         self.latched = np.zeros(n, bool)
+        self.awaiting_release = np.zeros(n, bool)
         self.fault = inputs.input_fault.copy()
         self.internal_error = np.zeros(n, bool)
         self.violated = np.zeros((n, k), bool)
@@ -151,7 +155,7 @@ class OfflineResult:
         if self.margins is not None:
             margins = tuple(float(x) for x in self.margins[t])
         return Decision(bool(self.override[t]), self.response_at(t), self.violations_at(t), margins, risk, t,
-                        bool(self.latched[t]), self.faults_at(t))
+                        bool(self.latched[t]), self.faults_at(t), bool(self.awaiting_release[t]))
 
     def decisions(self) -> Iterator[Decision]:
         """Every cycle's :class:`~ethimon.Decision`, in order."""
@@ -371,6 +375,7 @@ def _step_all(res: OfflineResult, inp: Inputs, margins: bool) -> None:
         res.override[t] = d.override
         res.response[t] = d.response.severity
         res.latched[t] = d.latched
+        res.awaiting_release[t] = d.awaiting_release
         res.fault[t] = bool(d.faults)
         if d.faults:
             res._faults[t] = d.faults
@@ -437,46 +442,66 @@ def _release_cut(threshold: float, hysteresis: float) -> float:
 # -- the latch -----------------------------------------------------------------------------
 
 def _latch(res: OfflineResult, plan, inp: Inputs) -> None:
-    """Override, response and the latched flag from the per-cycle events, without a loop.
+    """Override, response, the latched flag and ``awaiting_release`` from the per-cycle firings.
 
-    An event is a fault or a violation; the latched severity is the largest since the
-    last release; a release is the first cycle after an event that completes
-    ``hold_cycles`` consecutive cycles with no event and R_e below τ − δ.
+    One latch per rule, as the monitor keeps them: each obligation, the risk rule and
+    the fault rule. A rule latches where it fires; its count is the run of cycles since
+    the last cycle that fired it, faulted, or (the risk rule) had R_e not below τ − δ; an
+    ``auto`` rule releases at the first cycle after a firing where that run reaches its
+    ``hold_cycles``; a ``manual`` rule stays latched (``acknowledge()`` is an operator's, not
+    the trace's). Everything is a running maximum or a cumulative sum over the trace.
     """
-    spec = plan.spec
+    spec = res.spec
     r = spec.risk
     n = inp.n
     idx = np.arange(n, dtype=np.int32 if n < 2 ** 31 - 1 else np.int64)
     tau = float(r.threshold)
+    fault = res.fault
     res.risk_violated = inp.risk_ok & (np.where(inp.risk_ok, inp.risk, -np.inf) >= tau)
-    sev = np.zeros(n, np.int8)
-    zero = np.int8(0)
+    fired_valid = np.zeros(n, bool)  # Decision.violations is not empty on a valid cycle
+    rules = []  # (fires, severity, manual, hold, extra reset or None)
     for k, ob in enumerate(plan.obligations):
-        np.maximum(sev, np.where(res.violated[:, k], np.int8(ob.response.severity), zero), out=sev)
-    rs = np.int8(Response(r.response).severity)
-    np.maximum(sev, np.where(res.risk_violated, rs, np.int8(0)), out=sev)
-    fs = np.int8(Response(spec.on_fault).severity)
-    np.maximum(sev, np.where(res.fault, fs, np.int8(0)), out=sev)
-    event = sev > 0
-    if not event.any():
-        return
-    last_event = last_index(event, idx)
-    rel = np.zeros(n, bool)
-    if r.release.mode == "auto":
-        cut = _release_cut(float(r.threshold), float(r.release.hysteresis))
-        below = ~res.fault & inp.risk_ok & (np.where(inp.risk_ok, inp.risk, np.inf) < cut)
-        run = idx - last_index(event | ~below, idx)
-        cand = np.flatnonzero((run == int(r.release.hold_cycles)) & ~event & (last_event >= 0))
-        if len(cand):
-            le = last_event[cand]
-            first = np.ones(len(cand), bool)
-            first[1:] = le[1:] != le[:-1]
-            rel[cand[first]] = True
-    last_rel = last_index(rel, idx)
-    active = last_event > last_rel
+        mode, hold = spec.obligation_release(spec.obligations[k])
+        col = res.violated[:, k]
+        fired_valid |= col
+        rules.append((col, ob.response.severity, mode == "manual", int(hold), None))
+    cut = _release_cut(float(r.threshold), float(r.release.hysteresis))
+    below = ~fault & inp.risk_ok & (np.where(inp.risk_ok, inp.risk, np.inf) < cut)
+    fired_valid |= res.risk_violated
+    rules.append((res.risk_violated, Response(r.response).severity, r.release.mode == "manual",
+                  int(r.release.hold_cycles), ~below))
+    fmode, fhold = spec.fault_release()
+    rules.append((fault, Response(spec.on_fault).severity, fmode == "manual", int(fhold), None))
+    fired_valid &= ~fault
     level = np.zeros(n, np.int8)
-    for s in np.unique(sev[event]).tolist():  # the latched level: the largest since the last release
-        level[active & (last_index(sev >= s, idx) > last_rel)] = s
-    res.override = active
+    manual_active = np.zeros(n, bool)
+    manual_waiting = np.zeros(n, bool)  # a latched manual rule whose count has not reached its hold
+    for fire, sev, manual, hold, extra in rules:
+        fires = np.flatnonzero(fire)
+        if not len(fires):
+            continue
+        rst = fire | fault if extra is None else fire | fault | extra
+        run = idx - last_index(rst, idx)  # the rule's count while latched
+        if manual:
+            active = np.zeros(n, bool)
+            active[fires[0]:] = True
+            manual_active |= active
+            manual_waiting |= active & (run < hold)
+        else:
+            cand = np.flatnonzero(run == hold)
+            j = np.searchsorted(fires, cand, side="right") - 1  # each candidate's last firing
+            cand, j = cand[j >= 0], j[j >= 0]
+            first = np.ones(len(cand), bool)
+            first[1:] = j[1:] != j[:-1]
+            released = cand[first]  # the first candidate after a firing releases the latch
+            nxt = np.searchsorted(fires, released, side="right")
+            starts = np.concatenate((fires[:1], fires[nxt[nxt < len(fires)]]))
+            mark = np.zeros(n + 1, np.int32)
+            mark[starts] += 1
+            mark[released] -= 1
+            active = np.cumsum(mark[:n]) > 0
+        np.maximum(level, np.where(active, np.int8(sev), np.int8(0)), out=level)
+    res.override = level > 0
     res.response = level
-    res.latched = active & ~event
+    res.latched = res.override & ~fault & ~fired_valid
+    res.awaiting_release = ~fault & manual_active & ~manual_waiting

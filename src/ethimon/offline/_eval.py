@@ -329,17 +329,25 @@ class Evaluator:
         """
         idx, sf, pos = self.idx, self.seg_first, self.pos
         due = pos >= n
-        lag = np.where(due, idx - n, idx)  # the trigger that falls due at each position
+        if self.single:  # the trigger that falls due at each position: n cycles back
+            lag = None
+            cand = np.empty_like(a)
+            cand[n:] = a[:max(self.n - n, 0)]
+            cand[:n] = a[:n]
+        else:
+            lag = np.where(due, idx - n, idx)
+            cand = a[lag]
         nan_b = np.isnan(b)
         nan_a = np.isnan(a)
         unknown = None
         if nan_b.any() or nan_a.any():
             cb = np.concatenate(([0], np.cumsum(nan_b)))
             ca = np.concatenate(([0], np.cumsum(nan_a)))
+            if lag is None:
+                lag = np.where(due, idx - n, idx)
             unknown = due & ((cb[idx + 1] - cb[sf] > 0) | (ca[lag + 1] - ca[sf] > 0))
             b = np.where(nan_b, -INF, b)
         top = window_max(b, n + 1)
-        cand = a[lag]
         ok = due if unknown is None else due & ~unknown
         hi = np.where(ok, np.where(top > cand, top, cand), INF)
         lo = np.where(ok, b, INF)
