@@ -12,6 +12,7 @@ own modules are always allowed):
       verify
     scenario                scenario files (may carry a sim block, may score text with risk)
     offline, replay         recorded data checked offline (replay may use offline)
+    fleet                   many scenario files / bags on Ray (ray imported lazily)
     gym                     Gymnasium: the monitor as a shield, the sim cell as an env
     loop                    GovernedLoop: runtime + audit + risk + verify (SMT gate on reload)
     ethimon (root)          the public names
@@ -48,11 +49,12 @@ ALLOWED: dict[str, set[str]] = {
     "scenario": _BESIDE | {"sim", "risk"},
     "offline": _BESIDE | {"audit", "risk"},
     "replay": _BESIDE | {"audit", "risk", "offline"},
+    "fleet": _BESIDE | {"audit", "risk", "sim", "scenario", "replay", "offline"},
     "gym": _BESIDE | {"sim", "risk", "audit"},
     "loop": _BESIDE | {"audit", "risk", "verify"},
     "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop"},
     "cli": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop",
-                      "ethimon"},
+                      "fleet", "ethimon"},
 }
 
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ._common import Progress, emit_json, emit_report
+from ._common import Progress, add_ray_options, emit_json, emit_report, err, ray_target
 
 __all__ = ["add_check_parser", "cmd_check"]
 
@@ -25,16 +25,27 @@ def add_check_parser(sub) -> None:
     p.add_argument("--model", metavar="DIR", help="risk model directory for every scenario "
                    "(default: each spec's risk.estimator.model, else the shipped model)")
     p.add_argument("--quiet", "-q", action="store_true", help="print only problems and the summary")
+    add_ray_options(p, "scenario files")
     p.set_defaults(handler=cmd_check)
 
 
 def cmd_check(args: argparse.Namespace) -> int:
+    from ..errors import EthimonError
     from ..scenario import check_paths
 
     json_to_stdout = args.json == "-"
     out = sys.stderr if json_to_stdout else sys.stdout  # stdout is the JSON's alone
+    try:
+        ray = ray_target(args, "paths")  # None: serial; else (address, workers) of a Ray run
+    except EthimonError as exc:
+        return err(str(exc))
     with Progress("check", enabled=not json_to_stdout) as progress:
-        report = check_paths(args.paths, sim=args.sim, model_dir=args.model, on_file=progress)
+        if ray is None:
+            report = check_paths(args.paths, sim=args.sim, model_dir=args.model, on_file=progress)
+        else:
+            from ..fleet import check_paths as check_on_ray
+            report = check_on_ray(args.paths, sim=args.sim, model_dir=args.model, on_file=progress,
+                                  address=ray[0], num_cpus=ray[1])
     if not args.quiet:
         print_table([(o.name, o.expected, o.got, "-" if o.first_override_cycle is None
                       else str(o.first_override_cycle), o.status) for o in report.outcomes], out)

@@ -8,7 +8,8 @@ from typing import Any
 
 from ..errors import SpecError
 
-__all__ = ["err", "ERROR_PREFIX", "write_report", "emit_report", "emit_json", "Progress"]
+__all__ = ["err", "ERROR_PREFIX", "write_report", "emit_report", "emit_json", "Progress", "add_ray_options",
+           "ray_target"]
 
 #: the one prefix of a CLI error that is not located in a file (located ones read ``path:line:col: ...``)
 ERROR_PREFIX = "ethimon: error: "
@@ -102,3 +103,46 @@ def _isatty(stream) -> bool:
 
 def _short(path: str, width: int = 40) -> str:
     return path if len(path) <= width else "…" + path[-(width - 1):]
+
+
+def add_ray_options(p, what: str) -> None:
+    """``--ray [ADDRESS]`` and ``--ray-workers N`` of a command that works through many files."""
+    p.add_argument("--ray", nargs="?", const="local", default=None, metavar="ADDRESS",
+                   help=f"spread the {what} over a Ray cluster (needs ethimon[fleet]); no ADDRESS: a local "
+                        "instance; 'auto': the cluster of 'ray start' on this machine; 'ray://HOST:10001': a "
+                        "remote one. The results are the serial run's, in the same order")
+    p.add_argument("--ray-workers", type=int, metavar="N", default=None,
+                   help="CPUs (parallel workers) of the local Ray instance (default: up to 4)")
+
+
+def ray_target(args, paths_attr: str) -> tuple[str | None, int | None] | None:
+    """``None`` without ``--ray``; else ``(address or None for local, workers)``.
+
+    ``--ray PATH`` (argparse took a path given after ``--ray`` as its ADDRESS): the path goes back
+    in front of the others and the run is local.
+
+    Raises:
+        EthimonError: a value that is neither a Ray address nor an existing path, or a bad ``--ray-workers``.
+    """
+    import os
+
+    from ..errors import EthimonError
+    from ..fleet import check_address
+    workers = getattr(args, "ray_workers", None)
+    if args.ray is None:
+        if workers is not None:
+            raise EthimonError("--ray-workers needs --ray")
+        return None
+    if workers is not None and workers < 1:
+        raise EthimonError(f"--ray-workers must be at least 1, got {workers}")
+    value = args.ray
+    try:
+        address = check_address(value)
+    except EthimonError:
+        if not os.path.exists(value):
+            raise
+        setattr(args, paths_attr, [value] + list(getattr(args, paths_attr) or []))
+        address = None
+    if address is not None and workers is not None:
+        raise EthimonError("--ray-workers sets the size of a local Ray instance; a cluster has its own")
+    return address, workers

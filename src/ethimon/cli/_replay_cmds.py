@@ -16,7 +16,7 @@ import sys
 import time
 import xml.etree.ElementTree as ET
 
-from ._common import Progress, emit_json, emit_report, err
+from ._common import Progress, add_ray_options, emit_json, emit_report, err, ray_target
 
 __all__ = ["add_replay_parsers", "cmd_replay"]
 
@@ -41,19 +41,28 @@ def add_replay_parsers(sub) -> None:
                    "(default: the spec's risk.estimator.model, else the shipped model)")
     p.add_argument("--schema", action="store_true", help="print the JSON Schema of mapping files and exit")
     p.add_argument("--quiet", "-q", action="store_true", help="print only problems and the summary")
+    add_ray_options(p, "bags")
     p.set_defaults(handler=cmd_replay)
 
 
 def cmd_replay(args: argparse.Namespace) -> int:
     from .. import _api
     from ..errors import EthimonError, SpecError
-    from ..replay import TaskScorer, check_against_spec, load_mapping, mapping_json_schema, replay_bag
+    from ..replay import TaskScorer, check_against_spec, load_mapping, mapping_json_schema
+    from ..replay._record import bag_record
 
     if args.schema:
         print(json.dumps(mapping_json_schema(), indent=2))
         return 0
+    try:
+        ray = ray_target(args, "bags")  # None: serial; else (address, workers) of a Ray run
+    except EthimonError as exc:
+        return err(str(exc))
     if not args.bags:
         return err("ethimon replay: give at least one BAG (and --spec SPEC --map MAP)")
+    if ray is not None and args.audit:
+        return err("ethimon replay: --audit cannot be used with --ray (the audit log is one hash chain, "
+                   "written in bag order by one process); run without --ray to write it")
     if not args.spec or not args.mapping:
         return err("ethimon replay: --spec SPEC and --map MAP are required")
     try:
@@ -76,45 +85,49 @@ def cmd_replay(args: argparse.Namespace) -> int:
             return err(f"{args.audit}: cannot write the audit log: {exc.strerror or exc}")
     json_to_stdout = args.json == "-"
     out = sys.stderr if json_to_stdout else sys.stdout  # stdout is the JSON's alone
-    scorer = TaskScorer(spec, model_dir=args.model)
-    results, rows, problems = [], [], []
-    n_pass = n_fail = n_err = 0
+    results: list[dict] = []
     t0 = time.perf_counter()
     try:
         with Progress("replay", enabled=not json_to_stdout) as progress:
-            for i, bag in enumerate(args.bags):
-                progress(i, len(args.bags), bag)
-                try:
-                    res = replay_bag(bag, spec, mapping, score=scorer, audit=audit)
-                except Exception as exc:  # noqa: BLE001 - one unusable bag is one ERROR row
-                    msg = _error_line(bag, exc, EthimonError, SpecError)
-                    n_err += 1
-                    rows.append((bag, "-", "-", "-", "-", "ERROR"))
-                    results.append({"name": bag, "path": bag, "passed": False, "error": msg})
-                    problems.append(msg)
-                    continue
-                if res.passed:
-                    n_pass += 1
-                else:
-                    n_fail += 1
-                results.append(res.as_dict())
-                for c in res.checks:
-                    first = "-" if c.first_cycle is None else f"{c.first_t_s:.3f} s (cycle {c.first_cycle})"
-                    rows.append((bag, c.id, str(c.cycles), first, _margin(c.worst_margin),
-                                 "PASS" if c.passed else "FAIL"))
-                    if not c.passed:
-                        what = "failed closed" if c.kind == "faults" else "violated"
-                        line = (f"{bag}: {c.id}: {what} on {c.cycles} of {res.cycles} cycles, first at "
-                                f"t = {c.first_t_s:.3f} s (bag time {_stamp(c.first_t_ns)}, cycle {c.first_cycle})")
-                        if c.worst_margin is not None:
-                            line += f", worst margin {_margin(c.worst_margin)}"
-                        if c.detail:
-                            line += f": {c.detail}"
-                        problems.append(line)
-            progress(len(args.bags), len(args.bags), "")
+            if ray is None:
+                scorer = TaskScorer(spec, model_dir=args.model)
+                for i, bag in enumerate(args.bags):
+                    progress(i, len(args.bags), bag)
+                    results.append(bag_record(bag, spec, mapping, score=scorer, audit=audit))
+                progress(len(args.bags), len(args.bags), "")
+            else:  # the same records, each bag on a Ray worker
+                from ..fleet import replay_records
+                results = replay_records(args.bags, spec=args.spec, mapping=args.mapping, model_dir=args.model,
+                                         on_bag=progress, address=ray[0], num_cpus=ray[1])
     finally:
         if audit is not None:
             audit.close()
+    rows, problems = [], []
+    n_pass = n_fail = n_err = 0
+    for bag, rec in zip(args.bags, results):
+        if "error" in rec:
+            n_err += 1
+            rows.append((bag, "-", "-", "-", "-", "ERROR"))
+            problems.append(rec["error"])
+            continue
+        if rec["passed"]:
+            n_pass += 1
+        else:
+            n_fail += 1
+        for c in rec["checks"]:
+            fv = c["first_violation"]
+            first = "-" if fv is None else f"{fv['t_s']:.3f} s (cycle {fv['cycle']})"
+            rows.append((bag, c["id"], str(c["cycles_violated"]), first, _margin(c["worst_margin"]),
+                         "PASS" if c["passed"] else "FAIL"))
+            if not c["passed"]:
+                what = "failed closed" if c["kind"] == "faults" else "violated"
+                line = (f"{bag}: {c['id']}: {what} on {c['cycles_violated']} of {rec['cycles']} cycles, first at "
+                        f"t = {fv['t_s']:.3f} s (bag time {_stamp(fv['bag_time_ns'])}, cycle {fv['cycle']})")
+                if c["worst_margin"] is not None:
+                    line += f", worst margin {_margin(c['worst_margin'])}"
+                if c["detail"]:
+                    line += f": {c['detail']}"
+                problems.append(line)
     elapsed = time.perf_counter() - t0
     if not args.quiet:
         _print_table(rows, out)
@@ -133,20 +146,11 @@ def cmd_replay(args: argparse.Namespace) -> int:
     return rc
 
 
-def _error_line(bag: str, exc: BaseException, EthimonError, SpecError) -> str:
-    from ..replay import BagError
-    if isinstance(exc, (SpecError, BagError)):
-        return str(exc)
-    if isinstance(exc, (EthimonError, OSError)):
-        return f"{bag}: {exc}"
-    text = str(exc)
-    text = text if len(text) <= 300 else text[:297] + "..."
-    return f"{bag}: internal error: {type(exc).__name__}: {text} (this bag could not be checked; please report this)"
-
-
-def _margin(m: float | None) -> str:
+def _margin(m: float | str | None) -> str:
     if m is None:
         return "-"
+    if isinstance(m, str):  # a record's infinite margin: "inf" / "-inf"
+        return m
     if m != m:
         return "nan"
     if m in (float("inf"), float("-inf")):
