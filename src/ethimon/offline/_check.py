@@ -106,6 +106,9 @@ class OfflineResult:
         self._inputs = inputs
         self._max_age_s = max_age_s
         self._faults: dict[int, tuple] = {}
+        self._scratch: Monitor | None = None  # steps input-fault cycles for their reasons
+        self._replayer: Monitor | None = None  # replays a segment up to an internal fault
+        self._last_fault: np.ndarray | None = None
 
     def _monitor(self, margins: bool = False) -> Monitor:
         return Monitor(self.spec, margins=margins, max_age_s=self._max_age_s)
@@ -134,11 +137,18 @@ class OfflineResult:
         got = self._faults.get(t)
         if got is None:
             if not self.internal_error[t]:
-                got = self._monitor().step(self.row(t)).faults  # depends on this cycle only
+                if self._scratch is None:
+                    self._scratch = self._monitor()
+                got = self._scratch.step(self.row(t)).faults  # depends on this cycle's inputs only
             else:  # depends on the history since the last fault: replay that segment
-                before = np.flatnonzero(self.fault[:t])
-                start = int(before[-1]) + 1 if len(before) else 0
-                m = self._monitor()
+                if self._last_fault is None:
+                    idx = np.arange(self.n_cycles)
+                    self._last_fault = np.maximum.accumulate(np.where(self.fault, idx, -1))
+                start = int(self._last_fault[t - 1]) + 1 if t else 0
+                if self._replayer is None:
+                    self._replayer = self._monitor()
+                m = self._replayer
+                m.reset()  # a fresh history, as after the fault before the segment
                 for s in range(start, t):
                     m.step(self.row(s))
                 got = m.step(self.row(t)).faults
