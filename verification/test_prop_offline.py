@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 import yaml
-from hypothesis import given, note, settings
+from hypothesis import given, note
 from hypothesis import strategies as st
 
 import ethimon
@@ -62,7 +62,6 @@ def assert_equal_to_monitor(spec, columns, frames, *, margins: bool = True) -> N
         assert summary[oid]["first_violation"] == (int(hits[0]) if len(hits) else None)
 
 
-@settings(max_examples=2 * settings.default.max_examples)
 @given(st.data())
 def test_offline_equals_monitor_on_random_specs(data):
     gen = data.draw(specs())
@@ -123,7 +122,6 @@ def numeric_columns(spec, n: int, seed: int, p_bad: float, risk_kind: str) -> di
     return cols
 
 
-@settings(max_examples=2 * settings.default.max_examples)
 @given(st.data())
 def test_offline_equals_monitor_on_numeric_columns(data):
     gen = data.draw(specs())

@@ -357,8 +357,9 @@ def _step_segments(res: OfflineResult, todo: np.ndarray, margins: bool) -> None:
     """The fallback: step each run of consecutive cycles in ``todo`` through a fresh Monitor."""
     ids = {oid: k for k, oid in enumerate(res.obligation_ids)}
     breaks = np.flatnonzero(np.diff(todo) != 1) + 1
+    m = res._monitor(margins)
     for run in np.split(todo, breaks):
-        m = res._monitor(margins)
+        m.reset()  # each run follows a fault: a fresh history
         for t in run.tolist():
             d = m.step(res.row(t))
             res.fallback_cycles += 1
