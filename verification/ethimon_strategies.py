@@ -138,6 +138,9 @@ def spec_doc(draw, *, max_obligations: int = 3, depth: int = 3) -> dict:
         if w is not None:
             ob["within_cycles"] = w
         ob["response"] = draw(st.sampled_from(RESPONSES))
+        rel = draw(release_forms())
+        if rel is not None:
+            ob["release"] = rel
         obligations.append(ob)
     weights = draw(st.one_of(st.just((0.6, 0.2, 0.2)),
                              st.tuples(*[st.sampled_from((0.0, 0.1, 0.3, 0.5, 0.8, 1.0))] * 3)
@@ -156,7 +159,21 @@ def spec_doc(draw, *, max_obligations: int = 3, depth: int = 3) -> dict:
     signals: dict[str, Any] = {n: {"range": [lo, hi]} for n, (lo, hi) in NUM_SIGNALS.items()}
     signals.update({n: {"type": "bool"} for n in BOOL_SIGNALS})
     return {"ethimon": 1, "name": "generated", "signals": signals, "risk": risk,
-            "on_fault": draw(st.sampled_from(RESPONSES)), "obligations": obligations}
+            "on_fault": draw(on_fault_forms()), "obligations": obligations}
+
+
+def release_forms() -> st.SearchStrategy:
+    """A rule's ``release``: absent (the default for its response), a short form or a mapping."""
+    return st.one_of(st.none(), st.none(), st.sampled_from(("auto", "manual")),
+                     st.fixed_dictionaries({"mode": st.sampled_from(("auto", "manual"))},
+                                           optional={"hold_cycles": st.integers(1, 4)}))
+
+
+def on_fault_forms() -> st.SearchStrategy:
+    """``on_fault``: a response, or ``{response, release}`` (either key optional)."""
+    return st.one_of(st.sampled_from(RESPONSES),
+                     st.fixed_dictionaries({}, optional={"response": st.sampled_from(RESPONSES),
+                                                         "release": release_forms().filter(lambda r: r is not None)}))
 
 
 @st.composite
@@ -277,13 +294,16 @@ def frame(draw, spec: ethimon.Spec, *, p_bad: float = 0.05, late_risk: bool = Tr
 
 @st.composite
 def ops(draw, spec: ethimon.Spec, *, min_size: int = 1, max_size: int = 30, p_bad: float = 0.05):
-    """A trace: mostly ``("step", frame)``, sometimes ``("reset",)`` or ``("release",)``."""
+    """A trace: mostly ``("step", frame)``, sometimes ``("reset",)``, ``("release",)`` or
+    ``("acknowledge",)``."""
     n = draw(st.integers(min_size, max_size))
     out = []
     last = None
     for _ in range(n):
         r = draw(st.integers(0, 39))
-        if r == 38:
+        if r in (36, 37):
+            out.append(("acknowledge",))
+        elif r == 38:
             out.append(("reset",))
         elif r == 39:
             out.append(("release",))
@@ -311,4 +331,5 @@ def valid_frames(spec: ethimon.Spec, min_size: int = 1, max_size: int = 20):
 
 def decision_key(d) -> tuple:
     """What must agree between two monitors (fault reasons are worded differently)."""
-    return (d.cycle, d.override, d.response, tuple(d.violations), d.risk, d.latched, bool(d.faults))
+    return (d.cycle, d.override, d.response, tuple(d.violations), d.risk, d.latched, bool(d.faults),
+            d.awaiting_release)

@@ -2,7 +2,8 @@
 
 Covers every operator and temporal operator, windows that are not yet full
 at the start of a trace, faults in the middle of a trace (which clear the
-history), ``reset()`` and ``release()``.
+history), ``reset()``, ``release()`` and ``acknowledge()``, with release policies
+drawn per rule (auto/manual, hold) and for faults.
 """
 
 from __future__ import annotations
@@ -31,6 +32,12 @@ def run_both(spec, trace):
         if op[0] == "release":
             m.release()
             ref.release()
+            continue
+        if op[0] == "acknowledge":
+            x, y = m.acknowledge(), ref.acknowledge()
+            note(f"acknowledge: monitor={x!r} reference={y!r}")
+            assert x == y
+            assert m.latched_rules == ref.latched_rules
             continue
         a, b = m.step(op[1]), ref.step(op[1])
         note(f"frame={op[1]!r}\n  monitor  ={a!r}\n  reference={b!r}")

@@ -14,7 +14,10 @@ import yaml
 from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, initialize, invariant, precondition, rule
 
+from fractions import Fraction
+
 import ethimon
+from ethimon.compiler._risk_formula import release_bound
 from ethimon.spec._model import Response
 from ethimon_strategies import decision_key, frame, specs
 
@@ -34,8 +37,11 @@ COBOT = _cobot_with_max_age()
 
 
 class MonitorLife(RuleBasedStateMachine):
-    """Invariants: monitor ≡ reference; a latched override stays latched until its release rule,
-    ``release()`` or ``reset()``; replaying the trace since the last reset gives the same verdicts."""
+    """Invariants: monitor ≡ reference; each rule's latch (obligations, risk, fault) stays set until
+    its own release rule (auto: its condition held hold_cycles cycles in a row), an accepted
+    ``acknowledge()`` (manual), ``release()`` or ``reset()``; the override is on exactly while
+    some latch is set, with the most severe latched response; replaying the trace since the
+    last reset gives the same verdicts."""
 
     @initialize(data=st.data())
     def load(self, data):
@@ -51,27 +57,53 @@ class MonitorLife(RuleBasedStateMachine):
         self.ref = ethimon.ReferenceMonitor(self.spec)
         self.log: list = []  # ops since the last reset/reload, with the decisions they produced
         self.last = None
-        self.clean = 0
-        self.explicit = False
+        self.model: dict[str, int] = {}  # this test's own latch model: rule -> clean cycles since it fired
+        spec = self.spec
+        self.rules = {ob.id: (Response(ob.response).severity, *spec.obligation_release(ob))
+                      for ob in spec.obligations}
+        rel = spec.risk.release
+        self.rules["risk"] = (Response(spec.risk.response).severity, rel.mode, rel.hold_cycles)
+        self.rules["fault"] = (Response(spec.on_fault).severity, *spec.fault_release())
+        self.bound = release_bound(spec.risk.threshold, rel.hysteresis)[0]
+
+    def _model_step(self, d) -> None:
+        model, rules = self.model, self.rules
+        if d.faults:
+            for k in (*d.violations, "fault"):
+                model[k] = 0
+            for k in model:
+                model[k] = 0
+            return
+        for k in list(model):
+            if k in d.violations or (k == "risk" and not Fraction(d.risk) < self.bound):
+                model[k] = 0
+                continue
+            _, mode, hold = rules[k]
+            model[k] = min(model[k] + 1, hold)
+            if mode == "auto" and model[k] >= hold:
+                del model[k]
+        for k in d.violations:
+            model[k] = 0
 
     def _step(self, f) -> None:
         d, e = self.m.step(f), self.ref.step(f)
         assert decision_key(d) == decision_key(e), (f, d, e)
-        rel = self.spec.risk.release
         r = self.spec.risk
         if d.faults:
             assert d.override and d.response.severity >= Response(self.spec.on_fault).severity
-            self.clean = 0
-        elif d.violations or d.risk >= r.threshold - rel.hysteresis:
-            self.clean = 0
-        else:
-            self.clean += 1
-        if self.last is not None and self.last.override and not d.override and not self.explicit:
-            assert rel.mode == "auto" and self.clean >= rel.hold_cycles
+        self._model_step(d)
+        model, rules = self.model, self.rules
+        assert d.override == bool(model), (d, model)
+        if model:
+            assert d.response.severity == max(rules[k][0] for k in model), (d, model)
+        manual = [k for k in model if rules[k][1] == "manual"]
+        assert d.awaiting_release == (bool(manual) and all(model[k] >= rules[k][2] for k in manual)), (d, model)
+        assert self.m.latched_rules == self.ref.latched_rules
+        assert set(self.m.latched_rules) == set(model)
         if not d.override:
             assert not d.violations and not d.faults and d.risk < r.threshold
         self.log.append(("step", f, d))
-        self.last, self.explicit = d, False
+        self.last = d
 
     @rule(data=st.data())
     def step(self, data):
@@ -104,8 +136,7 @@ class MonitorLife(RuleBasedStateMachine):
         self.m.reset()
         self.ref.reset()
         self.log = []
-        self.clean = 0
-        self.explicit = True
+        self.model = {}
         self.last = None
         assert self.m.cycle == 0 and not self.m.latched
 
@@ -114,9 +145,25 @@ class MonitorLife(RuleBasedStateMachine):
         self.m.release()
         self.ref.release()
         self.log.append(("release",))
-        self.clean = 0
-        self.explicit = True
+        self.model = {}
         assert not self.m.latched
+
+    @rule()
+    def acknowledge(self):
+        a, b = self.m.acknowledge(), self.ref.acknowledge()
+        assert a == b, (a, b)
+        manual = [k for k in self.model if self.rules[k][1] == "manual"]
+        ready = bool(manual) and all(self.model[k] >= self.rules[k][2] for k in manual)
+        assert a.released == ready, (a, self.model)
+        if ready:
+            assert set(a.rules) == set(manual)
+            for k in manual:
+                del self.model[k]
+        else:
+            assert set(a.rules) == {k for k in manual if self.model[k] < self.rules[k][2]}
+            assert ("still fails" in a.message) or ("has held" in a.message) or not manual
+        self.log.append(("acknowledge", a))
+        assert set(self.m.latched_rules) == set(self.model)
 
     @rule()
     def reload(self):
@@ -133,6 +180,8 @@ class MonitorLife(RuleBasedStateMachine):
         for op in self.log:
             if op[0] == "release":
                 fresh.release()
+            elif op[0] == "acknowledge":
+                assert fresh.acknowledge() == op[1]
             else:
                 assert decision_key(fresh.step(op[1])) == decision_key(op[2])
 

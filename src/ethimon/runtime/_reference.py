@@ -100,6 +100,10 @@ class ReferenceMonitor:
     def latched(self) -> bool:
         return bool(self.latches)
 
+    @property
+    def latched_rules(self) -> tuple[str, ...]:
+        return self._order(self.latches)
+
     def _rules(self) -> dict[str, tuple[int, bool, int]]:
         """Every rule: name -> (severity, manual, hold_cycles), from the spec with its defaults."""
         spec = self.spec
