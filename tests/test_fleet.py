@@ -13,7 +13,6 @@ import json
 import os
 import subprocess
 import sys
-import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
@@ -58,7 +57,7 @@ def _scenarios(d: Path) -> Path:
     (d / "v_nospec.yaml").write_text(f"ethimon: 1\nname: no spec\nspec: missing.yaml\ncycles: 5\ninputs: {BASE}\n"
                                      "expect: {override: false}\n")
     (d / "badspec.txt").write_text("ethimon: 1\nname: x\nsignals: {a: {unit: m, range: [0, 1]}}\nobligations: 7\n")
-    (d / "w_badspec.yaml").write_text(f"ethimon: 1\nname: bad spec\nspec: badspec.txt\ncycles: 5\n"
+    (d / "w_badspec.yaml").write_text("ethimon: 1\nname: bad spec\nspec: badspec.txt\ncycles: 5\n"
                                       "inputs: {a: 1, p_unsafe: 0.1}\nexpect: {override: false}\n")
     return d
 

@@ -107,8 +107,8 @@ def _connect(ray: Any, address: str | None, num_cpus: int | None) -> bool:
         kw.update(num_cpus=int(cpus), include_dashboard=False)
     elif num_cpus is not None:
         raise EthimonError("the number of workers is set only for a local Ray instance (a cluster has its own)")
-    try:
-        ray.init(address=address, **kw)
+    try:  # "local": a new instance even where RAY_ADDRESS names a cluster
+        ray.init(address=address if address is not None else "local", **kw)
     except Exception as exc:  # noqa: BLE001 - cannot reach the cluster: one line, no traceback
         where = "start a local Ray instance" if address is None else f"connect to the Ray cluster at {address}"
         raise EthimonError(f"cannot {where}: {type(exc).__name__}: {str(exc)[:300]}") from None
