@@ -155,3 +155,20 @@ def test_safe_pose_outside_the_rated_range_is_named():
     msg = safe_pose_problem((0.0, -0.785, 0.0, -2.356, 0.0, -0.3, 3.0))
     assert "joint 6 = -0.3" in msg and "joint 7 = 3" in msg and "joint 1" not in msg
     assert safe_pose_problem(tuple(SAFE)) is None
+
+
+def test_lint_names_safe_pose_joints_outside_the_rated_range(tmp_path, capsys):
+    """A spec whose safe pose lies outside the Panda's rated range fails `ethimon lint`
+    with the file, line and column of the first bad joint (it passed before)."""
+    from pathlib import Path
+
+    from ethimon.cli import main
+    src = (Path(__file__).resolve().parents[1] / "specs" / "cobot_cell.yaml").read_text()
+    good = "joints_rad: [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785]"
+    assert good in src
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(src.replace(good, "joints_rad: [0.0, -0.785, 0.0, 0.2, 0.0, 1.571, 3.1]"))
+    assert main(["lint", str(bad)]) == 2
+    err = capsys.readouterr().err
+    line = next(i for i, ln in enumerate(bad.read_text().splitlines(), 1) if "joints_rad" in ln)
+    assert f"bad.yaml:{line}:" in err and "joint 4 = 0.2" in err and "joint 7 = 3.1" in err

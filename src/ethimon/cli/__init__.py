@@ -63,6 +63,18 @@ def _cmd_schema(args: argparse.Namespace) -> int:
     return 0
 
 
+def _lint_safe_pose(spec) -> None:
+    """A 7-joint safe pose outside the Franka Panda's rated range (the simulated arm) is a
+    lint error naming each joint, as it is a SpecError for ``check --sim``."""
+    from ..sim._limits import out_of_range, safe_pose_problem
+    joints = tuple(spec.safe_pose.joints_rad)
+    problem = safe_pose_problem(joints)
+    if problem is not None:
+        raise spec.source.error(problem, ("safe_pose", "joints_rad", out_of_range(joints)[0][0] - 1),
+                                hint="keep every joint inside the Panda's rated range "
+                                     "(FCI 'Limits for Panda', see src/ethimon/sim/README.md)")
+
+
 def _cmd_lint(args: argparse.Namespace) -> int:
     from .. import _api
     from ..scenario import error_line, scan_yaml_files
@@ -73,6 +85,7 @@ def _cmd_lint(args: argparse.Namespace) -> int:
             continue
         try:
             spec = _api.load_spec(path)
+            _lint_safe_pose(spec)
             print(f"{path}: ok ({spec.name}, {len(spec.obligations)} obligations)")
         except Exception as exc:  # noqa: BLE001 - one bad file is one line; the others are still linted
             print(error_line(path, exc), file=sys.stderr)

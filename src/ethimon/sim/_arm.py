@@ -576,15 +576,20 @@ class ArmSim:
         self.cycle += 1
 
     def link_speed(self) -> float:
-        """Largest linear speed (m/s) of any arm link frame (links 1..7, hand, fingers,
-        grasp frame) or of the held object, now."""
+        """Largest linear speed (m/s) of any arm link frame (links 1..7, hand, grasp frame;
+        the fingers' own opening and closing left out) or of the held object, now."""
         p, cid = self._p, self.cid
         states = p.getLinkStates(self.robot, list(range(12)), computeLinkVelocity=1,
                                  physicsClientId=cid)
-        best = max(math.sqrt(sum(c * c for c in st[6])) for st in states)
-        if self.held is not None:
-            lin, _ = p.getBaseVelocity(self.objects[self.held], physicsClientId=cid)
-            best = max(best, math.sqrt(sum(c * c for c in lin)))
+        # the fingers' own opening/closing is left out (their frames ride on the hand)
+        best = max(math.sqrt(sum(c * c for c in st[6])) for i, st in enumerate(states)
+                   if i not in FINGER_JOINTS)
+        if self.held is not None:  # rigidly held: the hand's velocity at the object's centre
+            hand = states[HAND_LINK]
+            pos, _ = p.getBasePositionAndOrientation(self.objects[self.held], physicsClientId=cid)
+            r = np.asarray(pos) - np.asarray(hand[0])
+            v = np.asarray(hand[6]) + np.cross(np.asarray(hand[7]), r)
+            best = max(best, float(np.linalg.norm(v)))
         return float(best)
 
     # ------------------------------------------------------------ kinematics

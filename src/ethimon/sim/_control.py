@@ -29,6 +29,9 @@ _GRIP_S = 0.3
 #: rate limiter is the hard bound; the share leaves it room to track)
 _LIMIT_SHARE = 0.8
 _DQ = np.array(RATED_DQ_MAX)
+#: a held hazard-tagged object (sharp, hot) within this of a person is never carried nearer
+#: (by more than 0.05 m) by the safe-pose retreat, whatever the spec's near-human zone
+_HAZARD_KEEP_M = 1.5
 _DDQ = np.array(RATED_DDQ_MAX)
 _DDDQ = np.array(RATED_DDDQ_MAX)
 
@@ -397,9 +400,11 @@ class SafePoseController:
     moves; (2) plans the route from where that leaves the arm: the straight joint-space
     line, else a fold-first, a lift-first or an away-from-the-person waypoint, each
     sampled every ``sample_rad`` in the PyBullet scene (:meth:`ArmSim.probe`) and kept
-    only if it touches no obstacle, table or floor, never brings the arm (or a held
-    hazardous object) nearer any person than it is now (or than ``near_human[0]``), and
-    the fastest route of those that pass is taken; (3) when none passes it holds the pose
+    only if it stays 0.02 m clear of every obstacle, table and the floor and never brings
+    the arm (or a held hazardous object) more than 0.1 m (0.05 m) nearer any person than
+    it is now, or than ``near_human[0]`` (1.5 m at least for a hazard), nor within 0.3 m;
+    the fastest route of those
+    that pass is taken; (3) when none passes it holds the pose
     like a stop 2 (``name`` becomes ``"stop_2"``).
 
     Every joint keeps ``margin × max_joint_speed_rad_s`` and the rated speed,
@@ -439,6 +444,12 @@ class SafePoseController:
         self._moves: list[_Move] = []
         self._hold: StopController | None = None
         self._started = False
+
+    @property
+    def decelerating(self) -> bool:
+        """Still slowing down from the task's velocity (before the planned route starts)."""
+        return (self._started and self._hold is None and self._decel is not None
+                and self.t < self._decel.T)
 
     @property
     def done(self) -> bool:
@@ -487,13 +498,16 @@ class SafePoseController:
             return
         now = sim.probe([q_start])[0]
         keep = self.near_human[0] if self.near_human else 0.3
-        need_h = min(now["human"], keep)
-        need_z = min(now["hazard"], keep)
+        # never nearer a person than now (or than the near-human zone), less 0.1 m of slack
+        # for the sampling and the arm's swing; never within 0.3 m
+        need_h = max(min(now["human"], keep) - 0.1, min(now["human"], 0.3))
+        keep_z = max(keep, _HAZARD_KEEP_M)
+        need_z = max(min(now["hazard"], keep_z) - 0.05, min(now["hazard"], 0.3))
         best = None
         for name, wps in self._candidates(sim, q_start):
             pts = sim.probe(self._samples(wps))
             h = min(p["human"] for p in pts)
-            if min(p["obstacle"] for p in pts) < 0.02 or h < need_h - 1e-3 or h < 0.05:
+            if min(p["obstacle"] for p in pts) < 0.02 or h < need_h - 1e-3:
                 continue
             if min(p["hazard"] for p in pts) < need_z - 1e-3:
                 continue
@@ -554,9 +568,13 @@ class SafePoseController:
         t = self.t
         t_dec = self._decel.T if self._decel else 0.0
         cap = None
+        v_max: float | None = self.v_limit
         if self._decel is not None and t < t_dec:
+            # the deceleration starts at the task's speed (possibly above the safe-pose limit)
+            # and only falls; clipping it at the limit would brake harder than rated
             q, qd = self._decel.at(t)
             cap = np.abs(self._decel.qd0) + 1e-3
+            v_max = None
         else:
             t -= t_dec
             q, qd = self.q_safe, np.zeros(7)
@@ -565,4 +583,4 @@ class SafePoseController:
                     q, qd = m.at(t)
                     break
                 t -= m.T
-        sim.command_joints(q, qd, max_velocity=self.v_limit, speed_cap=cap)
+        sim.command_joints(q, qd, max_velocity=v_max, speed_cap=cap)

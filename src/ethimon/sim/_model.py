@@ -228,6 +228,28 @@ class SimExpect(_Model):
     response: Literal["none", "safe_pose", "stop_2", "stop_1", "stop_0"] | None = Field(
         None, description="most severe response the arm executed")
     max_reaction_cycles: int = Field(0, ge=0, description="cycles from override to controller switch")
+    max_stop_speed_gain: float | None = Field(
+        None, ge=0.0, description="peak joint speed (per physics step) while a stop controller "
+        "runs, over the largest joint speed at its command; 1.0 = a stop never adds speed")
+    max_accel_ratio: float | None = Field(
+        None, gt=0.0, description="peak |joint acceleration| / the joint's rated acceleration "
+        "while a response controller drives the arm (contact cycles left out)")
+    standstill_within_s: float | None = Field(
+        None, gt=0.0, description="every joint below 0.01 rad/s this soon after the first stop command")
+    powered_off: bool | None = Field(None, description="motor power is off at the end of the run")
+    near_human_m: float = Field(1.5, gt=0.0, description="'near a person' for "
+                                "retreat_max_link_speed_m_s (true distance)")
+    retreat_max_link_speed_m_s: float | None = Field(
+        None, gt=0.0, description="fastest link frame or held object during the safe-pose "
+        "retreat while a person is within near_human_m")
+    retreat_min_separation_m: float | None = Field(
+        None, ge=0.0, description="closest approach of arm (or held object) to a person during the retreat")
+    max_contact_force_n: float | None = Field(None, ge=0.0, description="peak contact force of the run")
+    min_hazard_distance_m: float | None = Field(
+        None, ge=0.0, description="a hazard-tagged object never nearer a person than this "
+        "(simulated hazard_distance) once the monitor has overridden")
+    route: Literal["direct", "fold", "lift", "away", "hold", "none"] | None = Field(
+        None, description="the safe-pose route the planner took (hold: none was collision-free)")
 
 
 class SimBlock(_Model):
@@ -241,7 +263,11 @@ class SimBlock(_Model):
     start_holding: str | None = Field(None, description="object already in the gripper at t = 0")
     task_joint_speed_rad_s: float = Field(
         0.8, gt=0.0, description="peak joint speed of task motions (auto-timing)")
-    stop_ramp_s: float = Field(0.25, gt=0.0, description="deceleration time of stop_1/stop_2")
+    stop_ramp_s: float = Field(0.25, gt=0.0, description="shortest deceleration time of "
+                               "stop_1/stop_2 (longer when the rated acceleration or jerk needs it)")
+    standstill_tolerance_rad: float = Field(
+        0.02, gt=0.0, le=0.5, description="stop_2 standstill monitoring: a drift of any joint "
+        "beyond this from the held pose escalates to stop_0")
     brakes: bool = Field(True, description="holding brakes engage when motor power is removed "
                                            "(stop_0 at once, stop_1 after its ramp)")
     task: tuple[Primitive, ...] = ()
