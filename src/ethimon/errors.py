@@ -1,14 +1,31 @@
 """Exception hierarchy of ethimon.
 
-Every error that ethimon raises on purpose derives from :class:`EthimonError`.
+Every error that ethimon raises on purpose derives from :class:`EthimonError`,
+and every exception class of ethimon is defined here (packages re-export the
+ones that belong to them, e.g. ``ethimon.audit.AuditFormatError``)::
+
+    EthimonError
+    ├── SpecError (ValueError)          a spec, scenario or expression file: path:line:column (hint)
+    ├── ExprSyntaxError (ValueError)    an expression's syntax, at a character index (spec.parse_expr)
+    ├── SimError (ValueError)           a sim: block that validates but cannot be simulated
+    ├── ModelError                      a model directory or weights file that cannot be used
+    ├── RiskInferenceError              inference failed or gave NaN/inf: treat the text as unsafe
+    ├── AuditFormatError (ValueError)   not an audit log at all (unreadable, empty, wrong header)
+    ├── AuditTampered (ValueError)      an audit log whose hash chain does not verify (read_log)
+    ├── BagError                        a ROS bag that cannot be replayed
+    └── DependencyNotInstalled (ImportError)  an optional extra is missing; names the pip command
+
 Errors about user-written input (spec and scenario files, expressions,
 command-line arguments) are :class:`SpecError`; they carry the file, the
-1-based line and column where the problem is, and a hint.
+1-based line and column where the problem is, and a hint. The classes that
+also derive from a built-in (``ValueError``, ``ImportError``) do so because
+callers catch them by that built-in.
 """
 
 from __future__ import annotations
 
-__all__ = ["EthimonError", "SpecError", "ModelError", "DependencyNotInstalled"]
+__all__ = ["AuditFormatError", "AuditTampered", "BagError", "DependencyNotInstalled", "EthimonError",
+           "ExprSyntaxError", "ModelError", "RiskInferenceError", "SimError", "SpecError"]
 
 
 class EthimonError(Exception):
@@ -71,3 +88,46 @@ class ModelError(EthimonError):
 
 class DependencyNotInstalled(EthimonError, ImportError):
     """An optional dependency is missing; the message names the pip command."""
+
+
+class ExprSyntaxError(EthimonError, ValueError):
+    """A syntax error at character ``index`` of an expression's text (raised by ``ethimon.spec.parse_expr``;
+    the spec loader turns it into a :class:`SpecError` at the expression's file, line and column)."""
+
+    def __init__(self, message: str, index: int, hint: str | None = None) -> None:
+        super().__init__(message)
+        self.message = message
+        self.index = index
+        self.hint = hint
+
+    def __reduce__(self):
+        return (type(self), (self.message, self.index, self.hint))
+
+
+class SimError(EthimonError, ValueError):
+    """A ``sim:`` block that validates but cannot be simulated (e.g. an unreachable target)."""
+
+
+class RiskInferenceError(EthimonError):
+    """Inference failed or produced NaN/inf; callers must treat the text as unsafe."""
+
+
+class AuditFormatError(EthimonError, ValueError):
+    """The file is not an ethimon audit log at all (unreadable, empty, wrong header)."""
+
+
+class AuditTampered(EthimonError, ValueError):
+    """An audit log whose hash chain does not verify (edited, removed or reordered records, a wrong key):
+    raised by ``ethimon.audit.read_log``; ``verify_log`` reports the same as a value instead."""
+
+
+class BagError(EthimonError):
+    """A bag that cannot be replayed (missing, corrupt, a field the messages lack); names the bag."""
+
+    def __init__(self, message: str, path: str | None = None, hint: str | None = None) -> None:
+        self.message, self.path, self.hint = message, path, hint
+        text = f"{path}: {message}" if path else message
+        super().__init__(text + (f" ({hint})" if hint else ""))
+
+    def __reduce__(self):  # picklable (Ray workers, multiprocessing)
+        return (type(self), (self.message, self.path, self.hint))

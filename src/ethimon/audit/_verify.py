@@ -9,13 +9,10 @@ from dataclasses import dataclass, field
 from typing import BinaryIO
 
 from .._files import open_regular
+from ..errors import AuditFormatError, AuditTampered
 from ._log import FORMAT, GENESIS, MAX_RECORD_BYTES, canonical, record_hash
 
-__all__ = ["AuditReport", "verify_log", "read_log", "AuditFormatError"]
-
-
-class AuditFormatError(ValueError):
-    """The file is not an ethimon audit log at all (unreadable, empty, wrong header)."""
+__all__ = ["AuditReport", "verify_log", "read_log"]
 
 
 @dataclass(frozen=True)
@@ -206,12 +203,12 @@ def read_log(path: str | os.PathLike, *, key: bytes | None = None) -> list[dict]
         AuditFormatError: not an audit log, or a line longer than
             :data:`~ethimon.audit.MAX_RECORD_BYTES` (named by its number) when the
             records are read.
-        ValueError: the chain is tampered.
+        AuditTampered: the chain does not verify (a ``ValueError``, as before).
     """
     path = os.fspath(path)
     rep = verify_log(path, key=key)
     if not rep.ok:
-        raise ValueError(f"{path}: {rep.summary()}")
+        raise AuditTampered(f"{path}: {rep.summary()}")
     out = []
     with _open_regular(path) as fh:
         for lineno, raw in _read_lines(fh):

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from .._files import file_kind
-from ..errors import DependencyNotInstalled, EthimonError
+from ..errors import BagError, DependencyNotInstalled
 from ._mapping import Mapping, SignalMap, parse_field_path
 
 __all__ = ["MAX_MESSAGES", "BagData", "BagError", "Series", "read_bag", "reduce_value"]
@@ -29,15 +29,6 @@ __all__ = ["MAX_MESSAGES", "BagData", "BagError", "Series", "read_bag", "reduce_
 MAX_MESSAGES = 50_000_000
 #: longest task text kept (characters)
 MAX_TEXT = 10_000
-
-
-class BagError(EthimonError):
-    """A bag that cannot be replayed (missing, corrupt, a field the messages lack); names the bag."""
-
-    def __init__(self, message: str, path: str | None = None, hint: str | None = None) -> None:
-        self.message, self.path, self.hint = message, path, hint
-        text = f"{path}: {message}" if path else message
-        super().__init__(text + (f" ({hint})" if hint else ""))
 
 
 @dataclass

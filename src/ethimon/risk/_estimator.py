@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..errors import EthimonError
+from ..errors import RiskInferenceError
 from ._formula import VARIANCE_MODES, risk_from_probs
 
 __all__ = ["DEFAULT_TAU", "RiskEstimate", "RiskEstimator", "RiskInferenceError", "load_estimator",
@@ -61,10 +61,6 @@ def default_threads(rows: int) -> int:
     except (AttributeError, OSError):  # pragma: no cover - not Unix
         load = 0.0
     return max(1, min(2, cores, int(cores - load + 0.5)))
-
-
-class RiskInferenceError(EthimonError):
-    """Inference failed or produced NaN/inf; callers must treat the text as unsafe."""
 
 
 @dataclass(frozen=True)

@@ -21,7 +21,7 @@ from typing import Annotated, Literal, Union
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-from ..errors import EthimonError
+from ..errors import SimError
 
 __all__ = [
     "PHYSICS_HZ",
@@ -43,10 +43,6 @@ __all__ = [
     "Wipe",
     "Wait",
 ]
-
-class SimError(EthimonError, ValueError):
-    """A ``sim:`` block that validates but cannot be simulated (e.g. an unreachable target)."""
-
 
 #: Physics rate of every simulation (Hz); the control rate must divide it.
 PHYSICS_HZ = 240

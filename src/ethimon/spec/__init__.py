@@ -1,8 +1,9 @@
 """Stage 1 of 3: the spec language (YAML files, validated models, expressions)."""
 
+from ..errors import ExprSyntaxError
 from ._expr import parse_expr
 from ._load import parse_spec_file, parse_spec_text
 from ._model import Constant, Obligation, Release, Response, RiskConfig, SafePose, Signal, Spec
 
-__all__ = ["Constant", "Obligation", "Release", "Response", "RiskConfig", "SafePose", "Signal", "Spec",
+__all__ = ["Constant", "ExprSyntaxError", "Obligation", "Release", "Response", "RiskConfig", "SafePose", "Signal", "Spec",
            "parse_expr", "parse_spec_file", "parse_spec_text"]

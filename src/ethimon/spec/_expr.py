@@ -42,20 +42,12 @@ import re
 import unicodedata
 from dataclasses import dataclass
 
+from ..errors import ExprSyntaxError
+
 __all__ = [
     "Node", "Num", "BoolLit", "Name", "Unary", "Binary", "Call", "ExprSyntaxError",
     "parse_expr", "FUNCTIONS", "TEMPORAL", "walk", "to_source",
 ]
-
-
-class ExprSyntaxError(Exception):
-    """A syntax error at character ``index`` of the expression text."""
-
-    def __init__(self, message: str, index: int, hint: str | None = None) -> None:
-        super().__init__(message)
-        self.message = message
-        self.index = index
-        self.hint = hint
 
 
 @dataclass(frozen=True, eq=False)
