@@ -15,7 +15,8 @@ from ..compiler._risk_formula import release_bound, risk_bounds, risk_from_p_uns
 from ..runtime import Monitor
 from ..spec._expr import Name, walk
 from ..spec._model import Response, Spec
-from ._encode import DecisionTrace, Unrolled, decision_trace, lookback, real, release_below, z3_value
+from ._encode import (DecisionTrace, Unrolled, decision_trace, lookback, real, release_below, rules_of,
+                      z3_value)
 from ._report import OK, PROVED, REFUTED, SKIPPED, UNKNOWN, WARNING, Counterexample, Finding
 
 __all__ = ["Verifier", "BUDGET_NOTE"]
@@ -187,7 +188,7 @@ class Verifier:
 
     def _state_prefs(self, dt: DecisionTrace) -> list[list[z3.BoolRef]]:
         """Initial latch states to try, most replayable first: fresh, just after a fault, any."""
-        return [[dt.L0 == 0, dt.C0 == 0], [dt.L0 == self.fault_sev, dt.C0 == 0], []]
+        return [dt.start_with([]), dt.start_with(["fault"]), []]
 
     # -- counterexamples ------------------------------------------------------------------
     def frames(self, model: z3.ModelRef, enc: Unrolled, upto: int) -> list[dict[str, Any]]:
@@ -538,25 +539,32 @@ class Verifier:
             "no override => every obligation holds and R_e < tau"))
 
     def prop_release_rule(self) -> Finding:
-        rel = self.spec.risk.release
-        hold, auto = rel.hold_cycles, rel.mode == "auto"
-        below = self.below_z3
-
+        """A latched override ends by itself only when every rule latched the cycle before is
+        automatic and its release condition held its ``hold_cycles`` consecutive cycles; a rule
+        with a manual release never ends it (only ``acknowledge()``/``release()``/``reset()``)."""
         def bad(dt, t):
-            was = dt.L0 > 0 if t == 0 else dt.override[t - 1]
-            enc = dt.enc
-            if not auto:
-                allowed = z3.BoolVal(False)
-            else:
-                span = range(max(0, t - hold + 1), t + 1)
-                allowed = z3.And([z3.And(enc.R[m] < below, z3.Not(z3.Or(dt.violated[m])) if dt.violated[m]
-                                         else z3.BoolVal(True)) for m in span])
-                if t - hold + 1 < 0:  # the rest of the streak lies before the trace: the counter must cover it
-                    allowed = z3.And(allowed, dt.C0 >= hold - (t + 1))
-            return z3.And(was, z3.Not(dt.override[t]), z3.Not(allowed))
-        msg = (f"a latched override resumes only after {hold} consecutive cycles with R_e < tau - delta = "
-               f"{_fmt(self.below)} and no violation" if auto else
-               "a latched override is released only by Monitor.release()/reset() (manual mode)")
+            was = dt.lat0 if t == 0 else dt.lat[t - 1]
+            oks = []
+            for k, r in enumerate(dt.rules):
+                if r.manual:
+                    oks.append(z3.Not(was[k]))
+                    continue
+                span = range(max(0, t - r.hold + 1), t + 1)
+                streak = z3.And([dt.cond[m][k] for m in span])
+                if t - r.hold + 1 < 0:  # the rest of the streak lies before the trace: the count covers it
+                    streak = z3.And(streak, dt.cnt0[k] >= r.hold - (t + 1))
+                oks.append(z3.Implies(was[k], streak))
+            return z3.And(z3.Or(was), z3.Not(dt.override[t]), z3.Not(z3.And(oks)))
+        rules = rules_of(self.plan)
+        auto = [r for r in rules if not r.manual]
+        manual = [r.name for r in rules if r.manual]
+        conds = {"risk": f"R_e < tau - delta = {_fmt(self.below)}", "fault": "no fault"}
+        parts = [f"{r.name} after {r.hold} cycle{'s' if r.hold != 1 else ''} of {conds.get(r.name, 'holding')}"
+                 for r in auto]
+        msg = "a latched override resumes by itself only once each rule latched is released: " + (
+            "; ".join(parts) if parts else "no rule releases automatically")
+        if manual:
+            msg += f"; manual (Monitor.acknowledge() only): {', '.join(manual)}"
         return self._timed(lambda: self._decision_check(
             "release.rule", bad, lambda t: {"final_override": True},
             lambda d, t: not d.override, msg))
@@ -567,6 +575,7 @@ class Verifier:
         return [("lint.tau_range", lambda: [self._timed(self.lint_tau)]),
                 ("lint.risk_monotone", lambda: [self._timed(self.lint_monotone)]),
                 ("lint.release", lambda: [self._timed(self.lint_release)]),
+                ("lint.release_policy", self.lint_release_policy),
                 ("lint.vacuous", self.lint_vacuous), ("lint.contradiction", self.lint_contradictions),
                 ("lint.unbounded", self.lint_unbounded), ("lint.fault_gap", self.lint_fault_gap)]
 
@@ -671,14 +680,18 @@ class Verifier:
             f"out one after a longer history")
 
     def _replay_release(self, frames: list[dict[str, Any]]) -> tuple[bool, int]:
-        """Replay a fault (which latches) and then ``frames`` in a fresh Monitor: released at the end?"""
-        seq = [self.fault_frame(frames[0])] + frames
+        """Replay a cycle where the risk rule fires (R_e at its largest reachable value) and
+        then ``frames`` in a fresh Monitor: is the risk rule's latch released at the end?"""
+        first = dict(frames[0])
+        first["risk"] = max(self.tau, self.risk_range()[0])
+        seq = [first] + frames
         m = Monitor(self.spec)
         ds = [m.step(f) for f in seq]
-        return (not ds[-1].override and ds[0].override), len(seq) - 1
+        return ("risk" in ds[0].violations and "risk" not in m.latched_rules), len(seq) - 1
 
     def lint_release(self) -> Finding:
-        """Can a latched override auto-release (``hold_cycles`` cycles in a row with R_e < τ − δ, no violation)?
+        """Can the risk rule's latch auto-release (``hold_cycles`` cycles in a row with R_e < τ − δ,
+        and, so that the override can end, every obligation held)?
 
         Only a run replayed in the real Monitor makes it "reachable"; "never" is a proof over runs
         of any length (:meth:`window_search`); anything else is ``unknown``.
@@ -686,8 +699,9 @@ class Verifier:
         rel = self.spec.risk.release
         name = "lint.release"
         if rel.mode == "manual":
-            return Finding("lint", name, WARNING, "release.mode is manual: a latched override never releases "
-                                                  "by itself (only Monitor.release() or reset())")
+            return Finding("lint", name, WARNING, "risk.release.mode is manual: the risk rule's latch never "
+                                                  "releases by itself (only Monitor.acknowledge(), release() "
+                                                  "or reset())")
         lo, hi = self.risk_range()
         bound = f"R_e < tau - delta = {_fmt(self.below)}"
         if self.below_float < lo:
@@ -738,7 +752,44 @@ class Verifier:
             return Finding("lint", name, UNKNOWN, "release not decided: the solver's run did not release when "
                                                   "replayed in the Monitor")
         return Finding("lint", name, OK, f"release reachable: {hold} cycles with {bound} and every obligation "
-                                         f"held (a run replayed in the Monitor releases at cycle {at})")
+                                         f"held (a run replayed in the Monitor releases at cycle {at}: the risk "
+                                         f"rule's latch)")
+
+    def lint_release_policy(self) -> list[Finding]:
+        """Release policies an engineer would question: an automatic release after a stop of
+        category 0 or 1 (an obligation's, the risk rule's or a fault's), which restarts the
+        task by itself after power was cut; and, as information, which rules wait for an
+        operator (the integration must offer ``Monitor.acknowledge()``)."""
+        name = "lint.release_policy"
+        out: list[Finding] = []
+        cut = {"stop_0", "stop_1"}
+        for ob in self.spec.obligations:
+            mode, hold = self.spec.obligation_release(ob)
+            if ob.response in cut and mode == "auto":
+                out.append(Finding("lint", name, WARNING,
+                                   f"obligation {ob.id!r}: response {ob.response} with release: auto "
+                                   f"(the task restarts by itself {hold} cycles after a stop that cut power; "
+                                   f"IEC 60204-1 wants a deliberate restart: release: manual)"))
+        r = self.spec.risk
+        if r.response in cut and r.release.mode == "auto":
+            out.append(Finding("lint", name, WARNING,
+                               f"risk.response {r.response} with risk.release.mode auto (the task restarts by "
+                               f"itself once R_e < tau - delta for {r.release.hold_cycles} cycles after a stop "
+                               f"that cut power; set risk.release.mode: manual)"))
+        fmode, fhold = self.spec.fault_release()
+        if fmode == "auto":
+            why = ("after a stop that cut power" if self.spec.on_fault in cut else
+                   "after a fault stop, although the fault's cause was never seen by anyone")
+            out.append(Finding("lint", name, WARNING,
+                               f"on_fault release: auto: the task restarts by itself {fhold} cycles after the "
+                               f"inputs come back, {why} (the default is manual)"))
+        manual = [x.name for x in rules_of(self.plan) if x.manual]
+        if not out:
+            out.append(Finding("lint", name, OK, (
+                f"manual release for {', '.join(manual)}: the integration must offer an operator "
+                f"acknowledgement (Monitor.acknowledge(); refused while a rule still fails)") if manual else
+                "every rule releases automatically; none is a stop of category 0 or 1"))
+        return out
 
     def lint_vacuous(self) -> list[Finding]:
         """Each obligation can be violated by some fault-free run from a reset (one incremental solver)."""
@@ -875,15 +926,18 @@ class Verifier:
         return out or [Finding("lint", "lint.unbounded", OK, "every numeric signal has a declared range")]
 
     def lint_fault_gap(self) -> list[Finding]:
-        rel = self.spec.risk.release
+        """The fault latch's hold must cover every obligation's window: a fault clears the
+        history, so a shorter hold lets the arm resume (by itself, or on an acknowledgement
+        that is accepted) before a windowed obligation can see its violation again."""
+        mode, hold = self.spec.fault_release()
+        how = "resume by itself" if mode == "auto" else "be acknowledged and resume"
         out = []
-        if rel.mode == "auto":
-            for ob in self.plan.obligations:
-                need = self.need[ob.id]
-                if need > 1 and rel.hold_cycles < need:
-                    out.append(Finding(
-                        "lint", f"lint.fault_gap.{ob.id}", WARNING,
-                        f"after a fault clears the history, {ob.id!r} needs {need} cycles to fire again but "
-                        f"release.hold_cycles={rel.hold_cycles}: the arm can resume while it is still violated"))
+        for ob in self.plan.obligations:
+            need = self.need[ob.id]
+            if need > 1 and hold < need:
+                out.append(Finding(
+                    "lint", f"lint.fault_gap.{ob.id}", WARNING,
+                    f"after a fault clears the history, {ob.id!r} needs {need} cycles to fire again but the "
+                    f"fault latch's hold_cycles={hold}: the arm can {how} while it is still violated"))
         return out or [Finding("lint", "lint.fault_gap", OK,
-                               "hold_cycles covers every obligation's window after a fault")]
+                               "the fault latch's hold_cycles covers every obligation's window after a fault")]

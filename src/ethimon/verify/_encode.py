@@ -33,7 +33,7 @@ types that :func:`~ethimon.compiler.build_machine` compiles:
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 
 import z3
@@ -43,7 +43,7 @@ from ..compiler._risk_formula import release_bound, risk_range
 from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary, walk
 from ..spec._model import Response
 
-__all__ = ["Unrolled", "DecisionTrace", "decision_trace", "lookback", "real", "release_below",
+__all__ = ["Unrolled", "DecisionTrace", "RuleInfo", "decision_trace", "rules_of", "lookback", "real", "release_below",
            "risk_input_range", "z3_value"]
 
 
@@ -334,7 +334,15 @@ class Unrolled:
 
 @dataclass
 class DecisionTrace:
-    """The decision of every cycle of an unrolled trace, as z3 terms."""
+    """The decision of every cycle of an unrolled trace, as z3 terms.
+
+    The latch is one per rule (``rules``: the obligations in order, then ``"risk"``,
+    then ``"fault"``), each with its start state (``lat0``/``cnt0``: latched, count of
+    consecutive cycles its release condition held) and its state after each cycle
+    (``lat[t]``/``cnt[t]``); ``cond[t][k]``: rule ``k``'s release condition at ``t``.
+    ``L0``/``latched_after``: the most severe latched response (0: none); ``C0``/
+    ``clean_after``: the sum of the counts (0 exactly when every count is 0).
+    """
 
     enc: Unrolled
     L0: z3.ArithRef
@@ -347,6 +355,43 @@ class DecisionTrace:
     response: list[z3.ArithRef]  # severity of the response (0 = none)
     latched_after: list[z3.ArithRef]
     clean_after: list[z3.ArithRef]
+    rules: list[RuleInfo] = field(default_factory=list)
+    lat0: list[z3.BoolRef] = field(default_factory=list)
+    cnt0: list[z3.ArithRef] = field(default_factory=list)
+    lat: list[list[z3.BoolRef]] = field(default_factory=list)  # [t][rule]
+    cnt: list[list[z3.ArithRef]] = field(default_factory=list)
+    cond: list[list[z3.BoolRef]] = field(default_factory=list)
+
+    def start_with(self, names) -> list[z3.BoolRef]:
+        """Start with exactly the rules ``names`` latched, every count 0 (``["fault"]``: right
+        after a fault cycle that fired nothing else; ``[]``: a fresh monitor)."""
+        names = set(names)
+        return [z3.And(l0 if r.name in names else z3.Not(l0), c0 == 0)
+                for r, l0, c0 in zip(self.rules, self.lat0, self.cnt0)]
+
+
+@dataclass(frozen=True)
+class RuleInfo:
+    """One latching rule: ``name`` (obligation id, ``"risk"`` or ``"fault"``), its response
+    severity, whether its release is manual, and its ``hold_cycles``."""
+
+    name: str
+    sev: int
+    manual: bool
+    hold: int
+
+
+def rules_of(plan) -> list[RuleInfo]:
+    """Every latching rule of a plan, in the monitor's order, with the defaults filled in."""
+    spec = plan.spec
+    rel = spec.risk.release
+    out = [RuleInfo(ob.id, ob.response.severity, ob.release_mode == "manual", int(ob.release_hold))
+           for ob in plan.obligations]
+    out.append(RuleInfo("risk", Response(spec.risk.response).severity, rel.mode == "manual",
+                        int(rel.hold_cycles)))
+    fmode, fhold = plan.fault_release
+    out.append(RuleInfo("fault", plan.on_fault.severity, fmode == "manual", int(fhold)))
+    return out
 
 
 def _max(a, b):
@@ -358,57 +403,95 @@ def decision_trace(enc: Unrolled, *, fresh: bool = False, prefix: str = "",
     """Encode ``Monitor.step``'s decision logic over ``enc``'s cycles.
 
     With ``only=i`` just obligation ``i`` is encoded; the other obligations are one
-    free severity (0 to 4) each cycle, and their verdicts free booleans. That admits
-    every real trace (and more), so a property proved over it holds for the spec: a
-    small problem instead of one with every obligation in it.
+    free severity (0 to 4) each cycle for their verdicts and one for their latches,
+    and their verdicts free booleans. That admits every real trace (and more), so a
+    property proved over it holds for the spec: a small problem instead of one with
+    every obligation in it.
 
-    The trace starts with a symbolic latch state (``L0`` severity, ``C0``
-    clean-cycle count), which covers a fresh monitor (``fresh=True`` pins it to
-    0, 0) and the state right after any fault (a fault clears the temporal
-    history but keeps the latch).
+    The trace starts with a symbolic latch state (per rule: latched or not, and its
+    count, below its hold for an automatic release, up to it for a manual one), which
+    covers a fresh monitor (``fresh=True`` pins it to nothing latched) and the state
+    right after any fault (a fault clears the temporal history but keeps the latches).
+
+    Per rule, at a cycle: if it fires (the obligation is violated, R_e ≥ τ) it is
+    latched with count 0; else, if latched, its count goes up by one when its release
+    condition holds (not violated; R_e < τ − δ; for the fault rule any cycle of the
+    trace, which has no faults) and to 0 otherwise; an automatic rule whose count
+    reaches its hold is released; a manual one keeps the count at its hold (ready for
+    ``acknowledge()``). Override: some rule latched; response: the most severe one.
     """
     plan = enc.plan
     spec = plan.spec
-    rel = spec.risk.release
     tau = real(spec.risk.threshold)
     below = release_below(spec)
-    hold = rel.hold_cycles
-    auto = rel.mode == "auto"
-    risk_sev = Response(spec.risk.response).severity
-    L0, C0 = z3.Int(f"{prefix}latched@start"), z3.Int(f"{prefix}clean@start")
-    if fresh:
-        init = [L0 == 0, C0 == 0]
-    else:
-        init = [L0 >= 0, L0 <= 4, C0 >= 0, C0 < hold, z3.Implies(L0 == 0, C0 == 0)]
-    L, C = L0, C0
-    out = DecisionTrace(enc, L0, C0, init, [], [], [], [], [], [], [])
+    rules = rules_of(plan)
+    n = len(plan.obligations)
+    ri, fi = n, n + 1
+    encoded = [only is None or i == only for i in range(n)] + [True, True]
     zero = z3.IntVal(0)
+    lat0 = [z3.Bool(f"{prefix}latched#{k}@start") for k in range(n + 2)]
+    cnt0 = [z3.Int(f"{prefix}count#{k}@start") for k in range(n + 2)]
+    init: list[z3.BoolRef] = []
+    for k, r in enumerate(rules):
+        if fresh or not encoded[k]:
+            init += [z3.Not(lat0[k]), cnt0[k] == 0]
+        else:
+            init += [cnt0[k] >= 0, cnt0[k] <= (r.hold if r.manual else r.hold - 1),
+                     z3.Implies(z3.Not(lat0[k]), cnt0[k] == 0)]
+
+    def most_severe(lats, extra=None):
+        s = zero if extra is None else extra
+        for r, lk in zip(rules, lats):
+            s = _max(s, z3.If(lk, z3.IntVal(r.sev), zero))
+        return s
+    L0 = most_severe(lat0)
+    C0 = z3.Sum(cnt0) if cnt0 else zero
+    out = DecisionTrace(enc, L0, C0, init, [], [], [], [], [], [], [], rules, lat0, cnt0)
+    lat, cnt = list(lat0), list(cnt0)
     for t in range(enc.k):
-        viol = [enc.violated(ob, t) if only is None or i == only else z3.Bool(f"{prefix}viol#{i}@{t}")
+        viol = [enc.violated(ob, t) if encoded[i] else z3.Bool(f"{prefix}viol#{i}@{t}")
                 for i, ob in enumerate(plan.obligations)]
         fires = enc.R[t] >= tau
         sev: z3.ArithRef = zero
-        if only is not None and len(plan.obligations) > 1:
+        others = None
+        if only is not None and n > 1:
             sev = z3.Int(f"{prefix}others@{t}")
-            out.init += [sev >= 0, sev <= 4]
+            held = z3.Int(f"{prefix}others_latched@{t}")
+            out.init += [sev >= 0, sev <= 4, held >= 0, held <= 4]
+            others = _max(sev, held)
         for i, (ob, v) in enumerate(zip(plan.obligations, viol)):
-            if only is None or i == only:
+            if encoded[i]:
                 sev = _max(sev, z3.If(v, z3.IntVal(ob.response.severity), zero))
-        sev = _max(sev, z3.If(fires, z3.IntVal(risk_sev), zero))
-        active = sev > 0
-        L_hi = _max(L, sev)
-        releasing = z3.And(L > 0, z3.BoolVal(auto), enc.R[t] < below)
-        released = z3.And(releasing, C + 1 >= hold)
-        override = z3.Or(active, z3.And(L > 0, z3.Not(released)))
-        L_next = z3.If(active, L_hi, z3.If(released, zero, L))
-        C_next = z3.If(active, zero, z3.If(released, zero, z3.If(releasing, C + 1, zero)))
-        response = z3.If(override, L_next, zero)
+        sev = _max(sev, z3.If(fires, z3.IntVal(rules[ri].sev), zero))
+        fired = viol + [fires, z3.BoolVal(False)]
+        cond = [z3.Not(v) for v in viol] + [enc.R[t] < below, z3.BoolVal(True)]
+        new_lat, new_cnt = [], []
+        for k, r in enumerate(rules):
+            if not encoded[k]:
+                new_lat.append(z3.BoolVal(False))
+                new_cnt.append(zero)
+                continue
+            f, lk, ck = fired[k], lat[k], cnt[k]
+            c1 = z3.If(cond[k], ck + 1, zero)
+            if r.manual:
+                new_lat.append(z3.Or(f, lk))
+                new_cnt.append(z3.If(f, zero, z3.If(lk, z3.If(c1 >= r.hold, z3.IntVal(r.hold), c1), zero)))
+            else:
+                rel = z3.And(lk, z3.Not(f), c1 >= r.hold)
+                keep = z3.And(lk, z3.Not(f), z3.Not(rel))
+                new_lat.append(z3.And(z3.Or(f, lk), z3.Not(rel)))
+                new_cnt.append(z3.If(keep, c1, zero))
+        latched_sev = most_severe(new_lat, others)
+        override = latched_sev > 0
         out.violated.append(viol)
         out.risk_fires.append(fires)
         out.sev.append(sev)
         out.override.append(override)
-        out.response.append(response)
-        out.latched_after.append(L_next)
-        out.clean_after.append(C_next)
-        L, C = L_next, C_next
+        out.response.append(latched_sev)
+        out.latched_after.append(latched_sev)
+        out.clean_after.append(z3.Sum(new_cnt))
+        out.lat.append(new_lat)
+        out.cnt.append(new_cnt)
+        out.cond.append(cond)
+        lat, cnt = new_lat, new_cnt
     return out
