@@ -164,7 +164,16 @@ def map_files(fn: Callable[..., Any], calls: Sequence[tuple], labels: Sequence[s
         index = {ref: i for i, ref in enumerate(refs)}
         pending, done = list(refs), 0
         while pending:
-            ready, pending = ray.wait(pending, num_returns=len(pending), timeout=0.25)
+            try:
+                ready, pending = ray.wait(pending, num_returns=len(pending), timeout=0.25)
+            except Exception as exc:  # noqa: BLE001 - the cluster went away: keep what finished
+                lost = Failure(f"the Ray cluster stopped answering ({type(exc).__name__}: {str(exc)[:200]})", exc)
+                for ref in pending:
+                    out[index[ref]] = lost
+                    done += 1
+                    if on_done is not None:
+                        on_done(done, total, labels[index[ref]])
+                break
             for ref in ready:
                 i = index[ref]
                 try:
