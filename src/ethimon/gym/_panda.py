@@ -97,7 +97,7 @@ class PandaCellEnv(gymnasium.Env):
         self._obs_hi = hi.astype(np.float32)
         self.observation_space = spaces.Box(-self._obs_hi, self._obs_hi, dtype=np.float32)
         self._sim: ArmSim | None = None
-        self._p = None
+        self._p, _ = import_pybullet()  # DependencyNotInstalled (with the pip line) here, not at reset
         self._snapshot: int | None = None
         self._names = tuple(f"human{i}" for i in range(self.n_humans))
         self._target = np.zeros(3)
@@ -110,7 +110,6 @@ class PandaCellEnv(gymnasium.Env):
         humans = [Human(name=nm, waypoints=(Waypoint(t_s=0.0, xy_m=(3.0 + i, 0.0)),)) for i, nm in
                   enumerate(self._names)]
         sim = ArmSim(control_hz=self.control_hz, humans=humans)
-        self._p, _ = import_pybullet()
         self._snapshot = self._p.saveState(physicsClientId=sim.cid)
         return sim
 
