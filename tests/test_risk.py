@@ -386,8 +386,9 @@ def test_process_estimator_traces_at_start():
     """The loop's child estimator traces while it starts (its start timeout), never mid-run."""
     from ethimon.loop import ProcessEstimator
     pe = ProcessEstimator()
-    assert json.loads(pe._kwargs_json) == {"jit": True}
-    assert json.loads(ProcessEstimator(kwargs={"jit": False})._kwargs_json) == {"jit": False}
+    assert json.loads(pe._kwargs_json) == {"jit": True, "num_threads": 1}  # one text per request: one thread
+    assert json.loads(ProcessEstimator(kwargs={"jit": False})._kwargs_json) == {"jit": False, "num_threads": 1}
+    assert json.loads(ProcessEstimator(kwargs={"num_threads": 2})._kwargs_json) == {"jit": True, "num_threads": 2}
     assert json.loads(ProcessEstimator("tests._estimators:ScriptedEstimator")._kwargs_json) == {}
 
 

@@ -233,7 +233,7 @@ class GovernedLoop:
             own = monitor.max_age_s if monitor.plan.risk.max_age_s is None else None
             self._age_fallback = own if own is not None else max_risk_age_s
             if monitor.max_age_s is None and self._age_fallback is not None:
-                monitor._set_max_age(self._age_fallback)
+                monitor.set_max_age(self._age_fallback)
         self._ids = monitor.obligation_ids
         self.watchdog: Watchdog | None = None
         if watchdog_s is not None:

@@ -52,6 +52,8 @@ class ProcessEstimator:
         kw = dict(kwargs or {})
         if factory == "ethimon.risk:load_estimator":
             kw.setdefault("jit", True)  # trace while starting (start_timeout_s), never mid-run (timeout_s)
+            from ..risk import default_threads
+            kw.setdefault("num_threads", default_threads(1))  # one text per request: one thread
         self._kwargs_json = json.dumps(kw)
         self.timeout_s = float(timeout_s)
         self.start_timeout_s = float(start_timeout_s)

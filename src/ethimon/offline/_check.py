@@ -50,10 +50,7 @@ _MAX_PASSES = 8
 
 
 def _plan(spec: Any):
-    try:
-        from ..compiler._plans import plan_of
-    except ImportError:  # pragma: no cover - before plan_of moved to the compiler
-        from ..runtime._monitor import plan_of  # type: ignore[no-redef]
+    from ..compiler import plan_of
     return plan_of(spec)
 
 

@@ -220,8 +220,10 @@ class TaskScorer:
             exc.__traceback__ = exc.__context__ = exc.__cause__ = None
             raise exc
         try:
-            from ..risk import load_estimator_for  # lazy: torch only when a text must be scored
-            self._probs = load_estimator_for(self.spec, model_dir=self.model_dir).probs
+            from ..risk import default_threads, load_estimator_for  # lazy: torch only when a text must be scored
+            # texts are scored one at a time: one thread (torch's default of 2 spins on busy cores)
+            self._probs = load_estimator_for(self.spec, model_dir=self.model_dir,
+                                             num_threads=default_threads(1)).probs
         except Exception as exc:
             self._failed = exc
             raise

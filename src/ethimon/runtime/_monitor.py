@@ -140,11 +140,20 @@ class Monitor:
         self._rlo, self._rhi = min(0.0, lo), max(1.0, hi)
         self._max_age = None
         self._age_missing = None
-        self._set_max_age(max_age_s)
+        self.set_max_age(max_age_s)
         self._cycle = 0
 
-    def _set_max_age(self, fallback: float | None) -> None:
-        """The one age limit: the spec's ``risk.max_age_s``, else ``fallback`` (GovernedLoop's)."""
+    def set_max_age(self, fallback: float | None) -> None:
+        """Set the one age limit of the risk input: the spec's ``risk.max_age_s`` if it sets one, else
+        ``fallback`` seconds (``None``: no limit, ``risk_age_s`` is not required).
+
+        The constructor's ``max_age_s`` goes through here; :class:`~ethimon.loop.GovernedLoop` calls it with
+        its ``max_risk_age_s`` when it feeds the monitor from a risk source and neither the spec nor the
+        monitor set a limit. With a limit, a cycle without ``risk_age_s`` or with an older estimate is a fault.
+
+        Raises:
+            ValueError: ``fallback`` is not a positive, finite number of seconds or ``None``.
+        """
         spec_age = self.plan.risk.max_age_s
         if spec_age is not None:
             self._max_age, why = float(spec_age), "the spec sets risk.max_age_s"

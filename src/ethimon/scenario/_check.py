@@ -253,13 +253,16 @@ class ScenarioSession:
     def estimator_for(self, spec: Any) -> Callable[[], Any]:
         """A zero-argument factory of the spec's risk estimator (loaded on first call, then shared)."""
         def factory():
-            from ..risk import estimator_kwargs, load_estimator_for  # lazy: torch only when a text is scored
+            # lazy: torch only when a text is scored
+            from ..risk import default_threads, estimator_kwargs, load_estimator_for
             kw = estimator_kwargs(spec)
             if self.model_dir:
                 kw["model_dir"] = self.model_dir
             key = tuple(sorted(kw.items()))
             if key not in self._estimators:
-                self._estimators[key] = load_estimator_for(spec, model_dir=kw["model_dir"])
+                # one task text per scenario: one thread (torch's default of 2 spins on busy cores)
+                self._estimators[key] = load_estimator_for(spec, model_dir=kw["model_dir"],
+                                                           num_threads=default_threads(1))
             return self._estimators[key]
         return factory
 

@@ -227,8 +227,8 @@ def run_scenario(sc: Scenario, *, spec: Spec | None = None,
                    if sc._source is not None else SpecError("scenario gives no risk input and no task text"))
         est = estimator
         if est is None:
-            from ..risk import load_estimator_for  # lazy: torch only when a text must be scored
-            est = load_estimator_for(spec)
+            from ..risk import default_threads, load_estimator_for  # lazy: torch only when a text must be scored
+            est = load_estimator_for(spec, num_threads=default_threads(1))  # one text: one thread
         elif callable(est) and not hasattr(est, "probs"):
             est = est()
         probs = tuple(float(x) for x in est.probs(sc.task))
