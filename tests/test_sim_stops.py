@@ -172,3 +172,14 @@ def test_lint_names_safe_pose_joints_outside_the_rated_range(tmp_path, capsys):
     err = capsys.readouterr().err
     line = next(i for i, ln in enumerate(bad.read_text().splitlines(), 1) if "joints_rad" in ln)
     assert f"bad.yaml:{line}:" in err and "joint 4 = 0.2" in err and "joint 7 = 3.1" in err
+
+
+def test_inputs_at_cannot_override_a_simulated_signal():
+    """issue 14: an inputs_at value replaced a simulated signal (a stuck value hid a person
+    at 0.04 m), contrary to the README; now it is refused at validation."""
+    from pydantic import ValidationError
+
+    from ethimon.sim import SimBlock
+    with pytest.raises(ValidationError, match="human_distance.*dropouts"):
+        SimBlock.model_validate({"inputs_at": [{"t_s": 1.0, "inputs": {"human_distance": 2.0}}]})
+    SimBlock.model_validate({"inputs_at": [{"t_s": 1.0, "inputs": {"p_unsafe": 0.9}}]})

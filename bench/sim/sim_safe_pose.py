@@ -1,7 +1,9 @@
 """Time to the safe pose when the override comes at any moment of a routine task.
 
 For each routine sim scenario, reruns it with the risk input jumping to
-p_unsafe = 0.95 at t = 0.25 s, 0.5 s, ... (one run per override time; before the jump the
+p_unsafe = 0.95 at t = 0.25 s, 0.5 s, ... (a fixed grid, not random moments: for
+distributions over random arm states and override times see sim_responses.py; one run
+per override time; before the jump the
 scenario's own risk input, else its task text scored by the risk model, as ``simulate`` feeds
 it: torch) and
 records the reaction (cycles), the time from the override to every joint

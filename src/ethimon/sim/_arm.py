@@ -97,6 +97,7 @@ class _HumanBody:
     body: int
     times: np.ndarray = field(default_factory=lambda: np.zeros(0))
     xy: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    drive: int | None = None  # the constraint that walks a compliant person
 
     def xy_at(self, t: float) -> np.ndarray:
         ts = self.times
@@ -233,7 +234,13 @@ class ArmSim:
         return body
 
     def add_human(self, h: Human) -> int:
-        """Add a person as a kinematic (massless, scripted) upright capsule."""
+        """Add a person as an upright capsule following its waypoints.
+
+        By default a kinematic (massless, scripted) body: nothing stops it. With
+        ``compliant: true`` a body of ``mass_kg`` dragged along its waypoints by a
+        constraint of at most ``max_push_n``: an arm (braked or moving) can stop it, it can
+        be pushed, and the contact force is limited by what the person can push with
+        (plus the impact)."""
         p, cid = self._p, self.cid
         # capsule "height" is the cylinder part; total height = cylinder + 2 r
         cyl = max(h.height_m - 2 * h.radius_m, 0.01)
@@ -241,19 +248,40 @@ class ArmSim:
                                      physicsClientId=cid)
         vis = p.createVisualShape(p.GEOM_CAPSULE, radius=h.radius_m, length=cyl,
                                   rgbaColor=(0.95, 0.75, 0.55, 1), physicsClientId=cid)
-        body = p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=col,
-                                 baseVisualShapeIndex=vis,
+        body = p.createMultiBody(baseMass=h.mass_kg if h.compliant else 0.0,
+                                 baseCollisionShapeIndex=col, baseVisualShapeIndex=vis,
                                  basePosition=(0, 0, h.height_m / 2), physicsClientId=cid)
         hb = _HumanBody(h, body, np.array([w.t_s for w in h.waypoints], dtype=float),
                         np.array([w.xy_m for w in h.waypoints], dtype=float))
+        if h.compliant:
+            # no floor friction (the constraint does the walking); upright, held by the drive
+            p.changeDynamics(body, -1, lateralFriction=0.0, physicsClientId=cid)
+            hb.drive = p.createConstraint(body, -1, -1, -1, p.JOINT_FIXED, (0, 0, 0), (0, 0, 0),
+                                          (0, 0, h.height_m / 2), physicsClientId=cid)
+            p.changeConstraint(hb.drive, maxForce=h.max_push_n, physicsClientId=cid)
         self.humans[h.name] = hb
         self._place_human(hb, 0.0)
         return body
 
     def _place_human(self, hb: _HumanBody, t: float) -> None:
+        """Put the person where the waypoints say at ``t`` (teleport, zero velocity)."""
         x, y = hb.xy_at(t)
-        self._p.resetBasePositionAndOrientation(hb.body, (float(x), float(y), hb.spec.height_m / 2),
-                                                (0, 0, 0, 1), physicsClientId=self.cid)
+        pos = (float(x), float(y), hb.spec.height_m / 2)
+        self._p.resetBasePositionAndOrientation(hb.body, pos, (0, 0, 0, 1), physicsClientId=self.cid)
+        if hb.drive is not None:
+            self._p.resetBaseVelocity(hb.body, (0, 0, 0), (0, 0, 0), physicsClientId=self.cid)
+            self._p.changeConstraint(hb.drive, jointChildPivot=pos, maxForce=hb.spec.max_push_n,
+                                     physicsClientId=self.cid)
+
+    def _move_human(self, hb: _HumanBody, t: float) -> None:
+        """Advance the person to time ``t``: a kinematic one is placed, a compliant one is
+        pulled towards its waypoint position (with at most ``max_push_n``)."""
+        if hb.drive is None:
+            self._place_human(hb, t)
+            return
+        x, y = hb.xy_at(t)
+        self._p.changeConstraint(hb.drive, jointChildPivot=(float(x), float(y), hb.spec.height_m / 2),
+                                 maxForce=hb.spec.max_push_n, physicsClientId=self.cid)
 
     def close(self) -> None:
         """Disconnect from PyBullet (idempotent)."""
@@ -536,7 +564,7 @@ class ArmSim:
         p, cid = self._p, self.cid
         self.time_s = (self.cycle + 1) * self.dt
         for hb in self.humans.values():
-            self._place_human(hb, self.time_s)
+            self._move_human(hb, self.time_s)
         peak = peak_a = ratio_a = 0.0
         n = self.substeps
         T = self.dt

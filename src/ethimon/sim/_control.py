@@ -13,7 +13,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from ._arm import ArmSim, Segment
-from ._limits import BRAKE_ENGAGE_S, RATED_DDDQ_MAX, RATED_DDQ_MAX, RATED_DQ_MAX
+from ._limits import (BRAKE_ENGAGE_S, RATED_DDDQ_MAX, RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX,
+                      RATED_Q_MIN)
 from ._model import SimError, HandOver, Pick, Place, Pour, Reach, SimBlock, Wait, Wipe
 
 __all__ = ["plan_task", "TaskController", "SafePoseController", "StopController",
@@ -34,6 +35,7 @@ _DQ = np.array(RATED_DQ_MAX)
 _HAZARD_KEEP_M = 1.5
 _DDQ = np.array(RATED_DDQ_MAX)
 _DDDQ = np.array(RATED_DDDQ_MAX)
+_Q_MIN, _Q_MAX = np.array(RATED_Q_MIN), np.array(RATED_Q_MAX)
 
 
 def _min_jerk(u: float) -> tuple[float, float]:
@@ -477,12 +479,12 @@ class SafePoseController:
         out.append(("fold", [q_start, fold, qs]))
         try:
             ee = sim.fk(q_start)
-            lift = sim.solve_ik((ee[0], ee[1], ee[2] + 0.2), seed=q_start)
+            lift = np.clip(sim.solve_ik((ee[0], ee[1], ee[2] + 0.2), seed=q_start), _Q_MIN, _Q_MAX)
             if np.linalg.norm(sim.fk(lift) - (ee + (0, 0, 0.2))) < 0.03:
                 out.append(("lift", [q_start, lift, qs]))
             away = sim.away_from_humans(ee, 0.25)
             if away is not None:
-                q_away = sim.solve_ik(away, seed=q_start)
+                q_away = np.clip(sim.solve_ik(away, seed=q_start), _Q_MIN, _Q_MAX)
                 if np.linalg.norm(sim.fk(q_away) - away) < 0.03:
                     out.append(("away", [q_start, q_away, qs]))
         except Exception:  # noqa: BLE001 - IK trouble only removes candidates

@@ -156,13 +156,20 @@ class Human(_Model):
     """A person as an upright capsule on the floor, moving between waypoints.
 
     Between waypoints the position is interpolated linearly; before the first
-    and after the last the person stands still.
+    and after the last the person stands still. Kinematic by default (nothing stops
+    the person); ``compliant: true`` makes a body that an arm can stop and push.
     """
 
     name: str
     radius_m: float = Field(0.2, gt=0.0, le=1.0)
     height_m: float = Field(1.7, gt=0.0, le=2.5)
     waypoints: tuple[Waypoint, ...] = Field(min_length=1)
+    compliant: bool = Field(False, description="a body that can be stopped and pushed (mass_kg, "
+                            "walking with at most max_push_n) instead of a kinematic capsule")
+    mass_kg: float = Field(40.0, gt=0.0, le=200.0, description="compliant: body mass (ISO/TS 15066 "
+                           "table A.3 gives 40 kg as the effective mass of the chest/abdomen)")
+    max_push_n: float = Field(150.0, gt=0.0, le=2000.0, description="compliant: largest force the "
+                              "walking drive applies (what the person pushes with)")
 
     @field_validator("waypoints")
     @classmethod
@@ -298,6 +305,12 @@ class SimBlock(_Model):
         if self.start_holding is not None and self.start_holding not in objs:
             raise ValueError(f"start_holding names unknown object {self.start_holding!r} "
                              f"(objects: {sorted(objs)})")
+        for i, ch in enumerate(self.inputs_at):
+            sim_set = sorted(set(ch.inputs) & set(SIGNAL_NAMES))
+            if sim_set:  # the simulation measures these; a scenario value would hide the physics
+                raise ValueError(f"inputs_at[{i}] sets {sim_set}, which the simulation measures "
+                                 "(a scenario value would hide what the physics says, e.g. a person "
+                                 "at 0.04 m); use dropouts: for sensor faults")
         humans = {h.name for h in self.humans}
         for i, prim in enumerate(self.task):
             if isinstance(prim, Pick) and prim.object not in objs:
