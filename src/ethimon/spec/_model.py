@@ -331,6 +331,10 @@ class Spec(BaseModel):
                 raise _LocError("obligation id 'risk' is reserved: it names the built-in rule R_e ≥ τ in "
                                 "decisions, scenarios and the audit log", ("obligations", i, "id"),
                                 hint="pick another id, e.g. 'risk_limit'")
+            if ob.id == "fault":
+                raise _LocError("obligation id 'fault' is reserved: it names the fault latch in "
+                                "Monitor.latched_rules and acknowledge()", ("obligations", i, "id"),
+                                hint="pick another id, e.g. 'fault_check'")
             if ob.id in seen:
                 raise _LocError(f"duplicate obligation id {ob.id!r} (first is obligations[{seen[ob.id]}])",
                                 ("obligations", i, "id"))
