@@ -142,6 +142,30 @@ def test_signal_faults_fail_closed_to_the_safe_action(signals, kind, words):
     assert any(words in f for f in info["decision"]["faults"]), info["decision"]["faults"]
 
 
+def test_a_fault_holds_the_shield_until_acknowledged_or_reset():
+    calls = []
+
+    def glitch_once(obs, info, action):
+        calls.append(1)
+        if len(calls) == 1:
+            raise RuntimeError("glitch")
+        return predicted(obs, info, action)
+
+    env = wall(signals=glitch_once)
+    env.reset(seed=0)
+    for _ in range(3):  # the fault latch is manual by default: good inputs alone do not release it
+        _, _, _, _, info = env.step(np.array([0.0]))
+        assert info["shield"]["replaced"] and info["cost"] == 1.0
+    assert info["decision"]["latched"] and not info["decision"]["faults"]
+    assert env.monitor.acknowledge().released
+    _, _, _, _, info = env.step(np.array([1.0]))
+    assert not info["shield"]["replaced"] and env.unwrapped.actions[-1] == 1.0
+    env.step(np.array([math.nan]))  # NaN: a fault again, latched again ...
+    env.reset(seed=0)               # ... and a new episode starts unlatched
+    _, _, _, _, info = env.step(np.array([1.0]))
+    assert info["cost"] == 0.0 and not info["shield"]["replaced"]
+
+
 def test_a_safe_action_that_fails_ends_the_episode():
     env = wall(safe_action=lambda obs, decision: np.array([5.0]))  # outside the action space
     env.reset(seed=0)
