@@ -321,3 +321,16 @@ def test_model_agrees_is_refuted_when_the_monitor_releases_a_manual_rule(monkeyp
     rep = verify_spec(s)  # hold 1: the model's short sampled traces (2 cycles) reach a release
     f = rep.finding("model.agrees")
     assert f.status == "refuted" and f.counterexample is not None, f
+
+
+def test_reload_refuses_a_release_made_easier():
+    from ethimon.loop._weakenings import weakenings
+    old = spec("on_fault: stop_1\n")
+    new = spec("on_fault: {response: stop_1, release: auto}\n", obligations=OBS.replace(
+        "response: stop_0}", "response: stop_0, release: auto}").replace(
+        "response: stop_2}", "response: stop_2, release: {hold_cycles: 1}}"))
+    weak, _ = weakenings(old, new)
+    assert "obligation contact: release manual -> auto (its latch now releases by itself)" in weak
+    assert "obligation keep_away: release hold_cycles lowered 3 -> 1" in weak
+    assert "on_fault: release manual -> auto (its latch now releases by itself)" in weak
+    assert weakenings(new, old)[0] == []

@@ -25,6 +25,15 @@ def _same_text(a: str | None, b: str | None) -> bool:
     return " ".join(a.split()) == " ".join(b.split())
 
 
+def _release_weaker(what: str, old: tuple[str, int], new: tuple[str, int]) -> list[str]:
+    """A rule's release (mode, hold_cycles; defaults filled in) made easier."""
+    if old[0] == "manual" and new[0] == "auto":
+        return [f"{what}: release manual -> auto (its latch now releases by itself)"]
+    if new[1] < old[1]:
+        return [f"{what}: release hold_cycles lowered {old[1]} -> {new[1]}"]
+    return []
+
+
 def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> tuple[list[str], list[str]]:
     """How ``new`` weakens monitoring compared with ``old``, judged field by field.
 
@@ -33,7 +42,8 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     ``within_cycles`` added or raised; τ raised; a risk weight (α, β, γ) lowered
     or the variance changed from sample to population (R_e smaller); the unsafe
     class or the number of classes changed; ``risk.response`` or ``on_fault``
-    less severe; release mode manual → auto; the release bound τ − δ raised
+    less severe; release mode manual → auto (the risk rule's, an obligation's
+    or the fault latch's, defaults filled in) or a rule's hold lowered; the release bound τ − δ raised
     (hysteresis shrunk relative to τ) or ``hold_cycles`` lowered; the effective
     estimate age limit removed or raised (``risk.max_age_s``, else the loop's
     ``loop_max_age_s``); a signal's range widened or removed; the safe pose's
@@ -69,6 +79,7 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
         ow, nw = o.within_cycles or 0, n.within_cycles or 0
         if nw > ow:
             weak.append(f"obligation {oid}: within_cycles {ow} -> {nw} (more cycles to respond)")
+        weak += _release_weaker(f"obligation {oid}", old.obligation_release(o), new.obligation_release(n))
     ro, rn = old.risk, new.risk
     if rn.threshold > ro.threshold:
         weak.append(f"risk.threshold raised {ro.threshold!r} -> {rn.threshold!r} (overrides fire at a higher R_e)")
@@ -84,6 +95,7 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
         weak.append(f"risk.response {ro.response} -> {rn.response} (less severe)")
     if _sev(new.on_fault) < _sev(old.on_fault):
         weak.append(f"on_fault {old.on_fault} -> {new.on_fault} (less severe)")
+    weak += _release_weaker("on_fault", old.fault_release(), new.fault_release())
     if ro.release.mode == "manual" and rn.release.mode == "auto":
         weak.append("release mode manual -> auto (a latched override now releases by itself)")
     elif rn.release.mode == "auto":
