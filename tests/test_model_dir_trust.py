@@ -431,7 +431,7 @@ def test_cli_reports_bad_manifest_as_exit_2(tmp_path, base, capsys, key, value):
 
 
 def test_average_refuses_a_bad_manifest_cleanly(tmp_path, base):
-    from ethimon.risk._soup import average_runs
+    from ethimon.risk._average import average_runs
     a = _adapter_dir(tmp_path / "a", base, lora={"r": 0, "alpha": 8})
     b = _adapter_dir(tmp_path / "b", base, lora={"r": 4, "alpha": 8})
     with pytest.raises(ModelError, match=r"ethimon_model\.json.*'lora'"):

@@ -573,7 +573,7 @@ def _two_runs(tiny, root):
 
 def test_average_is_exactly_the_weight_average(tiny, tmp_path):
     from ethimon.risk import _backend as B
-    from ethimon.risk._soup import average_runs
+    from ethimon.risk._average import average_runs
     a, b = _two_runs(tiny, tmp_path)
     m = average_runs([a, b], tmp_path / "avg", weights=[1.0, 3.0], temperature=1.5)
     assert m["lora"]["r"] == 6 and m["temperature"] == 1.5
@@ -594,7 +594,7 @@ def test_average_is_exactly_the_weight_average(tiny, tmp_path):
 
 
 def test_average_of_a_run_with_itself_is_that_run(tiny, tmp_path):
-    from ethimon.risk._soup import average_runs
+    from ethimon.risk._average import average_runs
     T = json.loads((tiny[1] / "ethimon_model.json").read_text())["temperature"]
     average_runs([tiny[1], tiny[1], tiny[1]], tmp_path / "self", temperature=T)
     one, avg = (load_estimator(d, cache_size=0, jit=False) for d in (tiny[1], tmp_path / "self"))
@@ -604,7 +604,7 @@ def test_average_of_a_run_with_itself_is_that_run(tiny, tmp_path):
 
 def test_average_rank_compression(tiny, tmp_path):
     from ethimon.risk import _backend as B
-    from ethimon.risk._soup import average_runs
+    from ethimon.risk._average import average_runs
     a, b = _two_runs(tiny, tmp_path)
     average_runs([a, b], tmp_path / "e", temperature=1.0)
     exact = B.load_model(tmp_path / "e").module.state_dict()
@@ -630,7 +630,7 @@ def test_average_rank_compression(tiny, tmp_path):
 
 
 def test_average_fits_temperature_on_calibration_rows(tiny, tmp_path):
-    from ethimon.risk._soup import average_runs
+    from ethimon.risk._average import average_runs
     a, b = _two_runs(tiny, tmp_path)
     m = average_runs([a, b], tmp_path / "avg", calibrate=(TEXTS, [1, 0, 1, 0, 1, 0]))
     assert m["temperature"] > 0 and m["temperature"] != 1.0
@@ -638,7 +638,7 @@ def test_average_fits_temperature_on_calibration_rows(tiny, tmp_path):
 
 
 def test_average_refuses_what_cannot_be_averaged(tiny, tmp_path):
-    from ethimon.risk._soup import average_runs
+    from ethimon.risk._average import average_runs
     from ethimon.risk._train import train_lora
     a, _ = _two_runs(tiny, tmp_path)
     with pytest.raises(ModelError, match="at least two"):

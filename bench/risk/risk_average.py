@@ -56,7 +56,7 @@ def main() -> None:
     a = ap.parse_args()
     import torch
     torch.set_num_threads(2)
-    from ethimon.risk._soup import average_runs
+    from ethimon.risk._average import average_runs
 
     _, e_va, _ = D.ethics_splits()
     _, s_va, _ = D.sab_splits()

@@ -7,18 +7,13 @@ Thin: every handler parses, calls the library and prints. Exit codes: 0 ok,
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 
-from ..errors import DependencyNotInstalled, EthimonError, ModelError, SpecError
+from ..errors import EthimonError, ModelError, SpecError
+from ._common import emit_json, err
 
 __all__ = ["add_risk_parsers", "cmd_risk", "cmd_train", "cmd_average", "cmd_evaluate"]
-
-def _err(msg: str) -> int:
-    print(f"ethimon: error: {msg}", file=sys.stderr)
-    return 2
-
 
 def risk_config(spec_path: str | None) -> dict:
     """α, β, γ, variance, τ (and the ``spec`` itself) from a spec file.
@@ -112,7 +107,8 @@ def add_risk_parsers(subparsers) -> None:
     e.add_argument("--model", help="model directory (default: the shipped model)")
     e.add_argument("--data", required=True, metavar="CSV", help="CSV with label and input (or text) columns; with pair and/or type columns, minimal-pair and per-type figures too")
     e.add_argument("--spec", help="spec file for alpha, beta, gamma, variance, tau")
-    e.add_argument("--json", metavar="PATH", help="write every figure to this JSON file")
+    e.add_argument("--json", metavar="PATH", help="write every figure to this JSON file ('-': stdout, "
+                   "the summary then goes to stderr)")
     e.add_argument("--plots", metavar="DIR", help="write confusion matrix and R_e histogram PNGs here")
     e.add_argument("--calibrate-on", metavar="CSV",
                    help="fit the temperature on this validation CSV (label,input; never the "
@@ -166,19 +162,19 @@ def _load(model: str | None, precision: str | None, max_length: int | None = Non
 
 def cmd_risk(args: argparse.Namespace) -> int:
     if not args.text.strip():
-        return _err("empty text")
+        return err("empty text")
     try:
         cfg = risk_config(args.spec)
         est = _load(args.model, args.precision, spec=cfg["spec"], threads=_threads(args, 1))
         r = est.estimate(args.text, cfg["alpha"], cfg["beta"], cfg["gamma"], cfg["variance"])
     except (EthimonError, ValueError, OSError) as exc:
-        return _err(str(exc))
+        return err(str(exc))
     flagged = r.risk >= cfg["threshold"]
     if args.json:
-        print(json.dumps({"text": args.text, "p": list(r.p), "p_unsafe": r.p_unsafe, "risk": r.risk,
-                          "tau": cfg["threshold"], "flagged": flagged, "model_id": est.model_id,
-                          "temperature": est.temperature,
-                          "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")}}))
+        emit_json("-", {"text": args.text, "p": list(r.p), "p_unsafe": r.p_unsafe, "risk": r.risk,
+                        "tau": cfg["threshold"], "flagged": flagged, "model_id": est.model_id,
+                        "temperature": est.temperature,
+                        "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")}})
     else:
         verdict = "UNSAFE (R_e >= tau: override)" if flagged else "ok (R_e < tau)"
         print(f"p = ({r.p[0]:.4f}, {r.p[1]:.4f})  p_unsafe = {r.p_unsafe:.4f}  "
@@ -198,7 +194,7 @@ def cmd_train(args: argparse.Namespace) -> int:
         s = train_recipe(recipe, args.out, num_threads=_threads(args, args.batch_size),
                          progress=_isatty(sys.stdout))
     except (EthimonError, ValueError, OSError) as exc:
-        return _err(str(exc))
+        return err(str(exc))
     print(f"best epoch {s['best_epoch']} (val loss {s['best_val_loss']:.4f}), "
           f"temperature {s['temperature']:.3f}; model written to {args.out}")
     return 0
@@ -213,14 +209,14 @@ def cmd_average(args: argparse.Namespace) -> int:
             from ..risk._data import load_labelled_csv
             rows = load_labelled_csv(args.calibrate_on)
             cal = (rows.texts, rows.labels)
-        from ..risk._soup import average_runs
+        from ..risk._average import average_runs
         m = average_runs(args.runs, args.out, weights=args.weights, temperature=args.temperature,
                          calibrate=cal, max_length=args.max_length, rank=args.rank)
     except (EthimonError, ValueError, OSError) as exc:
-        return _err(str(exc))
+        return err(str(exc))
     src = "fitted on " + args.calibrate_on if cal else "given" if args.temperature else "none fitted: 1.0"
-    err = f", SVD relative error {m['svd_rel_error']:.2e}" if "svd_rel_error" in m else ""
-    print(f"averaged {len(args.runs)} runs (LoRA rank {m['lora']['r']}{err}), temperature "
+    svd = f", SVD relative error {m['svd_rel_error']:.2e}" if "svd_rel_error" in m else ""
+    print(f"averaged {len(args.runs)} runs (LoRA rank {m['lora']['r']}{svd}), temperature "
           f"{m['temperature']:.3f} ({src}); model written to {args.out}")
     return 0
 
@@ -268,31 +264,33 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
             m["plots"] = [plot_confusion(m["confusion"], d / "confusion_matrix.png",
                                          threshold=m["confusion_threshold"]),
                           plot_risk_hist(risks, rows.labels, cfg["threshold"], d / "risk_distribution.png")]
-        if args.json:
+        if args.json and args.json != "-":
             Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-            Path(args.json).write_text(json.dumps(m, indent=1) + "\n", encoding="utf-8")
     except (EthimonError, ValueError, OSError) as exc:
-        return _err(str(exc))
+        return err(str(exc))
+    if args.json and not emit_json(args.json, m, "metrics JSON"):
+        return 2
+    out = sys.stderr if args.json == "-" else sys.stdout  # stdout holds nothing but the JSON it is the target of
     c = m["confusion"]
     print(f"{m['n']} rows  accuracy {m['accuracy']:.4f}  precision {m['precision']:.4f}  "
-          f"recall {m['recall']:.4f}  F1 {m['f1']:.4f}  ROC-AUC {m['roc_auc']:.4f}")
+          f"recall {m['recall']:.4f}  F1 {m['f1']:.4f}  ROC-AUC {m['roc_auc']:.4f}", file=out)
     print(f"confusion TN {c['tn']} FP {c['fp']} FN {c['fn']} TP {c['tp']}  "
           f"ECE {m['ece_before_temperature']:.4f} -> {m['ece_after_temperature']:.4f} (T={m['temperature']:.3f}, "
-          f"{m['temperature_source']})")
+          f"{m['temperature_source']})", file=out)
     f = m["flags"]
     print(f"R_e >= {f['tau']:g}: unsafe flagged {f['flag_rate_unsafe']:.4f}, "
-          f"false alarms {f['false_alarm_rate']:.4f}")
+          f"false alarms {f['false_alarm_rate']:.4f}", file=out)
     for g in ("short", "long"):
         if g in m:
-            print(f"  {g}: {m[g]['n']} rows accuracy {m[g]['accuracy']:.4f}")
+            print(f"  {g}: {m[g]['n']} rows accuracy {m[g]['accuracy']:.4f}", file=out)
     if "pairs" in m:
         pm = m["pairs"]
         print(f"minimal pairs: {pm['pairs']}  unsafe member ranked higher {pm['ranked']:.4f}  "
               f"both right at tau {pm['both_right_at_tau']:.4f}  at p=0.5 {pm['both_right_at_0.5']:.4f}"
-              + (f"  ({pm['malformed']} malformed pair ids skipped)" if pm["malformed"] else ""))
+              + (f"  ({pm['malformed']} malformed pair ids skipped)" if pm["malformed"] else ""), file=out)
     for name, t in m.get("by_type", {}).items():
         print(f"  {name:<26} {t['n']:>4} rows ({t['unsafe']} unsafe)  accuracy {t['accuracy']:.3f}  "
-              f"flagged: unsafe {t['flagged_unsafe']:.3f} safe {t['flagged_safe']:.3f}")
+              f"flagged: unsafe {t['flagged_unsafe']:.3f} safe {t['flagged_safe']:.3f}", file=out)
     return 0
 
 

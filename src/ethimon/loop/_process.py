@@ -14,7 +14,7 @@ __all__ = ["ProcessEstimator"]
 
 
 class ProcessEstimator:
-    """A :class:`~ethimon.loop.ProbEstimator` that runs the real estimator in a child process.
+    """A :class:`~ethimon.risk.ProbsEstimator` that runs the real estimator in a child process.
 
     A thread stuck inside an estimator cannot be killed; a process can. Each
     :meth:`probs` sends the text to the child (JSON lines over a pipe, no

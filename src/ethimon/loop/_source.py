@@ -1,6 +1,6 @@
 """The risk side of the loop: an estimator run in its own thread, read without blocking.
 
-:class:`AsyncRiskSource` runs any :class:`ProbEstimator` at its own rate and publishes
+:class:`AsyncRiskSource` runs any :class:`~ethimon.risk.ProbsEstimator` at its own rate and publishes
 ``(probs, time)`` snapshots; readers (the control loop) never wait for it.
 """
 
@@ -9,17 +9,12 @@ from __future__ import annotations
 import math
 import threading
 import time
-from collections.abc import Callable, Sequence
-from typing import Any, NamedTuple, Protocol, runtime_checkable
+from collections.abc import Callable
+from typing import Any, NamedTuple
 
-__all__ = ["AsyncRiskSource", "ProbEstimator", "RiskReading"]
+from ..risk import ProbsEstimator
 
-
-@runtime_checkable
-class ProbEstimator(Protocol):
-    """Anything with ``probs(text) -> (p_0, ..., p_{K-1})``, e.g. :func:`ethimon.risk.load_estimator`."""
-
-    def probs(self, text: str) -> Sequence[float]: ...
+__all__ = ["AsyncRiskSource", "RiskReading"]
 
 
 class RiskReading(NamedTuple):
@@ -51,7 +46,7 @@ class AsyncRiskSource:
     """Runs a risk estimator in its own thread at its own rate; readers never block.
 
     Args:
-        estimator: an object with ``probs(text)`` (see :class:`ProbEstimator`).
+        estimator: an object with ``probs(text)`` (see :class:`~ethimon.risk.ProbsEstimator`).
         text: the task text to score (``None``: no task yet; readings then carry a fault).
         rate_hz: estimates per second (an estimate that takes longer simply delays the next).
         hang_timeout_s: an inference running longer than this is reported as hung
@@ -81,7 +76,7 @@ class AsyncRiskSource:
         'no risk estimate yet for the current task text'
     """
 
-    def __init__(self, estimator: ProbEstimator, *, text: str | None = None, rate_hz: float = 20.0,
+    def __init__(self, estimator: ProbsEstimator, *, text: str | None = None, rate_hz: float = 20.0,
                  hang_timeout_s: float | None = None, clock: Callable[[], float] = time.monotonic,
                  start: bool = True) -> None:
         if not callable(getattr(estimator, "probs", None)):
@@ -119,7 +114,7 @@ class AsyncRiskSource:
         return self._text
 
     @property
-    def estimator(self) -> ProbEstimator:
+    def estimator(self) -> ProbsEstimator:
         """The estimator being run."""
         return self._est
 
@@ -194,7 +189,7 @@ class AsyncRiskSource:
         if t is not None and t is not threading.current_thread():
             t.join(timeout)
 
-    def restart(self, estimator: ProbEstimator | None = None) -> None:
+    def restart(self, estimator: ProbsEstimator | None = None) -> None:
         """Abandon the current worker (hung or not) and start a fresh one.
 
         Readers are never blocked; until the new worker publishes, readings

@@ -10,7 +10,7 @@ where the monitor would raise), and where evaluating it raises the way the
 compiled closures evaluate it (``and``/``or``/``implies`` short-circuit, a
 division by zero or the square root of a negative number raises), ``None`` if
 it cannot raise. The temporal operators follow the compiled state machines
-(:mod:`ethimon.compiler._codegen`), written as scans that are linear in the
+(:mod:`ethimon.compiler._closures`), written as scans that are linear in the
 trace and independent of the window length:
 
 * ``prev``: a shift; the initial value at each segment start;
@@ -321,7 +321,7 @@ class Evaluator:
 
     def _bounded_margin(self, a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
         """``M(t) = min(max(M(t−1), b(t)), max(a(t−n), max b(t−n..t)))`` per segment, +inf for the first
-        ``n`` cycles, NaN from the first due window holding a NaN (as ``_codegen._bounded_margin``).
+        ``n`` cycles, NaN from the first due window holding a NaN (as ``_closures._bounded_margin``).
 
         ``x ↦ min(max(x, lo), hi)`` with ``lo <= hi`` is a clamp, and clamps compose into clamps,
         so the recurrence is a prefix scan (:func:`clamp_scan`); a segment's first cycle is the

@@ -6,10 +6,10 @@ torch is imported only when a model is loaded, so ``import ethimon.risk`` stays 
 
 from __future__ import annotations
 
-from ._estimator import (DEFAULT_TAU, RiskEstimate, RiskEstimator, RiskInferenceError, default_model_dir,
+from ._estimator import (DEFAULT_TAU, ProbsEstimator, RiskEstimate, RiskEstimator, RiskInferenceError, default_model_dir,
                          default_threads, estimator_kwargs, load_estimator, load_estimator_for)
 from ._formula import VARIANCE_MODES, risk_bounds, risk_from_p_unsafe, risk_from_probs
 
-__all__ = ["DEFAULT_TAU", "VARIANCE_MODES", "RiskEstimate", "RiskEstimator", "RiskInferenceError",
+__all__ = ["DEFAULT_TAU", "VARIANCE_MODES", "ProbsEstimator", "RiskEstimate", "RiskEstimator", "RiskInferenceError",
            "default_model_dir", "default_threads", "estimator_kwargs", "load_estimator", "load_estimator_for", "risk_bounds", "risk_from_p_unsafe",
            "risk_from_probs"]

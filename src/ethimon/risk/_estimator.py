@@ -15,15 +15,25 @@ import threading
 import time
 import unicodedata
 from collections import OrderedDict
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol, runtime_checkable
 
 from ..errors import RiskInferenceError
 from ._formula import VARIANCE_MODES, risk_from_probs
 
-__all__ = ["DEFAULT_TAU", "RiskEstimate", "RiskEstimator", "RiskInferenceError", "load_estimator",
+__all__ = ["DEFAULT_TAU", "ProbsEstimator", "RiskEstimate", "RiskEstimator", "RiskInferenceError", "load_estimator",
            "default_model_dir", "default_threads", "normalize_text"]
+
+
+@runtime_checkable
+class ProbsEstimator(Protocol):
+    """Anything with ``probs(text) -> (p_0, ..., p_{K-1})``: a :class:`RiskEstimator`
+    (:func:`load_estimator`), a ``ProcessEstimator``, or a test's fixed source. What scenarios,
+    replay and :class:`~ethimon.loop.AsyncRiskSource` score task texts with."""
+
+    def probs(self, text: str) -> Sequence[float]: ...
 
 QUANTIZE_MODES = (None, "fp32", "int8")
 

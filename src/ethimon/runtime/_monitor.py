@@ -15,7 +15,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..compiler._check import Plan
-from ..compiler._codegen import build_machine
+from ..compiler._closures import build_machine
 from ..compiler._plans import plan_of, stateless_slots
 from ..spec._model import Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_probs, risk_range

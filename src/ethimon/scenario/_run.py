@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any
 
 from .._api import load_spec
 from .._files import file_kind
@@ -17,17 +17,14 @@ from ..spec._model import Response, Spec
 from ..spec._yaml import parse_yaml_text, read_yaml
 from ._model import Scenario
 
+if TYPE_CHECKING:  # pragma: no cover
+    from ..risk import ProbsEstimator
+
 __all__ = ["load_scenario", "load_scenario_text", "run_scenario", "ScenarioResult", "find_scenarios",
            "find_yaml_files", "scan_yaml_files", "require_regular_file", "check_input_names", "BUILTIN_INPUTS",
-           "ProbsEstimator", "build_inputs"]
+           "build_inputs"]
 
 RISK_KEYS = ("risk", "p_unsafe", "p")
-
-
-class ProbsEstimator(Protocol):
-    """Anything that turns a task text into class probabilities (p_safe, p_unsafe)."""
-
-    def probs(self, text: str) -> tuple[float, ...]: ...
 
 
 def load_scenario(path: str | os.PathLike) -> Scenario:
