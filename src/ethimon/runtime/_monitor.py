@@ -64,6 +64,12 @@ class Monitor:
     ``risk_age_s`` (seconds since the estimate) is required too, and an older
     estimate is a ``"stale"`` fault. Keys the spec does not declare are ignored.
 
+    Every rule (each obligation, the risk rule, the fault rule) has its own latch:
+    an override lasts while any is set, with the most severe latched response. An
+    ``auto`` latch releases once its condition has held ``hold_cycles`` cycles in a
+    row; a ``manual`` one (default: faults and stop_0/stop_1 rules) only through
+    :meth:`acknowledge`, :meth:`release` or :meth:`reset`.
+
     Args:
         max_age_s: oldest usable risk estimate in seconds when the spec sets no
             ``risk.max_age_s`` (the spec's value wins when it has one); ``None``:

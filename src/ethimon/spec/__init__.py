@@ -3,7 +3,8 @@
 from ..errors import ExprSyntaxError
 from ._expr import parse_expr
 from ._load import parse_spec_file, parse_spec_text
-from ._model import Constant, Obligation, Release, Response, RiskConfig, SafePose, Signal, Spec
+from ._model import Constant, Obligation, OnFault, Release, Response, RiskConfig, RuleRelease, SafePose, Signal, Spec
 
-__all__ = ["Constant", "ExprSyntaxError", "Obligation", "Release", "Response", "RiskConfig", "SafePose", "Signal", "Spec",
+__all__ = ["Constant", "ExprSyntaxError", "Obligation", "OnFault", "Release", "Response", "RiskConfig", "RuleRelease",
+           "SafePose", "Signal", "Spec",
            "parse_expr", "parse_spec_file", "parse_spec_text"]
