@@ -37,14 +37,14 @@ import numpy as np
 from ..runtime._decision import Decision
 from ..runtime._monitor import Monitor
 from ..spec._expr import TEMPORAL, Call, Name, walk
-from ..spec._model import Response, Spec
+from ..spec._model import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import release_bound
 from ._columns import Inputs, read_inputs, row
 from ._eval import Evaluator, last_index
 
 __all__ = ["check_trace", "OfflineResult", "iter_rows"]
 
-_RESPONSES = (Response.NONE, Response.SAFE_POSE, Response.STOP_2, Response.STOP_1, Response.STOP_0)
+_RESPONSES = SEVERITY_ORDER  # severity -> Response
 #: rounds of "an expression raised: evaluate the rest of the segment again" before the rest is stepped
 _MAX_PASSES = 8
 

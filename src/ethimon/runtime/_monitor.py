@@ -17,7 +17,7 @@ from typing import Any
 from ..compiler._check import Plan
 from ..compiler._closures import build_machine
 from ..compiler._plans import plan_of, stateless_slots
-from ..spec._model import Response, Spec
+from ..spec._model import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_probs, risk_range
 from ._decision import Acknowledgement, Decision
 from ._fault import Fault
@@ -25,7 +25,7 @@ from ._inputs import as_bool, as_number, as_probs
 
 __all__ = ["Monitor"]
 
-_RESPONSES = (Response.NONE, Response.SAFE_POSE, Response.STOP_2, Response.STOP_1, Response.STOP_0)
+_RESPONSES = SEVERITY_ORDER  # severity -> Response
 _EMPTY: tuple = ()
 _EXTERNAL = Fault("external", "external fault")
 _INTERNAL = Fault("internal", "internal error")

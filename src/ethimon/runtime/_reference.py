@@ -64,7 +64,7 @@ from typing import Any
 from ..compiler._check import RISK_NAME, Plan
 from ..compiler._plans import plan_of
 from ..spec._expr import TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
-from ..spec._model import Response, Spec
+from ..spec._model import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
 from ._decision import Decision
 from ._fault import Fault
@@ -72,7 +72,7 @@ from ._inputs import as_bool, as_number, as_probs
 
 __all__ = ["ReferenceMonitor"]
 
-_BY_SEV = {r.severity: r for r in Response}
+_BY_SEV = SEVERITY_ORDER  # severity -> Response
 # the reference tells that a cycle faulted, not the compiled monitor's wording
 _BAD_INPUT = (Fault("invalid", "fault: a bad or missing input (reference interpreter)"),)
 _EVAL_ERROR = (Fault("internal", "fault: an evaluation error (reference interpreter)"),)

@@ -15,13 +15,15 @@ import numpy as np
 from ._arm import ArmSim, Segment
 from ._limits import (BRAKE_ENGAGE_S, RATED_DDDQ_MAX, RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX,
                       RATED_Q_MIN)
+from ..spec import SEVERITY_ORDER
 from ._model import SimError, HandOver, Pick, Place, Pour, Reach, SimBlock, Wait, Wipe
 
 __all__ = ["plan_task", "TaskController", "SafePoseController", "StopController",
            "SEVERITY"]
 
-#: Responses ordered by severity; the arm never de-escalates while overridden.
-SEVERITY = {"none": 0, "safe_pose": 1, "stop_2": 2, "stop_1": 3, "stop_0": 4}
+#: Response name -> severity (the spec's one order, ``ethimon.spec.SEVERITY_ORDER``); the arm never
+#: de-escalates while overridden.
+SEVERITY = {r.value: r.severity for r in SEVERITY_ORDER}
 
 _MIN_SEGMENT_S = 0.25
 _IK_TOLERANCE_M = 0.02

@@ -53,15 +53,20 @@ class Response(str, enum.Enum):
 
     @property
     def severity(self) -> int:
+        """0 ``none`` .. 4 ``stop_0``: the index in :data:`SEVERITY_ORDER`."""
         return _SEVERITY[self]
 
     def __str__(self) -> str:
         return self.value
 
 
-_SEVERITY = {Response.NONE: 0, Response.SAFE_POSE: 1, Response.STOP_2: 2, Response.STOP_1: 3,
-             Response.STOP_0: 4}
-ACTIVE_RESPONSES = Literal["safe_pose", "stop_2", "stop_1", "stop_0"]
+#: Every response, least severe first (their declaration order above): the one severity order.
+#: ``Response.severity`` is the index here and ``SEVERITY_ORDER[sev]`` the response of a severity;
+#: the monitor, the reference interpreter, the offline checker and the simulated arm all read it.
+SEVERITY_ORDER: tuple[Response, ...] = tuple(Response)
+_SEVERITY = {r: i for i, r in enumerate(SEVERITY_ORDER)}
+_RESPONSE_NAMES = tuple(r.value for r in SEVERITY_ORDER[1:])  # the responses of an override
+ACTIVE_RESPONSES = Literal[_RESPONSE_NAMES]  # type: ignore[valid-type]
 
 _CFG = ConfigDict(extra="forbid", frozen=True, populate_by_name=True, strict=True)
 
@@ -350,9 +355,6 @@ class Spec(BaseModel):
             if name in self.signals:
                 raise _LocError(f"{name!r} is declared both as a signal and as a constant", ("constants", name))
         return self
-
-
-_RESPONSE_NAMES = ("safe_pose", "stop_2", "stop_1", "stop_0")
 
 
 def _resolved(rel: RuleRelease | None, default_mode: str, default_hold: int) -> tuple[str, int]:
