@@ -3,7 +3,7 @@
 The floors, lowest first (a package may import only what its row lists; its
 own modules are always allowed):
 
-    errors, _files          shared error types, safe file opening
+    errors, _files, _robot  shared error types, safe file opening, robot facts (the Panda's home pose)
     spec                    YAML → validated Spec, the expression parser
     compiler                names, types, units → Plan → closures; the R_e formula
     _api                    load_spec = spec + compiler in one call
@@ -28,7 +28,7 @@ from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "ethimon"
 
-_LOW = {"errors", "_files"}
+_LOW = {"errors", "_files", "_robot"}
 _SPEC = _LOW | {"spec"}
 _COMPILED = _SPEC | {"compiler"}
 _BESIDE = _COMPILED | {"_api", "runtime"}
@@ -37,6 +37,7 @@ _BESIDE = _COMPILED | {"_api", "runtime"}
 ALLOWED: dict[str, set[str]] = {
     "errors": set(),
     "_files": {"errors"},
+    "_robot": set(),
     "spec": _LOW,
     "compiler": _SPEC,
     "_api": _COMPILED,

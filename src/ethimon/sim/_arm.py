@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import DependencyNotInstalled
+from .._robot import PANDA_HOME_JOINTS_RAD
 from ._limits import (BRAKE_DECEL_RAD_S2, BRAKE_ENGAGE_S, BRAKE_TORQUE_N_M, RATED_DDDQ_MAX,
                       RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX, RATED_Q_MIN)
 from ._model import PHYSICS_HZ, Human, SimBlock, SimObject
@@ -29,8 +30,8 @@ FINGER_JOINTS = (9, 10)
 HAND_LINK = 8
 #: The grasp-target frame between the fingertips.
 EE_LINK = 11
-#: A comfortable start pose (the Panda "ready" pose).
-HOME_JOINTS_RAD = (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785)
+#: A comfortable start pose (the Panda "ready" pose; the spec's default safe pose too).
+HOME_JOINTS_RAD = PANDA_HOME_JOINTS_RAD
 ARM_MAX_FORCE_N_M = (87.0, 87.0, 87.0, 87.0, 12.0, 12.0, 12.0)
 _RATED_DQ = np.array(RATED_DQ_MAX)
 _RATED_DDQ = np.array(RATED_DDQ_MAX)

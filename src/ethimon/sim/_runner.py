@@ -15,13 +15,14 @@ from typing import Any
 
 import numpy as np
 
+from .._robot import PANDA_HOME_JOINTS_RAD
 from ._arm import ArmSim
 from ._control import SEVERITY, SafePoseController, StopController, TaskController, plan_task
 from ._model import SimBlock
 
 __all__ = ["GovernedArm", "CycleRecord", "SimResult", "run_sim", "check_sim_expectations"]
 
-_DEFAULT_SAFE_POSE = (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785)
+_DEFAULT_SAFE_POSE = PANDA_HOME_JOINTS_RAD
 
 
 def _response_name(resp: Any) -> str:

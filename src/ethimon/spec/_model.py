@@ -19,6 +19,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator
 
+from .._robot import PANDA_HOME_JOINTS_RAD
 from ..errors import SpecError
 from ._yaml import SourceMap
 
@@ -261,7 +262,7 @@ class SafePose(BaseModel):
 
     model_config = _CFG
     joints_rad: tuple[FiniteFloat, ...] = Field(
-        (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785), description="joint configuration (rad)", **_SEQ)
+        PANDA_HOME_JOINTS_RAD, description="joint configuration (rad); default: the Panda's ready pose", **_SEQ)
     max_joint_speed_rad_s: FiniteFloat = Field(1.0, gt=0.0, le=10.0,
                                                description="joint-speed limit on the way (rad/s)")
     tolerance_rad: FiniteFloat = Field(0.02, gt=0.0, le=1.0, description="reached when every joint is this close")
