@@ -51,6 +51,23 @@ def test_default_tau_is_one_fact():
     assert d.threshold == 0.5
 
 
+def test_risk_weights_are_one_fact():
+    """RiskConfig's α/β/γ and every default of the formula's functions are ethimon.spec's DEFAULT_*."""
+    import inspect
+
+    from ethimon.compiler._risk_formula import risk_bounds, risk_from_probs, risk_range
+    from ethimon.risk._evaluate import evaluate_logits
+    from ethimon.risk._estimator import RiskEstimator
+    from ethimon.spec import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, RiskConfig
+    d = RiskConfig()
+    want = (DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA)
+    assert (d.alpha, d.beta, d.gamma) == want
+    for fn in (risk_from_p_unsafe, risk_from_probs, risk_bounds, risk_range, evaluate_logits,
+               RiskEstimator.estimate):
+        ps = inspect.signature(fn).parameters
+        assert (ps["alpha"].default, ps["beta"].default, ps["gamma"].default) == want, fn.__name__
+
+
 def test_default_tau_matches_the_shipped_specs(root):
     """The shipped specs write the shipped model's τ as a literal (specs are user YAML)."""
     import yaml

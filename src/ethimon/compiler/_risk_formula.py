@@ -15,13 +15,16 @@ from collections.abc import Sequence
 from decimal import Decimal
 from fractions import Fraction
 
-__all__ = ["risk_from_p_unsafe", "risk_from_probs", "risk_bounds", "release_bound", "risk_range", "VARIANCE_MODES"]
+from ..spec import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA
+
+__all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "risk_from_p_unsafe", "risk_from_probs", "risk_bounds",
+           "release_bound", "risk_range", "VARIANCE_MODES"]
 
 VARIANCE_MODES = ("sample", "population")
 
 
-def risk_from_p_unsafe(p_unsafe: float, alpha: float = 0.6, beta: float = 0.2,
-                       gamma: float = 0.2, variance: str = "sample") -> float:
+def risk_from_p_unsafe(p_unsafe: float, alpha: float = DEFAULT_ALPHA, beta: float = DEFAULT_BETA,
+                       gamma: float = DEFAULT_GAMMA, variance: str = "sample") -> float:
     """R_e for a two-class classifier, from its unsafe-class probability.
 
     With ``p = (1 − q, q)``: ``max p = max(q, 1 − q)``; the sample variance
@@ -48,8 +51,8 @@ def risk_from_p_unsafe(p_unsafe: float, alpha: float = 0.6, beta: float = 0.2,
     return alpha * q + beta * (1.0 - (q if q >= 0.5 else 1.0 - q)) + gamma * var
 
 
-def risk_from_probs(p: Sequence[float], alpha: float = 0.6, beta: float = 0.2,
-                    gamma: float = 0.2, variance: str = "sample",
+def risk_from_probs(p: Sequence[float], alpha: float = DEFAULT_ALPHA, beta: float = DEFAULT_BETA,
+                    gamma: float = DEFAULT_GAMMA, variance: str = "sample",
                     unsafe_index: int = -1) -> float:
     """R_e from a full class-probability vector ``p`` (K ≥ 2 classes).
 
@@ -86,7 +89,7 @@ def risk_from_probs(p: Sequence[float], alpha: float = 0.6, beta: float = 0.2,
     return alpha * p[unsafe_index] + beta * (1.0 - top) + gamma * var
 
 
-def risk_bounds(alpha: float = 0.6, beta: float = 0.2, gamma: float = 0.2,
+def risk_bounds(alpha: float = DEFAULT_ALPHA, beta: float = DEFAULT_BETA, gamma: float = DEFAULT_GAMMA,
                 variance: str = "sample", steps: int = 2001) -> tuple[float, float]:
     """Reachable range of R_e for two classes (grid over q plus the critical points).
 
@@ -254,8 +257,8 @@ def _risk_range_exact(alpha: float, beta: float, gamma: float, variance: str,
     return lo[0], lo[1], hi[0], hi[1]
 
 
-def risk_range(alpha: float = 0.6, beta: float = 0.2, gamma: float = 0.2, variance: str = "sample",
-               classes: int = 2) -> tuple[float, float]:
+def risk_range(alpha: float = DEFAULT_ALPHA, beta: float = DEFAULT_BETA, gamma: float = DEFAULT_GAMMA,
+               variance: str = "sample", classes: int = 2) -> tuple[float, float]:
     """Exact range of R_e over every probability vector of ``classes`` classes (any weights' signs).
 
     No optimiser and no grid: the extremes of R_e on the simplex lie among a few

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
 
 from ..errors import RiskInferenceError
-from ._formula import VARIANCE_MODES, risk_from_probs
+from ._formula import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, VARIANCE_MODES, risk_from_probs
 
 __all__ = ["DEFAULT_TAU", "ProbsEstimator", "RiskEstimate", "RiskEstimator", "RiskInferenceError", "load_estimator",
            "default_model_dir", "default_threads", "normalize_text"]
@@ -202,8 +202,8 @@ class RiskEstimator:
             out.update(zip(todo, self._infer(todo)))
         return [out[k] for k in keys]
 
-    def estimate(self, text: str, alpha: float = 0.6, beta: float = 0.2, gamma: float = 0.2,
-                 variance: str = "sample") -> RiskEstimate:
+    def estimate(self, text: str, alpha: float = DEFAULT_ALPHA, beta: float = DEFAULT_BETA,
+                 gamma: float = DEFAULT_GAMMA, variance: str = "sample") -> RiskEstimate:
         """Probabilities and R_e of one text.
 
         Example:

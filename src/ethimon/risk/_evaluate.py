@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from ._formula import risk_from_p_unsafe
+from ._formula import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, risk_from_p_unsafe
 
 __all__ = ["classification_metrics", "expected_calibration_error", "flag_stats", "softmax_unsafe",
            "evaluate_logits", "pair_metrics", "type_metrics", "tau_for_false_alarm_budget", "plot_training", "plot_confusion", "plot_risk_hist"]
@@ -83,7 +83,7 @@ def flag_stats(labels, risks, tau: float) -> dict[str, float]:
 
 
 def evaluate_logits(labels, logits, *, temperature: float = 1.0, tau: float = 0.5,
-                    alpha: float = 0.6, beta: float = 0.2, gamma: float = 0.2,
+                    alpha: float = DEFAULT_ALPHA, beta: float = DEFAULT_BETA, gamma: float = DEFAULT_GAMMA,
                     variance: str = "sample", groups: dict[str, np.ndarray] | None = None,
                     threshold: float = 0.5) -> dict:
     """All metrics of one labelled set from raw logits (calibrated with ``temperature``).

@@ -7,7 +7,9 @@ z3 encoder all use it), so it lives on the compiler floor:
 
 from __future__ import annotations
 
-from ..compiler._risk_formula import (VARIANCE_MODES, _risk_range_exact, release_bound, risk_bounds,  # noqa: F401
-                                      risk_from_p_unsafe, risk_from_probs, risk_range)
+from ..compiler._risk_formula import (DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, VARIANCE_MODES,  # noqa: F401
+                                      _risk_range_exact, release_bound, risk_bounds, risk_from_p_unsafe,
+                                      risk_from_probs, risk_range)
 
-__all__ = ["risk_from_p_unsafe", "risk_from_probs", "risk_bounds", "release_bound", "risk_range", "VARIANCE_MODES"]
+__all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "risk_from_p_unsafe", "risk_from_probs", "risk_bounds",
+           "release_bound", "risk_range", "VARIANCE_MODES"]

@@ -3,8 +3,8 @@
 from ..errors import ExprSyntaxError
 from ._expr import parse_expr
 from ._load import parse_spec_file, parse_spec_text
-from ._model import SEVERITY_ORDER, Constant, Obligation, OnFault, Release, Response, RiskConfig, RuleRelease, SafePose, Signal, Spec
+from ._model import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, SEVERITY_ORDER, Constant, Obligation, OnFault, Release, Response, RiskConfig, RuleRelease, SafePose, Signal, Spec
 
-__all__ = ["SEVERITY_ORDER", "Constant", "ExprSyntaxError", "Obligation", "OnFault", "Release", "Response", "RiskConfig", "RuleRelease",
+__all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "SEVERITY_ORDER", "Constant", "ExprSyntaxError", "Obligation", "OnFault", "Release", "Response", "RiskConfig", "RuleRelease",
            "SafePose", "Signal", "Spec",
            "parse_expr", "parse_spec_file", "parse_spec_text"]

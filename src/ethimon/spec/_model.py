@@ -61,6 +61,10 @@ class Response(str, enum.Enum):
         return self.value
 
 
+#: The weights of R_e = α·p_unsafe + β·(1 − max p) + γ·Var(p) when a spec sets none (the paper's):
+#: ``RiskConfig``'s defaults and the defaults of every function of the formula (``ethimon.risk``).
+DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA = 0.6, 0.2, 0.2
+
 #: Every response, least severe first (their declaration order above): the one severity order.
 #: ``Response.severity`` is the index here and ``SEVERITY_ORDER[sev]`` the response of a severity;
 #: the monitor, the reference interpreter, the offline checker and the simulated arm all read it.
@@ -185,9 +189,9 @@ class RiskConfig(BaseModel):
     """How R_e is formed and judged. The rule R_e ≥ τ ⇒ override is always present."""
 
     model_config = _CFG
-    alpha: FiniteFloat = Field(0.6, description="weight α of p_unsafe")
-    beta: FiniteFloat = Field(0.2, description="weight β of (1 − max p)")
-    gamma: FiniteFloat = Field(0.2, description="weight γ of Var(p)")
+    alpha: FiniteFloat = Field(DEFAULT_ALPHA, description="weight α of p_unsafe")
+    beta: FiniteFloat = Field(DEFAULT_BETA, description="weight β of (1 − max p)")
+    gamma: FiniteFloat = Field(DEFAULT_GAMMA, description="weight γ of Var(p)")
     variance: Literal["sample", "population"] = Field(
         "sample", description="sample (÷(K−1), torch.var default) or population (÷K)")
     threshold: FiniteFloat = Field(0.5, description="τ: R_e ≥ τ ⇒ override; 0 < τ ≤ 1")
