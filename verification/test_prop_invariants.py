@@ -125,9 +125,14 @@ def check_trace(spec, trace) -> None:
     risk_sev, fault_sev = Response(r.response).severity, Response(spec.on_fault).severity
     obs = oracle.plan.obligations
     pending: list[int | None] = [None] * len(obs)  # cycle of the oldest trigger whose require has failed since
-    clean_streak = 0  # consecutive valid, violation-free cycles with R_e < τ − δ
+    # the release contract, per rule: (mode, hold_cycles) with the defaults filled in
+    rules = {ob.id: spec.obligation_release(ob) for ob in spec.obligations}
+    rules["risk"] = (r.release.mode, r.release.hold_cycles)
+    rules["fault"] = spec.fault_release()
+    fired_since: set[str] = set()  # rules fired since the override last ended (or was cleared)
+    streak: dict[str, int] = {}  # per fired rule: consecutive cycles its release condition held
     prev_override = False
-    explicit = False  # reset()/release() since the last decision
+    explicit = False  # reset()/release()/an accepted acknowledge() since the last decision
     since_clear = False  # an override happened since the last reset/release
     for op in trace:
         if op[0] in ("reset", "release"):
@@ -135,9 +140,18 @@ def check_trace(spec, trace) -> None:
             getattr(oracle.ref, op[0])()
             explicit = True
             since_clear = False
-            clean_streak = 0
+            fired_since, streak = set(), {}
             if op[0] == "reset":
                 pending = [None] * len(obs)
+            continue
+        if op[0] == "acknowledge":
+            a, b = m.acknowledge(), oracle.ref.acknowledge()
+            assert a == b
+            manual = {k for k in fired_since if rules[k][0] == "manual"}
+            if a:  # accepted only once every manual rule's condition held its hold_cycles
+                assert set(a.rules) <= manual and all(streak[k] >= rules[k][1] for k in a.rules)
+                fired_since -= set(a.rules)
+                explicit = True
             continue
         f = op[1]
         d = m.step(f)
@@ -149,7 +163,8 @@ def check_trace(spec, trace) -> None:
         if cond is None:  # a fault cycle (bad input, or an evaluation error): history is cleared
             assert d.override and d.faults
             pending = [None] * len(obs)
-            clean_streak = 0
+            fired_since |= set(d.violations) | {"fault"}
+            streak = {k: 0 for k in fired_since}
         else:
             assert valid and not d.faults
             re = expected_risk(spec, f)
@@ -177,16 +192,21 @@ def check_trace(spec, trace) -> None:
                 assert not violated_now and re < tau and not d.violations and not d.latched
             if d.override and not d.violations:
                 assert d.latched and since_clear
-            if Fraction(re) < below and not violated_now and not d.violations:
-                clean_streak += 1
-            else:
-                clean_streak = 0
+            for k in fired_since:
+                held = k not in d.violations and (k != "risk" or Fraction(re) < below)
+                streak[k] = streak[k] + 1 if held else 0
+            for k in d.violations:
+                streak[k] = 0
+            fired_since |= set(d.violations)
         if prev_override and not d.override and not explicit:
-            assert r.release.mode == "auto" and clean_streak >= r.release.hold_cycles
+            # the override ends by itself only when every rule fired since is automatic and its
+            # condition has held its hold_cycles (manual rules wait for acknowledge())
+            assert all(rules[k][0] == "auto" and streak[k] >= rules[k][1] for k in fired_since), \
+                (fired_since, streak, rules)
+        if not d.override:
+            fired_since, streak = set(), {}
         if d.override:
             since_clear = True
-        if not d.override:
-            clean_streak = 0 if d.violations else clean_streak
         prev_override, explicit = d.override, False
 
 
