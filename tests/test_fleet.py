@@ -252,6 +252,11 @@ def test_ray_before_a_path_takes_the_path_back():
     assert ray_target(args, "paths") == (None, None) and args.paths == [str(ROOT / "scenarios"), "b.yaml"]
 
 
+def test_check_needs_a_path(capsys):
+    rc, _, err = _main(capsys, "check")
+    assert rc == 2 and "give at least one PATH" in err
+
+
 class _Color(str, enum.Enum):
     RED = "red"
 
@@ -290,5 +295,6 @@ def test_cli_starts_and_stops_its_own_local_instance(tmp_path):
     serial = run_cli("check", str(d), "--json", "-")
     on_ray = run_cli("check", str(d), "--json", "-", "--ray", "--ray-workers", "1", timeout=120)
     assert on_ray.returncode == serial.returncode == 2, on_ray.stderr
-    assert _no_time(on_ray.stdout) == _no_time(serial.stdout)
+    errors = [r.get("error") for r in json.loads(on_ray.stdout)["results"]]
+    assert _no_time(on_ray.stdout) == _no_time(serial.stdout), errors
     assert _no_time(on_ray.stderr) == _no_time(serial.stderr)  # no Ray chatter, no traceback

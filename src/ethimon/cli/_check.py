@@ -17,7 +17,8 @@ __all__ = ["add_check_parser", "cmd_check"]
 def add_check_parser(sub) -> None:
     p = sub.add_parser("check", help="run scenario files against their specs",
                        description="Run every scenario; exit 0 all pass, 1 an expectation failed, 2 bad input.")
-    p.add_argument("paths", nargs="+", metavar="PATH", help="scenario files or folders")
+    # nargs="*" (checked in cmd_check): so that 'check --ray scenarios/' takes the folder back from --ray
+    p.add_argument("paths", nargs="*", metavar="PATH", help="scenario files or folders")
     p.add_argument("--json", metavar="FILE", help="write results as JSON ('-' for stdout: then stdout holds "
                    "only the JSON, the table and summary go to stderr)")
     p.add_argument("--junit", metavar="FILE", help="write a JUnit XML report")
@@ -39,6 +40,8 @@ def cmd_check(args: argparse.Namespace) -> int:
         ray = ray_target(args, "paths")  # None: serial; else (address, workers) of a Ray run
     except EthimonError as exc:
         return err(str(exc))
+    if not args.paths:
+        return err("ethimon check: give at least one PATH (scenario files or folders)")
     with Progress("check", enabled=not json_to_stdout) as progress:
         if ray is None:
             report = check_paths(args.paths, sim=args.sim, model_dir=args.model, on_file=progress)
