@@ -17,12 +17,12 @@ from __future__ import annotations
 import errno
 import os
 import stat
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import IO, Any
 
 from .errors import SpecError
 
-__all__ = ["NOT_REGULAR_HINT", "file_kind", "open_regular", "require_regular"]
+__all__ = ["NOT_REGULAR_HINT", "file_kind", "find_yaml_files", "open_regular", "require_regular", "scan_yaml_files"]
 
 #: the hint of every "not a regular file" refusal
 NOT_REGULAR_HINT = "ethimon reads files only, not pipes, devices or standard input; save it to a file first"
@@ -123,3 +123,53 @@ def open_regular(path: str | os.PathLike, mode: str = "rb", *, what: str = "file
     except BaseException:
         os.close(fd)
         raise
+
+
+def scan_yaml_files(paths: Iterable[str], *, what: str = "scenario",
+                    command: str = "ethimon check") -> list[tuple[str, str | None]]:
+    """Expand files and folders into ``(path, reason)`` pairs, in order, without opening any file: the one
+    discovery rule of ``ethimon check``, ``simulate``, ``lint``, ``verify`` (and ``--ray``).
+
+    ``reason`` is ``None`` for a file to read; for a FIFO, socket or device
+    found in a folder (never opened: a FIFO would block) it says why it is
+    passed over. A path named in ``paths`` must be a regular file or a folder.
+
+    Raises:
+        SpecError: a path that does not exist or is not a regular file or folder,
+            or a folder with no ``*.yaml``/``*.yml`` at all.
+    """
+    out: list[tuple[str, str | None]] = []
+    for p in paths:
+        if os.path.isdir(p):
+            found: list[tuple[str, str | None]] = []
+            for root, dirs, files in os.walk(p):
+                dirs.sort()
+                for f in sorted(files):
+                    if not f.endswith((".yaml", ".yml")):
+                        continue
+                    full = os.path.join(root, f)
+                    try:
+                        kind = file_kind(full)
+                    except OSError:  # a broken link or no permission: reading it gives the clean error
+                        kind = None
+                    found.append((full, None if kind is None else f"{kind}, not a regular file: not read"))
+            if not found:
+                raise SpecError(f"no {what} files (*.yaml, *.yml) in this folder", path=p,
+                                hint=f"point {command} at {what} files or a folder that holds them")
+            out.extend(found)
+        else:
+            require_regular(p, what)
+            out.append((p, None))
+    return out
+
+
+def find_yaml_files(paths: Iterable[str], *, what: str = "scenario", command: str = "ethimon check",
+                    skipped: list[tuple[str, str]] | None = None) -> list[str]:
+    """The files of :func:`scan_yaml_files` to read; the passed-over ones go to ``skipped``."""
+    out = []
+    for path, reason in scan_yaml_files(paths, what=what, command=command):
+        if reason is None:
+            out.append(path)
+        elif skipped is not None:
+            skipped.append((path, reason))
+    return out

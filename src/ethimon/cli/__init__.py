@@ -77,7 +77,8 @@ def _lint_safe_pose(spec) -> None:
 
 def _cmd_lint(args: argparse.Namespace) -> int:
     from .. import _api
-    from ..scenario import error_line, scan_yaml_files
+    from .._files import scan_yaml_files
+    from ..scenario import error_line
     rc = 0
     for path, skipped in scan_yaml_files(args.paths, what="spec", command="ethimon lint"):
         if skipped is not None:  # a FIFO, socket or device in a folder: never opened

@@ -39,7 +39,8 @@ def add_verify_parsers(sub) -> None:
 def cmd_verify(args: argparse.Namespace) -> int:
     from .. import verify
     from ..errors import DependencyNotInstalled, SpecError
-    from ..scenario import error_line, scan_yaml_files
+    from .._files import scan_yaml_files
+    from ..scenario import error_line
     from ..verify import (DEFAULT_BUDGET_S, DEFAULT_MAX_UNROLL, DEFAULT_TIMEOUT_S, exit_code, format_table,
                           reports_to_json, require_z3)
 

@@ -33,7 +33,8 @@ def check_paths(paths: Iterable[str], *, sim: bool = False, model_dir: str | Non
         DependencyNotInstalled: Ray is not installed.
         EthimonError: Ray cannot start or the cluster cannot be reached.
     """
-    from ..scenario import CheckOutcome, CheckReport, scan_yaml_files
+    from .._files import scan_yaml_files
+    from ..scenario import CheckOutcome, CheckReport
     from ..scenario._check import _skipped
 
     files = scan_yaml_files(paths, what="scenario", command="ethimon check")

@@ -4,11 +4,10 @@ from ._check import (CheckOutcome, CheckReport, ScenarioSession, check_paths, er
                      sim_risk_inputs, simulate_paths)
 from ._model import Expect, Scenario, TimelineEntry
 from ._run import (BUILTIN_INPUTS, ScenarioResult, build_inputs, check_expectations, check_input_names,
-                   find_scenarios, find_yaml_files, load_scenario, load_scenario_text, require_regular_file,
-                   run_scenario, scan_yaml_files)
+                   find_scenarios, load_scenario, load_scenario_text, require_regular_file, run_scenario)
 
 __all__ = ["BUILTIN_INPUTS", "CheckOutcome", "CheckReport", "Expect", "Scenario", "ScenarioResult",
            "ScenarioSession", "TimelineEntry", "build_inputs", "check_expectations", "check_input_names",
-           "check_paths", "error_line", "find_scenarios", "find_yaml_files", "internal_error", "load_scenario",
-           "load_scenario_text", "require_regular_file", "run_scenario", "scan_yaml_files", "sim_risk_inputs",
+           "check_paths", "error_line", "find_scenarios", "internal_error", "load_scenario",
+           "load_scenario_text", "require_regular_file", "run_scenario", "sim_risk_inputs",
            "simulate_paths"]

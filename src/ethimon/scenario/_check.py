@@ -19,7 +19,8 @@ from typing import Any
 
 from ..errors import DependencyNotInstalled, EthimonError, SpecError
 from ._model import Scenario
-from ._run import RISK_KEYS, needs_text_risk, override_expectations, scan_yaml_files
+from .._files import scan_yaml_files
+from ._run import RISK_KEYS, needs_text_risk, override_expectations
 
 __all__ = ["CheckOutcome", "CheckReport", "ScenarioSession", "check_paths", "simulate_paths", "error_line",
            "internal_error", "sim_risk_inputs"]

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from .._api import load_spec
-from .._files import file_kind
+from .._files import find_yaml_files
 from .._files import require_regular as require_regular_file  # re-exported (public name)
 from ..errors import SpecError
 from ..runtime import Decision, Monitor
@@ -21,7 +21,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..risk import ProbsEstimator
 
 __all__ = ["load_scenario", "load_scenario_text", "run_scenario", "ScenarioResult", "find_scenarios",
-           "find_yaml_files", "scan_yaml_files", "require_regular_file", "check_input_names", "BUILTIN_INPUTS",
+           "require_regular_file", "check_input_names", "BUILTIN_INPUTS",
            "build_inputs"]
 
 RISK_KEYS = ("risk", "p_unsafe", "p")
@@ -41,55 +41,6 @@ def load_scenario_text(text: str, path: str = "<string>") -> Scenario:
     """Validate scenario YAML given as text (spec paths resolve against ``path``'s folder)."""
     data, smap = parse_yaml_text(text, path, what="scenario")
     return validate_document(Scenario, data, smap, "scenario")
-
-
-def scan_yaml_files(paths: Iterable[str], *, what: str = "scenario",
-                    command: str = "ethimon check") -> list[tuple[str, str | None]]:
-    """Expand files and folders into ``(path, reason)`` pairs, in order, without opening any file.
-
-    ``reason`` is ``None`` for a file to read; for a FIFO, socket or device
-    found in a folder (never opened: a FIFO would block) it says why it is
-    passed over. A path named in ``paths`` must be a regular file or a folder.
-
-    Raises:
-        SpecError: a path that does not exist or is not a regular file or folder,
-            or a folder with no ``*.yaml``/``*.yml`` at all.
-    """
-    out: list[tuple[str, str | None]] = []
-    for p in paths:
-        if os.path.isdir(p):
-            found: list[tuple[str, str | None]] = []
-            for root, dirs, files in os.walk(p):
-                dirs.sort()
-                for f in sorted(files):
-                    if not f.endswith((".yaml", ".yml")):
-                        continue
-                    full = os.path.join(root, f)
-                    try:
-                        kind = file_kind(full)
-                    except OSError:  # a broken link or no permission: reading it gives the clean error
-                        kind = None
-                    found.append((full, None if kind is None else f"{kind}, not a regular file: not read"))
-            if not found:
-                raise SpecError(f"no {what} files (*.yaml, *.yml) in this folder", path=p,
-                                hint=f"point {command} at {what} files or a folder that holds them")
-            out.extend(found)
-        else:
-            require_regular_file(p, what)
-            out.append((p, None))
-    return out
-
-
-def find_yaml_files(paths: Iterable[str], *, what: str = "scenario", command: str = "ethimon check",
-                    skipped: list[tuple[str, str]] | None = None) -> list[str]:
-    """The files of :func:`scan_yaml_files` to read; the passed-over ones go to ``skipped``."""
-    out = []
-    for path, reason in scan_yaml_files(paths, what=what, command=command):
-        if reason is None:
-            out.append(path)
-        elif skipped is not None:
-            skipped.append((path, reason))
-    return out
 
 
 def find_scenarios(paths: Iterable[str], *, skipped: list[tuple[str, str]] | None = None) -> list[str]:

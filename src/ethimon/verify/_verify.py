@@ -12,6 +12,7 @@ import time
 from collections.abc import Iterable
 from typing import Any
 
+from .._files import find_yaml_files
 from ..errors import DependencyNotInstalled, SpecError
 from ..spec._model import Spec
 from ._report import WARNING, Finding, SpecReport
@@ -36,26 +37,13 @@ def require_z3():
 
 
 def find_specs(paths: Iterable[str]) -> list[str]:
-    """Expand files and folders into a sorted list of ``*.yaml``/``*.yml`` files.
+    """Expand files and folders into a sorted list of ``*.yaml``/``*.yml`` files (the one discovery rule,
+    :func:`ethimon._files.scan_yaml_files`: a FIFO, socket or device in a folder is passed over, never opened).
 
     Raises:
-        SpecError: a path that does not exist, or a folder without YAML files.
+        SpecError: a path that does not exist or is not a regular file or folder, or a folder without YAML files.
     """
-    out: list[str] = []
-    for p in paths:
-        if os.path.isdir(p):
-            found = []
-            for root, dirs, files in os.walk(p):
-                dirs.sort()
-                found += [os.path.join(root, f) for f in sorted(files) if f.endswith((".yaml", ".yml"))]
-            if not found:
-                raise SpecError("no spec files (*.yaml, *.yml) in this folder", path=p)
-            out += found
-        elif os.path.exists(p):
-            out.append(p)
-        else:
-            raise SpecError("no such file or folder", path=p)
-    return out
+    return find_yaml_files(paths, what="spec", command="ethimon verify")
 
 
 def verify_paths(paths: Iterable[str], **kw: Any) -> list[SpecReport]:
