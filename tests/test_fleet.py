@@ -298,3 +298,12 @@ def test_cli_starts_and_stops_its_own_local_instance(tmp_path):
     errors = [r.get("error") for r in json.loads(on_ray.stdout)["results"]]
     assert _no_time(on_ray.stdout) == _no_time(serial.stdout), errors
     assert _no_time(on_ray.stderr) == _no_time(serial.stderr)  # no Ray chatter, no traceback
+
+
+def test_without_ray_the_cli_says_what_to_install(tmp_path):
+    d = _scenarios(tmp_path / "sc")
+    code = ("import sys; sys.modules['ray'] = None; from ethimon.cli import main; "
+            "sys.exit(main(sys.argv[1:]))")
+    r = subprocess.run([sys.executable, "-c", code, "check", str(d), "--ray"], capture_output=True, text=True,
+                       cwd=ROOT)
+    assert r.returncode == 2 and "pip install 'ethimon[fleet]'" in r.stderr and "Traceback" not in r.stderr
