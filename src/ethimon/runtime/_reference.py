@@ -63,7 +63,7 @@ from typing import Any
 
 from ..compiler._check import RISK_NAME, Plan
 from ..compiler._plans import plan_of
-from ..spec._expr import TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
+from ..spec._expr import BINARY_OPS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
 from ..spec._model import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
 from ._decision import Decision
@@ -198,12 +198,7 @@ class ReferenceMonitor:
                 return bool(self.ev(node.left, t)) or bool(self.ev(node.right, t))
             if op == "implies":
                 return (not self.ev(node.left, t)) or bool(self.ev(node.right, t))
-            a, b = self.ev(node.left, t), self.ev(node.right, t)
-            return {
-                "<": lambda: a < b, "<=": lambda: a <= b, ">": lambda: a > b, ">=": lambda: a >= b,
-                "==": lambda: a == b, "!=": lambda: a != b, "+": lambda: a + b, "-": lambda: a - b,
-                "*": lambda: a * b, "/": lambda: a / b,
-            }[op]()
+            return BINARY_OPS[op][1](self.ev(node.left, t), self.ev(node.right, t))
         if isinstance(node, Call):
             f, args = node.func, node.args
             if f == "abs":

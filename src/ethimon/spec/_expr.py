@@ -38,6 +38,7 @@ depends on it), one tree level per term.
 from __future__ import annotations
 
 import math
+import operator
 import re
 import unicodedata
 from dataclasses import dataclass
@@ -46,7 +47,7 @@ from ..errors import ExprSyntaxError
 
 __all__ = [
     "Node", "Num", "BoolLit", "Name", "Unary", "Binary", "Call", "ExprSyntaxError",
-    "parse_expr", "FUNCTIONS", "TEMPORAL", "walk", "to_source",
+    "parse_expr", "BINARY_OPS", "FUNCTIONS", "TEMPORAL", "walk", "to_source",
 ]
 
 
@@ -99,6 +100,19 @@ FUNCTIONS: dict[str, tuple[int, int]] = {
 TEMPORAL = frozenset({"prev", "held", "once", "since"})
 KEYWORDS = frozenset({"and", "or", "not", "implies", "true", "false"})
 COMPARISONS = ("<=", ">=", "==", "!=", "<", ">")
+
+#: The one table of binary operators: op -> (kind, function of the two operand values).
+#: ``cmp`` and ``arith`` apply the function to both values (Python floats in the reference
+#: interpreter, z3 terms in the SMT encoder: the same ``operator`` call builds either);
+#: ``logic`` connectives have no function, each interpreter short-circuits them its own way.
+BINARY_OPS: dict[str, tuple[str, object]] = {
+    "<": ("cmp", operator.lt), "<=": ("cmp", operator.le), ">": ("cmp", operator.gt),
+    ">=": ("cmp", operator.ge), "==": ("cmp", operator.eq), "!=": ("cmp", operator.ne),
+    "+": ("arith", operator.add), "-": ("arith", operator.sub), "*": ("arith", operator.mul),
+    "/": ("arith", operator.truediv),
+    "and": ("logic", None), "or": ("logic", None), "implies": ("logic", None),
+}
+assert set(COMPARISONS) == {op for op, (kind, _) in BINARY_OPS.items() if kind == "cmp"}
 
 # ASCII only: in a str pattern, \d and \s would also match "٥", "５" and U+00A0
 _TOKEN = re.compile(r"""

@@ -40,7 +40,7 @@ import z3
 
 from ..compiler._check import RISK_NAME, Plan
 from ..compiler._risk_formula import release_bound, risk_range
-from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary, walk
+from ..spec._expr import BINARY_OPS, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
 from ..spec._model import Response
 
 __all__ = ["Unrolled", "DecisionTrace", "RuleInfo", "decision_trace", "rules_of", "lookback", "real", "release_below",
@@ -176,11 +176,7 @@ class Unrolled:
                 return z3.Or(a, b)
             if op == "implies":
                 return z3.Implies(a, b)
-            return {
-                "<": lambda: a < b, "<=": lambda: a <= b, ">": lambda: a > b, ">=": lambda: a >= b,
-                "==": lambda: a == b, "!=": lambda: a != b, "+": lambda: a + b, "-": lambda: a - b,
-                "*": lambda: a * b, "/": lambda: a / b,
-            }[op]()
+            return BINARY_OPS[op][1](a, b)  # the parser's one table: the same call builds the z3 term
         if isinstance(node, Call):
             f, args = node.func, node.args
             if f == "abs":
