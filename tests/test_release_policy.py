@@ -15,7 +15,8 @@ import pytest
 
 import ethimon
 from ethimon import Response
-from ethimon.runtime import Acknowledgement, ReferenceMonitor
+from ethimon.runtime import Acknowledgement
+from ethimon.testing import ReferenceMonitor
 from ethimon.verify import verify_spec
 
 BASE = """
@@ -334,3 +335,16 @@ def test_reload_refuses_a_release_made_easier():
     assert "obligation keep_away: release hold_cycles lowered 3 -> 1" in weak
     assert "on_fault: release manual -> auto (its latch now releases by itself)" in weak
     assert weakenings(new, old)[0] == []
+
+
+def test_ethimon_lint_prints_release_policy_warnings(tmp_path, capsys):
+    from ethimon.cli import main
+    path = tmp_path / "auto_after_stop0.yaml"
+    path.write_text(BASE + "on_fault: {response: stop_1, release: auto}\n"
+                    + 'obligations:\n  - {id: contact, require: "f <= 140", response: stop_0, release: auto}\n')
+    assert main(["lint", str(path)]) == 0  # warnings, not errors
+    out = capsys.readouterr().out.splitlines()
+    assert out[0].endswith("ok (rp, 1 obligations)")
+    assert out[1].startswith(f"{path}: warning: obligation 'contact': response stop_0 with release: auto")
+    assert out[2].startswith(f"{path}: warning: on_fault release: auto") and len(out) == 3
+    assert main(["lint", str(tmp_path / "none.yaml")]) == 2

@@ -88,6 +88,9 @@ def _cmd_lint(args: argparse.Namespace) -> int:
             spec = _api.load_spec(path)
             _lint_safe_pose(spec)
             print(f"{path}: ok ({spec.name}, {len(spec.obligations)} obligations)")
+            from ..verify._policy import release_policy_warnings  # no z3
+            for w in release_policy_warnings(spec):
+                print(f"{path}: warning: {w}")
         except Exception as exc:  # noqa: BLE001 - one bad file is one line; the others are still linted
             print(error_line(path, exc), file=sys.stderr)
             rc = 2

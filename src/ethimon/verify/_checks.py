@@ -15,6 +15,7 @@ from ..compiler._risk_formula import release_bound, risk_bounds, risk_from_p_uns
 from ..runtime import Monitor
 from ..spec._expr import Name, walk
 from ..spec._model import Response, Spec
+from ._policy import manual_rules, release_policy_warnings
 from ._encode import (DecisionTrace, Unrolled, decision_trace, lookback, real, release_below, rules_of,
                       z3_value)
 from ._report import OK, PROVED, REFUTED, SKIPPED, UNKNOWN, WARNING, Counterexample, Finding
@@ -756,34 +757,13 @@ class Verifier:
                                          f"rule's latch)")
 
     def lint_release_policy(self) -> list[Finding]:
-        """Release policies an engineer would question: an automatic release after a stop of
-        category 0 or 1 (an obligation's, the risk rule's or a fault's), which restarts the
-        task by itself after power was cut; and, as information, which rules wait for an
-        operator (the integration must offer ``Monitor.acknowledge()``)."""
+        """Release policies an engineer would question (:func:`release_policy_warnings`: an
+        automatic release after a stop of category 0 or 1, an automatic fault release); else,
+        as information, which rules wait for an operator (the integration must offer
+        ``Monitor.acknowledge()``)."""
         name = "lint.release_policy"
-        out: list[Finding] = []
-        cut = {"stop_0", "stop_1"}
-        for ob in self.spec.obligations:
-            mode, hold = self.spec.obligation_release(ob)
-            if ob.response in cut and mode == "auto":
-                out.append(Finding("lint", name, WARNING,
-                                   f"obligation {ob.id!r}: response {ob.response} with release: auto "
-                                   f"(the task restarts by itself {hold} cycles after a stop that cut power; "
-                                   f"IEC 60204-1 wants a deliberate restart: release: manual)"))
-        r = self.spec.risk
-        if r.response in cut and r.release.mode == "auto":
-            out.append(Finding("lint", name, WARNING,
-                               f"risk.response {r.response} with risk.release.mode auto (the task restarts by "
-                               f"itself once R_e < tau - delta for {r.release.hold_cycles} cycles after a stop "
-                               f"that cut power; set risk.release.mode: manual)"))
-        fmode, fhold = self.spec.fault_release()
-        if fmode == "auto":
-            why = ("after a stop that cut power" if self.spec.on_fault in cut else
-                   "after a fault stop, although the fault's cause was never seen by anyone")
-            out.append(Finding("lint", name, WARNING,
-                               f"on_fault release: auto: the task restarts by itself {fhold} cycles after the "
-                               f"inputs come back, {why} (the default is manual)"))
-        manual = [x.name for x in rules_of(self.plan) if x.manual]
+        out = [Finding("lint", name, WARNING, w) for w in release_policy_warnings(self.spec)]
+        manual = manual_rules(self.spec)
         if not out:
             out.append(Finding("lint", name, OK, (
                 f"manual release for {', '.join(manual)}: the integration must offer an operator "
