@@ -6,7 +6,7 @@ import random
 import pytest
 
 import ethimon
-from ethimon import ReferenceMonitor
+from ethimon.testing import ReferenceMonitor
 
 ALL_OPS = """ethimon: 1
 name: all_ops

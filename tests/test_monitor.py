@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import ethimon
+from ethimon.testing import ReferenceMonitor
 from ethimon import Response
 
 
@@ -221,7 +222,7 @@ def test_shipped_specs_load_and_step(root):
 
 def test_fault_does_not_hide_a_more_severe_stateless_violation(root):
     spec = ethimon.load_spec(root / "specs" / "cobot_cell.yaml")  # on_fault: stop_1
-    for monitor in (ethimon.Monitor(spec), ethimon.ReferenceMonitor(spec)):
+    for monitor in (ethimon.Monitor(spec), ReferenceMonitor(spec)):
         d = monitor.step({"human_distance": 5.0, "ee_speed": 0.1, "contact_force": 300.0,
                           "joint_speed_max": 0.2})  # no risk input: a fault
         assert d.override and d.faults
@@ -242,6 +243,6 @@ def test_wrong_type_signal_still_judges_other_stateless_rules():
     m = mon("  - {id: near, require: 'd > 0.5'}\n  - {id: fast, require: 'v < 1', response: stop_0}\n")
     d = m.step(inp(d=[1.0], v=2.0))  # a list is bad input (not an internal error)
     assert d.override and d.violations == ("fast",) and d.response is Response.STOP_0
-    ref = ethimon.ReferenceMonitor(m.spec)
+    ref = ReferenceMonitor(m.spec)
     r = ref.step(inp(d=[1.0], v=2.0))
     assert r.violations == d.violations and r.response is d.response

@@ -16,6 +16,7 @@ import threading
 import pytest
 
 import ethimon
+from ethimon.testing import ReferenceMonitor
 from ethimon.scenario import load_scenario
 from ethimon.spec._expr import MAX_CHAIN_TERMS, MAX_EXPR_CHARS, MAX_TREE_DEPTH
 
@@ -42,7 +43,7 @@ def load_error(text: str) -> ethimon.SpecError:
 
 def runs_clean(spec) -> None:
     """Monitor and reference interpreter agree and raise/fault on nothing for a few cycles."""
-    m, r = ethimon.Monitor(spec), ethimon.ReferenceMonitor(spec)
+    m, r = ethimon.Monitor(spec), ReferenceMonitor(spec)
     for _ in range(3):
         d, e = m.step(INPUT), r.step(INPUT)
         assert not d.faults and not e.faults, (d, e)

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import ethimon
+from ethimon.testing import ReferenceMonitor
 from ethimon.spec._model import Response
 
 SPEC = """
@@ -122,7 +123,7 @@ def test_a_hostile_mapping_does_not_escape_step():
 
 def test_sequence_read_twice_gives_the_first_reading():
     spec = SPEC.replace("risk: {threshold: 0.5}", "risk: {threshold: 0.5, classes: 2}")
-    m, ref = mon(spec), ethimon.ReferenceMonitor(ethimon.load_spec_text(spec))
+    m, ref = mon(spec), ReferenceMonitor(ethimon.load_spec_text(spec))
     d = m.step(good(p_unsafe=None, p=FlipFlop()))
     # read once: (0, 1) → R_e = 0.6·1 + 0.2·0 + 0.2·0.5 = 0.7 ≥ τ: override for risk, no NaN anywhere
     assert d.risk == pytest.approx(0.7) and d.override and d.violations == ("risk",) and not d.faults
@@ -169,7 +170,7 @@ risk: {threshold: 0.27, release: {mode: auto, hysteresis: 0.05, hold_cycles: 3}}
 """
 
 
-@pytest.mark.parametrize("impl", [ethimon.Monitor, ethimon.ReferenceMonitor])
+@pytest.mark.parametrize("impl", [ethimon.Monitor, ReferenceMonitor])
 def test_release_needs_risk_strictly_below_the_exact_bound(impl):
     m = impl(ethimon.load_spec_text(RELEASE))
     assert m.step({"risk": 0.6}).override
@@ -209,7 +210,7 @@ def test_bounded_response_margin_is_quantitative_and_recovers():
     # cycle 2: trigger at 0 (when margin 0.15) and require margins −0.75, −0.55, −0.25 → max(−0.15, −0.25)
     assert ds[2].margins[0] == pytest.approx(-0.15)
     assert ds[3].margins[0] == pytest.approx(0.15)  # require met at 3 (margin +0.15) discharges trigger 0
-    ref = ethimon.ReferenceMonitor(ethimon.load_spec_text(spec))
+    ref = ReferenceMonitor(ethimon.load_spec_text(spec))
     for (x, v), d in zip(trace, ds):
         assert ref.step({"x": x, "v": v, "p_unsafe": 0.0}).margins == pytest.approx(d.margins)
 
@@ -235,7 +236,7 @@ class Liar:
     def __lt__(self, o): return True  # noqa: E704
 
 
-@pytest.mark.parametrize("impl", [ethimon.Monitor, ethimon.ReferenceMonitor])
+@pytest.mark.parametrize("impl", [ethimon.Monitor, ReferenceMonitor])
 @pytest.mark.parametrize("frame", [good(d=Liar()), good(p_unsafe=None, risk=Liar()), good(p_unsafe=Liar()),
                                    good(p_unsafe=None, p=[Liar(), Liar()]), good(ok=Liar())])
 def test_an_object_claiming_to_be_a_float_is_not_one(impl, frame):
@@ -270,7 +271,7 @@ signals: {x: {range: [0, 1]}, y: {range: [0, 1]}}
 obligations:
   - {id: r, when: x >= 0.75, require: 'y <= 0 or x / y < 2', within_cycles: 2}
 """)
-    m, ref = ethimon.Monitor(spec), ethimon.ReferenceMonitor(spec)
+    m, ref = ethimon.Monitor(spec), ReferenceMonitor(spec)
     for x, y in ((0.9, 0.0), (0.9, 0.1), (0.9, 0.1)):
         a, b = m.step({"x": x, "y": y, "p_unsafe": 0.0}), ref.step({"x": x, "y": y, "p_unsafe": 0.0})
         assert a.violations == b.violations == ()

@@ -15,6 +15,7 @@ from hypothesis import given, note, settings
 from hypothesis import strategies as st
 
 import ethimon
+from ethimon.testing import ReferenceMonitor
 from ethimon.spec._expr import Binary, BoolLit, Name, Num, Unary, parse_expr, to_source
 from ethimon_strategies import bool_expr, decision_key, num_expr, ops, specs
 
@@ -23,7 +24,7 @@ SHIPPED = [os.path.join(ROOT, "specs", f) for f in ("governor.yaml", "cobot_cell
 
 
 def run_both(spec, trace):
-    m, ref = ethimon.Monitor(spec), ethimon.ReferenceMonitor(spec)
+    m, ref = ethimon.Monitor(spec), ReferenceMonitor(spec)
     for op in trace:
         if op[0] == "reset":
             m.reset()

@@ -29,6 +29,7 @@ from hypothesis import given, note, settings
 from hypothesis import strategies as st
 
 import ethimon
+from ethimon.testing import ReferenceMonitor
 from ethimon.risk._formula import risk_from_p_unsafe, risk_from_probs, risk_range
 from ethimon.spec._model import Response
 from ethimon_strategies import frame, ops, specs
@@ -99,7 +100,7 @@ class Oracle:
     """Condition values per cycle, from the reference interpreter's AST walker (history since reset/fault)."""
 
     def __init__(self, spec) -> None:
-        self.ref = ethimon.ReferenceMonitor(spec)
+        self.ref = ReferenceMonitor(spec)
         self.plan = self.ref.plan
 
     def conditions(self, f) -> list[tuple[bool, bool]] | None:

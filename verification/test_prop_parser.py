@@ -16,6 +16,7 @@ from hypothesis import example, given, note
 from hypothesis import strategies as st
 
 import ethimon
+from ethimon.testing import ReferenceMonitor
 from ethimon.spec._yaml import parse_yaml_bytes
 from ethimon_strategies import bool_expr, spec_doc
 
@@ -187,7 +188,7 @@ def stress_doc(require: str, **extra) -> str:
 def runs(text: str) -> None:
     """A spec that loaded compiles into closures and a reference that agree and never crash."""
     spec = ethimon.load_spec_text(text, PATH)
-    m, r = ethimon.Monitor(spec), ethimon.ReferenceMonitor(spec)
+    m, r = ethimon.Monitor(spec), ReferenceMonitor(spec)
     for _ in range(2):
         d, e = m.step(STRESS_INPUT), r.step(STRESS_INPUT)
         assert not any(f.kind == "internal" for f in d.faults), d.faults

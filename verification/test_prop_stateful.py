@@ -1,6 +1,6 @@
 """A stateful model of the monitor's life: step, reset, release, spec reload, late risk.
 
-The machine drives :class:`ethimon.Monitor` and :class:`ethimon.ReferenceMonitor`
+The machine drives :class:`ethimon.Monitor` and :class:`ethimon.testing.ReferenceMonitor`
 side by side and keeps its own model of the latch (written from the contract).
 """
 
@@ -17,6 +17,7 @@ from hypothesis.stateful import RuleBasedStateMachine, initialize, invariant, pr
 from fractions import Fraction
 
 import ethimon
+from ethimon.testing import ReferenceMonitor
 from ethimon.compiler._risk_formula import release_bound
 from ethimon.spec._model import Response
 from ethimon_strategies import decision_key, frame, specs
@@ -54,7 +55,7 @@ class MonitorLife(RuleBasedStateMachine):
     def new_monitors(self) -> None:
         self.spec = ethimon.load_spec_text(self.text, "<stateful>")
         self.m = ethimon.Monitor(self.spec)
-        self.ref = ethimon.ReferenceMonitor(self.spec)
+        self.ref = ReferenceMonitor(self.spec)
         self.log: list = []  # ops since the last reset/reload, with the decisions they produced
         self.last = None
         self.model: dict[str, int] = {}  # this test's own latch model: rule -> clean cycles since it fired

@@ -25,6 +25,7 @@ import tempfile
 import time
 
 import ethimon
+from ethimon.testing import ReferenceMonitor
 from bench import RESULTS
 from bench._machine import machine_facts
 
@@ -97,7 +98,7 @@ def main() -> int:
         results[f"{key}_override_cycles"] = ov
         table.append((f"Monitor (margins={margins})", n, dt, ov))
     k = min(args.reference_cycles, n)
-    ref = ethimon.ReferenceMonitor(spec)
+    ref = ReferenceMonitor(spec)
     t0 = time.perf_counter()
     ref_d = [ref.step(r) for r in rows[:k]]
     dt = time.perf_counter() - t0

@@ -16,14 +16,14 @@ from __future__ import annotations
 from ._api import load_spec, load_spec_text
 from .errors import DependencyNotInstalled, EthimonError, ModelError, SpecError
 from .compiler._risk_formula import risk_from_p_unsafe, risk_from_probs
-from .runtime import Decision, Fault, Monitor, ReferenceMonitor
+from .runtime import Decision, Fault, Monitor
 from .spec import Response, Spec
 
 __version__ = "0.1.0"
 
 __all__ = [
     "AsyncRiskSource", "Decision", "DependencyNotInstalled", "EthimonError", "Fault", "GovernedLoop", "ModelError",
-    "Monitor", "ProcessEstimator", "ReferenceMonitor", "Response", "Spec", "SpecError", "__version__", "load_spec",
+    "Monitor", "ProcessEstimator", "Response", "Spec", "SpecError", "__version__", "load_spec",
     "load_spec_text", "risk_from_p_unsafe", "risk_from_probs",
 ]
 

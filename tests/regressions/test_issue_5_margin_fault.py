@@ -6,6 +6,7 @@ although the verdict is well defined. Margins that cannot be computed are now Na
 import math
 
 import ethimon
+from ethimon.testing import ReferenceMonitor
 
 SPEC = """
 ethimon: 1
@@ -22,7 +23,7 @@ def test_guarded_division_is_not_a_fault():
     frame = {"x": 1.0, "y": 0.0, "risk": 0.2}
     d = ethimon.Monitor(spec).step(frame)
     assert not d.override and not d.faults
-    assert d == ethimon.ReferenceMonitor(spec).step(frame)
+    assert d == ReferenceMonitor(spec).step(frame)
     assert all(math.isnan(m) for m in d.margins)
     d = ethimon.Monitor(spec).step({"x": 1.0, "y": 0.25, "risk": 0.2})
     assert d.override and d.violations == ("rate", "gated") and not any(math.isnan(m) for m in d.margins)

@@ -6,6 +6,7 @@ a garbage risk value could hide a stop 0 the reference interpreter reports."""
 import pytest
 
 import ethimon
+from ethimon.testing import ReferenceMonitor
 
 SPEC = """
 ethimon: 1
@@ -23,7 +24,7 @@ obligations:
 def test_non_numeric_risk_input_still_judges_stateless_obligations(bad):
     spec = ethimon.load_spec_text(SPEC)
     frame = {"contact_force": 500.0, "risk_age_s": 0.0, **bad}
-    for m in (ethimon.Monitor(spec), ethimon.ReferenceMonitor(spec)):
+    for m in (ethimon.Monitor(spec), ReferenceMonitor(spec)):
         d = m.step(frame)
         assert d.override and d.faults
         assert d.violations == ("transient_contact",)

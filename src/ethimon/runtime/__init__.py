@@ -1,4 +1,4 @@
-"""Stage 3 of 3: the runtime monitor (and its reference interpreter).
+"""Stage 3 of 3: the runtime monitor (its reference interpreter, the test oracle, is :mod:`ethimon.testing`).
 
 The governed loop around it (async risk, watchdog, audit, reload) is one floor
 up, in :mod:`ethimon.loop`.
@@ -7,6 +7,5 @@ up, in :mod:`ethimon.loop`.
 from ._decision import Acknowledgement, Decision
 from ._fault import FAULT_KINDS, Fault
 from ._monitor import Monitor
-from ._reference import ReferenceMonitor
 
-__all__ = ["Acknowledgement", "Decision", "FAULT_KINDS", "Fault", "Monitor", "ReferenceMonitor"]
+__all__ = ["Acknowledgement", "Decision", "FAULT_KINDS", "Fault", "Monitor"]

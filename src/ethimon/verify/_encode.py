@@ -4,7 +4,7 @@ This module imports z3 at import time; :mod:`ethimon.verify` only imports it
 after checking that z3 is installed.
 
 The encoding follows the semantics documented in
-:mod:`ethimon.runtime._reference` (the definition both the compiled monitor and
+:mod:`ethimon.testing._reference` (the definition both the compiled monitor and
 the reference interpreter implement), over the same checked ASTs, windows and
 types that :func:`~ethimon.compiler.build_machine` compiles:
 

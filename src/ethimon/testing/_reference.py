@@ -66,9 +66,10 @@ from ..compiler._plans import plan_of
 from ..spec._expr import BINARY_OPS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
 from ..spec._model import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
-from ._decision import Decision
-from ._fault import Fault
-from ._inputs import as_bool, as_number, as_probs
+from ..runtime import Decision, Fault
+# the monitor's own input rules (what counts as a number, a flag, a probability vector): the
+# reference must read inputs exactly as the monitor does, so it uses the same private helpers
+from ..runtime._inputs import as_bool, as_number, as_probs
 
 __all__ = ["ReferenceMonitor"]
 
@@ -118,7 +119,7 @@ class ReferenceMonitor:
         return rules
 
     def acknowledge(self):
-        from ._decision import Acknowledgement
+        from ..runtime import Acknowledgement
         rules = self._rules()
         manual = [k for k in self.latches if rules[k][1]]
         waiting = tuple(k for k in self._order(manual) if self.latches[k] < rules[k][2])
