@@ -348,3 +348,20 @@ def test_ethimon_lint_prints_release_policy_warnings(tmp_path, capsys):
     assert out[1].startswith(f"{path}: warning: obligation 'contact': response stop_0 with release: auto")
     assert out[2].startswith(f"{path}: warning: on_fault release: auto") and len(out) == 3
     assert main(["lint", str(tmp_path / "none.yaml")]) == 2
+
+
+def test_json_schema_accepts_the_short_and_long_forms():
+    jsonschema = pytest.importorskip("jsonschema")
+    schema = ethimon.Spec.model_json_schema()
+    base = {"ethimon": 1, "name": "x", "obligations": [{"id": "a", "require": "true"}]}
+    for on_fault in ("stop_1", {"response": "stop_0", "release": "auto"},
+                     {"response": "stop_0", "release": {"mode": "manual", "hold_cycles": 3}}):
+        for release in (None, "manual", {"mode": "auto", "hold_cycles": 2}):
+            doc = {**base, "on_fault": on_fault}
+            if release is not None:
+                doc["obligations"] = [{"id": "a", "require": "true", "release": release}]
+            jsonschema.validate(doc, schema)
+    for bad in ({**base, "on_fault": "sometimes"},
+                {**base, "obligations": [{"id": "a", "require": "true", "release": "later"}]}):
+        with pytest.raises(jsonschema.ValidationError):
+            jsonschema.validate(bad, schema)

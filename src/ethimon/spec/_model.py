@@ -157,6 +157,10 @@ class RuleRelease(BaseModel):
         description="N: the rule's condition must hold N consecutive cycles (default: risk.release.hold_cycles)")
 
 
+#: what a ``release:`` key accepts (for the JSON Schema; the short forms become mappings)
+_RELEASE_INPUT = Literal["auto", "manual"] | RuleRelease | None
+
+
 class OnFault(BaseModel):
     """The response to a fault and how the fault latch is released (``on_fault``)."""
 
@@ -165,7 +169,7 @@ class OnFault(BaseModel):
     release: RuleRelease | None = Field(
         None, description=f"{_RELEASE_FORMS}; default manual (a fault stop is acknowledged by the operator)")
 
-    @field_validator("release", mode="before")
+    @field_validator("release", mode="before", json_schema_input_type=_RELEASE_INPUT)
     @classmethod
     def _short(cls, v: Any) -> Any:
         return _release_short_form(v)
@@ -246,7 +250,7 @@ class Obligation(BaseModel):
     release: RuleRelease | None = Field(
         None, description=f"{_RELEASE_FORMS}; default manual for stop_0/stop_1, else auto")
 
-    @field_validator("release", mode="before")
+    @field_validator("release", mode="before", json_schema_input_type=_RELEASE_INPUT)
     @classmethod
     def _short(cls, v: Any) -> Any:
         return _release_short_form(v)
@@ -298,7 +302,7 @@ class Spec(BaseModel):
 
     _source: SourceMap | None = PrivateAttr(default=None)
 
-    @field_validator("fault_policy", mode="before")
+    @field_validator("fault_policy", mode="before", json_schema_input_type=ACTIVE_RESPONSES | OnFault)
     @classmethod
     def _fault_short(cls, v: Any) -> Any:
         if isinstance(v, str):
