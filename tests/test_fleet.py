@@ -208,11 +208,14 @@ def test_a_worker_that_raises_or_dies_is_one_failure(ray_local):
     ray.cloudpickle.register_pickle_by_value(sys.modules[__name__])  # workers cannot import this test module
     labels = ["aa", "raises", "bbb", "dies", "c"]
     seen = []
-    got = map_files(_unit, [(x,) for x in labels], labels, max_retries=0, on_done=lambda *a: seen.append(a))
+    got = map_files(_unit, [(x,) for x in labels], labels, max_retries=0,
+                    on_done=lambda *a: seen.append(a + (sys.stdout is sys.stderr,)))
     assert got[0] == 2 and got[2] == 3 and got[4] == 1
     assert isinstance(got[1], Failure) and got[1].what == "ValueError: bad file content"
     assert isinstance(got[3], Failure) and "worker checking this file died" in got[3].what
     assert len(seen) == 6 and seen[-1][:2] == (5, 5)
+    # Ray's driver prints "a worker died" to sys.stdout from a thread: during the run that is stderr
+    assert all(s[-1] for s in seen[1:]) and sys.stdout is not sys.stderr
 
 
 def test_failed_units_are_error_rows_in_place(tmp_path, monkeypatch):

@@ -9,10 +9,12 @@ run and are reported. Ray is imported only here, and only when called.
 
 from __future__ import annotations
 
+import contextlib
 import enum
 import logging
 import os
 import re
+import sys
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -157,6 +159,15 @@ def map_files(fn: Callable[..., Any], calls: Sequence[tuple], labels: Sequence[s
         on_done(0, total, labels[0] if total else "")
     if not total:
         return out
+    # Ray's driver prints cluster errors (a worker that died, ...) to sys.stdout from a thread: during the
+    # run they go to stderr, so that stdout holds only what the command writes there (e.g. --json -)
+    with contextlib.redirect_stdout(sys.stderr):
+        return _map(ray, fn, calls, labels, out, address, num_cpus, on_done, max_retries)
+
+
+def _map(ray: Any, fn: Callable[..., Any], calls: Sequence[tuple], labels: Sequence[str], out: list[Any],
+         address: str | None, num_cpus: int | None, on_done: ProgressCallback | None, max_retries: int) -> list[Any]:
+    total = len(calls)
     started = _connect(ray, address, num_cpus)
     try:
         task = ray.remote(num_cpus=1, max_retries=max_retries)(fn)
