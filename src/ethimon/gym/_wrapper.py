@@ -168,8 +168,9 @@ class MonitorWrapper(gymnasium.Wrapper):
         return self.monitor.step(sig), sig
 
     def _safe(self, decision: Decision) -> tuple[Any, str | None]:
-        if self._safe_fn is None:
-            return self._safe_fixed, None
+        if self._safe_fn is None:  # a fresh copy: an env that writes into its action cannot change it
+            fixed = self._safe_fixed
+            return (fixed.copy() if isinstance(fixed, np.ndarray) else fixed), None
         try:
             a = self._safe_fn(self._obs, decision) if self._safe_n == 2 else self._safe_fn(self._obs)
         except Exception as exc:
