@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import os
 
-from .compiler._plans import plan_of
-from .spec._load import parse_spec_file, parse_spec_text
-from .spec._model import Spec
+from .compiler import plan_of
+from .spec import parse_spec_file, parse_spec_text
+from .spec import Spec
 
 __all__ = ["load_spec", "load_spec_text"]
 

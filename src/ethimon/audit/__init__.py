@@ -18,9 +18,9 @@ max_lag_s=1.0)``, past which ``append`` refuses and ``AuditLog.fault`` is set;
 
 from __future__ import annotations
 
-from ._log import FSYNC_POLICIES, MAX_RECORD_BYTES, AuditLag, AuditLog, jsonable, spec_hash
+from ._log import FSYNC_POLICIES, MAX_RECORD_BYTES, AuditLag, AuditLog, spec_hash
 from ..errors import AuditFormatError, AuditTampered
 from ._verify import AuditReport, read_log, verify_log
 
 __all__ = ["AuditFormatError", "AuditLag", "AuditTampered", "AuditLog", "AuditReport", "FSYNC_POLICIES", "MAX_RECORD_BYTES",
-           "jsonable", "read_log", "spec_hash", "verify_log"]
+           "read_log", "spec_hash", "verify_log"]

@@ -53,9 +53,9 @@ def _build_parser() -> argparse.ArgumentParser:
 
 def _cmd_schema(args: argparse.Namespace) -> int:
     if args.kind == "spec":
-        from ..spec._model import Spec as model
+        from ..spec import Spec as model
     else:
-        from ..scenario._model import Scenario as model
+        from ..scenario import Scenario as model
     schema = model.model_json_schema()
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = f"ethimon {args.kind} (format 1)"

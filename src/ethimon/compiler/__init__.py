@@ -1,8 +1,7 @@
 """Stage 2 of 3: check a spec (names, types, units, windows) and compile it."""
 
 from ._check import ObligationPlan, Plan, SignalSlot, compile_plan
-from ._closures import Machine, build_machine
 from ._plans import plan_of, stateless_slots
 
-__all__ = ["Machine", "ObligationPlan", "Plan", "SignalSlot", "build_machine", "compile_plan", "plan_of",
-           "stateless_slots"]
+# the closures (compiler._closures: build_machine, Machine) are the runtime's to call, not a public API
+__all__ = ["ObligationPlan", "Plan", "SignalSlot", "compile_plan", "plan_of", "stateless_slots"]

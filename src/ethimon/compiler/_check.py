@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from ..errors import SpecError
 from ..spec._expr import (FUNCTIONS, TEMPORAL, Binary, BoolLit, Call, ExprSyntaxError, Name, Node, Num,
                           Unary, parse_expr)
-from ..spec._model import Constant, Response, RiskConfig, Spec
+from ..spec import Constant, Response, RiskConfig, Spec
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit
 
 __all__ = ["Plan", "ObligationPlan", "SignalSlot", "Ty", "compile_plan", "RISK_NAME", "MAX_WINDOW"]

@@ -13,7 +13,7 @@ import threading
 from collections import OrderedDict
 
 from ..spec._expr import TEMPORAL, Call, Name, walk
-from ..spec._model import Spec
+from ..spec import Spec
 from ._check import Plan, compile_plan
 
 __all__ = ["plan_of", "stateless_slots"]

@@ -53,7 +53,7 @@ from .._api import load_spec
 from ..audit import spec_hash
 from ..errors import EthimonError
 from ..runtime import Decision, Fault, Monitor
-from ..spec._model import Spec
+from ..spec import Spec
 from ._process import ProcessEstimator
 from ._source import AsyncRiskSource, RiskReading
 from ._stats import LoopStats

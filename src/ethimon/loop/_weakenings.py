@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..compiler._risk_formula import release_bound
-from ..spec._model import Response, Spec
+from ..spec import Response, Spec
 
 __all__ = ["CANNOT_TELL", "weakenings"]
 

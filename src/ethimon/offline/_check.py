@@ -34,10 +34,10 @@ from typing import Any
 
 import numpy as np
 
-from ..runtime._decision import Decision
-from ..runtime._monitor import Monitor
+from ..runtime import Decision
+from ..runtime import Monitor
 from ..spec._expr import TEMPORAL, Call, Name, walk
-from ..spec._model import SEVERITY_ORDER, Response, Spec
+from ..spec import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import release_bound
 from ._columns import Inputs, read_inputs, row
 from ._eval import Evaluator, last_index

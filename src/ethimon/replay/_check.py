@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from ..runtime import Monitor
-from ..spec._model import Spec
+from ..spec import Spec
 
 __all__ = ["CycleResults", "check_columns"]
 

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import SpecError
-from ..spec._model import Response, Spec
+from ..spec import Response, Spec
 from ._bag import BagData, BagError, read_bag
 from ._check import CycleResults, check_columns
 from ._mapping import RISK_INPUTS, Mapping, check_against_spec, load_mapping

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..spec._model import Response
+from ..spec import Response
 from ._fault import Fault
 
 __all__ = ["Decision", "Acknowledgement", "Fault", "Response"]

@@ -14,10 +14,9 @@ from math import isfinite as _isfinite
 from collections.abc import Mapping
 from typing import Any
 
-from ..compiler._check import Plan
-from ..compiler._closures import build_machine
-from ..compiler._plans import plan_of, stateless_slots
-from ..spec._model import SEVERITY_ORDER, Response, Spec
+from ..compiler import Plan, plan_of, stateless_slots
+from ..compiler._closures import build_machine  # the compiler's closures: runtime is their one caller
+from ..spec import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_probs, risk_range
 from ._decision import Acknowledgement, Decision
 from ._fault import Fault

@@ -1,13 +1,12 @@
 """Scenarios: scripted input timelines with expectations, run by ``ethimon check`` and ``ethimon simulate``."""
 
-from ._check import (CheckOutcome, CheckReport, ScenarioSession, check_paths, error_line, internal_error,
-                     sim_risk_inputs, simulate_paths)
+from ._check import CheckOutcome, CheckReport, ScenarioSession, check_paths, error_line, sim_risk_inputs, simulate_paths
 from ._model import Expect, Scenario, TimelineEntry
 from ._run import (BUILTIN_INPUTS, ScenarioResult, build_inputs, check_expectations, check_input_names,
-                   find_scenarios, load_scenario, load_scenario_text, require_regular_file, run_scenario)
+                   find_scenarios, load_scenario, load_scenario_text, run_scenario)
 
 __all__ = ["BUILTIN_INPUTS", "CheckOutcome", "CheckReport", "Expect", "Scenario", "ScenarioResult",
            "ScenarioSession", "TimelineEntry", "build_inputs", "check_expectations", "check_input_names",
-           "check_paths", "error_line", "find_scenarios", "internal_error", "load_scenario",
-           "load_scenario_text", "require_regular_file", "run_scenario", "sim_risk_inputs",
+           "check_paths", "error_line", "find_scenarios", "load_scenario",
+           "load_scenario_text", "run_scenario", "sim_risk_inputs",
            "simulate_paths"]

@@ -7,7 +7,7 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
-from ..sim._model import SimBlock
+from ..sim import SimBlock
 from ..spec._model import ACTIVE_RESPONSES
 
 __all__ = ["Scenario", "TimelineEntry", "Expect", "Value"]

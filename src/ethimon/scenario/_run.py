@@ -9,11 +9,10 @@ from typing import TYPE_CHECKING, Any
 
 from .._api import load_spec
 from .._files import find_yaml_files
-from .._files import require_regular as require_regular_file  # re-exported (public name)
 from ..errors import SpecError
 from ..runtime import Decision, Monitor
 from ..spec._load import validate_document
-from ..spec._model import Response, Spec
+from ..spec import Response, Spec
 from ..spec._yaml import parse_yaml_text, read_yaml
 from ._model import Scenario
 
@@ -21,7 +20,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..risk import ProbsEstimator
 
 __all__ = ["load_scenario", "load_scenario_text", "run_scenario", "ScenarioResult", "find_scenarios",
-           "require_regular_file", "check_input_names", "BUILTIN_INPUTS",
+           "check_input_names", "BUILTIN_INPUTS",
            "build_inputs"]
 
 RISK_KEYS = ("risk", "p_unsafe", "p")

@@ -62,9 +62,9 @@ from fractions import Fraction
 from typing import Any
 
 from ..compiler._check import RISK_NAME, Plan
-from ..compiler._plans import plan_of
+from ..compiler import plan_of
 from ..spec._expr import BINARY_OPS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
-from ..spec._model import SEVERITY_ORDER, Response, Spec
+from ..spec import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
 from ..runtime import Decision, Fault
 # the monitor's own input rules (what counts as a number, a flag, a probability vector): the

@@ -9,12 +9,12 @@ from typing import Any
 
 import z3
 
-from ..compiler._check import Plan
-from ..compiler._plans import plan_of
+from ..compiler import Plan
+from ..compiler import plan_of
 from ..compiler._risk_formula import release_bound, risk_bounds, risk_from_p_unsafe, risk_range
 from ..runtime import Monitor
 from ..spec._expr import Name, walk
-from ..spec._model import Response, Spec
+from ..spec import Response, Spec
 from ._policy import manual_rules, release_policy_warnings
 from ._encode import (DecisionTrace, Unrolled, decision_trace, lookback, real, release_below, rules_of,
                       z3_value)

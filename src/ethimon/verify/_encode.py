@@ -6,7 +6,7 @@ after checking that z3 is installed.
 The encoding follows the semantics documented in
 :mod:`ethimon.testing._reference` (the definition both the compiled monitor and
 the reference interpreter implement), over the same checked ASTs, windows and
-types that :func:`~ethimon.compiler.build_machine` compiles:
+types that ``ethimon.compiler._closures.build_machine`` compiles:
 
 * every cycle ``t`` of a trace that starts at a reset (or just after a fault,
   which clears the history) gets one z3 variable per declared signal, bounded
@@ -41,7 +41,7 @@ import z3
 from ..compiler._check import RISK_NAME, Plan
 from ..compiler._risk_formula import release_bound, risk_range
 from ..spec._expr import BINARY_OPS, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
-from ..spec._model import Response
+from ..spec import Response
 
 __all__ = ["Unrolled", "DecisionTrace", "RuleInfo", "decision_trace", "rules_of", "lookback", "real", "release_below",
            "risk_input_range", "z3_value"]

@@ -9,7 +9,7 @@ from typing import Any
 
 import yaml
 
-from ..spec._model import Spec
+from ..spec import Spec
 from ._report import Counterexample
 
 __all__ = ["counterexample_scenario", "write_counterexample"]
