@@ -9,7 +9,7 @@ own modules are always allowed):
     _api                    load_spec = spec + compiler in one call
     runtime                 Monitor.step → Decision (never loads files)
     audit, risk, sim,       beside each other above runtime: none imports another
-      verify
+      verify, testing       (testing: ReferenceMonitor, the test oracle)
     scenario                scenario files (may carry a sim block, may score text with risk)
     offline, replay         recorded data checked offline (replay may use offline)
     fleet                   many scenario files / bags on Ray (ray imported lazily)
