@@ -60,29 +60,24 @@ def test_open_regular_raises_the_callers_error_type(tmp_path):
 
 
 def test_check_loads_the_spec_once_without_a_separate_pre_check(tmp_path, monkeypatch, capsys):
-    import ethimon.scenario as scenario_pkg
-    import ethimon.scenario._run as run_mod
     calls = []
-    real = run_mod.require_regular_file
+    real = _files.require_regular  # the one discovery rule (_files.scan_yaml_files) calls it
 
     def spy(path, what="file"):
         calls.append((os.fspath(path), what))
         return real(path, what)
-    monkeypatch.setattr(run_mod, "require_regular_file", spy)
-    monkeypatch.setattr(scenario_pkg, "require_regular_file", spy)
+    monkeypatch.setattr(_files, "require_regular", spy)
     spec = tmp_path / "spec.yaml"
     spec.write_text((ROOT / "specs" / "governor.yaml").read_text())
     (tmp_path / "a.yaml").write_text(f"ethimon: 1\nname: a\nspec: {spec}\ncycles: 3\ninputs: {{risk: 0.2}}\n")
     assert main(["check", str(tmp_path / "a.yaml")]) == 0
-    assert all(what != "spec" for _, what in calls), calls  # load_spec checks it; no second stat
+    assert calls == [(str(tmp_path / "a.yaml"), "scenario")], calls  # the spec: load_spec checks it, no second stat
 
 
 def test_audit_verify_cli_does_not_stat_before_verify_log(tmp_path, monkeypatch, capsys):
-    import ethimon.scenario as scenario_pkg
-
     def boom(*a, **k):
         raise AssertionError("redundant pre-check")
-    monkeypatch.setattr(scenario_pkg, "require_regular_file", boom)
+    monkeypatch.setattr(_files, "require_regular", boom)
     log = AuditLog(tmp_path / "l.jsonl")
     log.close()
     assert main(["audit", "verify", str(tmp_path / "l.jsonl")]) == 0
