@@ -54,7 +54,7 @@ PUBLIC: dict[str, list[str]] = {
                     "check_sim_expectations", "run_sim"],
     "ethimon.spec": ["Constant", "DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "ExprSyntaxError", "Obligation",
                      "OnFault", "Release", "Response", "RiskConfig", "RuleRelease", "SEVERITY_ORDER", "SafePose",
-                     "Signal", "Spec", "parse_expr", "parse_spec_file", "parse_spec_text"],
+                     "Signal", "VARIANCE_MODES", "Spec", "parse_expr", "parse_spec_file", "parse_spec_text"],
     "ethimon.testing": ["ReferenceMonitor"],
     "ethimon.verify": ["Counterexample", "DEFAULT_BUDGET_S", "DEFAULT_MAX_UNROLL", "DEFAULT_TIMEOUT_S", "Finding",
                        "SpecReport", "exit_code", "find_specs", "format_table", "reports_to_json", "require_z3",

@@ -8,12 +8,11 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import json
 import sys
 from collections.abc import Sequence
 
 from ..errors import EthimonError, SpecError
-from ._common import ERROR_PREFIX
+from ._common import ERROR_PREFIX, emit_json
 
 __all__ = ["main"]
 
@@ -59,7 +58,7 @@ def _cmd_schema(args: argparse.Namespace) -> int:
     schema = model.model_json_schema()
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = f"ethimon {args.kind} (format 1)"
-    print(json.dumps(schema, indent=2))
+    emit_json("-", schema, "JSON Schema")
     return 0
 
 

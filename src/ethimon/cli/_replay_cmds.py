@@ -11,7 +11,6 @@ audit log of the decisions. Exit 0 every check passed, 1 a violation or fault,
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import time
 import xml.etree.ElementTree as ET
@@ -52,7 +51,7 @@ def cmd_replay(args: argparse.Namespace) -> int:
     from ..replay._record import bag_record
 
     if args.schema:
-        print(json.dumps(mapping_json_schema(), indent=2))
+        emit_json("-", mapping_json_schema(), "JSON Schema")
         return 0
     try:
         ray = ray_target(args, "bags")  # None: serial; else (address, workers) of a Ray run

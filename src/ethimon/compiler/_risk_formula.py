@@ -15,12 +15,11 @@ from collections.abc import Sequence
 from decimal import Decimal
 from fractions import Fraction
 
-from ..spec import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA
+from ..spec import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, VARIANCE_MODES
 
 __all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "risk_from_p_unsafe", "risk_from_probs", "risk_bounds",
            "release_bound", "risk_range", "VARIANCE_MODES"]
 
-VARIANCE_MODES = ("sample", "population")
 
 
 def risk_from_p_unsafe(p_unsafe: float, alpha: float = DEFAULT_ALPHA, beta: float = DEFAULT_BETA,

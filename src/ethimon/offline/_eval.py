@@ -29,11 +29,11 @@ import math
 
 import numpy as np
 
-from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary
+from ..spec._expr import TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary
 
 __all__ = ["Evaluator", "TEMPORAL_FUNCS"]
 
-TEMPORAL_FUNCS = ("prev", "held", "once", "since")
+TEMPORAL_FUNCS = tuple(sorted(TEMPORAL))  # the parser's set of temporal operators
 INF = math.inf
 _CMP = {"<": np.less, "<=": np.less_equal, ">": np.greater, ">=": np.greater_equal, "==": np.equal,
         "!=": np.not_equal}

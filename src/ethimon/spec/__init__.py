@@ -3,8 +3,9 @@
 from ..errors import ExprSyntaxError
 from ._expr import parse_expr
 from ._load import parse_spec_file, parse_spec_text
-from ._model import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, SEVERITY_ORDER, Constant, Obligation, OnFault, Release, Response, RiskConfig, RuleRelease, SafePose, Signal, Spec
+from ._model import (DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, SEVERITY_ORDER, VARIANCE_MODES, Constant, Obligation,
+                     OnFault, Release, Response, RiskConfig, RuleRelease, SafePose, Signal, Spec)
 
-__all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "SEVERITY_ORDER", "Constant", "ExprSyntaxError", "Obligation", "OnFault", "Release", "Response", "RiskConfig", "RuleRelease",
-           "SafePose", "Signal", "Spec",
-           "parse_expr", "parse_spec_file", "parse_spec_text"]
+__all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "SEVERITY_ORDER", "VARIANCE_MODES", "Constant",
+           "ExprSyntaxError", "Obligation", "OnFault", "Release", "Response", "RiskConfig", "RuleRelease", "SafePose",
+           "Signal", "Spec", "parse_expr", "parse_spec_file", "parse_spec_text"]

@@ -64,6 +64,8 @@ class Response(str, enum.Enum):
 #: The weights of R_e = α·p_unsafe + β·(1 − max p) + γ·Var(p) when a spec sets none (the paper's):
 #: ``RiskConfig``'s defaults and the defaults of every function of the formula (``ethimon.risk``).
 DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA = 0.6, 0.2, 0.2
+#: How Var(p) divides: ``sample`` by K − 1 (torch.var's default), ``population`` by K.
+VARIANCE_MODES = ("sample", "population")
 
 #: Every response, least severe first (their declaration order above): the one severity order.
 #: ``Response.severity`` is the index here and ``SEVERITY_ORDER[sev]`` the response of a severity;
@@ -196,7 +198,7 @@ class RiskConfig(BaseModel):
     alpha: FiniteFloat = Field(DEFAULT_ALPHA, description="weight α of p_unsafe")
     beta: FiniteFloat = Field(DEFAULT_BETA, description="weight β of (1 − max p)")
     gamma: FiniteFloat = Field(DEFAULT_GAMMA, description="weight γ of Var(p)")
-    variance: Literal["sample", "population"] = Field(
+    variance: Literal[VARIANCE_MODES] = Field(  # type: ignore[valid-type]
         "sample", description="sample (÷(K−1), torch.var default) or population (÷K)")
     threshold: FiniteFloat = Field(0.5, description="τ: R_e ≥ τ ⇒ override; 0 < τ ≤ 1")
     classes: int = Field(2, ge=2, le=1000, description="number of classifier classes K")
