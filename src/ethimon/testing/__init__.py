@@ -7,15 +7,15 @@ must agree with it cycle by cycle (``tests/test_compiled_vs_reference.py``,
 ``verification/test_prop_equivalence.py``, ``verification/test_prop_stateful.py``).
 Never use it to govern an arm: it is O(history) per step.
 
-::
-
-    import ethimon
-    from ethimon.testing import ReferenceMonitor
-
-    spec = ethimon.load_spec("specs/governor.yaml")
-    m, ref = ethimon.Monitor(spec), ReferenceMonitor(spec)
-    frame = {"risk": 0.62, "human_distance": 0.4, "ee_speed": 0.1}
-    assert m.step(frame) == ref.step(frame)
+>>> import ethimon
+>>> from ethimon.testing import ReferenceMonitor
+>>> spec = ethimon.load_spec("specs/governor.yaml")
+>>> m, ref = ethimon.Monitor(spec), ReferenceMonitor(spec)
+>>> frame = {"risk": 0.62, "human_distance": 0.4, "ee_speed": 0.1}
+>>> m.step(frame) == ref.step(frame)
+True
+>>> m.step(frame).override
+True
 """
 
 from __future__ import annotations
