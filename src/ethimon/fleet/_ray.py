@@ -113,7 +113,10 @@ def _connect(ray: Any, address: str | None, num_cpus: int | None) -> bool:
         ray.init(address=address if address is not None else "local", **kw)
     except Exception as exc:  # noqa: BLE001 - cannot reach the cluster: one line, no traceback
         where = "start a local Ray instance" if address is None else f"connect to the Ray cluster at {address}"
-        raise EthimonError(f"cannot {where}: {type(exc).__name__}: {str(exc)[:300]}") from None
+        hint = "" if address is None else (" (is the cluster running? 'ray start --head' starts one here; "
+                                           "--ray without an address runs on a local instance of its own)")
+        first = str(exc).strip().split(". ")[0][:300]
+        raise EthimonError(f"cannot {where}: {type(exc).__name__}: {first}{hint}") from None
     return True
 
 
