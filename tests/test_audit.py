@@ -249,7 +249,7 @@ def test_cli_require_closed(tmp_path):
 
 
 def test_read_log_names_an_over_long_line_instead_of_stopping_silently(tmp_path, monkeypatch):
-    import ethimon.audit._verify as v
+    import ethimon.audit._chain as v
     path = tmp_path / "l.jsonl"
     log = AuditLog(path)
     log.append("note", text="x")

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from ._log import FSYNC_POLICIES, MAX_RECORD_BYTES, AuditLag, AuditLog, spec_hash
 from ..errors import AuditFormatError, AuditTampered
-from ._verify import AuditReport, read_log, verify_log
+from ._chain import AuditReport, read_log, verify_log
 
 __all__ = ["AuditFormatError", "AuditLag", "AuditTampered", "AuditLog", "AuditReport", "FSYNC_POLICIES", "MAX_RECORD_BYTES",
            "read_log", "spec_hash", "verify_log"]
