@@ -410,3 +410,61 @@ def test_loop_can_log_every_cycle(tmp_path):
         loop.cycle(SAFE)
     log.close()
     assert verify_log(p).kinds["decision"] == 50
+
+
+# ---------------------------------------------------------------- operator acknowledgement through the loop
+FAULTY = CELL.replace("on_fault: safe_pose", "on_fault: {response: stop_1, release: manual}")
+
+
+def test_loop_acknowledge_is_audited_and_checked(tmp_path):
+    p = tmp_path / "ack.jsonl"
+    log = AuditLog(p)
+    loop, clock = _loop(audit=log, spec=FAULTY)
+    for sig in [SAFE, {}, {}, SAFE]:           # a fault (missing signal) latches stop_1, manual
+        clock.advance(0.001)
+        loop.cycle(sig)
+    a = loop.acknowledge("ops-7", reason="too early")
+    assert not a.released and "held" in a.message           # the clean streak is 1 of 2 cycles
+    clock.advance(0.001)
+    assert loop.cycle(SAFE).awaiting_release
+    a = loop.acknowledge("ops-7", reason="sensor cable reseated")
+    assert a.released and "fault" in a.rules
+    clock.advance(0.001)
+    assert not loop.cycle(SAFE).override
+    with pytest.raises(ValueError, match="operator"):
+        loop.acknowledge("")
+    log.close()
+    assert verify_log(p, require_closed=True).ok
+    acks = [r for r in read_log(p) if r["kind"] == "acknowledge"]
+    assert [(r["operator"], r["released"], r["reason"]) for r in acks] == [
+        ("ops-7", False, "too early"), ("ops-7", True, "sensor cable reseated")]
+    assert acks[1]["rules"] == ["fault"] and acks[1]["cycle"] == 5
+
+
+def test_loop_acknowledge_from_another_thread_is_applied_between_cycles():
+    clock, gate, ran = FakeClock(), threading.Event(), []
+    script = iter([{}])                                   # one fault cycle, then a clean signal forever
+
+    def sleep(w):
+        gate.wait(5.0)
+        gate.clear()
+        clock.advance(w)
+
+    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(FAULTY)), period_s=0.001, clock=clock,
+                        sleep=sleep, risk=_source(clock), signals=lambda: next(script, SAFE),
+                        on_decision=ran.append, stall_s=10.0)
+    loop.start()
+    for _ in range(4):                                    # let four cycles run: the fault latch has held 3 clean
+        gate.set()
+        assert wait_for(lambda: not gate.is_set(), 2.0)
+    assert wait_for(lambda: len(ran) >= 4, 2.0) and loop.monitor.latched_rules == ("fault",)
+    box = {}
+    t = threading.Thread(target=lambda: box.setdefault("a", loop.acknowledge("ops", timeout_s=5.0)))
+    t.start()
+    assert wait_for(lambda: loop._acks, 2.0)              # queued while the loop sleeps, not applied under it
+    assert loop.monitor.latched_rules == ("fault",) and "a" not in box
+    gate.set()                                            # next cycle: applied before its step
+    t.join(5.0)
+    loop.stop()
+    gate.set()
+    assert box["a"].released and not ran[-1].override

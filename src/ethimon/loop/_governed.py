@@ -52,7 +52,7 @@ from typing import Any
 from .._api import load_spec
 from ..audit import spec_hash
 from ..errors import EthimonError
-from ..runtime import Decision, Fault, Monitor
+from ..runtime import Acknowledgement, Decision, Fault, Monitor
 from ..spec import Spec
 from ._process import ProcessEstimator
 from ._source import AsyncRiskSource, RiskReading
@@ -217,6 +217,10 @@ class GovernedLoop:
         self._sleep = sleep
         self._next: float | None = None  # scheduled start of the next cycle
         self._pending: tuple[Monitor, ReloadResult, str] | None = None
+        #: operator acknowledgements waiting for the loop thread: [operator, reason, done event, answer]
+        self._acks: list[list[Any]] = []
+        self._acks_lock = threading.Lock()
+        self._running = False
         self._reload_lock = threading.Lock()
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
@@ -269,6 +273,8 @@ class GovernedLoop:
         sched = self._next if self._next is not None else now
         if self._pending is not None:
             self._apply_reload()
+        if self._acks:
+            self._apply_acks()
         m = self.monitor
         st = self.stats
         reasons: list[Fault] = []
@@ -418,6 +424,7 @@ class GovernedLoop:
         """
         clock, sleep = self._clock, self._sleep
         self._stop.clear()
+        self._running = True
         t_end = None if duration_s is None else clock() + float(duration_s)
         n = 0
         if self.watchdog is not None:
@@ -436,9 +443,81 @@ class GovernedLoop:
                 if wait > 0.0:
                     sleep(wait)
         finally:
+            self._running = False
             if self.watchdog is not None:
                 self.watchdog.stop()
+            if self._acks:
+                self._apply_acks()  # nobody waits forever for a loop that has ended
         return self.stats
+
+    # ------------------------------------------------------------------ operator release
+    def acknowledge(self, operator: str, *, reason: str = "", timeout_s: float = 2.0) -> Acknowledgement:
+        """An operator's acknowledgement of the manual latches, checked and audited.
+
+        :meth:`Monitor.acknowledge` through the loop: while :meth:`run` drives the
+        monitor in another thread, the request is applied by the loop thread
+        between two cycles (never during a step) and this call waits up to
+        ``timeout_s`` for it; otherwise it is applied now. The monitor refuses it
+        (releases nothing) while a manual rule has not held its release condition
+        for its ``hold_cycles``. Every request, accepted or refused, is an
+        ``acknowledge`` record in the audit log (operator, reason, result,
+        monitor cycle); a request is refused without touching the monitor while
+        the audit log reports a fault, so no release goes unrecorded.
+
+        Args:
+            operator: who acknowledges (a name or badge id; required).
+            reason: why, in the operator's words (kept in the audit log).
+            timeout_s: how long to wait for a running loop to apply it.
+
+        Returns:
+            The :class:`~ethimon.runtime.Acknowledgement`; refused if the loop did
+            not apply it within ``timeout_s``.
+        """
+        if not (isinstance(operator, str) and operator.strip()):
+            raise ValueError("acknowledge needs the operator's name or id (a non-empty string)")
+        if not isinstance(reason, str):
+            raise ValueError(f"reason must be a string, got {type(reason).__name__}")
+        req: list[Any] = [operator, reason, threading.Event(), None]
+        t = self._thread
+        if self._running and t is not None and t is not threading.current_thread():
+            with self._acks_lock:
+                self._acks.append(req)
+            if req[2].wait(timeout_s):
+                return req[3]
+            with self._acks_lock:
+                if req in self._acks:
+                    self._acks.remove(req)
+                    return Acknowledgement(False, (), f"refused: the loop did not apply it within {timeout_s:g} s")
+            req[2].wait()  # the loop took it just now: its answer follows at once
+            return req[3]
+        self._ack_now(req)
+        return req[3]
+
+    def _apply_acks(self) -> None:
+        with self._acks_lock:
+            todo, self._acks = self._acks, []
+        for req in todo:
+            self._ack_now(req)
+
+    def _ack_now(self, req: list[Any]) -> None:
+        operator, reason, done, _ = req
+        try:
+            afault = getattr(self.audit, "fault", None) if self.audit is not None else None
+        except Exception as exc:  # noqa: BLE001 - a broken log refuses, never crashes
+            afault = f"audit log health check raised {type(exc).__name__}"
+        if self.audit is not None and (self._audit_failed or (isinstance(afault, str) and afault)):
+            a = Acknowledgement(False, (), "refused: the audit log cannot record it "
+                                f"({afault or 'a record was refused'})")
+        else:
+            try:
+                a = self.monitor.acknowledge()
+            except Exception as exc:  # noqa: BLE001 - never crash the loop on an operator request
+                a = Acknowledgement(False, (), f"refused: acknowledge raised {type(exc).__name__}: {exc}"[:300])
+        self._log("acknowledge", operator=operator, reason=reason, released=a.released, rules=list(a.rules),
+                  message=a.message, cycle=self.monitor.cycle,
+                  loop_cycle=self.stats.cycles)
+        req[3] = a
+        done.set()
 
     def start(self, duration_s: float | None = None) -> threading.Thread:
         """Run :meth:`run` in a daemon thread; :meth:`stop` ends it."""
