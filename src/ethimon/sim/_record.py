@@ -1,4 +1,24 @@
-"""``--record DIR``: PNG frames (TinyRenderer, headless), a trace, and a plot."""
+"""``--record DIR``: frames with an overlay at every event, a trace, a plot and ``summary.json``.
+
+Events (each with its cycle and time; :func:`trace_events` defines them on the per-cycle
+trace, so a recording and a test compute the same list):
+
+- ``first_violation``: the first cycle whose decision names a violated rule;
+- ``first_fault``: the first cycle with a fail-closed fault;
+- ``override``: the first cycle with ``override``;
+- ``escalation``: a cycle where the controller commanding the arm becomes more severe
+  than every controller before it, after the first response (e.g. ``safe_pose → stop_0``);
+- ``closest_approach``: the smallest simulated human distance of the run (first such cycle);
+- ``peak_contact_force``: the largest contact force of the run (when any was measured);
+- ``standstill``: after the first stop controller (``stop_0/1/2``), the first cycle in which
+  every joint stayed below 0.01 rad/s in every physics substep;
+- ``safe_pose``: the first cycle the safe-pose controller ends within the spec's tolerance;
+- ``release``: every cycle whose override is false after an override.
+
+A frame shows the state after its cycle's physics. Frames of events known only at the
+end (closest approach, peak force) are rendered after the run from a snapshot of every
+body's pose and joint positions taken when the running extreme was reached.
+"""
 
 from __future__ import annotations
 
@@ -7,11 +27,20 @@ import json
 import math
 import os
 import time
+from collections.abc import Sequence
 from typing import Any
 
-__all__ = ["Recorder", "plot_trace"]
+import numpy as np
+
+from ._control import SEVERITY
+from ._plot import EVENT_LABELS, plot_trace
+
+__all__ = ["Recorder", "plot_trace", "trace_events", "EVENT_LABELS", "STANDSTILL_RAD_S"]
 
 _SIGNALS = ("human_distance", "ee_speed", "contact_force", "joint_speed_max", "hazard_distance")
+#: standstill: every joint below this in every physics substep (the sim expectation's definition)
+STANDSTILL_RAD_S = 0.01
+_STOPS = ("stop_0", "stop_1", "stop_2")
 
 
 def _clean(v: Any) -> Any:
@@ -20,30 +49,297 @@ def _clean(v: Any) -> Any:
     return v
 
 
-class Recorder:
-    """Collects frames during a run and writes the trace and plot at the end."""
+def _sev(controller: str) -> int:
+    return SEVERITY.get(controller, 0)
 
-    def __init__(self, directory: str, sim: Any) -> None:
+
+def _num(v: Any) -> float:
+    try:
+        f = float(v)
+    except (TypeError, ValueError):
+        return math.nan
+    return f
+
+
+class _EventTracker:
+    """Finds the events cycle by cycle (:func:`trace_events` is this over a whole trace)."""
+
+    def __init__(self, safe_tol: float, has_humans: bool = True) -> None:
+        self.safe_tol = safe_tol
+        self.has_humans = has_humans
+        self.events: list[dict[str, Any]] = []
+        self._seen: set[str] = set()
+        self._max_sev = 0
+        self._max_ctrl = "none"
+        self._prev_override = False
+        self._overridden = False
+        self._stop_started = False
+        self.closest: dict[str, Any] | None = None
+        self.peak: dict[str, Any] | None = None
+
+    def _once(self, name: str, rec: Any, detail: str, value: float | None = None) -> list[dict]:
+        if name in self._seen:
+            return []
+        self._seen.add(name)
+        return [self._add(name, rec, detail, value)]
+
+    def _add(self, name: str, rec: Any, detail: str, value: float | None = None) -> dict[str, Any]:
+        ev = {"event": name, "cycle": rec.cycle, "t_s": round(float(rec.t_s), 6), "detail": detail,
+              "value": value}
+        self.events.append(ev)
+        return ev
+
+    def update(self, rec: Any) -> tuple[list[dict[str, Any]], list[str]]:
+        """``(events at this cycle, running extremes improved at this cycle)``."""
+        out: list[dict[str, Any]] = []
+        if rec.violations:
+            out += self._once("first_violation", rec, ", ".join(rec.violations))
+        if rec.faults:
+            out += self._once("first_fault", rec, str(rec.faults[0]))
+        if rec.override:
+            out += self._once("override", rec, rec.response)
+            self._overridden = True
+        elif self._prev_override:
+            out.append(self._add("release", rec, ""))
+        self._prev_override = bool(rec.override)
+        sev = _sev(rec.controller)
+        if sev > self._max_sev:
+            if self._max_sev > 0:
+                out.append(self._add("escalation", rec, f"{self._max_ctrl} → {rec.controller}"))
+            self._max_sev, self._max_ctrl = sev, rec.controller
+        if rec.controller in _STOPS:
+            self._stop_started = True
+        if self._stop_started and rec.joint_speed_max_rad_s < STANDSTILL_RAD_S:
+            out += self._once("standstill", rec, f"{rec.controller}, max joint speed "
+                                                 f"{rec.joint_speed_max_rad_s:.4f} rad/s",
+                              float(rec.joint_speed_max_rad_s))
+        if (self._overridden and rec.controller == "safe_pose"
+                and rec.safe_pose_error_rad <= self.safe_tol):
+            out += self._once("safe_pose", rec, f"error {rec.safe_pose_error_rad:.4f} rad",
+                              float(rec.safe_pose_error_rad))
+        improved = []
+        d = _num(rec.human_distance_true_m)
+        if self.has_humans and math.isfinite(d) and (self.closest is None or d < self.closest["value"]):
+            self.closest = {"event": "closest_approach", "cycle": rec.cycle, "t_s": round(float(rec.t_s), 6),
+                            "detail": f"{d:.3f} m", "value": d}
+            improved.append("closest_approach")
+        f = _num(rec.signals.get("contact_force", math.nan))
+        if math.isfinite(f) and f > 0 and (self.peak is None or f > self.peak["value"]):
+            self.peak = {"event": "peak_contact_force", "cycle": rec.cycle, "t_s": round(float(rec.t_s), 6),
+                         "detail": f"{f:.1f} N", "value": f}
+            improved.append("peak_contact_force")
+        return out, improved
+
+    def finish(self) -> list[dict[str, Any]]:
+        """Every event, the extremes included, in order of cycle."""
+        evs = list(self.events) + [e for e in (self.closest, self.peak) if e is not None]
+        order = {name: i for i, name in enumerate(EVENT_LABELS)}
+        return sorted(evs, key=lambda e: (e["cycle"], order.get(e["event"], 99)))
+
+
+def trace_events(trace: Sequence[Any], *, safe_tol: float = 0.02, has_humans: bool = True) -> list[dict[str, Any]]:
+    """The events of a run from its per-cycle trace (see the module docstring).
+
+    Args:
+        trace: :class:`~ethimon.sim.CycleRecord` list.
+        safe_tol: the spec's safe-pose tolerance (rad).
+        has_humans: the scene has people (else no closest approach).
+
+    Returns:
+        Dicts ``{event, cycle, t_s, detail, value}`` ordered by cycle.
+    """
+    tr = _EventTracker(safe_tol, has_humans)
+    for r in trace:
+        tr.update(r)
+    return tr.finish()
+
+
+def _snapshot(sim: Any) -> list[tuple]:
+    """Every body's base pose and joint positions (enough to render; velocities are not kept)."""
+    p, cid = sim._p, sim.cid
+    out = []
+    for i in range(p.getNumBodies(physicsClientId=cid)):
+        b = p.getBodyUniqueId(i, physicsClientId=cid)
+        pos, orn = p.getBasePositionAndOrientation(b, physicsClientId=cid)
+        nj = p.getNumJoints(b, physicsClientId=cid)
+        qs = tuple(s[0] for s in p.getJointStates(b, range(nj), physicsClientId=cid)) if nj else ()
+        out.append((b, pos, orn, qs))
+    return out
+
+
+def _restore(sim: Any, snap: list[tuple]) -> None:
+    p, cid = sim._p, sim.cid
+    for b, pos, orn, qs in snap:
+        p.resetBasePositionAndOrientation(b, pos, orn, physicsClientId=cid)
+        for j, q in enumerate(qs):
+            p.resetJointState(b, j, q, physicsClientId=cid)
+
+
+class Recorder:
+    """Collects frames during a run and writes the trace, plot and summary at the end.
+
+    Args:
+        directory: where the recording goes (created).
+        sim: the :class:`~ethimon.sim.ArmSim`.
+        spec: the monitor's spec (τ, limits and name for the plot); optional.
+        block: the scenario's :class:`~ethimon.sim.SimBlock` (for the plot's pass/fail title).
+        safe_tol: the spec's safe-pose tolerance (rad), for the ``safe_pose`` event.
+        name: the scenario's name (default: the directory's name).
+    """
+
+    def __init__(self, directory: str, sim: Any, *, spec: Any = None, block: Any = None,
+                 safe_tol: float = 0.02, name: str | None = None) -> None:
+        from ._overlay import frame_cameras
+
         self.dir = directory
         self.sim = sim
+        self.spec = spec
+        self.block = block
+        self.name = name or os.path.basename(os.path.normpath(directory))
         os.makedirs(directory, exist_ok=True)
         self.files: list[str] = []
-        self.seconds = 0.0  # time spent rendering frames (kept out of the realtime factor)
+        self.seconds = 0.0  # time spent on frames and events (kept out of the realtime factor)
+        self.cameras = frame_cameras(sim)
+        self.tracker = _EventTracker(safe_tol, bool(getattr(sim, "humans", None)))
+        self.last: Any = None
+        self._frame_at: dict[int, str] = {}        # cycle -> frame after that cycle's physics
+        self._caption_at: dict[int, list[str]] = {}
+        self._snaps: dict[str, tuple[int, list[tuple]]] = {}
+        self.events: list[dict[str, Any]] = []
+
+    # -- during the run ---------------------------------------------------------------------------
+
+    def observe(self, rec: Any) -> None:
+        """Call once per cycle, right after ``GovernedArm.step()``: finds the events and
+        renders a frame for those known now; snapshots the scene for running extremes."""
+        t0 = time.perf_counter()
+        self.last = rec
+        evs, improved = self.tracker.update(rec)
+        for name in improved:
+            self._snaps[name] = (rec.cycle, _snapshot(self.sim))
+        if evs:
+            self._render(rec.cycle, [e["event"] for e in evs], rec, evs)
+        self.seconds += time.perf_counter() - t0
 
     def frame(self, moment: str, cycle: int | None = None) -> str:
-        """Render the current scene to ``frame_<cycle>_<moment>.png``."""
-        from matplotlib import image as mpimg
-
+        """Render the current scene to ``frame_<cycle>_<moment>.png`` (an event frame already
+        taken at this cycle is reused for that event's own name)."""
         t0 = time.perf_counter()
         c = self.sim.cycle if cycle is None else cycle
-        path = os.path.join(self.dir, f"frame_{c:05d}_{moment}.png")
-        mpimg.imsave(path, self.sim.render())
-        self.files.append(path)
+        done = self._frame_at.get(c)
+        if done is not None and moment in EVENT_LABELS and moment in self._caption_at.get(c, ()):
+            return done
+        # the state after the last observed cycle's physics (None: before the first cycle)
+        rec = self.last if (self.last is not None and self.last.cycle in (c, c - 1)) else None
+        path = self._render(c, [moment], rec, [], state_of=None if rec is None else rec.cycle)
         self.seconds += time.perf_counter() - t0
         return path
 
+    def _render(self, cycle: int, names: list[str], rec: Any, evs: list[dict[str, Any]],
+                state_of: int | None = -1) -> str:
+        """Render, compose and save one frame; ``state_of``: the cycle whose post-physics state
+        it shows (default ``cycle``; ``None``: no cycle's, e.g. the start)."""
+        from matplotlib import image as mpimg
+
+        from ._overlay import MAIN_WH, SIDE_WH, closeup_camera, compose_frame, render_view, scene_marks
+
+        sim = self.sim
+        main_cam, top_cam = self.cameras
+        main, view, proj = render_view(sim, main_cam, MAIN_WH)
+        top, tview, tproj = render_view(sim, top_cam, SIDE_WH)
+        ccam, what = closeup_camera(sim)
+        close, _, _ = render_view(sim, ccam, SIDE_WH)
+        banner = None
+        if evs:
+            banner = "  |  ".join(EVENT_LABELS.get(e["event"], e["event"])
+                                  + (f": {e['detail']}" if e.get("detail") else "") for e in evs)
+        elif names and names[0] not in EVENT_LABELS:
+            banner = names[0]
+        top_marks = [{**m, "ring": min(m["ring"], 6), "size": 7, "view": (MAIN_WH[0], 0, *SIDE_WH)}
+                     for m in scene_marks(sim, tview, tproj, SIDE_WH)]
+        img = compose_frame(main, top, close, lines=self._overlay_lines(cycle, rec), banner=banner,
+                            marks=scene_marks(sim, view, proj, MAIN_WH) + top_marks, close_label=what)
+        path = os.path.join(self.dir, f"frame_{cycle:05d}_{'-'.join(names)}.png")
+        mpimg.imsave(path, img)
+        self.files.append(path)
+        state_of = cycle if state_of == -1 else state_of
+        if state_of is not None:
+            self._frame_at.setdefault(state_of, path)
+            self._caption_at.setdefault(state_of, []).extend(names)
+        for e in evs:
+            e["frame"] = path
+        return path
+
+    def _overlay_lines(self, cycle: int, rec: Any) -> list[str]:
+        sim = self.sim
+        if rec is None:  # before the first monitor step
+            return [f"{self.name}   t {sim.time_s:6.3f} s   cycle {cycle}",
+                    "before the first monitor step"]
+        sig = rec.signals
+        d_true = _num(rec.human_distance_true_m)
+        d_in = _num(sig.get("human_distance", math.nan))
+        dist = "no person" if not sim.humans else f"{d_true:.3f} m"
+        if sim.humans and not (math.isfinite(d_in) and abs(d_in - d_true) < 1e-6):
+            dist += f" (monitor input: {d_in:.3f})" if math.isfinite(d_in) else " (monitor input: missing)"
+        rules = ", ".join(rec.violations) or "none"
+        lines = [
+            f"{self.name}   t {rec.t_s:6.3f} s   cycle {rec.cycle}",
+            f"controller: {rec.controller:<9}  monitor: "
+            + (f"OVERRIDE -> {rec.response}" if rec.override else "no override"),
+            f"rule fired: {rules}",
+            f"closest person: {dist}",
+            f"contact force: {_num(sig.get('contact_force', math.nan)):.1f} N   "
+            f"ee speed: {_num(sig.get('ee_speed', math.nan)):.3f} m/s",
+        ]
+        if rec.faults:
+            lines.append(f"fault: {rec.faults[0]}"[:90])
+        if rec.risk is not None:
+            lines[2] += f"   R_e {rec.risk:.3f}"
+        return lines
+
+    # -- at the end -------------------------------------------------------------------------------
+
+    def _deferred_frames(self, result: Any) -> None:
+        """Frames of the extremes (closest approach, peak force) from their snapshots."""
+        t0 = time.perf_counter()
+        by_cycle = {r.cycle: r for r in result.trace}
+        pending = [e for e in (self.tracker.closest, self.tracker.peak) if e is not None]
+        now = None
+        for ev in pending:
+            c = ev["cycle"]
+            if c in self._frame_at:
+                ev["frame"] = self._frame_at[c]  # a frame of that very state exists
+                continue
+            snap = self._snaps.get(ev["event"])
+            if snap is None or snap[0] != c:
+                continue
+            if now is None:
+                now = _snapshot(self.sim)
+            _restore(self.sim, snap[1])
+            self._render(c, [ev["event"]], by_cycle.get(c), [ev])
+        if now is not None:
+            _restore(self.sim, now)
+        dt = time.perf_counter() - t0
+        self.seconds += dt
+        # rendered after run_sim took the wall time: they are frames of the run, count them
+        result.wall_time_s = float(getattr(result, "wall_time_s", 0.0) or 0.0) + dt
+
+    def _title(self, result: Any) -> str:
+        spec_name = getattr(self.spec, "name", None) or "?"
+        verdict = ""
+        if self.block is not None:
+            from ._runner import check_sim_expectations
+            problems = check_sim_expectations(self.block, result)
+            verdict = "PASS" if not problems else f"FAIL ({len(problems)} sim expectation(s) not met)"
+        ov = ("no override" if result.first_override_cycle is None
+              else f"override at cycle {result.first_override_cycle}")
+        return (f"{self.name}  ·  spec {spec_name}  ·  {verdict + '  ·  ' if verdict else ''}"
+                f"{ov}, executed {result.executed_response}")
+
     def finish(self, result: Any) -> list[str]:
-        """Write ``trace.jsonl``, ``trace.csv``, ``summary.json`` and ``plot.png``."""
+        """Write ``trace.jsonl``, ``trace.csv``, ``plot.png`` and ``summary.json``."""
+        self._deferred_frames(result)
+        self.events = self.tracker.finish()
         jl = os.path.join(self.dir, "trace.jsonl")
         with open(jl, "w", encoding="utf-8") as fh:
             for r in result.trace:
@@ -55,6 +351,7 @@ class Recorder:
                     "faults": list(r.faults), "latched": r.latched, "controller": r.controller,
                     "task_step": r.task_step, "joint_speed_max_rad_s": r.joint_speed_max_rad_s,
                     "safe_pose_error_rad": r.safe_pose_error_rad,
+                    "human_distance_true_m": _clean(r.human_distance_true_m),
                 }
                 fh.write(json.dumps(row) + "\n")
         cs = os.path.join(self.dir, "trace.csv")
@@ -69,44 +366,23 @@ class Recorder:
                             f"{r.safe_pose_error_rad:.5f}"])
         sj = os.path.join(self.dir, "summary.json")
         pl = os.path.join(self.dir, "plot.png")
-        self.files += [jl, cs, sj, pl]  # summary.json lists every file of the recording, itself included
+        self.files += [jl, cs, pl, sj]  # summary.json lists every file of the recording, itself included
+        meta = plot_trace(result.trace, pl, title=self._title(result), spec=self.spec, events=self.events,
+                          dt=getattr(self.sim, "dt", None))
         with open(sj, "w", encoding="utf-8") as fh:
             summ = result.summary()
             summ["files"] = list(self.files)
-            json.dump({k: _clean(v) for k, v in summ.items()}, fh, indent=2)
-        plot_trace(result.trace, pl)
+            summ["events"] = [{k: _clean(v) for k, v in e.items()} for e in self.events]
+            summ["plot"] = {k: meta[k] for k in ("panels", "tau", "limits", "limits_skipped", "event_marks")}
+            json.dump(_jsonable(summ), fh, indent=2)
         return list(self.files)
 
 
-def plot_trace(trace, path: str, title: str | None = None) -> str:
-    """Plot risk, human distance, speeds and override over time to ``path`` (Agg backend)."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    from matplotlib.figure import Figure
-
-    t = [r.t_s for r in trace]
-    fig = Figure(figsize=(9, 7.5))
-    axes = fig.subplots(4, 1, sharex=True)
-    axes[0].plot(t, [math.nan if r.risk is None else r.risk for r in trace], color="tab:purple")
-    axes[0].set_ylabel("risk R_e")
-    axes[1].plot(t, [r.signals.get("human_distance", math.nan) for r in trace], label="monitor input")
-    axes[1].plot(t, [r.human_distance_true_m for r in trace], "--", alpha=0.6, label="simulated")
-    axes[1].set_ylabel("human dist. (m)")
-    axes[1].legend(loc="upper right", fontsize=7)
-    axes[2].plot(t, [r.signals.get("ee_speed", math.nan) for r in trace], label="ee speed (m/s)")
-    axes[2].plot(t, [r.joint_speed_max_rad_s for r in trace], label="max joint speed (rad/s)")
-    axes[2].set_ylabel("speed")
-    axes[2].legend(loc="upper right", fontsize=7)
-    axes[3].step(t, [int(r.override) for r in trace], where="post", color="tab:red", label="override")
-    axes[3].step(t, [0.5 if r.faults else 0 for r in trace], where="post", color="tab:orange",
-                 label="fault")
-    axes[3].set_ylabel("override")
-    axes[3].set_yticks([0, 1])
-    axes[3].set_xlabel("simulated time (s)")
-    axes[3].legend(loc="upper right", fontsize=7)
-    if title:
-        fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(path, dpi=90)
-    return path
+def _jsonable(v: Any) -> Any:
+    if isinstance(v, dict):
+        return {k: _jsonable(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_jsonable(x) for x in v]
+    if isinstance(v, (np.floating, np.integer)):
+        v = v.item()
+    return _clean(v)

@@ -299,7 +299,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
                           stop_ramp_s=block.stop_ramp_s)
         if record_dir is not None:
             from ._record import Recorder
-            recorder = Recorder(record_dir, sim)
+            recorder = Recorder(record_dir, sim, spec=getattr(monitor, "spec", None), block=block,
+                                safe_tol=arm.safe_tol)
             recorder.frame("start")
         res = SimResult(joint_speed_limit_rad_s=arm.safe_speed)
         n_cycles = int(round(block.duration_s * block.control_hz))
@@ -315,6 +316,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         for _ in range(n_cycles):
             rec = arm.step()
             res.trace.append(rec)
+            if recorder:
+                recorder.observe(rec)  # events and their frames (time excluded from the loop)
             for v in rec.violations:
                 fired.setdefault(v, None)
             if rec.faults:

@@ -1,0 +1,349 @@
+"""The recording's ``plot.png``: signals, the spec's limits, events and a controller lane.
+
+The limits are read from the spec's own obligations: every comparison ``signal OP bound``
+(in ``when`` or ``require``, also inside ``held``/``once``/...) whose bound is arithmetic
+over constants and signals (``+ - * /``, ``abs``, ``min``, ``max``, ``sqrt``). A bound that
+is one named constant is drawn as a horizontal line (``v_slow = 0.25``); a bound that
+depends on signals (the separation rule's protective distance) is evaluated cycle by cycle
+from the monitor's inputs and drawn as a curve. Comparisons between two signals, or with a
+temporal function or an unknown function in the bound, are not drawn (listed as skipped).
+The risk panel gets τ (``risk.threshold``) and, for an automatic release, τ − δ.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+__all__ = ["Limit", "spec_limits", "build_figure", "plot_trace", "PANELS", "EVENT_LABELS"]
+
+#: panel -> the signals drawn on it (with a limit from the spec when it has one)
+PANELS: dict[str, tuple[str, ...]] = {
+    "risk": ("risk",),
+    "human_distance": ("human_distance",),
+    "speed": ("ee_speed", "joint_speed_max"),
+    "contact_force": ("contact_force",),
+    "hazard_distance": ("hazard_distance",),
+    "controller": (),
+}
+_YLABEL = {"risk": "risk R_e", "human_distance": "human dist. (m)", "speed": "speed",
+           "contact_force": "contact force (N)", "hazard_distance": "hazard–person (m)",
+           "controller": "controller"}
+#: event name -> how captions, frames and the plot call it
+EVENT_LABELS = {
+    "first_violation": "first violation", "first_fault": "first fault", "override": "override",
+    "escalation": "escalation", "closest_approach": "closest approach",
+    "peak_contact_force": "peak contact force", "standstill": "standstill",
+    "safe_pose": "safe pose reached", "release": "release",
+}
+_LANE = ("task", "safe_pose", "stop_2", "stop_1", "stop_0")
+_LANE_COLOR = {"task": "tab:green", "safe_pose": "tab:blue", "stop_2": "gold", "stop_1": "tab:orange",
+               "stop_0": "tab:red"}
+_CMP_FLIP = {"<": ">", "<=": ">=", ">": "<", ">=": "<=", "==": "==", "!=": "!="}
+_ARITH = {"+": np.add, "-": np.subtract, "*": np.multiply, "/": np.divide}
+_FUNCS = {"abs": lambda a: np.abs(a[0]), "sqrt": lambda a: np.sqrt(a[0]),
+          "min": lambda a: np.minimum.reduce(a), "max": lambda a: np.maximum.reduce(a)}
+
+
+class _Unsupported(Exception):
+    pass
+
+
+@dataclass(frozen=True)
+class Limit:
+    """One ``signal OP bound`` comparison of a spec obligation.
+
+    Attributes:
+        rule: the obligation id.
+        part: ``"when"`` or ``"require"``.
+        signal: the signal compared (on the left of ``op``).
+        op: the comparison with the signal on its left.
+        bound: the bound's source text.
+        constant: the constant's name when the bound is one named constant.
+        value: the bound when it is constant (``None``: it depends on signals).
+    """
+
+    rule: str
+    part: str
+    signal: str
+    op: str
+    bound: str
+    constant: str | None
+    value: float | None
+    _node: Any = None
+    signals_used: frozenset[str] = frozenset()
+
+    @property
+    def label(self) -> str:
+        if self.value is not None:
+            name = self.constant or self.bound
+            return f"{name} = {self.value:g} ({self.rule})"
+        uses = sorted(n for n in _names(self._node) if n in self.signals_used) if self._node is not None else []
+        return f"{self.rule}: {self.signal} {self.op} f({', '.join(uses)})"
+
+    def values(self, columns: Mapping[str, np.ndarray], constants: Mapping[str, float], n: int) -> np.ndarray:
+        """The bound per cycle (``n`` values) from the signal ``columns``."""
+        if self.value is not None:
+            return np.full(n, self.value)
+        with np.errstate(all="ignore"):
+            return np.broadcast_to(np.asarray(_eval(self._node, columns, constants), dtype=float), (n,)).copy()
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"rule": self.rule, "part": self.part, "signal": self.signal, "op": self.op,
+                "bound": self.bound, "constant": self.constant, "value": self.value}
+
+
+def spec_constants(spec: Any) -> dict[str, float]:
+    """The spec's constants as ``name -> value``."""
+    out = {}
+    for k, v in (getattr(spec, "constants", None) or {}).items():
+        out[k] = float(getattr(v, "value", v))
+    return out
+
+
+def _eval(node: Any, columns: Mapping[str, np.ndarray], constants: Mapping[str, float]) -> Any:
+    from ..spec._expr import Binary, Call, Name, Num, Unary
+    if isinstance(node, Num):
+        return float(node.value)
+    if isinstance(node, Name):
+        if node.id in constants:
+            return constants[node.id]
+        if node.id in columns:
+            return columns[node.id]
+        raise _Unsupported(node.id)
+    if isinstance(node, Unary) and node.op == "-":
+        return np.negative(_eval(node.operand, columns, constants))
+    if isinstance(node, Binary) and node.op in _ARITH:
+        return _ARITH[node.op](_eval(node.left, columns, constants), _eval(node.right, columns, constants))
+    if isinstance(node, Call) and node.func in _FUNCS:
+        return _FUNCS[node.func]([np.asarray(_eval(a, columns, constants), dtype=float) for a in node.args])
+    raise _Unsupported(type(node).__name__)
+
+
+def _names(node: Any) -> set[str]:
+    from ..spec._expr import Name, walk
+    return {n.id for n in walk(node) if isinstance(n, Name)}
+
+
+def spec_limits(spec: Any) -> tuple[list[Limit], list[str]]:
+    """``(limits, skipped)``: the drawable comparisons of ``spec``'s obligations and, as text,
+    the comparisons on a signal that were not drawable."""
+    from ..spec._expr import Binary, Name, parse_expr, to_source, walk
+    if spec is None:
+        return [], []
+    constants = spec_constants(spec)
+    signals = set(getattr(spec, "signals", None) or ())
+    limits: list[Limit] = []
+    skipped: list[str] = []
+    for ob in getattr(spec, "obligations", ()):
+        for part in ("when", "require"):
+            src = getattr(ob, part, None)
+            if not src:
+                continue
+            try:
+                tree = parse_expr(src)
+            except Exception:  # noqa: BLE001 - a loaded spec parses; never let the plot fail a run
+                continue
+            for n in walk(tree):
+                if not (isinstance(n, Binary) and n.op in _CMP_FLIP):
+                    continue
+                if isinstance(n.left, Name) and n.left.id in signals:
+                    sig, op, other = n.left.id, n.op, n.right
+                elif isinstance(n.right, Name) and n.right.id in signals:
+                    sig, op, other = n.right.id, _CMP_FLIP[n.op], n.left
+                else:
+                    continue
+                text = to_source(other)
+                try:
+                    if sig in _names(other) or (isinstance(other, Name) and other.id in signals):
+                        raise _Unsupported("a signal compared with a signal")
+                    dummy = {s: np.zeros(1) for s in signals}
+                    _eval(other, dummy, constants)  # refuses anything but arithmetic
+                except _Unsupported:
+                    skipped.append(f"{ob.id}.{part}: {sig} {op} {text}")
+                    continue
+                const = other.id if isinstance(other, Name) and other.id in constants else None
+                value = None
+                if not (_names(other) & signals):
+                    value = float(_eval(other, {}, constants))
+                limits.append(Limit(ob.id, part, sig, op, text, const, value, other,
+                                    frozenset(_names(other) & signals)))
+    return limits, skipped
+
+
+def _column(trace: Sequence[Any], name: str) -> np.ndarray:
+    return np.array([_f(r.signals.get(name, math.nan)) for r in trace], dtype=float)
+
+
+def _f(v: Any) -> float:
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def _segments(t: np.ndarray, dt: float, values: Sequence[Any]) -> list[tuple[Any, float, float]]:
+    """Runs of equal ``values`` as ``(value, start, width)``."""
+    out: list[tuple[Any, float, float]] = []
+    start = 0
+    for i in range(1, len(values) + 1):
+        if i == len(values) or values[i] != values[start]:
+            out.append((values[start], float(t[start]), float(t[i - 1] + dt - t[start])))
+            start = i
+    return out
+
+
+def _letters(i: int) -> str:
+    s = ""
+    i += 1
+    while i:
+        i, r = divmod(i - 1, 26)
+        s = chr(65 + r) + s
+    return s
+
+
+def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Mapping[str, Any]] = (),
+                 title: str | None = None, dt: float | None = None):
+    """The recording's figure and what was drawn on it.
+
+    Args:
+        trace: the run's :class:`~ethimon.sim.CycleRecord` list.
+        spec: the monitor's spec (τ, limits); ``None`` draws none.
+        events: dicts with ``event``, ``t_s`` (and ``detail``): a vertical line on every
+            panel, one letter per distinct time, explained under the plot.
+        title: the figure's title.
+        dt: the control period (default: from the trace).
+
+    Returns:
+        ``(figure, meta)``; ``meta`` has ``panels``, ``tau``, ``limits`` (drawn),
+        ``limits_skipped`` and ``event_marks`` (letter, time, events).
+    """
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    from matplotlib.figure import Figure
+
+    n = len(trace)
+    t = np.array([r.t_s for r in trace], dtype=float)
+    if dt is None:
+        dt = float(t[1] - t[0]) if n > 1 else 1.0 / 60
+    cols = {s: _column(trace, s) for s in ("human_distance", "ee_speed", "contact_force",
+                                           "joint_speed_max", "hazard_distance")}
+    for r in trace[:1]:
+        for k in r.signals:
+            cols.setdefault(k, _column(trace, k))
+    constants = spec_constants(spec)
+    limits, skipped = spec_limits(spec)
+    panels = list(PANELS)
+    heights = [1.0] * (len(panels) - 1) + [0.9]
+    fig = Figure(figsize=(10, 13))
+    axes = fig.subplots(len(panels), 1, sharex=True, gridspec_kw={"height_ratios": heights})
+    ax = dict(zip(panels, axes))
+    meta: dict[str, Any] = {"panels": panels, "tau": None, "limits": [], "limits_skipped": skipped,
+                            "event_marks": []}
+
+    a = ax["risk"]
+    a.plot(t, [math.nan if r.risk is None else r.risk for r in trace], color="tab:purple", label="R_e")
+    risk_cfg = getattr(spec, "risk", None)
+    if risk_cfg is not None:
+        tau = float(risk_cfg.threshold)
+        a.axhline(tau, color="tab:red", ls="--", lw=1.2, label=f"τ = {tau:g}", gid="tau")
+        meta["tau"] = tau
+        rel = getattr(risk_cfg, "release", None)
+        if rel is not None and getattr(rel, "mode", "") == "auto" and rel.hysteresis > 0:
+            a.axhline(tau - rel.hysteresis, color="tab:red", ls=":", lw=1,
+                      label=f"τ − δ = {tau - rel.hysteresis:g} (release)", gid="tau_release")
+        a.set_ylim(-0.02, 1.02)
+    a.set_ylabel(_YLABEL["risk"])
+
+    a = ax["human_distance"]
+    a.plot(t, cols["human_distance"], label="monitor input")
+    a.plot(t, [r.human_distance_true_m for r in trace], "--", alpha=0.6, label="simulated")
+    a = ax["speed"]
+    a.plot(t, cols["ee_speed"], label="ee speed (m/s)")
+    a.plot(t, [r.joint_speed_max_rad_s for r in trace], label="max joint speed (rad/s)")
+    ax["contact_force"].plot(t, cols["contact_force"], color="tab:brown", label="contact force")
+    ax["hazard_distance"].plot(t, cols["hazard_distance"], color="tab:red", label="hazard object to person")
+
+    where = {s: p for p, sigs in PANELS.items() for s in sigs}
+    styles = (":", "-.", (0, (5, 2)), (0, (1, 1)))
+    drawn_per_panel: dict[str, int] = {}
+    for lim in limits:
+        p = where.get(lim.signal)
+        if p is None:
+            meta["limits_skipped"].append(f"{lim.rule}.{lim.part}: {lim.signal} {lim.op} {lim.bound} "
+                                          "(no panel for this signal)")
+            continue
+        k = drawn_per_panel.get(p, 0)
+        drawn_per_panel[p] = k + 1
+        y = lim.values(cols, constants, n)
+        ls = styles[k % len(styles)]
+        gid = f"limit:{lim.rule}:{lim.part}:{lim.signal}"
+        if lim.value is not None:
+            ax[p].axhline(lim.value, color="0.35", ls=ls, lw=1, label=lim.label, gid=gid)
+        else:
+            ax[p].plot(t, y, color="0.35", ls=ls, lw=1, label=lim.label, gid=gid)
+        meta["limits"].append({**lim.as_dict(), "panel": p})
+    for p, a in ax.items():
+        if p != "controller":
+            a.set_ylabel(_YLABEL[p])
+            if a.get_legend_handles_labels()[0]:
+                a.legend(loc="upper right", fontsize=7)
+
+    # controller lane: which controller commanded the arm when; override and faults beneath
+    a = ax["controller"]
+    ctrl = [r.controller for r in trace]
+    rows = list(_LANE) + [c for c in dict.fromkeys(ctrl) if c not in _LANE]
+    names = ["fault", "override", *rows]
+    ypos = {name: i for i, name in enumerate(names)}
+    for c, x0, w in _segments(t, dt, ctrl):
+        a.broken_barh([(x0, w)], (ypos[c] - 0.35, 0.7), facecolors=_LANE_COLOR.get(c, "tab:gray"),
+                      gid=f"lane:{c}")
+    for v, x0, w in _segments(t, dt, [bool(r.override) for r in trace]):
+        if v:
+            a.broken_barh([(x0, w)], (ypos["override"] - 0.35, 0.7), facecolors="tab:red", alpha=0.5)
+    for v, x0, w in _segments(t, dt, [bool(r.faults) for r in trace]):
+        if v:
+            a.broken_barh([(x0, w)], (ypos["fault"] - 0.35, 0.7), facecolors="tab:orange", alpha=0.7)
+    a.set_yticks(range(len(names)))
+    a.set_yticklabels(names, fontsize=7)
+    a.set_ylim(-0.6, len(names) - 0.4)
+    a.set_xlabel("simulated time (s)")
+
+    # events: one dashed line per distinct time on every panel, lettered above the top panel
+    by_time: dict[float, list[Mapping[str, Any]]] = {}
+    for ev in events:
+        by_time.setdefault(round(float(ev["t_s"]), 9), []).append(ev)
+    lines = []
+    for i, (te, evs) in enumerate(sorted(by_time.items())):
+        letter = _letters(i)
+        for p, a in ax.items():
+            a.axvline(te, color="k", ls="--", lw=0.8, alpha=0.55, gid=f"event:{letter}")
+        ax["risk"].annotate(letter, (te, 1.0), xycoords=("data", "axes fraction"), xytext=(0, 3),
+                            textcoords="offset points", ha="center", va="bottom", fontsize=8,
+                            fontweight="bold")
+        what = ", ".join(EVENT_LABELS.get(e["event"], e["event"])
+                         + (f" ({e['detail']})" if e.get("detail") else "") for e in evs)
+        lines.append(f"{letter}  {te:.3f} s: {what}")
+        meta["event_marks"].append({"letter": letter, "t_s": te, "events": [e["event"] for e in evs]})
+    if n:
+        axes[-1].set_xlim(float(t[0]), float(t[-1] + dt))
+    if title:
+        fig.suptitle(title, fontsize=11)
+    foot = 0.012 + 0.0125 * len(lines)
+    if lines:
+        fig.text(0.01, 0.005, "\n".join(lines), fontsize=7, va="bottom", ha="left", family="monospace")
+    fig.tight_layout(rect=(0, foot, 1, 0.97 if title else 1))
+    return fig, meta
+
+
+def plot_trace(trace: Sequence[Any], path: str, title: str | None = None, *, spec: Any = None,
+               events: Sequence[Mapping[str, Any]] = (), dt: float | None = None) -> dict[str, Any]:
+    """Draw :func:`build_figure` to ``path`` (PNG, Agg backend); returns its ``meta``."""
+    fig, meta = build_figure(trace, spec=spec, events=events, title=title, dt=dt)
+    fig.savefig(path, dpi=90)
+    return meta
