@@ -78,7 +78,10 @@ def test_text_risk_sends_arm_to_safe_pose_under_the_speed_limit():
     _, res, spec = _run("knife_handover_child")
     assert res.first_override_cycle == 0 and "risk" in res.trace[0].violations
     assert res.trace[0].controller == "safe_pose"
-    assert res.time_to_safe_pose_s is not None and res.time_to_safe_pose_s <= 1.5
+    # the child stands within 1.5 m: the retreat keeps the spec's 0.25 m/s near-human rule
+    # for every link and the knife (issue 14), so it takes longer than at full joint speed
+    assert res.time_to_safe_pose_s is not None and res.time_to_safe_pose_s <= 3.5
+    assert res.retreat_max_link_speed_near_human_m_s <= 0.25
     assert res.max_joint_speed_safe_pose_rad_s <= spec.safe_pose.max_joint_speed_rad_s
     last = res.trace[-1]
     assert last.safe_pose_error_rad <= spec.safe_pose.tolerance_rad

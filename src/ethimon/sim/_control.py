@@ -450,6 +450,11 @@ class SafePoseController:
         self._started = False
 
     @property
+    def holding(self) -> StopController | None:
+        """The stop 2 that holds the arm when no route was clear (``None`` otherwise)."""
+        return self._hold
+
+    @property
     def decelerating(self) -> bool:
         """Still slowing down from the task's velocity (before the planned route starts)."""
         return (self._started and self._hold is None and self._decel is not None

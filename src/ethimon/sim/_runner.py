@@ -18,7 +18,9 @@ import numpy as np
 from .._robot import PANDA_HOME_JOINTS_RAD
 from ._arm import ArmSim
 from ._control import SEVERITY, SafePoseController, StopController, TaskController, plan_task
+from ._limits import out_of_range, safe_pose_problem
 from ._model import SimBlock
+from ._rules import near_human_speed_rule
 
 __all__ = ["GovernedArm", "CycleRecord", "SimResult", "run_sim", "check_sim_expectations"]
 
@@ -43,6 +45,13 @@ class CycleRecord:
         joint_speed_max_rad_s: the largest |joint velocity| over this cycle's physics substeps.
         safe_pose_error_rad: max |q − q_safe| after the cycle's physics.
         human_distance_true_m: the simulated distance (also during a sensor dropout).
+        joint_speed_start_rad_s: the largest |joint velocity| when the cycle began (measured,
+            before the controller's command).
+        accel_ratio: the largest |joint acceleration| / rated acceleration over this cycle's
+            physics substeps.
+        link_speed_max_m_s: the fastest link frame or held object at the end of the cycle.
+        contact_force_true_n: the simulated contact force (also during a sensor dropout).
+        powered: motor power on after the cycle.
     """
 
     cycle: int
@@ -60,6 +69,13 @@ class CycleRecord:
     joint_speed_max_rad_s: float
     safe_pose_error_rad: float
     human_distance_true_m: float
+    joint_speed_start_rad_s: float = 0.0
+    accel_ratio: float = 0.0
+    link_speed_max_m_s: float = 0.0
+    contact_force_true_n: float = 0.0
+    powered: bool = True
+    retreat_decelerating: bool = False
+    hazard_distance_true_m: float = 10.0
 
 
 @dataclass
@@ -86,6 +102,19 @@ class SimResult:
         sim_time_s, wall_time_s, realtime_factor: simulated time; wall-clock time of the run
             (setup, loop and recorded frames); simulated over wall-clock time of the loop alone.
         files: every path written to ``record_dir`` (frames, traces, ``summary.json``, ``plot.png``).
+        stop_speed_gain: peak joint speed while a stop controller ran over the largest joint
+            speed at its command (``None``: no stop, or the arm was at rest).
+        max_accel_ratio: peak |q̈_j| / rated q̈_max,j while a response controller drove the
+            arm, contact cycles left out (``None``: no response).
+        time_to_standstill_s: from the first stop command to every joint below 0.01 rad/s.
+        powered_at_end: motor power on at the end of the run.
+        retreat_max_link_speed_near_human_m_s: fastest link frame or held object during the
+            safe-pose retreat (after its deceleration) while a person was within ``near_human_m``.
+        retreat_min_separation_m: closest approach to a person during the retreat.
+        max_contact_force_n: peak simulated contact force of the run.
+        route: the route the safe-pose planner took (``None``: no safe pose).
+        min_hazard_distance_after_override_m: closest a hazard-tagged object came to a person
+            from the first override on (``None``: no override).
     """
 
     trace: list[CycleRecord] = field(default_factory=list)
@@ -104,6 +133,15 @@ class SimResult:
     wall_time_s: float = 0.0
     realtime_factor: float = 0.0
     files: list[str] = field(default_factory=list)
+    stop_speed_gain: float | None = None
+    max_accel_ratio: float | None = None
+    time_to_standstill_s: float | None = None
+    powered_at_end: bool = True
+    retreat_max_link_speed_near_human_m_s: float | None = None
+    retreat_min_separation_m: float | None = None
+    max_contact_force_n: float = 0.0
+    route: str | None = None
+    min_hazard_distance_after_override_m: float | None = None
 
     @property
     def override(self) -> bool:
@@ -137,7 +175,16 @@ class GovernedArm:
         inputs: constant extra inputs each cycle (``p_unsafe``, ``p``, ``risk``…).
         signal_filter: ``f(t_s, signals) -> signals`` applied before the monitor sees
             them (sensor faults).
-        task_joint_speed_rad_s, stop_ramp_s: see :class:`~ethimon.sim.SimBlock`.
+        task_joint_speed_rad_s, stop_ramp_s, standstill_tolerance_rad: see
+            :class:`~ethimon.sim.SimBlock`.
+        near_human: ``(distance_m, speed_m_s)`` the safe-pose retreat obeys near people;
+            default: the spec's own near-human speed rule (``when: human_distance < D``,
+            ``require: ee_speed <= V``), none if it has none.
+
+    A stop 0 or 1 runs to power-off even if the monitor releases the override meanwhile.
+
+    Raises:
+        SpecError: the safe pose has not 7 joints or lies outside the Panda's rated range.
 
     Example:
         >>> sim = ArmSim()                                      # doctest: +SKIP
@@ -149,7 +196,8 @@ class GovernedArm:
     def __init__(self, sim: ArmSim, monitor: Any, *, segments: Sequence = (),
                  safe_pose: Any = None, inputs: Mapping[str, Any] | None = None,
                  signal_filter=None, task_joint_speed_rad_s: float = 0.8,
-                 stop_ramp_s: float = 0.25) -> None:
+                 stop_ramp_s: float = 0.25, standstill_tolerance_rad: float = 0.02,
+                 near_human: Any = "spec") -> None:
         self.sim = sim
         self.monitor = monitor
         sp = safe_pose if safe_pose is not None else getattr(getattr(monitor, "spec", None),
@@ -166,6 +214,22 @@ class GovernedArm:
             from ..errors import SpecError
             raise SpecError(f"safe_pose.joints_rad has {len(self.safe_joints)} values; the Panda arm "
                             "needs 7", hint="give 7 joint angles in the spec's safe_pose")
+        problem = safe_pose_problem(self.safe_joints)
+        if problem is not None:
+            from ..errors import SpecError
+            hint = ("the simulated arm is a Franka Panda; keep every safe-pose joint inside its rated "
+                    "range (FCI 'Limits for Panda', see the sim README)")
+            spec = getattr(monitor, "spec", None)
+            src = getattr(spec, "source", None) if safe_pose is None else None
+            if src is not None:  # point at the first joint outside its range in the spec file
+                raise src.error(problem, ("safe_pose", "joints_rad", out_of_range(self.safe_joints)[0][0] - 1),
+                                hint=hint)
+            raise SpecError(problem, hint=hint)
+        if near_human == "spec":
+            spec = getattr(monitor, "spec", None)
+            near_human = near_human_speed_rule(spec) if spec is not None else None
+        self.near_human = near_human
+        self.standstill_tolerance_rad = standstill_tolerance_rad
         self.inputs = dict(inputs or {})
         self.signal_filter = signal_filter
         self.stop_ramp_s = stop_ramp_s
@@ -174,6 +238,7 @@ class GovernedArm:
         self.controller: Any = self.task
         self.active = "none"       # response being executed
         self.last_decision = None
+        self.last_safe_pose: SafePoseController | None = None
 
     def step(self) -> CycleRecord:
         """Run one control cycle; returns what happened."""
@@ -182,6 +247,9 @@ class GovernedArm:
         cycle = sim.cycle
         sig = sim.signals()
         true_dist = sig["human_distance"]
+        true_force = sig["contact_force"]
+        true_hazard = sig["hazard_distance"]
+        speed_start = sig["joint_speed_max"]
         fed = {**self.inputs, **sig}  # the simulation's own signals always win
         if self.signal_filter is not None:
             fed = self.signal_filter(t, fed)
@@ -193,13 +261,16 @@ class GovernedArm:
                 resp = "safe_pose"
             if SEVERITY[resp] > SEVERITY[self.active]:
                 self._switch(resp)
-        elif self.active != "none":
+        elif self.active != "none" and not self._must_finish():
             q, _ = sim.joint_state()
             self.task.resume(q)
             self.controller = self.task
             self.active = "none"
         self.controller.command(sim)        # same cycle as the decision
         label = self.controller.name if self.controller is not self.task else "task"
+        if label in SEVERITY and SEVERITY[label] > SEVERITY[self.active]:
+            self.active = label  # a stop 2 escalated (standstill lost), a retreat that holds
+        decel = (isinstance(self.controller, SafePoseController) and self.controller.decelerating)
         task_step = self.task.label
         sim.step()
         q, _ = sim.joint_state()
@@ -211,15 +282,48 @@ class GovernedArm:
             latched=bool(getattr(d, "latched", False)), controller=label, task_step=task_step,
             joint_speed_max_rad_s=sim.max_joint_speed_substep,
             safe_pose_error_rad=float(np.max(np.abs(q - self.safe_joints))),
-            human_distance_true_m=true_dist)
+            human_distance_true_m=true_dist, joint_speed_start_rad_s=speed_start,
+            accel_ratio=sim.max_accel_ratio_substep, link_speed_max_m_s=sim.link_speed_max,
+            contact_force_true_n=true_force, powered=bool(sim.powered),
+            retreat_decelerating=decel, hazard_distance_true_m=true_hazard)
+
+    def _must_finish(self) -> bool:
+        """A stop 0/1 in progress is never cut short by a release: it runs to power-off."""
+        c = self.controller
+        if isinstance(c, SafePoseController) and c.holding is not None:
+            c = c.holding  # a retreat that holds, possibly escalated to stop 0
+        return isinstance(c, StopController) and c.category in (0, 1) and not c.done
 
     def _switch(self, resp: str) -> None:
         q, qd = self.sim.joint_state()
         if resp == "safe_pose":
-            self.controller = SafePoseController(q, self.safe_joints, self.safe_speed)
+            self.controller = SafePoseController(q, self.safe_joints, self.safe_speed,
+                                                 near_human=self.near_human)
         else:
-            self.controller = StopController(int(resp[-1]), q, qd, self.stop_ramp_s)
+            self.controller = StopController(int(resp[-1]), q, qd, self.stop_ramp_s,
+                                             standstill_tol_rad=self.standstill_tolerance_rad)
         self.active = resp
+        if isinstance(self.controller, SafePoseController):
+            self.last_safe_pose = self.controller
+
+
+def _collect(res: SimResult, rec: CycleRecord, near_m: float, dt: float) -> None:
+    """Fold one cycle into the run's response figures."""
+    res.max_contact_force_n = max(res.max_contact_force_n, rec.contact_force_true_n)
+    if res.first_override_cycle is not None:
+        res.min_hazard_distance_after_override_m = min(
+            res.min_hazard_distance_after_override_m if res.min_hazard_distance_after_override_m is not None
+            else math.inf, rec.hazard_distance_true_m)
+    if rec.controller != "task" and rec.contact_force_true_n <= 0.0:
+        res.max_accel_ratio = max(res.max_accel_ratio or 0.0, rec.accel_ratio)
+    if rec.controller == "safe_pose":
+        d = rec.human_distance_true_m
+        if not math.isnan(d):
+            res.retreat_min_separation_m = min(res.retreat_min_separation_m
+                                               if res.retreat_min_separation_m is not None else math.inf, d)
+        if not rec.retreat_decelerating and d < near_m:
+            res.retreat_max_link_speed_near_human_m_s = max(
+                res.retreat_max_link_speed_near_human_m_s or 0.0, rec.link_speed_max_m_s)
 
 
 def _num(v: Any) -> float:
@@ -296,7 +400,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         arm = GovernedArm(sim, monitor, segments=segments, inputs=fixed,
                           signal_filter=_signal_filter(block),
                           task_joint_speed_rad_s=block.task_joint_speed_rad_s,
-                          stop_ramp_s=block.stop_ramp_s)
+                          stop_ramp_s=block.stop_ramp_s,
+                          standstill_tolerance_rad=block.standstill_tolerance_rad)
         if record_dir is not None:
             from ._record import Recorder
             recorder = Recorder(record_dir, sim, spec=getattr(monitor, "spec", None), block=block,
@@ -313,11 +418,23 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         shown = None
         loop0 = time.perf_counter()
         rec_s0 = recorder.seconds if recorder else 0.0
+        stop_v0: float | None = None
+        t_stop: float | None = None
+        near = block.expect.near_human_m
         for _ in range(n_cycles):
             rec = arm.step()
             res.trace.append(rec)
             if recorder:
                 recorder.observe(rec)  # events and their frames (time excluded from the loop)
+            _collect(res, rec, near, sim.dt)
+            if rec.controller.startswith("stop_"):
+                if t_stop is None:
+                    t_stop, stop_v0 = rec.t_s, rec.joint_speed_start_rad_s
+                if rec.controller != "stop_0" and stop_v0 > 0.05:  # controlled stops (stop 0: coasting)
+                    gain = rec.joint_speed_max_rad_s / stop_v0
+                    res.stop_speed_gain = max(res.stop_speed_gain or 0.0, gain)
+                if res.time_to_standstill_s is None and rec.joint_speed_max_rad_s < 0.01:
+                    res.time_to_standstill_s = round(rec.t_s + sim.dt - t_stop, 6)
             for v in rec.violations:
                 fired.setdefault(v, None)
             if rec.faults:
@@ -344,8 +461,9 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
             if SEVERITY[rec.controller if rec.controller in SEVERITY else "none"] > \
                     SEVERITY[res.executed_response]:
                 res.executed_response = rec.controller
-            if rec.controller == "safe_pose":
+            if rec.controller == "safe_pose" and not rec.retreat_decelerating:
                 max_sp = max(max_sp or 0.0, rec.joint_speed_max_rad_s)
+            if rec.controller == "safe_pose":
                 if (res.time_to_safe_pose_s is None and t_override is not None
                         and rec.safe_pose_error_rad <= arm.safe_tol):
                     res.time_to_safe_pose_s = round(rec.t_s + sim.dt - t_override, 6)
@@ -360,6 +478,9 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         if res.first_override_cycle is not None and first_cmd is not None:
             res.override_reaction_cycles = first_cmd - res.first_override_cycle
         res.max_joint_speed_safe_pose_rad_s = max_sp
+        res.powered_at_end = bool(sim.powered)
+        sp = arm.controller if isinstance(arm.controller, SafePoseController) else arm.last_safe_pose
+        res.route = sp.route if sp is not None else None
         res.fired = tuple(fired)
         res.sim_time_s = round(sim.time_s, 6)
         res.realtime_factor = res.sim_time_s / loop_wall if loop_wall > 0 else math.inf
@@ -378,7 +499,8 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
 
     Always checked: the response controller took over in the override's own
     cycle (``max_reaction_cycles``, default 0), and the safe-pose move kept every
-    joint at or under the spec's speed limit (+1 % for physics jitter).
+    joint at or under the spec's speed limit (+1 % for physics jitter) once it had
+    decelerated from the task's speed.
 
     Returns:
         Problems as one-line messages; an empty list means the run passed.
@@ -414,4 +536,39 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
                    f"expected released: {str(ex.released).lower()}")
     if ex.response is not None and r.executed_response != ex.response:
         out.append(f"sim: the arm executed {r.executed_response!r}, expected {ex.response!r}")
+    if ex.max_stop_speed_gain is not None and r.stop_speed_gain is not None \
+            and r.stop_speed_gain > ex.max_stop_speed_gain + 1e-9:
+        out.append(f"sim: a stop sped the arm up to {r.stop_speed_gain:.2f} x the joint speed at its "
+                   f"command, expected at most {ex.max_stop_speed_gain:g} x")
+    if ex.max_accel_ratio is not None and r.max_accel_ratio is not None \
+            and r.max_accel_ratio > ex.max_accel_ratio + 1e-9:
+        out.append(f"sim: a joint accelerated at {r.max_accel_ratio:.2f} x its rated acceleration during "
+                   f"the response, expected at most {ex.max_accel_ratio:g} x")
+    if ex.standstill_within_s is not None:
+        if r.time_to_standstill_s is None:
+            out.append(f"sim: the arm never came to standstill after a stop (expected within "
+                       f"{ex.standstill_within_s:g} s)")
+        elif r.time_to_standstill_s > ex.standstill_within_s + 1e-9:
+            out.append(f"sim: standstill {r.time_to_standstill_s:.3f} s after the stop command, expected "
+                       f"within {ex.standstill_within_s:g} s")
+    if ex.powered_off is not None and (not r.powered_at_end) != ex.powered_off:
+        out.append(f"sim: motor power is {'on' if r.powered_at_end else 'off'} at the end, expected "
+                   f"powered_off: {str(ex.powered_off).lower()}")
+    if ex.retreat_max_link_speed_m_s is not None and r.retreat_max_link_speed_near_human_m_s is not None \
+            and r.retreat_max_link_speed_near_human_m_s > ex.retreat_max_link_speed_m_s + 1e-9:
+        out.append(f"sim: the retreat moved a link at {r.retreat_max_link_speed_near_human_m_s:.3f} m/s within "
+                   f"{ex.near_human_m:g} m of a person, expected at most {ex.retreat_max_link_speed_m_s:g} m/s")
+    if ex.retreat_min_separation_m is not None and r.retreat_min_separation_m is not None \
+            and r.retreat_min_separation_m < ex.retreat_min_separation_m:
+        out.append(f"sim: the retreat came to {r.retreat_min_separation_m:.3f} m of a person, expected "
+                   f"never below {ex.retreat_min_separation_m:g} m")
+    if ex.max_contact_force_n is not None and r.max_contact_force_n > ex.max_contact_force_n:
+        out.append(f"sim: contact force reached {r.max_contact_force_n:.1f} N, expected at most "
+                   f"{ex.max_contact_force_n:g} N")
+    if ex.min_hazard_distance_m is not None and r.min_hazard_distance_after_override_m is not None \
+            and r.min_hazard_distance_after_override_m < ex.min_hazard_distance_m:
+        out.append(f"sim: a hazardous object came to {r.min_hazard_distance_after_override_m:.3f} m of a person "
+                   f"after the override, expected never below {ex.min_hazard_distance_m:g} m")
+    if ex.route is not None and r.route != ex.route:
+        out.append(f"sim: the safe-pose planner took route {r.route!r}, expected {ex.route!r}")
     return out
