@@ -261,7 +261,7 @@ def test_cobot_cell_separation_distance(pairs):
     for dist, v in pairs:
         d = m.step({"human_distance": dist, "ee_speed": v, "contact_force": 0.0, "joint_speed_max": 0.0,
                     "p_unsafe": 0.0})
-        s_p = 1.6 * (0.1 + 0.3) + v * 0.1 + v * v / (2 * 2.5) + 0.1 + 0.05
+        s_p = 1.6 * (0.1 + 0.3) + v * 0.1 + v * v / (2 * 2.5) + 0.1 + 0.04 + 0.01  # ... + C + Z_d + Z_r
         if dist < s_p:
             assert d.override and "separation" in d.violations and d.response.severity >= Response.STOP_2.severity
         else:

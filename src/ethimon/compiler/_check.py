@@ -12,8 +12,8 @@ import math
 from dataclasses import dataclass, field
 
 from ..errors import SpecError
-from ..spec._expr import (FUNCTIONS, TEMPORAL, Binary, BoolLit, Call, ExprSyntaxError, Name, Node, Num,
-                          Unary, parse_expr)
+from ..spec._expr import (FUNCTIONS, SEPARATION_PARAMS, TEMPORAL, Binary, BoolLit, Call, ExprSyntaxError, Name,
+                          Node, Num, Unary, parse_expr, separation_distance)
 from ..spec import Constant, Response, RiskConfig, Spec
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit
 
@@ -327,6 +327,32 @@ class _Checker:
         self.types[id(arg)] = Ty("num", None)
         return n
 
+    def check_separation(self, node: Call) -> Ty:
+        """``separation_distance(v_h, v_r, T_r, T_s, S_s, C, Z_d, Z_r)``: each argument a number in its
+        parameter's unit (speeds m/s, times s, distances m; an unknown unit passes) and not a negative
+        constant; the result is a distance [m]."""
+        vals = []
+        for arg, (sym, unit_text, meaning) in zip(node.args, SEPARATION_PARAMS):
+            ty = self.check(arg)
+            if ty.kind != "num":
+                raise self.err(arg, f"separation_distance() parameter {sym} ({meaning}) needs a number, but "
+                                    f"{self.snippet(arg)!r} is {ty.show()}", hint=_SEPARATION_HINT)
+            want = _SEPARATION_UNITS[sym]
+            if ty.unit is not None and ty.unit != want:
+                raise self.err(arg, f"separation_distance() parameter {sym} ({meaning}) is in [{unit_text}], "
+                                    f"but {self.snippet(arg)!r} is [{format_unit(ty.unit)}]",
+                               hint=_SEPARATION_HINT)
+            v = self.folded.get(id(arg))
+            if v is not None and v < 0:
+                raise self.err(arg, f"separation_distance() parameter {sym} ({meaning}) is a negative constant: "
+                                    f"{self.snippet(arg)!r} is always {v}",
+                               hint="speeds, times and distances of the separation distance are magnitudes >= 0; "
+                                    "a negative one fails at run time, so every cycle would fail closed")
+            vals.append(v)
+        if all(v is not None for v in vals):
+            self.fold(node, separation_distance(*vals))
+        return Ty("num", _SEPARATION_UNITS["S_s"])
+
     def check_call(self, node: Call) -> Ty:
         f = node.func
         if f not in FUNCTIONS:
@@ -337,7 +363,8 @@ class _Checker:
         nargs = len(node.args)
         if not lo <= nargs <= hi:
             want = str(lo) if lo == hi else f"{lo} to {hi}"
-            raise self.err(node, f"{f}() takes {want} arguments, got {nargs}")
+            raise self.err(node, f"{f}() takes {want} arguments, got {nargs}",
+                           hint=_SEPARATION_HINT if f == "separation_distance" else None)
         args = node.args
         if f == "abs":
             ty = self.need(args[0], "num", "abs()")
@@ -357,6 +384,8 @@ class _Checker:
                 return Ty("num", sqrt_unit(ty.unit))
             except ValueError as exc:
                 raise self.err(node, str(exc)) from None
+        if f == "separation_distance":
+            return self.check_separation(node)
         if f in ("min", "max"):
             tys = [self.need(a, "num", f"{f}()") for a in args]
             unit = tys[0].unit
@@ -387,6 +416,11 @@ class _Checker:
             ty = BOOL
         self.temporal.append(node)  # children were checked (and appended) first
         return ty
+
+
+_SEPARATION_UNITS = {sym: parse_unit(u) for sym, u, _ in SEPARATION_PARAMS}
+_SEPARATION_HINT = ("separation_distance(" + ", ".join(f"{sym} [{u}]" for sym, u, _ in SEPARATION_PARAMS)
+                    + "): S_p = v_h*(T_r + T_s) + v_r*T_r + S_s + C + Z_d + Z_r (ISO/TS 15066)")
 
 
 def _children(node: Node) -> tuple[Node, ...]:

@@ -18,13 +18,14 @@ from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary
+from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance
 from ._check import Plan
 
 __all__ = ["Machine", "build_machine"]
 
 INF = math.inf
 NAN = math.nan
+_NEGATIVE = "separation_distance() argument is negative or not a number"
 
 
 @dataclass
@@ -208,6 +209,8 @@ class _Gen:
                 return c
             return _arith(op, a, b)
         if isinstance(node, Call):
+            if node.func == "separation_distance":
+                return self.separation(node)
             args = [self.fn(a) for a in node.args]
             f = node.func
             if f == "abs":
@@ -227,6 +230,41 @@ class _Gen:
                     return lambda: max(g(), h())
                 return lambda: max([g() for g in args])
         raise TypeError(f"cannot compile {node!r}")  # pragma: no cover
+
+    def separation(self, node: Call) -> Callable[[], float]:
+        """``separation_distance(...)``: evaluate every argument, raise if one is not ``>= 0``
+        (a fault, like ``sqrt`` of a negative), else the formula of
+        :func:`~ethimon.spec._expr.separation_distance` in its order.
+
+        Constant arguments (checked ``>= 0`` by the compiler) are read once; the usual shape
+        (signal speeds, constant times and distances) costs two argument calls per cycle.
+        """
+        ds = [self.d(a) for a in node.args]
+        if all(d[0] == "c" for d in ds):
+            v = separation_distance(*(d[1] for d in ds))
+            return lambda: v
+        fs = [_as_fn(d) for d in ds]
+        if all(d[0] == "c" for d in ds[2:]):
+            f_h, f_r = fs[0], fs[1]
+            T_r, T_s, S_s, C, Z_d, Z_r = (d[1] for d in ds[2:])  # noqa: N806 - the standard's symbols
+            t_rs = T_r + T_s  # the formula's first operation: the same float
+
+            def sp_consts() -> float:
+                v_h = f_h()
+                v_r = f_r()
+                if not (v_h >= 0.0 and v_r >= 0.0):
+                    raise ValueError(_NEGATIVE)
+                return v_h * t_rs + v_r * T_r + S_s + C + Z_d + Z_r
+            return sp_consts
+        f0, f1, f2, f3, f4, f5, f6, f7 = fs
+
+        def sp() -> float:
+            a = (f0(), f1(), f2(), f3(), f4(), f5(), f6(), f7())
+            for x in a:
+                if not x >= 0.0:
+                    raise ValueError(_NEGATIVE)
+            return separation_distance(*a)
+        return sp
 
     # -- robustness (margins) ------------------------------------------------
     def rob(self, node: Node) -> Callable[[], float]:

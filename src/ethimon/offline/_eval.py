@@ -8,7 +8,8 @@ array here is indexed by position in that list.
 Each expression node gives ``(value, err)``: the value on every cycle (garbage
 where the monitor would raise), and where evaluating it raises the way the
 compiled closures evaluate it (``and``/``or``/``implies`` short-circuit, a
-division by zero or the square root of a negative number raises), ``None`` if
+division by zero, the square root of a negative number or a negative argument
+of ``separation_distance`` raises), ``None`` if
 it cannot raise. The temporal operators follow the compiled state machines
 (:mod:`ethimon.compiler._closures`), written as scans that are linear in the
 trace and independent of the window length:
@@ -29,7 +30,7 @@ import math
 
 import numpy as np
 
-from ..spec._expr import TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary
+from ..spec._expr import TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance
 
 __all__ = ["Evaluator", "TEMPORAL_FUNCS"]
 
@@ -186,6 +187,12 @@ class Evaluator:
             if f == "sqrt":
                 x = vals[0][0]
                 return np.sqrt(x), _or(e, self.full(x < 0.0, "bool"))
+            if f == "separation_distance":  # an argument that is not >= 0 (negative, NaN) raises
+                with np.errstate(invalid="ignore", over="ignore"):
+                    for v, _ in vals:
+                        if np.ndim(v) or not v >= 0.0:  # a constant is >= 0 (the compiler checks)
+                            e = _or(e, self.full(~(np.asarray(v) >= 0.0), "bool"))
+                    return separation_distance(*(v for v, _ in vals)), e
             cur = vals[0][0]
             for v, _ in vals[1:]:  # Python's min/max: keep the first unless a later one is strictly better
                 cur = np.where(v < cur, v, cur) if f == "min" else np.where(v > cur, v, cur)

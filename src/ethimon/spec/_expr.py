@@ -12,7 +12,9 @@ Grammar (lowest precedence first)::
     unary   := "-" unary | primary
     primary := NUMBER | "true" | "false" | NAME | NAME "(" args? ")" | "(" expr ")"
 
-Functions: ``abs(x)``, ``min(x, y, ...)``, ``max(x, y, ...)``, ``sqrt(x)`` and
+Functions: ``abs(x)``, ``min(x, y, ...)``, ``max(x, y, ...)``, ``sqrt(x)``,
+``separation_distance(v_h, v_r, T_r, T_s, S_s, C, Z_d, Z_r)`` (the protective
+separation distance of ISO/TS 15066, see :func:`separation_distance`) and
 the bounded past-time temporal operators ``prev(e[, init])``,
 ``held(e, n)``, ``once(e, n)``, ``since(a, b[, n])`` (integer cycle bounds).
 
@@ -48,6 +50,7 @@ from ..errors import ExprSyntaxError
 __all__ = [
     "Node", "Num", "BoolLit", "Name", "Unary", "Binary", "Call", "ExprSyntaxError",
     "parse_expr", "BINARY_OPS", "FUNCTIONS", "TEMPORAL", "walk", "to_source",
+    "SEPARATION_PARAMS", "separation_distance",
 ]
 
 
@@ -96,6 +99,7 @@ class Call(Node):
 FUNCTIONS: dict[str, tuple[int, int]] = {
     "abs": (1, 1), "min": (2, 16), "max": (2, 16), "sqrt": (1, 1),
     "prev": (1, 2), "held": (2, 2), "once": (2, 2), "since": (2, 3),
+    "separation_distance": (8, 8),
 }
 TEMPORAL = frozenset({"prev", "held", "once", "since"})
 KEYWORDS = frozenset({"and", "or", "not", "implies", "true", "false"})
@@ -113,6 +117,39 @@ BINARY_OPS: dict[str, tuple[str, object]] = {
     "and": ("logic", None), "or": ("logic", None), "implies": ("logic", None),
 }
 assert set(COMPARISONS) == {op for op, (kind, _) in BINARY_OPS.items() if kind == "cmp"}
+
+#: The parameters of ``separation_distance``, in call order: (symbol of ISO/TS 15066:2016, unit, meaning).
+SEPARATION_PARAMS: tuple[tuple[str, str, str], ...] = (
+    ("v_h", "m/s", "speed of the human toward the robot"),
+    ("v_r", "m/s", "speed of the robot toward the human"),
+    ("T_r", "s", "reaction time of the robot system"),
+    ("T_s", "s", "stopping time of the robot"),
+    ("S_s", "m", "stopping distance of the robot"),
+    ("C", "m", "intrusion distance (ISO 13855, from reach)"),
+    ("Z_d", "m", "position uncertainty of the human (sensor)"),
+    ("Z_r", "m", "position uncertainty of the robot"),
+)
+
+
+def separation_distance(v_h, v_r, T_r, T_s, S_s, C, Z_d, Z_r):  # noqa: N803 - the standard's symbols
+    """The protective separation distance S_p of ISO/TS 15066:2016, clause 5.5.4, with constant speeds.
+
+    ``S_p = S_h + S_r + S_s + C + Z_d + Z_r`` (formula (1)) with ``S_h = v_h·(T_r + T_s)`` and
+    ``S_r = v_r·T_r``: formula (2) when the human and the robot keep constant speeds over the
+    reaction and stopping time (the integrals of the speeds become products). Summed left to
+    right in exactly this order, with ``+`` and ``*`` only, so the same call gives the same
+    float in the compiled monitor and the reference interpreter, the same array in the offline
+    checker and the same term in the z3 encoder.
+
+    The caller checks that every argument is ``>= 0`` (each backend in its own way): a negative
+    (or NaN) argument is an evaluation error, never a silently smaller distance.
+
+    Example:
+        >>> round(separation_distance(1.6, 0.5, 0.1, 0.3, 0.2, 0.1, 0.04, 0.01), 12)
+        1.04
+    """
+    return v_h * (T_r + T_s) + v_r * T_r + S_s + C + Z_d + Z_r
+
 
 # ASCII only: in a str pattern, \d and \s would also match "٥", "５" and U+00A0
 _TOKEN = re.compile(r"""

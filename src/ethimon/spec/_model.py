@@ -34,7 +34,7 @@ IDENT = r"^[A-Za-z_][A-Za-z0-9_]*$"
 #: step() input keys with a built-in meaning; specs cannot declare them as signals
 RESERVED_INPUTS = frozenset({"risk", "p_unsafe", "p", "risk_age_s", "true", "false", "and", "or",
                              "not", "implies", "abs", "min", "max", "sqrt", "prev", "held", "once",
-                             "since"})
+                             "since", "separation_distance"})
 
 
 class Response(str, enum.Enum):

@@ -15,6 +15,10 @@ Semantics (the definition both implementations follow), for a history
 * ``once(e, n)``: ``e`` at some cycle of ``max(0, t-n+1) .. t``.
 * ``since(a, b[, n])``: some ``j`` (with ``t - j < n``) has ``b`` at ``j`` and ``a``
   at every cycle of ``j+1 .. t``.
+* ``separation_distance(v_h, v_r, T_r, T_s, S_s, C, Z_d, Z_r)``: every argument is
+  evaluated; if one is not ``>= 0`` (negative or NaN) the evaluation raises (a
+  fault, like ``sqrt`` of a negative); else
+  ``v_h*(T_r + T_s) + v_r*T_r + S_s + C + Z_d + Z_r``, summed left to right.
 * Every temporal operator's arguments are evaluated at every cycle (so an
   error such as a division by zero inside one is a fault even if a
   surrounding ``and`` would short-circuit).
@@ -63,7 +67,8 @@ from typing import Any
 
 from ..compiler._check import RISK_NAME, Plan
 from ..compiler import plan_of
-from ..spec._expr import BINARY_OPS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
+from ..spec._expr import (BINARY_OPS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary,
+                          separation_distance, walk)
 from ..spec import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
 from ..runtime import Decision, Fault
@@ -210,6 +215,11 @@ class ReferenceMonitor:
                 return min(self.ev(a, t) for a in args)
             if f == "max":
                 return max(self.ev(a, t) for a in args)
+            if f == "separation_distance":
+                vals = [self.ev(a, t) for a in args]
+                if not all(v >= 0 for v in vals):  # negative or NaN: an evaluation error
+                    raise ValueError("separation_distance() of a negative argument")
+                return separation_distance(*vals)
             n = self.plan.windows.get(id(node))
             if f == "prev":
                 if t == 0:

@@ -498,12 +498,14 @@ class Verifier:
                         name, model, enc, t, {"fault": False},
                         lambda d: any(f.kind == "internal" for f in d.faults))
                     return Finding("property", name, REFUTED,
-                                   f"evaluation fails (division by zero or sqrt of a negative) on in-range "
+                                   f"evaluation fails (division by zero, sqrt of a negative or a negative "
+                                   f"separation_distance() argument) on in-range "
                                    f"input at cycle {t}: the monitor stops the arm with a fault", counterexample=cex)
                 if st == "unknown":
                     return Finding("property", name, UNKNOWN, f"z3: {why}")
             return Finding("property", name, PROVED,
-                           "no division by zero or sqrt of a negative for any in-range input")
+                           "no division by zero, sqrt of a negative or negative separation_distance() "
+                           "argument for any in-range input")
         return self._timed(run)
 
     def prop_response(self, ob) -> Finding:

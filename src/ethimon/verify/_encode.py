@@ -17,7 +17,8 @@ types that ``ethimon.compiler._closures.build_machine`` compiles:
   ``since``, ``prev`` look back over the trace; windows are not full at its
   start);
 * ``defined(node, t)`` is the condition under which evaluating ``node`` at
-  ``t`` raises nothing (no division by zero, no ``sqrt`` of a negative),
+  ``t`` raises nothing (no division by zero, no ``sqrt`` of a negative, no
+  negative ``separation_distance`` argument),
   honouring the short-circuit order of ``and``/``or``/``implies`` that both
   implementations use;
 * with ``free_history=True`` the trace is a window cut out of a longer run
@@ -40,7 +41,7 @@ import z3
 
 from ..compiler._check import RISK_NAME, Plan
 from ..compiler._risk_formula import release_bound, risk_range
-from ..spec._expr import BINARY_OPS, Binary, BoolLit, Call, Name, Node, Num, Unary, walk
+from ..spec._expr import BINARY_OPS, Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance, walk
 from ..spec import Response
 
 __all__ = ["Unrolled", "DecisionTrace", "RuleInfo", "decision_trace", "rules_of", "lookback", "real", "release_below",
@@ -188,6 +189,10 @@ class Unrolled:
                 # s = sqrt(v) where defined; unconstrained otherwise (that case is a fault)
                 self._aux.append(z3.Implies(v >= 0, z3.And(s >= 0, s * s == v)))
                 return s
+            if f == "separation_distance":
+                # the same + and * as the monitor: linear in the signals while the times are
+                # constants (exact), a product of reals when a time is a signal (z3's nonlinear arithmetic)
+                return separation_distance(*(self.ev(a, t) for a in args))
             if f in ("min", "max"):
                 vals = [self.ev(a, t) for a in args]
                 out = vals[0]
@@ -255,6 +260,8 @@ class Unrolled:
             ds = [self.defined(a, t) for a in node.args]
             if node.func == "sqrt":
                 ds.append(self.ev(node.args[0], t) >= 0)
+            elif node.func == "separation_distance":  # a negative argument raises
+                ds += [self.ev(a, t) >= 0 for a in node.args]
             return z3.And(ds)
         raise TypeError(f"cannot encode {node!r}")  # pragma: no cover
 
