@@ -161,13 +161,17 @@ def compose_frame(main: np.ndarray, top: np.ndarray, close: np.ndarray, *, lines
     for m in marks:
         x, y = m["xy"]
         x0, y0, w, h = m.get("view", (0, 0, mw, mh))
+        label = m["text"]
+        if 0 <= x < w and y < 0:  # above the view (a tall person's head): the label at the top edge
+            x, y, label = x, 12.0, "↑ " + label
+            m = {**m, "ring": 0}
         if not (0 <= x < w and 0 <= y < h):
             continue
         x, y = x + x0, y + y0
         if m.get("ring"):
             fig.add_artist(Circle((x, height - y), m["ring"], transform=ident, fill=False,
                                   edgecolor=m.get("color", "red"), linewidth=2))
-        text(x + (m.get("ring") or 0) + 3, y, m["text"], fontsize=m.get("size", 8), color=m.get("color", "k"),
+        text(x + (m.get("ring") or 0) + 3, y, label, fontsize=m.get("size", 8), color=m.get("color", "k"),
              va="center", ha="left",
              bbox={"boxstyle": "round,pad=0.15", "facecolor": "white", "alpha": 0.7, "lw": 0})
     box = {"boxstyle": "round,pad=0.35", "facecolor": "white", "alpha": 0.82, "edgecolor": "0.4"}

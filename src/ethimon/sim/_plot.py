@@ -7,6 +7,7 @@ is one named constant is drawn as a horizontal line (``v_slow = 0.25``); a bound
 depends on signals (the separation rule's protective distance) is evaluated cycle by cycle
 from the monitor's inputs and drawn as a curve. Comparisons between two signals, or with a
 temporal function or an unknown function in the bound, are not drawn (listed as skipped).
+A bound ``separation_distance(...)`` (the language's ISO/TS 15066 S_p) is drawn as "S_p".
 The risk panel gets τ (``risk.threshold``) and, for an automatic release, τ − δ.
 """
 
@@ -37,12 +38,13 @@ _YLABEL = {"risk": "risk R_e", "human_distance": "human dist. (m)", "speed": "sp
 EVENT_LABELS = {
     "first_violation": "first violation", "first_fault": "first fault", "override": "override",
     "escalation": "escalation", "closest_approach": "closest approach",
-    "peak_contact_force": "peak contact force", "standstill": "standstill",
+    "peak_contact_force": "peak contact force", "standstill": "standstill", "power_off": "power off",
     "safe_pose": "safe pose reached", "release": "release",
 }
 _LANE = ("task", "safe_pose", "stop_2", "stop_1", "stop_0")
 _LANE_COLOR = {"task": "tab:green", "safe_pose": "tab:blue", "stop_2": "gold", "stop_1": "tab:orange",
                "stop_0": "tab:red"}
+_NONE_M = 10.0  # human_distance / hazard_distance when there is no person / hazard (ArmSim)
 _CMP_FLIP = {"<": ">", "<=": ">=", ">": "<", ">=": "<=", "==": "==", "!=": "!="}
 _ARITH = {"+": np.add, "-": np.subtract, "*": np.multiply, "/": np.divide}
 _FUNCS = {"abs": lambda a: np.abs(a[0]), "sqrt": lambda a: np.sqrt(a[0]),
@@ -83,7 +85,8 @@ class Limit:
             name = self.constant or self.bound
             return f"{name} = {self.value:g} ({self.rule})"
         uses = sorted(n for n in _names(self._node) if n in self.signals_used) if self._node is not None else []
-        return f"{self.rule}: {self.signal} {self.op} f({', '.join(uses)})"
+        what = "S_p" if getattr(self._node, "func", None) == "separation_distance" else "bound"
+        return f"{what} ({self.rule}: {self.signal} {self.op} f({', '.join(uses)}))"
 
     def values(self, columns: Mapping[str, np.ndarray], constants: Mapping[str, float], n: int) -> np.ndarray:
         """The bound per cycle (``n`` values) from the signal ``columns``."""
@@ -121,6 +124,11 @@ def _eval(node: Any, columns: Mapping[str, np.ndarray], constants: Mapping[str, 
         return _ARITH[node.op](_eval(node.left, columns, constants), _eval(node.right, columns, constants))
     if isinstance(node, Call) and node.func in _FUNCS:
         return _FUNCS[node.func]([np.asarray(_eval(a, columns, constants), dtype=float) for a in node.args])
+    if isinstance(node, Call) and node.func == "separation_distance":
+        from ..spec import _expr  # the language's own S_p (ISO/TS 15066), + and * only: arrays work
+        f = getattr(_expr, "separation_distance", None)
+        if f is not None:
+            return f(*[np.asarray(_eval(a, columns, constants), dtype=float) for a in node.args])
     raise _Unsupported(type(node).__name__)
 
 
@@ -266,9 +274,19 @@ def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Map
     a = ax["speed"]
     a.plot(t, cols["ee_speed"], label="ee speed (m/s)")
     a.plot(t, [r.joint_speed_max_rad_s for r in trace], label="max joint speed (rad/s)")
-    ax["contact_force"].plot(t, cols["contact_force"], color="tab:brown", label="contact force")
-    ax["hazard_distance"].plot(t, cols["hazard_distance"], color="tab:red", label="hazard object to person")
+    ax["contact_force"].plot(t, cols["contact_force"], color="tab:brown", label="monitor input")
+    ax["hazard_distance"].plot(t, cols["hazard_distance"], color="tab:red", label="monitor input")
+    for p, attr in (("contact_force", "contact_force_true_n"), ("hazard_distance", "hazard_distance_true_m")):
+        if trace and hasattr(trace[0], attr):  # the simulated value (also during a sensor dropout)
+            ax[p].plot(t, [getattr(r, attr) for r in trace], "--", color="0.2", alpha=0.6, label="simulated")
 
+    for p, note in (("human_distance", "no person in the scene"),
+                    ("hazard_distance", "no hazard-tagged object near a person")):
+        v = cols[p]
+        v = v[np.isfinite(v)]
+        if v.size and np.all(v >= _NONE_M - 1e-9):  # the sim's value for "none"
+            ax[p].text(0.5, 0.3, f"{note} ({_NONE_M:g} m = none)", transform=ax[p].transAxes,
+                       ha="center", va="center", fontsize=9, color="0.35")
     where = {s: p for p, sigs in PANELS.items() for s in sigs}
     styles = (":", "-.", (0, (5, 2)), (0, (1, 1)))
     drawn_per_panel: dict[str, int] = {}

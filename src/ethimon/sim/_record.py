@@ -9,9 +9,10 @@ trace, so a recording and a test compute the same list):
 - ``escalation``: a cycle where the controller commanding the arm becomes more severe
   than every controller before it, after the first response (e.g. ``safe_pose → stop_0``);
 - ``closest_approach``: the smallest simulated human distance of the run (first such cycle);
-- ``peak_contact_force``: the largest contact force of the run (when any was measured);
+- ``peak_contact_force``: the largest simulated contact force of the run (when any was measured);
 - ``standstill``: after the first stop controller (``stop_0/1/2``), the first cycle in which
   every joint stayed below 0.01 rad/s in every physics substep;
+- ``power_off``: the first cycle after which motor power is off (stop 0, the end of a stop 1);
 - ``safe_pose``: the first cycle the safe-pose controller ends within the spec's tolerance;
 - ``release``: every cycle whose override is false after an override.
 
@@ -113,6 +114,8 @@ class _EventTracker:
             out += self._once("standstill", rec, f"{rec.controller}, max joint speed "
                                                  f"{rec.joint_speed_max_rad_s:.4f} rad/s",
                               float(rec.joint_speed_max_rad_s))
+        if not getattr(rec, "powered", True):
+            out += self._once("power_off", rec, rec.controller)
         if (self._overridden and rec.controller == "safe_pose"
                 and rec.safe_pose_error_rad <= self.safe_tol):
             out += self._once("safe_pose", rec, f"error {rec.safe_pose_error_rad:.4f} rad",
@@ -123,7 +126,7 @@ class _EventTracker:
             self.closest = {"event": "closest_approach", "cycle": rec.cycle, "t_s": round(float(rec.t_s), 6),
                             "detail": f"{d:.3f} m", "value": d}
             improved.append("closest_approach")
-        f = _num(rec.signals.get("contact_force", math.nan))
+        f = _num(getattr(rec, "contact_force_true_n", rec.signals.get("contact_force", math.nan)))
         if math.isfinite(f) and f > 0 and (self.peak is None or f > self.peak["value"]):
             self.peak = {"event": "peak_contact_force", "cycle": rec.cycle, "t_s": round(float(rec.t_s), 6),
                          "detail": f"{f:.1f} N", "value": f}
@@ -205,6 +208,7 @@ class Recorder:
         self._frame_at: dict[int, str] = {}        # cycle -> frame after that cycle's physics
         self._caption_at: dict[int, list[str]] = {}
         self._snaps: dict[str, tuple[int, list[tuple]]] = {}
+        self._parts: dict[str, dict[str, Any]] = {}  # frame path -> what it was composed from
         self.events: list[dict[str, Any]] = []
 
     # -- during the run ---------------------------------------------------------------------------
@@ -239,9 +243,7 @@ class Recorder:
                 state_of: int | None = -1) -> str:
         """Render, compose and save one frame; ``state_of``: the cycle whose post-physics state
         it shows (default ``cycle``; ``None``: no cycle's, e.g. the start)."""
-        from matplotlib import image as mpimg
-
-        from ._overlay import MAIN_WH, SIDE_WH, closeup_camera, compose_frame, render_view, scene_marks
+        from ._overlay import MAIN_WH, SIDE_WH, closeup_camera, render_view, scene_marks
 
         sim = self.sim
         main_cam, top_cam = self.cameras
@@ -249,26 +251,40 @@ class Recorder:
         top, tview, tproj = render_view(sim, top_cam, SIDE_WH)
         ccam, what = closeup_camera(sim)
         close, _, _ = render_view(sim, ccam, SIDE_WH)
-        banner = None
-        if evs:
-            banner = "  |  ".join(EVENT_LABELS.get(e["event"], e["event"])
-                                  + (f": {e['detail']}" if e.get("detail") else "") for e in evs)
-        elif names and names[0] not in EVENT_LABELS:
-            banner = names[0]
         top_marks = [{**m, "ring": min(m["ring"], 6), "size": 7, "view": (MAIN_WH[0], 0, *SIDE_WH)}
                      for m in scene_marks(sim, tview, tproj, SIDE_WH)]
-        img = compose_frame(main, top, close, lines=self._overlay_lines(cycle, rec), banner=banner,
-                            marks=scene_marks(sim, view, proj, MAIN_WH) + top_marks, close_label=what)
         path = os.path.join(self.dir, f"frame_{cycle:05d}_{'-'.join(names)}.png")
-        mpimg.imsave(path, img)
+        parts = {"views": (main, top, close), "marks": scene_marks(sim, view, proj, MAIN_WH) + top_marks,
+                 "what": what, "lines": self._overlay_lines(cycle, rec), "evs": list(evs),
+                 "name": names[0] if names and names[0] not in EVENT_LABELS else None}
+        self._write(path, parts)
         self.files.append(path)
         state_of = cycle if state_of == -1 else state_of
         if state_of is not None:
             self._frame_at.setdefault(state_of, path)
             self._caption_at.setdefault(state_of, []).extend(names)
+            self._parts.setdefault(path, parts)  # an event found later may join this frame
         for e in evs:
             e["frame"] = path
         return path
+
+    @staticmethod
+    def _write(path: str, parts: dict[str, Any]) -> None:
+        from matplotlib import image as mpimg
+
+        from ._overlay import compose_frame
+
+        evs = parts["evs"]
+        banner = parts["name"]
+        if evs:
+            items = [EVENT_LABELS.get(e["event"], e["event"]) + (f": {e['detail']}" if e.get("detail") else "")
+                     for e in evs]
+            banner = "  |  ".join(items)
+            if len(banner) > 60:  # one event a line: the banner stays inside the main view
+                banner = "\n".join(i if len(i) <= 70 else i[:67] + "..." for i in items)
+        img = compose_frame(*parts["views"], lines=parts["lines"], banner=banner, marks=parts["marks"],
+                            close_label=parts["what"])
+        mpimg.imsave(path, img)
 
     def _overlay_lines(self, cycle: int, rec: Any) -> list[str]:
         sim = self.sim
@@ -305,10 +321,15 @@ class Recorder:
         by_cycle = {r.cycle: r for r in result.trace}
         pending = [e for e in (self.tracker.closest, self.tracker.peak) if e is not None]
         now = None
+        grown: dict[str, dict[str, Any]] = {}
         for ev in pending:
             c = ev["cycle"]
-            if c in self._frame_at:
-                ev["frame"] = self._frame_at[c]  # a frame of that very state exists
+            if c in self._frame_at:  # a frame of that very state exists: its caption gets the event
+                path = ev["frame"] = self._frame_at[c]
+                parts = self._parts.get(path)
+                if parts is not None:
+                    parts["evs"].append(ev)
+                    grown[path] = parts
                 continue
             snap = self._snaps.get(ev["event"])
             if snap is None or snap[0] != c:
@@ -319,6 +340,9 @@ class Recorder:
             self._render(c, [ev["event"]], by_cycle.get(c), [ev])
         if now is not None:
             _restore(self.sim, now)
+        for path, parts in grown.items():
+            self._write(path, parts)
+        self._parts.clear()
         dt = time.perf_counter() - t0
         self.seconds += dt
         # rendered after run_sim took the wall time: they are frames of the run, count them
