@@ -159,7 +159,8 @@ def test_a_recording_has_its_events_frames_and_files(tmp_path, root):
         "objects": [{"name": "knife", "shape": "box", "xyz_m": [0.5, 0.2, 0.32],
                      "half_extents_m": [0.1, 0.012, 0.004], "hazard": "sharp", "mass_kg": 0.15}],
         "humans": [{"name": "child", "radius_m": 0.14, "height_m": 1.1,
-                    "waypoints": [{"t_s": 0, "xy_m": [1.8, 0.9]}]}],
+                    "waypoints": [{"t_s": 0, "xy_m": [1.8, 0.9]}, {"t_s": 0.5, "xy_m": [1.2, 0.7]},
+                                  {"t_s": 1.0, "xy_m": [1.8, 0.9]}]}],
         "inputs_at": [{"t_s": 0.3, "inputs": {"p_unsafe": 0.0}}],
     })
     out = tmp_path / "rec"
@@ -175,6 +176,11 @@ def test_a_recording_has_its_events_frames_and_files(tmp_path, root):
     assert ("release" in names) == res.released is True
     closest = next(e for e in ev if e["event"] == "closest_approach")
     assert closest["value"] == pytest.approx(min(r.human_distance_true_m for r in res.trace))
+    # the child is nearest mid-run, at no other event: that frame is rendered after the run from
+    # the snapshot of that cycle (not the end state)
+    assert 20 < closest["cycle"] < 40 and closest["frame"].endswith(f"frame_{closest['cycle']:05d}_closest_approach.png")
+    assert (out / closest["frame"].rsplit("/", 1)[-1]).read_bytes() != \
+        next(out.glob("frame_*_end.png")).read_bytes()
     # the same events from the trace alone (deterministic, one definition)
     again = trace_events(res.trace, safe_tol=spec.safe_pose.tolerance_rad)
     assert [(e["event"], e["cycle"]) for e in again] == [(e["event"], e["cycle"]) for e in ev]
@@ -187,7 +193,19 @@ def test_a_recording_has_its_events_frames_and_files(tmp_path, root):
     assert img.shape[:2] == (MAIN_WH[1], MAIN_WH[0] + MAIN_WH[0] // 2)
     from ethimon.sim._arm import ArmSim
     from ethimon.sim._overlay import frame_cameras
+    from ethimon.sim._record import _restore, _snapshot
     with ArmSim.from_block(block) as sim:
-        raw, _, _ = render_view(sim, frame_cameras(sim)[0], MAIN_WH)
-    same = np.all(img[:, :MAIN_WH[0]] == raw, axis=2)
-    assert same.mean() > 0.8 and not same[-60:, 10:200].all()
+        cam = frame_cameras(sim)[0]
+        raw, _, _ = render_view(sim, cam, MAIN_WH)
+        same = np.all(img[:, :MAIN_WH[0]] == raw, axis=2)
+        assert same.mean() > 0.8 and not same[-60:, 10:200].all()
+        # a snapshot brings back what a frame shows (arm, held knife, person), after the run moved on
+        snap = _snapshot(sim)
+        q, _ = sim.joint_state()
+        for _ in range(20):
+            sim.command_joints(q + 0.4)
+            sim.step()
+        moved, _, _ = render_view(sim, cam, MAIN_WH)
+        _restore(sim, snap)
+        back, _, _ = render_view(sim, cam, MAIN_WH)
+        assert not np.array_equal(moved, raw) and np.array_equal(back, raw)
