@@ -79,6 +79,22 @@ def test_safe_pose_event_needs_an_override_and_the_tolerance():
     assert not any(e["event"] == "closest_approach" for e in trace_events(tr, has_humans=False))
 
 
+def test_an_override_after_a_release_is_an_event_again():
+    from ethimon.sim._record import trace_events
+
+    tr = [_rec(0),
+          _rec(1, override=True, response="safe_pose", violations=("slow_near_human",), controller="safe_pose"),
+          _rec(2, controller="task"),                                               # released
+          _rec(3, controller="task"),
+          _rec(4, override=True, response="stop_2", violations=("separation",), controller="stop_2"),
+          _rec(5, override=True, response="stop_2", violations=("separation",), controller="stop_2")]
+    ev = [(e["event"], e["cycle"], e["detail"]) for e in trace_events(tr)]
+    assert [x for x in ev if x[0] in ("override", "release", "escalation", "first_violation")] == [
+        ("first_violation", 1, "slow_near_human"), ("override", 1, "safe_pose"), ("release", 2, ""),
+        ("override", 4, "stop_2 (again, after a release)"),
+        ("escalation", 4, "safe_pose → stop_2 (after a release)")]
+
+
 def test_limits_are_read_from_the_spec(root):
     from ethimon.sim._plot import spec_limits, spec_constants
 
@@ -171,8 +187,9 @@ def test_a_recording_has_its_events_frames_and_files(tmp_path, root):
     assert summary["wall_time_s"] > 0
     ev = summary["events"]
     names = [e["event"] for e in ev]
-    assert names.count("override") == 1
-    assert next(e for e in ev if e["event"] == "override")["cycle"] == res.first_override_cycle == 0
+    rising = [r.cycle for i, r in enumerate(res.trace) if r.override and (i == 0 or not res.trace[i - 1].override)]
+    assert [e["cycle"] for e in ev if e["event"] == "override"] == rising
+    assert rising[0] == res.first_override_cycle == 0
     assert ("release" in names) == res.released is True
     closest = next(e for e in ev if e["event"] == "closest_approach")
     assert closest["value"] == pytest.approx(min(r.human_distance_true_m for r in res.trace))

@@ -5,7 +5,8 @@ trace, so a recording and a test compute the same list):
 
 - ``first_violation``: the first cycle whose decision names a violated rule;
 - ``first_fault``: the first cycle with a fail-closed fault;
-- ``override``: the first cycle with ``override``;
+- ``override``: every cycle whose override is true after one without (the first, and any after
+  a release);
 - ``escalation``: a cycle where the controller commanding the arm becomes more severe
   than every controller before it, after the first response (e.g. ``safe_pose → stop_0``);
 - ``closest_approach``: the smallest simulated human distance of the run (first such cycle);
@@ -74,6 +75,7 @@ class _EventTracker:
         self._max_ctrl = "none"
         self._prev_override = False
         self._overridden = False
+        self._released = False
         self._stop_started = False
         self.closest: dict[str, Any] | None = None
         self.peak: dict[str, Any] | None = None
@@ -98,15 +100,19 @@ class _EventTracker:
         if rec.faults:
             out += self._once("first_fault", rec, str(rec.faults[0]))
         if rec.override:
-            out += self._once("override", rec, rec.response)
+            if not self._prev_override:  # every rising edge: the first, and any after a release
+                out.append(self._add("override", rec, rec.response + (" (again, after a release)"
+                                                                      if self._released else "")))
             self._overridden = True
         elif self._prev_override:
             out.append(self._add("release", rec, ""))
+            self._released = True
         self._prev_override = bool(rec.override)
         sev = _sev(rec.controller)
         if sev > self._max_sev:
             if self._max_sev > 0:
-                out.append(self._add("escalation", rec, f"{self._max_ctrl} → {rec.controller}"))
+                out.append(self._add("escalation", rec, f"{self._max_ctrl} → {rec.controller}"
+                                     + (" (after a release)" if self._released else "")))
             self._max_sev, self._max_ctrl = sev, rec.controller
         if rec.controller in _STOPS:
             self._stop_started = True
