@@ -300,7 +300,7 @@ class Recorder:
         sig = rec.signals
         d_true = _num(rec.human_distance_true_m)
         d_in = _num(sig.get("human_distance", math.nan))
-        dist = "no person" if not sim.humans else f"{d_true:.3f} m"
+        dist = "no person" if not sim.humans else f"{d_true:.3f} m ({self._nearest_person()})"
         if sim.humans and not (math.isfinite(d_in) and abs(d_in - d_true) < 1e-6):
             dist += f" (monitor input: {d_in:.3f})" if math.isfinite(d_in) else " (monitor input: missing)"
         rules = ", ".join(rec.violations) or "none"
@@ -318,6 +318,19 @@ class Recorder:
         if rec.risk is not None:
             lines[2] += f"   R_e {rec.risk:.3f}"
         return lines
+
+    def _nearest_person(self) -> str:
+        """The name of the person nearest the arm (or what it holds) in the scene as drawn."""
+        sim = self.sim
+        held = sim.objects.get(sim.held) if getattr(sim, "held", None) else None
+        best, name = math.inf, "?"
+        for n, hb in sim.humans.items():
+            d = sim.distance(sim.robot, hb.body)
+            if held is not None:
+                d = min(d, sim.distance(held, hb.body))
+            if d < best:
+                best, name = d, n
+        return name
 
     # -- at the end -------------------------------------------------------------------------------
 
