@@ -115,6 +115,26 @@ def test_limits_are_read_from_the_spec(root):
     assert skipped == []
 
 
+def test_limits_not_drawable_are_listed_not_guessed():
+    from ethimon.sim._plot import spec_limits
+    from ethimon.spec import parse_spec_text
+
+    spec = parse_spec_text("""
+ethimon: 1
+name: odd
+signals: {ee_speed: {}, human_distance: {}, contact_force: {}}
+constants: {k: 2.0}
+obligations:
+  - {id: rate, require: "ee_speed <= prev(ee_speed, 0) + 0.1", response: stop_2}
+  - {id: rel, require: "human_distance >= ee_speed", response: stop_2}
+  - {id: lin, require: "k * 10 > contact_force", response: stop_0}
+""")
+    limits, skipped = spec_limits(spec)
+    assert [(x.rule, x.signal, x.op, x.value) for x in limits] == [("lin", "contact_force", "<", 20.0)]
+    assert len(skipped) == 2 and any(s.startswith("rate.require") for s in skipped) \
+        and any(s.startswith("rel.require") for s in skipped)
+
+
 def test_plot_has_tau_limits_event_markers_and_a_controller_lane(root):
     from ethimon.sim._plot import build_figure
     from ethimon.sim._record import trace_events

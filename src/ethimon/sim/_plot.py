@@ -51,10 +51,6 @@ _FUNCS = {"abs": lambda a: np.abs(a[0]), "sqrt": lambda a: np.sqrt(a[0]),
           "min": lambda a: np.minimum.reduce(a), "max": lambda a: np.maximum.reduce(a)}
 
 
-class _Unsupported(Exception):
-    pass
-
-
 @dataclass(frozen=True)
 class Limit:
     """One ``signal OP bound`` comparison of a spec obligation.
@@ -108,28 +104,43 @@ def spec_constants(spec: Any) -> dict[str, float]:
     return out
 
 
+def _sp_function():
+    from ..spec import _expr  # the language's own S_p (ISO/TS 15066), + and * only: arrays work
+    return getattr(_expr, "separation_distance", None)
+
+
+def _drawable(node: Any, names: set[str]) -> bool:
+    """``node`` is arithmetic over ``names`` (constants and signals) that :func:`_eval` computes."""
+    from ..spec._expr import Binary, Call, Name, Num, Unary
+    if isinstance(node, Num):
+        return True
+    if isinstance(node, Name):
+        return node.id in names
+    if isinstance(node, Unary):
+        return node.op == "-" and _drawable(node.operand, names)
+    if isinstance(node, Binary):
+        return node.op in _ARITH and _drawable(node.left, names) and _drawable(node.right, names)
+    if isinstance(node, Call):
+        known = node.func in _FUNCS or (node.func == "separation_distance" and _sp_function() is not None)
+        return known and all(_drawable(a, names) for a in node.args)
+    return False
+
+
 def _eval(node: Any, columns: Mapping[str, np.ndarray], constants: Mapping[str, float]) -> Any:
+    """The value of a :func:`_drawable` bound (numpy arrays for signal columns)."""
     from ..spec._expr import Binary, Call, Name, Num, Unary
     if isinstance(node, Num):
         return float(node.value)
     if isinstance(node, Name):
-        if node.id in constants:
-            return constants[node.id]
-        if node.id in columns:
-            return columns[node.id]
-        raise _Unsupported(node.id)
-    if isinstance(node, Unary) and node.op == "-":
+        return constants[node.id] if node.id in constants else columns.get(node.id, math.nan)
+    if isinstance(node, Unary):
         return np.negative(_eval(node.operand, columns, constants))
-    if isinstance(node, Binary) and node.op in _ARITH:
+    if isinstance(node, Binary):
         return _ARITH[node.op](_eval(node.left, columns, constants), _eval(node.right, columns, constants))
-    if isinstance(node, Call) and node.func in _FUNCS:
-        return _FUNCS[node.func]([np.asarray(_eval(a, columns, constants), dtype=float) for a in node.args])
-    if isinstance(node, Call) and node.func == "separation_distance":
-        from ..spec import _expr  # the language's own S_p (ISO/TS 15066), + and * only: arrays work
-        f = getattr(_expr, "separation_distance", None)
-        if f is not None:
-            return f(*[np.asarray(_eval(a, columns, constants), dtype=float) for a in node.args])
-    raise _Unsupported(type(node).__name__)
+    args = [np.asarray(_eval(a, columns, constants), dtype=float) for a in node.args]
+    if node.func in _FUNCS:
+        return _FUNCS[node.func](args)
+    return _sp_function()(*args)
 
 
 def _names(node: Any) -> set[str]:
@@ -166,12 +177,8 @@ def spec_limits(spec: Any) -> tuple[list[Limit], list[str]]:
                 else:
                     continue
                 text = to_source(other)
-                try:
-                    if sig in _names(other) or (isinstance(other, Name) and other.id in signals):
-                        raise _Unsupported("a signal compared with a signal")
-                    dummy = {s: np.zeros(1) for s in signals}
-                    _eval(other, dummy, constants)  # refuses anything but arithmetic
-                except _Unsupported:
+                if (sig in _names(other) or (isinstance(other, Name) and other.id in signals)
+                        or not _drawable(other, set(constants) | signals)):
                     skipped.append(f"{ob.id}.{part}: {sig} {op} {text}")
                     continue
                 const = other.id if isinstance(other, Name) and other.id in constants else None
