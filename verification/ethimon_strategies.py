@@ -3,8 +3,10 @@
 Expressions are built as ASTs over a few signals (numbers ``x``, ``y``, ``z``,
 boolean ``b`` and ``risk``), with every operator and every temporal operator
 (``prev`` with and without an initial value, ``held``, ``once``, bounded and
-unbounded ``since``), rendered with :func:`~ethimon.spec._expr.to_source` and
-compiled through :func:`ethimon.load_spec_text`, exactly like a user's file.
+unbounded ``since``) and every function (``abs``, ``sqrt``, ``min``, ``max``, and
+``separation_distance`` compared with a risk-free operand: its result is in [m]),
+rendered with :func:`~ethimon.spec._expr.to_source` and compiled through
+:func:`ethimon.load_spec_text`, exactly like a user's file.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ import yaml
 from hypothesis import strategies as st
 
 import ethimon
-from ethimon.spec._expr import Binary, BoolLit, Call, Name, Num, Unary, parse_expr, to_source
+from ethimon.spec._expr import Binary, BoolLit, Call, Name, Num, Unary, parse_expr, separation_distance, to_source
 
 NUM_SIGNALS = {"x": (-5.0, 5.0), "y": (0.0, 10.0), "z": (-1.0, 1.0)}
 BOOL_SIGNALS = ("b",)
@@ -50,11 +52,12 @@ def _const(node):
         if a is None or b is None or (node.op == "/" and b == 0):
             return None
         return a + b if node.op == "+" else a - b if node.op == "-" else a * b if node.op == "*" else a / b
-    if isinstance(node, Call) and node.func in ("abs", "sqrt", "min", "max"):
+    if isinstance(node, Call) and node.func in ("abs", "sqrt", "min", "max", "separation_distance"):
         vals = [_const(a) for a in node.args]
-        if any(v is None for v in vals) or (node.func == "sqrt" and vals[0] < 0):
+        if any(v is None for v in vals) or (node.func in ("sqrt", "separation_distance") and min(vals) < 0):
             return None
-        return {"abs": abs, "sqrt": math.sqrt, "min": min, "max": max}[node.func](*vals)
+        return {"abs": abs, "sqrt": math.sqrt, "min": min, "max": max,
+                "separation_distance": separation_distance}[node.func](*vals)
     return None
 
 
@@ -64,9 +67,37 @@ def _nonzero(node):
 
 
 def _nonneg(node):
-    """A sqrt argument the compiler accepts: not a negative constant (a SpecError)."""
+    """A sqrt or separation_distance argument the compiler accepts: not a negative constant (a SpecError)."""
     v = _const(node)
     return _n(Call, "abs", (node,)) if v is not None and v < 0 else node
+
+
+def _no_risk(node):
+    """``node`` with ``risk`` read as ``y``: R_e is dimensionless [1], a separation distance is in [m]."""
+    if isinstance(node, Name) and node.id == "risk":
+        return _n(Name, "y")
+    if isinstance(node, Unary):
+        return _n(Unary, node.op, _no_risk(node.operand))
+    if isinstance(node, Binary):
+        return _n(Binary, node.op, _no_risk(node.left), _no_risk(node.right))
+    if isinstance(node, Call):
+        return _n(Call, node.func, tuple(_no_risk(a) for a in node.args))
+    return node
+
+
+def separation_calls(sub: st.SearchStrategy) -> st.SearchStrategy:
+    """``separation_distance(...)`` of eight drawn arguments: leaves (constants, signals that can be
+    negative: a fault at run time) or subexpressions, some under ``abs``; never a negative constant,
+    never ``risk`` (its unit [1] is not a speed, a time or a distance)."""
+    arg = st.one_of(num_leaf, sub, sub.map(lambda a: _n(Call, "abs", (a,))))
+    return st.lists(arg.map(_no_risk), min_size=8, max_size=8).map(
+        lambda args: _n(Call, "separation_distance", tuple(_nonneg(a) for a in args)))
+
+
+def separation_comparisons(sub: st.SearchStrategy) -> st.SearchStrategy:
+    """``lhs OP separation_distance(...)``: the result is in [m], so it is compared, never mixed with ``risk``."""
+    return st.builds(lambda op, lhs, call: _n(Binary, op, _no_risk(lhs), call),
+                     st.sampled_from(("<", "<=", ">", ">=")), sub, separation_calls(sub))
 
 
 def num_expr(depth: int) -> st.SearchStrategy:
@@ -104,6 +135,7 @@ def bool_expr(depth: int) -> st.SearchStrategy:
         bool_leaf,
         st.builds(lambda op, a, b: _n(Binary, op, a, b),
                   st.sampled_from(("<", "<=", ">", ">=", "==", "!=")), nsub, nsub),
+        separation_comparisons(nsub),
         sub.map(lambda a: _n(Unary, "not", a)),
         st.builds(lambda op, a, b: _n(Binary, op, a, b),
                   st.sampled_from(("and", "or", "implies", "==", "!=")), sub, sub),

@@ -21,10 +21,10 @@ z3 = pytest.importorskip("z3")
 
 import yaml  # noqa: E402
 
-from ethimon.spec._expr import Binary, Call, Num, to_source  # noqa: E402
+from ethimon.spec._expr import Binary, Call, Name, Num, to_source  # noqa: E402
 from ethimon.verify._encode import Unrolled, decision_trace, real  # noqa: E402
-from ethimon_strategies import (NUM_SIGNALS, GenSpec, _n, _nonneg, _nonzero, bool_expr, num_expr,  # noqa: E402
-                                spec_doc, specs)
+from ethimon_strategies import (NUM_SIGNALS, GenSpec, _n, _no_risk, _nonneg, _nonzero, bool_expr,  # noqa: E402
+                                num_expr, spec_doc, specs)
 
 
 def dyadic(lo: float, hi: float) -> st.SearchStrategy:
@@ -49,7 +49,7 @@ def valid_trace(draw, n_max: int = 7):
 
 @given(specs(max_obligations=2, depth=2), valid_trace())
 def test_encoding_agrees_with_the_monitor(gen, frames):
-    assume("sqrt" not in gen.text and "/" not in gen.text)
+    assume("sqrt" not in gen.text and "/" not in gen.text and "separation_distance" not in gen.text)
     spec = gen.spec
     if spec.risk.max_age_s is not None:
         for f in frames:
@@ -87,12 +87,18 @@ def test_encoding_agrees_with_the_monitor(gen, frames):
 
 @st.composite
 def partial_specs(draw):
-    """Specs whose one obligation divides or takes a square root somewhere (maybe under a short circuit)."""
+    """Specs whose one obligation divides, takes a square root or a separation distance somewhere (maybe under a short circuit)."""
     a, b = draw(num_expr(1)), draw(num_expr(1))
     risky = draw(st.sampled_from((
         _n(Binary, "/", a, _nonzero(b)),
-        _n(Call, "sqrt", (_nonneg(a),)))))  # a constant negative argument is a SpecError
-    cond = _n(Binary, draw(st.sampled_from(("<", ">=", "=="))), risky, draw(num_expr(0)))
+        _n(Call, "sqrt", (_nonneg(a),)),  # a constant negative argument is a SpecError
+        _n(Call, "separation_distance", (_nonneg(_no_risk(a)), _n(Name, "y"), _nonneg(_no_risk(b)),
+                                         _n(Num, 0.1), _n(Name, "y"), _n(Num, 0.0), _nonneg(_no_risk(b)),
+                                         _n(Num, 0.05))))))
+    other_side = draw(num_expr(0))
+    if isinstance(risky, Call) and risky.func == "separation_distance":  # [m]: never compared with risk [1]
+        other_side = _no_risk(other_side)
+    cond = _n(Binary, draw(st.sampled_from(("<", ">=", "=="))), risky, other_side)
     other = draw(bool_expr(1))
     shape = draw(st.sampled_from(("alone", "and", "or", "implies", "rand", "held", "prev")))
     if shape in ("and", "or", "implies"):
