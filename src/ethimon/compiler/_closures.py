@@ -236,34 +236,42 @@ class _Gen:
         (a fault, like ``sqrt`` of a negative), else the formula of
         :func:`~ethimon.spec._expr.separation_distance` in its order.
 
-        Constant arguments (checked ``>= 0`` by the compiler) are read once; the usual shape
-        (signal speeds, constant times and distances) costs two argument calls per cycle.
+        Constant arguments (checked ``>= 0`` by the compiler) are read once; with constant times
+        and offsets (the usual shape) ``T_r + T_s`` is computed once (the formula's first step,
+        so the same float). No allocation per cycle.
         """
         ds = [self.d(a) for a in node.args]
         if all(d[0] == "c" for d in ds):
             v = separation_distance(*(d[1] for d in ds))
             return lambda: v
-        fs = [_as_fn(d) for d in ds]
-        if all(d[0] == "c" for d in ds[2:]):
-            f_h, f_r = fs[0], fs[1]
-            T_r, T_s, S_s, C, Z_d, Z_r = (d[1] for d in ds[2:])  # noqa: N806 - the standard's symbols
+        if all(ds[i][0] == "c" for i in (2, 3, 5, 6, 7)):  # the times and the offsets are constants
+            f_h, f_r, f_s = _as_fn(ds[0]), _as_fn(ds[1]), _as_fn(ds[4])
+            T_r, T_s, C, Z_d, Z_r = (ds[i][1] for i in (2, 3, 5, 6, 7))  # noqa: N806 - the standard's symbols
             t_rs = T_r + T_s  # the formula's first operation: the same float
 
             def sp_consts() -> float:
                 v_h = f_h()
                 v_r = f_r()
-                if not (v_h >= 0.0 and v_r >= 0.0):
+                S_s = f_s()  # noqa: N806
+                if not (v_h >= 0.0 and v_r >= 0.0 and S_s >= 0.0):
                     raise ValueError(_NEGATIVE)
                 return v_h * t_rs + v_r * T_r + S_s + C + Z_d + Z_r
             return sp_consts
-        f0, f1, f2, f3, f4, f5, f6, f7 = fs
+        f0, f1, f2, f3, f4, f5, f6, f7 = (_as_fn(d) for d in ds)
 
         def sp() -> float:
-            a = (f0(), f1(), f2(), f3(), f4(), f5(), f6(), f7())
-            for x in a:
-                if not x >= 0.0:
-                    raise ValueError(_NEGATIVE)
-            return separation_distance(*a)
+            v_h = f0()  # one by one: a tuple unpacking of eight would allocate a tuple every cycle
+            v_r = f1()
+            T_r = f2()  # noqa: N806 - the standard's symbols
+            T_s = f3()  # noqa: N806
+            S_s = f4()  # noqa: N806
+            C = f5()  # noqa: N806
+            Z_d = f6()  # noqa: N806
+            Z_r = f7()  # noqa: N806
+            if not (v_h >= 0.0 and v_r >= 0.0 and T_r >= 0.0 and T_s >= 0.0 and S_s >= 0.0 and C >= 0.0
+                    and Z_d >= 0.0 and Z_r >= 0.0):
+                raise ValueError(_NEGATIVE)
+            return v_h * (T_r + T_s) + v_r * T_r + S_s + C + Z_d + Z_r
         return sp
 
     # -- robustness (margins) ------------------------------------------------
