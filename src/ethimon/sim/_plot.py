@@ -128,7 +128,7 @@ def _drawable(node: Any, names: set[str]) -> bool:
 
 def _eval(node: Any, columns: Mapping[str, np.ndarray], constants: Mapping[str, float]) -> Any:
     """The value of a :func:`_drawable` bound (numpy arrays for signal columns)."""
-    from ..spec._expr import Binary, Call, Name, Num, Unary
+    from ..spec._expr import Binary, Name, Num, Unary
     if isinstance(node, Num):
         return float(node.value)
     if isinstance(node, Name):
