@@ -25,8 +25,9 @@ def add_sim_parsers(subparsers) -> None:
     p.add_argument("paths", nargs="+", metavar="SCENARIO", help="scenario files or folders")
     p.add_argument("--gui", action="store_true", help="show the PyBullet GUI, in real time (needs a display)")
     p.add_argument("--record", metavar="DIR",
-                   help="write PNG frames (start, override, safe pose, end), trace.jsonl/.csv, "
-                        "summary.json and plot.png to DIR/<scenario name>/")
+                   help="write PNG frames with an overlay (start, end and every event: violation, "
+                        "override, escalation, closest approach, peak force, standstill, safe pose, "
+                        "release), trace.jsonl/.csv, summary.json and plot.png to DIR/<scenario name>/")
     p.add_argument("--model", metavar="DIR", help="risk model directory (default: the spec's "
                    "risk.estimator.model, else the shipped model)")
     p.add_argument("--json", metavar="FILE", help="write the results as JSON ('-' for stdout: then stdout "
