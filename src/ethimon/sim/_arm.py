@@ -20,7 +20,7 @@ from ..errors import DependencyNotInstalled
 from .._robot import PANDA_HOME_JOINTS_RAD
 from ._limits import (BRAKE_DECEL_RAD_S2, BRAKE_ENGAGE_S, BRAKE_TORQUE_N_M, RATED_DDDQ_MAX,
                       RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX, RATED_Q_MIN)
-from ._model import PHYSICS_HZ, Human, SimBlock, SimObject
+from ._model import PHYSICS_HZ, Gripper, Human, SimBlock, SimObject
 
 __all__ = ["ArmSim", "HOME_JOINTS_RAD", "ARM_JOINTS", "EE_LINK", "BRAKE_TORQUE_N_M", "import_pybullet"]
 
@@ -43,6 +43,8 @@ _BRAKE_DECEL = np.array(BRAKE_DECEL_RAD_S2)
 _K_POS = 30.0
 _DOWN_RPY = (math.pi, 0.0, 0.0)
 _NO_HUMAN_M = 10.0
+#: a held object more than this from where the grasp holds it has slipped out of the fingers
+_SLIP_M = 0.02
 
 
 def import_pybullet():
@@ -122,14 +124,14 @@ class ArmSim:
     Example:
         >>> sim = ArmSim(control_hz=60)              # doctest: +SKIP
         >>> sim.step(); sorted(sim.signals())         # doctest: +SKIP
-        ['contact_force', 'ee_speed', 'hazard_distance', 'human_distance', 'joint_speed_max']
+        ['contact_force', 'ee_speed', 'hazard_distance', 'human_distance', 'human_speed', 'joint_speed_max', 'robot_speed_toward_human']
         >>> sim.close()                               # doctest: +SKIP
     """
 
     def __init__(self, *, control_hz: int = 60, gui: bool = False,
                  start_joints_rad: Sequence[float] | None = None,
                  humans: Sequence[Human] = (), objects: Sequence[SimObject] = (),
-                 brakes: bool = True) -> None:
+                 brakes: bool = True, gripper: Gripper | None = None) -> None:
         if control_hz <= 0 or PHYSICS_HZ % control_hz:
             raise ValueError(f"control_hz={control_hz} must divide {PHYSICS_HZ}")
         p, pd = import_pybullet()
@@ -169,6 +171,12 @@ class ArmSim:
         self.max_accel_ratio_substep = 0.0
         self.link_speed_max = 0.0
         self.brakes = brakes
+        self.gripper = gripper if gripper is not None else Gripper()
+        #: the most the fingers' friction holds a grasped object with (N)
+        self.grip_capacity_n = 2.0 * self.gripper.friction_coefficient * self.gripper.grasp_force_n
+        #: objects that left the gripper other than by a release: (name, t_s, "power_off"|"slipped")
+        self.dropped: list[tuple[str, float, str]] = []
+        self._track: dict[str, tuple[float, np.ndarray, float]] = {}  # name -> (t, xy, speed)
         self.graspable: set[str] = set()
         self._status_id: int | None = None
         self.time_s = 0.0
@@ -191,7 +199,8 @@ class ArmSim:
     def from_block(cls, block: SimBlock, *, gui: bool = False) -> ArmSim:
         """Build the cell a scenario's ``sim:`` block describes."""
         sim = cls(control_hz=block.control_hz, gui=gui, start_joints_rad=block.start_joints_rad,
-                  humans=block.humans, objects=block.objects, brakes=block.brakes)
+                  humans=block.humans, objects=block.objects, brakes=block.brakes,
+                  gripper=block.gripper)
         if block.start_xyz_m is not None:
             q = sim.solve_ik(block.start_xyz_m, seed=HOME_JOINTS_RAD)
             sim.reset_joints(q)
@@ -393,21 +402,74 @@ class ArmSim:
                     best = min(best, self.distance(self.objects[name], hb.body, best))
         return best
 
+    def human_speed(self, name: str) -> float:
+        """Horizontal speed (m/s) of person ``name`` as a tracker measures it: the change of
+        the measured position since the previous control cycle's reading (0 at the first)."""
+        hb = self.humans[name]
+        pos, _ = self._p.getBasePositionAndOrientation(hb.body, physicsClientId=self.cid)
+        xy = np.array(pos[:2], dtype=float)
+        last = self._track.get(name)
+        if last is not None and abs(last[0] - self.time_s) < 1e-12:
+            return last[2]  # read twice in one cycle: the same measurement
+        v = 0.0 if last is None else float(np.linalg.norm(xy - last[1]) / (self.time_s - last[0]))
+        self._track[name] = (self.time_s, xy, v)
+        return v
+
+    def closest_approach(self) -> tuple[float, str | None, float]:
+        """``(distance, person, speed toward the person)`` of the closest point pair between the
+        arm (or the held object) and any person.
+
+        The speed is the velocity of the arm's closest point (its link's linear velocity plus
+        ω × r; the hand's rigid motion for a held object) projected on the unit vector from it
+        toward the person's closest point, 0 when it moves away (ISO/TS 15066 v_r is the speed
+        toward the operator). ``(10, None, 0)`` with nobody in the scene."""
+        p, cid = self._p, self.cid
+        held = self.objects.get(self.held) if self.held else None
+        best = (_NO_HUMAN_M, None, None, None)  # (d, person, point record, from the held object)
+        for name, hb in self.humans.items():
+            for body in (self.robot, held):
+                if body is None:
+                    continue
+                pts = p.getClosestPoints(body, hb.body, best[0], physicsClientId=cid)
+                for pt in pts:
+                    d = max(0.0, pt[8])
+                    if d < best[0] or best[1] is None and d <= best[0]:
+                        best = (d, name, pt, body == held)
+        d, name, pt, on_held = best
+        if pt is None:
+            return _NO_HUMAN_M, None, 0.0
+        pa, pb = np.asarray(pt[5]), np.asarray(pt[6])
+        link = HAND_LINK if on_held else pt[3]
+        if link < 0:
+            return float(d), name, 0.0  # the fixed base does not move
+        st = p.getLinkState(self.robot, link, computeLinkVelocity=1, physicsClientId=cid)
+        v = np.asarray(st[6]) + np.cross(np.asarray(st[7]), pa - np.asarray(st[0]))
+        n = pb - pa
+        norm = float(np.linalg.norm(n))
+        n = n / norm if norm > 1e-9 else -np.asarray(pt[7])  # touching: the contact normal
+        return float(d), name, max(0.0, float(np.dot(v, n)))
+
     def signals(self) -> dict[str, float]:
         """The monitor's inputs from the current physics state.
 
         Returns:
             ``human_distance`` (m), ``ee_speed`` (m/s), ``contact_force`` (N),
-            ``joint_speed_max`` (rad/s) and ``hazard_distance`` (m, hazardous
-            object to nearest human; 10 m when there is none).
+            ``joint_speed_max`` (rad/s), ``hazard_distance`` (m, hazardous object to nearest
+            human; 10 m when there is none), ``human_speed`` (m/s, the person closest to the
+            arm, from the tracked position; 0 with nobody) and ``robot_speed_toward_human``
+            (m/s, the arm's closest point toward that person, see :meth:`closest_approach`).
         """
         _, qd = self.joint_state()
+        dist, who, v_r = self.closest_approach()
+        speeds = {n: self.human_speed(n) for n in self.humans}  # every track stays current
         return {
-            "human_distance": float(self.human_distance()),
+            "human_distance": float(dist),
             "ee_speed": float(np.linalg.norm(self.ee_velocity())),
             "contact_force": self.contact_force(),
             "joint_speed_max": float(np.max(np.abs(qd))),
             "hazard_distance": float(self.hazard_distance()),
+            "human_speed": float(speeds[who]) if who is not None else 0.0,
+            "robot_speed_toward_human": float(v_r),
         }
 
     # ------------------------------------------------------------ commands
@@ -456,6 +518,8 @@ class ArmSim:
         if self.powered:
             self.powered = False
             self._off_substeps = 0
+            if self.held is not None and not self.gripper.self_locking:
+                self.drop("power_off")  # the unpowered fingers no longer press on the object
             if brakes_already_engaged:  # a stop 1 engaged them at standstill, motors holding
                 self._off_substeps = int(math.ceil(BRAKE_ENGAGE_S * PHYSICS_HZ))
         self._apply_unpowered()
@@ -479,6 +543,10 @@ class ArmSim:
         p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
                                     targetVelocities=target.tolist(), forces=forces,
                                     physicsClientId=cid)
+        if not self.gripper.self_locking:  # unpowered fingers are free (no holding torque)
+            p.setJointMotorControlArray(self.robot, FINGER_JOINTS, p.VELOCITY_CONTROL,
+                                        targetVelocities=[0.0, 0.0], forces=[0.0, 0.0],
+                                        physicsClientId=cid)
 
     def _servo_velocity(self, q_ref: np.ndarray, qd_ref: np.ndarray, q_meas: np.ndarray) -> np.ndarray:
         """The rated-limited motor velocity command for one physics step."""
@@ -526,9 +594,31 @@ class ArmSim:
         self._held_constraint = p.createConstraint(
             self.robot, HAND_LINK, body, -1, p.JOINT_FIXED, (0, 0, 0), rel_pos, (0, 0, 0),
             parentFrameOrientation=rel_orn, physicsClientId=cid)
-        p.changeConstraint(self._held_constraint, maxForce=500, physicsClientId=cid)
+        # the fingers hold by friction: 2 mu F_grasp at most (Gripper); more slips the object out
+        p.changeConstraint(self._held_constraint, maxForce=self.grip_capacity_n, physicsClientId=cid)
         self._held_rel = (rel_pos, rel_orn)
         self.held = name
+
+    def drop(self, why: str) -> None:
+        """The held object leaves the fingers (not a release the task commanded): ``why`` is
+        ``"power_off"`` (a gripper that is not self-locking lost power) or ``"slipped"``."""
+        if self.held is None:
+            return
+        self.dropped.append((self.held, round(self.time_s, 6), why))
+        self.detach()
+
+    def held_offset_m(self) -> float:
+        """How far the held object is from where the grasp holds it (m; 0 when none is held)."""
+        pose = self._held_pose_for_hand()
+        if pose is None:
+            return 0.0
+        pos, _ = self._p.getBasePositionAndOrientation(self.objects[self.held], physicsClientId=self.cid)
+        return float(np.linalg.norm(np.asarray(pos) - np.asarray(pose[0])))
+
+    def object_z(self) -> dict[str, float]:
+        """Height (m) of every object's centre now."""
+        return {n: float(self._p.getBasePositionAndOrientation(b, physicsClientId=self.cid)[0][2])
+                for n, b in self.objects.items()}
 
     def set_graspable(self, name: str) -> None:
         """Stop the arm from colliding with object ``name`` (grasps are kinematic).
@@ -602,6 +692,8 @@ class ArmSim:
         self.max_joint_accel_substep = peak_a
         self.max_accel_ratio_substep = ratio_a
         self.link_speed_max = self.link_speed()
+        if self.held is not None and self.held_offset_m() > _SLIP_M:
+            self.drop("slipped")  # pulled out beyond what the fingers' friction holds
         self.cycle += 1
 
     def link_speed(self) -> float:

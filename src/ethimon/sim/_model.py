@@ -33,6 +33,9 @@ __all__ = [
     "Waypoint",
     "SimObject",
     "Dropout",
+    "StuckAt",
+    "Sensor",
+    "Gripper",
     "InputChange",
     "Primitive",
     "Reach",
@@ -48,7 +51,8 @@ __all__ = [
 PHYSICS_HZ = 240
 
 #: Signals the simulation produces each control cycle.
-SIGNAL_NAMES = ("human_distance", "ee_speed", "contact_force", "joint_speed_max", "hazard_distance")
+SIGNAL_NAMES = ("human_distance", "ee_speed", "contact_force", "joint_speed_max", "hazard_distance",
+                "human_speed", "robot_speed_toward_human")
 
 Vec3 = tuple[float, float, float]
 Vec2 = tuple[float, float]
@@ -210,6 +214,47 @@ class Dropout(_Model):
         return self
 
 
+class StuckAt(_Model):
+    """A stuck-at sensor fault: from ``from_s`` (until ``to_s``, default the end) ``signal``
+    reads ``value``, or, without ``value``, keeps the reading it had at ``from_s`` (frozen)."""
+
+    signal: str
+    from_s: float = Field(ge=0.0)
+    to_s: float | None = None
+    value: float | None = None
+
+    @model_validator(mode="after")
+    def _order(self):
+        if self.to_s is not None and self.to_s <= self.from_s:
+            raise ValueError(f"to_s={self.to_s} must be after from_s={self.from_s}")
+        if self.value is not None and not math.isfinite(self.value):
+            raise ValueError("value must be a finite number (a NaN reading is a dropout: use dropouts:)")
+        return self
+
+
+class Sensor(_Model):
+    """How one simulated signal is measured: the monitor sees the value of ``latency_s``
+    earlier (rounded to whole control cycles) plus Gaussian noise of standard deviation
+    ``noise`` (in the signal's unit, seeded by ``seed``), clipped at 0."""
+
+    latency_s: float = Field(0.0, ge=0.0, le=5.0)
+    noise: float = Field(0.0, ge=0.0)
+    seed: int = Field(0, ge=0)
+
+
+class Gripper(_Model):
+    """The Franka Hand as the simulation models it: a held object is kept by the fingers'
+    friction, at most ``2 × friction_coefficient × grasp_force_n`` (a larger pull slips it
+    out); when motor power is removed the fingers hold only if ``self_locking``."""
+
+    grasp_force_n: float = Field(70.0, gt=0.0, le=140.0, description="grasping force (N); 70 N "
+                                 "continuous is the figure usually quoted for the Franka Hand (assumed)")
+    friction_coefficient: float = Field(0.5, gt=0.0, le=2.0, description="finger pad/object "
+                                        "friction (assumed)")
+    self_locking: bool = Field(False, description="the fingers keep their grip without power "
+                               "(assumed false: no Franka document available here says so)")
+
+
 class InputChange(_Model):
     """From ``t_s`` on, feed these monitor inputs (e.g. the planner's next instruction
     raised ``p_unsafe``); they replace the run's constant inputs of the same name."""
@@ -253,6 +298,11 @@ class SimExpect(_Model):
         "(simulated hazard_distance) once the monitor has overridden")
     route: Literal["direct", "fold", "lift", "away", "hold", "none"] | None = Field(
         None, description="the safe-pose route the planner took (hold: none was collision-free)")
+    object_dropped: bool | None = Field(
+        None, description="a held object left the gripper other than by the task's release "
+        "(power removed from a gripper that is not self-locking, or pulled out beyond its friction)")
+    object_end_z_m: dict[str, tuple[float, float]] | None = Field(
+        None, description="object name -> [lowest, highest] height (m) of its centre at the end")
 
 
 class SimBlock(_Model):
@@ -273,10 +323,14 @@ class SimBlock(_Model):
         "beyond this from the held pose escalates to stop_0")
     brakes: bool = Field(True, description="holding brakes engage when motor power is removed "
                                            "(stop_0 at once, stop_1 after its ramp)")
+    gripper: Gripper = Gripper()
     task: tuple[Primitive, ...] = ()
     humans: tuple[Human, ...] = ()
     objects: tuple[SimObject, ...] = ()
     dropouts: tuple[Dropout, ...] = ()
+    sensors: dict[str, Sensor] = Field(
+        default_factory=dict, description="per simulated signal: latency_s, noise (sd), seed")
+    stuck_at: tuple[StuckAt, ...] = ()
     inputs_at: tuple[InputChange, ...] = ()
     record_at_s: tuple[float, ...] = Field(
         (), description="extra PNG frames at these simulated times (with --record); start, "
@@ -305,6 +359,20 @@ class SimBlock(_Model):
         if self.start_holding is not None and self.start_holding not in objs:
             raise ValueError(f"start_holding names unknown object {self.start_holding!r} "
                              f"(objects: {sorted(objs)})")
+        for where, names in (("sensors", list(self.sensors)),
+                             ("stuck_at", [f.signal for f in self.stuck_at]),
+                             ("dropouts", [d.signal for d in self.dropouts])):
+            bad = [n for n in names if n not in SIGNAL_NAMES]
+            if bad and where != "dropouts":
+                raise ValueError(f"{where} names {bad[0]!r}, which the simulation does not measure "
+                                 f"(simulated signals: {', '.join(SIGNAL_NAMES)})")
+        if self.expect.object_end_z_m:
+            for name, (lo, hi) in self.expect.object_end_z_m.items():
+                if name not in objs:
+                    raise ValueError(f"expect.object_end_z_m names unknown object {name!r} "
+                                     f"(objects: {sorted(objs)})")
+                if hi < lo:
+                    raise ValueError(f"expect.object_end_z_m[{name!r}] is [{lo:g}, {hi:g}]: lowest first")
         for i, ch in enumerate(self.inputs_at):
             sim_set = sorted(set(ch.inputs) & set(SIGNAL_NAMES))
             if sim_set:  # the simulation measures these; a scenario value would hide the physics

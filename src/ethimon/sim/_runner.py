@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import time
+import zlib
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 from typing import Any
@@ -115,6 +116,10 @@ class SimResult:
         route: the route the safe-pose planner took (``None``: no safe pose).
         min_hazard_distance_after_override_m: closest a hazard-tagged object came to a person
             from the first override on (``None``: no override).
+        dropped: ``(object, t_s, why)`` for every held object that left the gripper other than by
+            the task's release (``power_off``: a gripper that is not self-locking lost power;
+            ``slipped``: pulled out beyond the fingers' friction).
+        object_end_z_m: height of every object's centre at the end of the run.
     """
 
     trace: list[CycleRecord] = field(default_factory=list)
@@ -142,6 +147,8 @@ class SimResult:
     max_contact_force_n: float = 0.0
     route: str | None = None
     min_hazard_distance_after_override_m: float | None = None
+    dropped: tuple[tuple[str, float, str], ...] = ()
+    object_end_z_m: dict[str, float] = field(default_factory=dict)
 
     @property
     def override(self) -> bool:
@@ -334,15 +341,47 @@ def _num(v: Any) -> float:
 
 
 def _signal_filter(block: SimBlock):
+    """``f(t, fed) -> fed``: what the monitor's sensors make of the simulated signals.
+
+    Per signal, in this order: ``sensors`` latency (the reading of ``round(latency_s ×
+    control_hz)`` cycles earlier; the first reading until there is one that old), Gaussian
+    ``noise`` (seeded per signal, clipped at 0), ``stuck_at`` (a fixed ``value`` or the reading
+    frozen at ``from_s``), then ``dropouts`` (NaN or missing); ``inputs_at`` changes the other
+    inputs. ``None`` when the block asks for none of these."""
     drops = block.dropouts
     changes = sorted(block.inputs_at, key=lambda c: c.t_s)
-    if not drops and not changes:
+    sensors = dict(block.sensors)
+    stuck = block.stuck_at
+    if not drops and not changes and not sensors and not stuck:
         return None
+    hz = block.control_hz
+    history: dict[str, list[float]] = {n: [] for n in sensors}
+    lag = {n: int(round(s.latency_s * hz)) for n, s in sensors.items()}
+    rngs = {n: np.random.default_rng([s.seed, zlib.crc32(n.encode())]) for n, s in sensors.items()}
+    frozen: dict[int, float] = {}
 
     def apply(t: float, fed: dict) -> dict:
         for ch in changes:
             if ch.t_s <= t + 1e-9:
                 fed.update(ch.inputs)
+        for name, sen in sensors.items():
+            if name not in fed:
+                continue
+            h = history[name]
+            h.append(float(fed[name]))
+            k = lag[name]
+            if len(h) > k + 1:
+                del h[0]
+            v = h[0] if len(h) <= k else h[-1 - k]
+            if sen.noise > 0.0:
+                v = max(0.0, v + float(rngs[name].normal(0.0, sen.noise)))
+            fed[name] = v
+        for i, st in enumerate(stuck):
+            if st.from_s <= t + 1e-9 and (st.to_s is None or t < st.to_s - 1e-9) and st.signal in fed:
+                if st.value is not None:
+                    fed[st.signal] = float(st.value)
+                else:
+                    fed[st.signal] = frozen.setdefault(i, float(fed[st.signal]))
         for dr in drops:
             if dr.from_s <= t < dr.to_s:
                 if dr.mode == "missing":
@@ -481,6 +520,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         res.powered_at_end = bool(sim.powered)
         sp = arm.controller if isinstance(arm.controller, SafePoseController) else arm.last_safe_pose
         res.route = sp.route if sp is not None else None
+        res.dropped = tuple(sim.dropped)
+        res.object_end_z_m = {n: round(z, 4) for n, z in sim.object_z().items()}
         res.fired = tuple(fired)
         res.sim_time_s = round(sim.time_s, 6)
         res.realtime_factor = res.sim_time_s / loop_wall if loop_wall > 0 else math.inf
@@ -569,6 +610,15 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
             and r.min_hazard_distance_after_override_m < ex.min_hazard_distance_m:
         out.append(f"sim: a hazardous object came to {r.min_hazard_distance_after_override_m:.3f} m of a person "
                    f"after the override, expected never below {ex.min_hazard_distance_m:g} m")
+    if ex.object_dropped is not None and bool(r.dropped) != ex.object_dropped:
+        what = ", ".join(f"{n} at {t:g} s ({why})" for n, t, why in r.dropped) or "none"
+        out.append(f"sim: held objects dropped: {what}; expected object_dropped: "
+                   f"{str(ex.object_dropped).lower()}")
+    for name, (lo, hi) in (ex.object_end_z_m or {}).items():
+        z = r.object_end_z_m.get(name)
+        if z is None or not (lo - 1e-9 <= z <= hi + 1e-9):
+            out.append(f"sim: {name} ends at height {z if z is None else round(z, 3)} m, expected "
+                       f"within [{lo:g}, {hi:g}] m")
     if ex.route is not None and r.route != ex.route:
         out.append(f"sim: the safe-pose planner took route {r.route!r}, expected {ex.route!r}")
     return out
