@@ -157,7 +157,7 @@ def test_cli_exit_codes_json_and_tables(tmp_path, capsys):
     out = tmp_path / "v.json"
     assert main(["verify", SPECS, "--json", str(out)]) == 0
     doc = json.loads(out.read_text())
-    assert doc["exit_code"] == 0 and len(doc["specs"]) == 2
+    assert doc["exit_code"] == 0 and len(doc["specs"]) == 3  # cobot_cell, governor, ssm_measured
     assert all(f["status"] in ("proved", "ok") for s in doc["specs"] for f in s["findings"])
     assert "risk.override" in capsys.readouterr().out
     assert main(["verify", fixture("refuted_division.yaml"), "--counterexamples", str(tmp_path / "c")]) == 1

@@ -1,7 +1,8 @@
 """Franka Panda rated joint limits and the brake model (no PyBullet, no numpy needed to import).
 
-Rated limits: Franka Emika, FCI documentation, "Robot and interface specifications",
-section "Limits for Panda" (https://frankaemika.github.io/docs/control_parameters.html):
+The rated-limit table lives in :mod:`ethimon._robot` (``verify`` and ``lint`` check a safe pose
+against it without importing ``sim``); it is re-exported here for the simulator. Rated limits:
+Franka Emika, FCI documentation, "Robot and interface specifications", section "Limits for Panda" (https://frankaemika.github.io/docs/control_parameters.html):
 ``q_min``/``q_max``, ``dq_max``, ``ddq_max`` and ``dddq_max`` per joint. Commands outside
 them abort a motion on the real robot; every controller of the simulation keeps inside them
 (the URDF's hard limits are wider: e.g. joint 1 ±2.9671 rad against the rated ±2.8973 rad).
@@ -25,24 +26,12 @@ Example:
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from .._robot import (RATED_DDDQ_MAX, RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX, RATED_Q_MIN,
+                      RATED_SOURCE, out_of_range, safe_pose_problem)
 
 __all__ = ["RATED_Q_MIN", "RATED_Q_MAX", "RATED_DQ_MAX", "RATED_DDQ_MAX", "RATED_DDDQ_MAX",
            "RATED_SOURCE", "BRAKE_ENGAGE_S", "BRAKE_DECEL_RAD_S2", "BRAKE_TORQUE_N_M",
            "out_of_range", "safe_pose_problem"]
-
-RATED_SOURCE = ("Franka Emika FCI documentation, 'Robot and interface specifications', Limits for "
-                "Panda (https://frankaemika.github.io/docs/control_parameters.html)")
-
-#: rated joint position range (rad), joints 1..7
-RATED_Q_MIN = (-2.8973, -1.7628, -2.8973, -3.0718, -2.8973, -0.0175, -2.8973)
-RATED_Q_MAX = (2.8973, 1.7628, 2.8973, -0.0698, 2.8973, 3.7525, 2.8973)
-#: rated joint speed (rad/s)
-RATED_DQ_MAX = (2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61)
-#: rated joint acceleration (rad/s²)
-RATED_DDQ_MAX = (15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0)
-#: rated joint jerk (rad/s³)
-RATED_DDDQ_MAX = (7500.0, 3750.0, 5000.0, 6250.0, 7500.0, 10000.0, 10000.0)
 
 #: ASSUMED: time from power removal to brake engagement (s); the joints coast meanwhile
 BRAKE_ENGAGE_S = 0.03
@@ -52,23 +41,3 @@ BRAKE_DECEL_RAD_S2 = RATED_DDQ_MAX
 #: (87/12 N·m), above the Panda's gravity loads, so a braked arm holds its pose
 BRAKE_TORQUE_N_M = (60.0, 60.0, 60.0, 60.0, 10.0, 10.0, 10.0)
 
-
-def out_of_range(joints: Sequence[float], margin_rad: float = 0.0) -> list[tuple[int, float, float, float]]:
-    """Joints outside the rated position range: ``(joint number 1..7, value, q_min, q_max)``."""
-    bad = []
-    for j, (v, lo, hi) in enumerate(zip(joints, RATED_Q_MIN, RATED_Q_MAX)):
-        if not (lo + margin_rad <= float(v) <= hi - margin_rad):
-            bad.append((j + 1, float(v), lo, hi))
-    return bad
-
-
-def safe_pose_problem(joints: Sequence[float]) -> str | None:
-    """One sentence naming every safe-pose joint outside the Panda's rated range, or ``None``."""
-    if len(joints) != 7:
-        return None  # the joint count is checked (and worded) where the pose is used
-    bad = out_of_range(joints)
-    if not bad:
-        return None
-    parts = [f"joint {j} = {v:g} rad (rated {lo:g} .. {hi:g})" for j, v, lo, hi in bad]
-    return ("safe_pose.joints_rad is outside the Franka Panda's rated joint range: "
-            + "; ".join(parts))

@@ -15,6 +15,7 @@ from ..compiler._risk_formula import release_bound, risk_bounds, risk_from_p_uns
 from ..runtime import Monitor
 from ..spec._expr import Name, walk
 from ..spec import Response, Spec
+from .._robot import out_of_range, safe_pose_problem
 from ._policy import manual_rules, release_policy_warnings
 from ._encode import (DecisionTrace, Unrolled, decision_trace, lookback, real, release_below, rules_of,
                       z3_value)
@@ -580,7 +581,8 @@ class Verifier:
                 ("lint.release", lambda: [self._timed(self.lint_release)]),
                 ("lint.release_policy", self.lint_release_policy),
                 ("lint.vacuous", self.lint_vacuous), ("lint.contradiction", self.lint_contradictions),
-                ("lint.unbounded", self.lint_unbounded), ("lint.fault_gap", self.lint_fault_gap)]
+                ("lint.unbounded", self.lint_unbounded), ("lint.fault_gap", self.lint_fault_gap),
+                ("lint.safe_pose_range", self.lint_safe_pose_range)]
 
     def lints(self) -> list[Finding]:
         return [f for _, fn in self.lint_tasks() for f in fn()]
@@ -906,6 +908,28 @@ class Verifier:
                for s in self.plan.signals if s.kind == "number" and s.name in self.spec.signals
                and self.spec.signals[s.name].range is None]
         return out or [Finding("lint", "lint.unbounded", OK, "every numeric signal has a declared range")]
+
+    def lint_safe_pose_range(self) -> list[Finding]:
+        """The safe pose inside the Franka Panda's rated joint range (``ethimon._robot``, FCI
+        'Limits for Panda'): outside it the real arm aborts the motion and the simulation refuses
+        the spec; ``ethimon lint`` reports it as an error. One warning naming each joint, its
+        value and the rated limits, at the spec's file:line:column when known."""
+        name = "lint.safe_pose_range"
+        joints = tuple(self.spec.safe_pose.joints_rad)
+        if len(joints) != 7:
+            return [Finding("lint", name, WARNING, f"safe_pose.joints_rad has {len(joints)} values; the "
+                            "Franka Panda (the simulated arm, the rated-limit table) has 7 joints")]
+        problem = safe_pose_problem(joints)
+        if problem is None:
+            return [Finding("lint", name, OK, "the safe pose lies inside the Franka Panda's rated joint range")]
+        where = ""
+        src = getattr(self.spec, "source", None)
+        if src is not None:  # the first joint outside its range, in the spec file
+            err = src.error(problem, ("safe_pose", "joints_rad", out_of_range(joints)[0][0] - 1))
+            if err.line is not None:
+                where = f"{err.location}: "
+        return [Finding("lint", name, WARNING, f"{where}{problem} (an error for 'ethimon lint' and "
+                        "'check --sim'; FCI 'Limits for Panda')")]
 
     def lint_fault_gap(self) -> list[Finding]:
         """The fault latch's hold must cover every obligation's window: a fault clears the
