@@ -28,7 +28,7 @@ def _run(name: str):
     if name not in _cache:
         doc = yaml.safe_load((ROOT / "scenarios" / "sim" / f"{name}.yaml").read_text())
         block = SimBlock.model_validate(doc["sim"])
-        spec = ethimon.load_spec(str(SPEC))
+        spec = ethimon.load_spec(str((ROOT / "scenarios" / "sim" / doc["spec"]).resolve()))  # its own spec
         # scenarios scored by the risk model in `ethimon check` get a fixed stand-in here,
         # so these sim tests stay model-free: unsafe if the scenario expects the risk rule
         p_unsafe = doc["inputs"].get("p_unsafe")

@@ -360,10 +360,9 @@ class SimBlock(_Model):
             raise ValueError(f"start_holding names unknown object {self.start_holding!r} "
                              f"(objects: {sorted(objs)})")
         for where, names in (("sensors", list(self.sensors)),
-                             ("stuck_at", [f.signal for f in self.stuck_at]),
-                             ("dropouts", [d.signal for d in self.dropouts])):
+                             ("stuck_at", [f.signal for f in self.stuck_at])):
             bad = [n for n in names if n not in SIGNAL_NAMES]
-            if bad and where != "dropouts":
+            if bad:
                 raise ValueError(f"{where} names {bad[0]!r}, which the simulation does not measure "
                                  f"(simulated signals: {', '.join(SIGNAL_NAMES)})")
         if self.expect.object_end_z_m:
