@@ -774,6 +774,56 @@ class ArmSim:
         hs = p.getLinkState(self.robot, HAND_LINK, computeForwardKinematics=1, physicsClientId=cid)
         return p.multiplyTransforms(hs[0], hs[1], *self._held_rel)
 
+    def hazard_axis_angles_deg(self, qs: Sequence[Sequence[float]] | None = None) -> list[float] | None:
+        """Angle (deg) between the held object's declared ``hazard_axis`` and the direction from
+        the object's centre to the nearest person (the nearest point of their capsule axis), at
+        each configuration in ``qs`` (default: now; state restored afterwards). 180 = pointed
+        straight away. ``None`` when no object with a ``hazard_axis`` is held or there is nobody.
+        """
+        if self.held is None or not self.humans:
+            return None
+        axis = self.object_specs[self.held].hazard_axis
+        if axis is None or getattr(self, "_held_rel", None) is None:
+            return None
+        p, cid = self._p, self.cid
+        a_obj = np.asarray(axis, dtype=float) / float(np.linalg.norm(axis))
+        people = []
+        for hb in self.humans.values():
+            c = self.human_position(hb.spec.name)
+            r, h = hb.spec.radius_m, hb.spec.height_m
+            people.append((c, max(h / 2 - r, 0.0)))
+
+        def angle() -> float:
+            pos, orn = self._held_pose_for_hand()
+            pos = np.asarray(pos)
+            rot = np.asarray(p.getMatrixFromQuaternion(orn)).reshape(3, 3)
+            a = rot @ a_obj
+            best, to = math.inf, None
+            for c, half in people:
+                z = min(max(pos[2], c[2] - half), c[2] + half)
+                v = np.array([c[0], c[1], z]) - pos
+                d = float(np.linalg.norm(v))
+                if d < best:
+                    best, to = d, v
+            if to is None or best < 1e-9:
+                return 0.0
+            cos = float(np.dot(a, to) / best)
+            return math.degrees(math.acos(min(1.0, max(-1.0, cos))))
+
+        if qs is None:
+            return [angle()]
+        q_now, qd_now = self.joint_state()
+        out = []
+        try:
+            for q in qs:
+                for j, v in zip(ARM_JOINTS, q):
+                    p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+                out.append(angle())
+        finally:
+            for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
+                p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+        return out
+
     def probe(self, qs: Sequence[Sequence[float]]) -> list[dict[str, float]]:
         """Clearances of the arm at each joint configuration in ``qs`` (state restored after).
 

@@ -35,6 +35,9 @@ _DQ = np.array(RATED_DQ_MAX)
 #: a held hazard-tagged object (sharp, hot) within this of a person is never carried nearer
 #: (by more than 0.05 m) by the safe-pose retreat, whatever the spec's near-human zone
 _HAZARD_KEEP_M = 1.5
+#: a held object's declared hazard_axis (blade tip, spout) ends the retreat at least this far
+#: (deg) from the direction to the nearest person (90 = side-on; the margin allows for people moving)
+_HAZARD_AWAY_DEG = 135.0
 _DDQ = np.array(RATED_DDQ_MAX)
 _DDDQ = np.array(RATED_DDDQ_MAX)
 _Q_MIN, _Q_MAX = np.array(RATED_Q_MIN), np.array(RATED_Q_MAX)
@@ -422,6 +425,9 @@ class SafePoseController:
         planned_closest_m: closest planned approach of the arm to a person on the route.
         speed_cap_m_s: the Cartesian cap applied (``None``: none).
         plan_s: planned time from the first command to the safe pose.
+        q_safe: the pose the retreat goes to: the spec's, with joint 7 turned by
+            ``wrist_turn_rad`` when a held object's ``hazard_axis`` would otherwise point
+            toward a person (``hazard_axis_angle_deg``: its planned angle from them there).
     """
 
     name = "safe_pose"
@@ -443,6 +449,8 @@ class SafePoseController:
         self.planned_closest_m: float | None = None
         self.speed_cap_m_s: float | None = None
         self.plan_s = 0.0
+        self.wrist_turn_rad = 0.0
+        self.hazard_axis_angle_deg: float | None = None
         self.t = 0.0
         self._decel: _Decel | None = None
         self._moves: list[_Move] = []
@@ -498,7 +506,36 @@ class SafePoseController:
             pass
         return out
 
+    def _orient_hazard(self, sim: ArmSim) -> None:
+        """With a held object whose ``hazard_axis`` is declared, turn the safe pose's wrist
+        (joint 7, within its rated range) so that the axis points away from the nearest person:
+        the spec's angle when it leaves the axis at least ``_HAZARD_AWAY_DEG`` from the
+        direction to them, else the nearest angle that does, else the one that points it
+        furthest away. The routes are then planned (and collision-checked) to that pose."""
+        base = sim.hazard_axis_angles_deg([self.q_safe])
+        if base is None or base[0] >= _HAZARD_AWAY_DEG:
+            self.hazard_axis_angle_deg = base[0] if base else None
+            return
+        q7 = np.linspace(_Q_MIN[6] + 0.02, _Q_MAX[6] - 0.02, 121)
+        poses = []
+        for v in q7:
+            q = self.q_safe.copy()
+            q[6] = v
+            poses.append(q)
+        angles = np.asarray(sim.hazard_axis_angles_deg(poses))
+        ok = np.flatnonzero(angles >= _HAZARD_AWAY_DEG)
+        i = (int(ok[np.argmin(np.abs(q7[ok] - self.q_safe[6]))]) if ok.size
+             else int(np.argmax(angles)))
+        if angles[i] > base[0]:
+            self.wrist_turn_rad = float(q7[i] - self.q_safe[6])
+            self.q_safe = poses[i]
+            self.hazard_axis_angle_deg = float(angles[i])
+        else:
+            self.hazard_axis_angle_deg = base[0]
+
     def _plan(self, sim: ArmSim, q_start: np.ndarray) -> None:
+        if self.plan:
+            self._orient_hazard(sim)
         if float(np.max(np.abs(self.q_safe - q_start))) <= 1e-6:
             self.route, self._moves = "none", []
             return

@@ -195,8 +195,23 @@ class SimObject(_Model):
     height_m: float = Field(0.1, gt=0.0)
     mass_kg: float = Field(0.2, ge=0.0)
     hazard: str | None = None
+    hazard_axis: Vec3 | None = Field(
+        None, description="for a hazard: the direction, in the object's own frame, that must "
+        "point away from people (a blade's tip, a spout); while it is held, the safe-pose retreat "
+        "turns the wrist (joint 7) so that it does")
     fixed: bool = False
     rgba: tuple[float, float, float, float] | None = None
+
+    @model_validator(mode="after")
+    def _axis(self):
+        if self.hazard_axis is not None:
+            if self.hazard is None:
+                raise ValueError(f"object {self.name!r}: hazard_axis needs a hazard (e.g. hazard: sharp)")
+            if not all(math.isfinite(c) for c in self.hazard_axis) or \
+                    math.hypot(*self.hazard_axis) < 1e-6:
+                raise ValueError(f"object {self.name!r}: hazard_axis must be a finite, non-zero "
+                                 "direction, e.g. [1, 0, 0] for a blade along the object's x")
+        return self
 
 
 class Dropout(_Model):
@@ -301,6 +316,10 @@ class SimExpect(_Model):
     object_dropped: bool | None = Field(
         None, description="a held object left the gripper other than by the task's release "
         "(power removed from a gripper that is not self-locking, or pulled out beyond its friction)")
+    min_hazard_axis_angle_deg: float | None = Field(
+        None, ge=0.0, le=180.0, description="at the end of the run, the angle between a held "
+        "object's hazard_axis and the direction from it to the nearest person is at least this "
+        "(over 90: pointed away)")
     object_end_z_m: dict[str, tuple[float, float]] | None = Field(
         None, description="object name -> [lowest, highest] height (m) of its centre at the end")
 

@@ -120,6 +120,10 @@ class SimResult:
             the task's release (``power_off``: a gripper that is not self-locking lost power;
             ``slipped``: pulled out beyond the fingers' friction).
         object_end_z_m: height of every object's centre at the end of the run.
+        hazard_axis_angle_end_deg: at the end, the angle between the held object's declared
+            ``hazard_axis`` and the direction to the nearest person (``None``: none held/declared).
+        wrist_turn_rad: how far the retreat turned joint 7 from the spec's safe pose to point
+            a held hazard away from people (``None``: no retreat).
     """
 
     trace: list[CycleRecord] = field(default_factory=list)
@@ -148,6 +152,8 @@ class SimResult:
     route: str | None = None
     min_hazard_distance_after_override_m: float | None = None
     dropped: tuple[tuple[str, float, str], ...] = ()
+    hazard_axis_angle_end_deg: float | None = None
+    wrist_turn_rad: float | None = None
     object_end_z_m: dict[str, float] = field(default_factory=dict)
 
     @property
@@ -281,6 +287,9 @@ class GovernedArm:
         task_step = self.task.label
         sim.step()
         q, _ = sim.joint_state()
+        # the retreat's own target: the spec's safe pose, the wrist turned for a held hazard
+        target = (self.controller.q_safe if isinstance(self.controller, SafePoseController)
+                  else self.safe_joints)
         return CycleRecord(
             cycle=cycle, monitor_cycle=int(d.cycle), t_s=t,
             signals={k: _num(v) for k, v in fed.items() if not isinstance(v, (list, tuple))},
@@ -288,7 +297,7 @@ class GovernedArm:
             violations=tuple(d.violations), risk=d.risk, faults=tuple(str(f) for f in d.faults),
             latched=bool(getattr(d, "latched", False)), controller=label, task_step=task_step,
             joint_speed_max_rad_s=sim.max_joint_speed_substep,
-            safe_pose_error_rad=float(np.max(np.abs(q - self.safe_joints))),
+            safe_pose_error_rad=float(np.max(np.abs(q - target))),
             human_distance_true_m=true_dist, joint_speed_start_rad_s=speed_start,
             accel_ratio=sim.max_accel_ratio_substep, link_speed_max_m_s=sim.link_speed_max,
             contact_force_true_n=true_force, powered=bool(sim.powered),
@@ -521,6 +530,9 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         sp = arm.controller if isinstance(arm.controller, SafePoseController) else arm.last_safe_pose
         res.route = sp.route if sp is not None else None
         res.dropped = tuple(sim.dropped)
+        ang = sim.hazard_axis_angles_deg()
+        res.hazard_axis_angle_end_deg = round(ang[0], 2) if ang else None
+        res.wrist_turn_rad = round(sp.wrist_turn_rad, 4) if sp is not None else None
         res.object_end_z_m = {n: round(z, 4) for n, z in sim.object_z().items()}
         res.fired = tuple(fired)
         res.sim_time_s = round(sim.time_s, 6)
@@ -610,6 +622,15 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
             and r.min_hazard_distance_after_override_m < ex.min_hazard_distance_m:
         out.append(f"sim: a hazardous object came to {r.min_hazard_distance_after_override_m:.3f} m of a person "
                    f"after the override, expected never below {ex.min_hazard_distance_m:g} m")
+    if ex.min_hazard_axis_angle_deg is not None:
+        a = r.hazard_axis_angle_end_deg
+        if a is None:
+            out.append("sim: expected a held object with a hazard_axis and a person at the end "
+                       "(min_hazard_axis_angle_deg), found none")
+        elif a < ex.min_hazard_axis_angle_deg - 1e-9:
+            out.append(f"sim: at the end the held object's hazard axis is {a:.1f} deg from the "
+                       f"direction to the nearest person, expected at least "
+                       f"{ex.min_hazard_axis_angle_deg:g} deg (pointed away)")
     if ex.object_dropped is not None and bool(r.dropped) != ex.object_dropped:
         what = ", ".join(f"{n} at {t:g} s ({why})" for n, t, why in r.dropped) or "none"
         out.append(f"sim: held objects dropped: {what}; expected object_dropped: "
