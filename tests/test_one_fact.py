@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import ethimon
 from ethimon.spec import SEVERITY_ORDER, Response
 from ethimon.spec._expr import BINARY_OPS, COMPARISONS, Binary, parse_expr, walk
@@ -42,3 +44,65 @@ def test_one_error_prefix_in_the_cli():
         if path.name != "_common.py":
             assert '"ethimon: error: ' not in text and "f\"ethimon: error: " not in text, path
             assert "def _err(" not in text, path
+
+
+# -- the comparison margins: one table, read by the closures, the reference and the offline checker ----------
+
+def _margins_three_ways(op: str, x: float, y: float) -> list[tuple[float, ...]]:
+    """Margins of ``x <op> y`` (fused: no ``when``; and through ``rob``: under ``when``) by Monitor.step,
+    the reference interpreter and the offline checker, each compiled after the table was read."""
+    import numpy as np
+
+    from ethimon.offline import check_trace
+    from ethimon.testing import ReferenceMonitor
+    spec = ethimon.load_spec_text(
+        "ethimon: 1\nname: t\nsignals:\n  x: {range: [-10, 10]}\n  y: {range: [-10, 10]}\n  b: {type: bool}\n"
+        f'obligations:\n  - {{id: fused, require: "x {op} y"}}\n'
+        f'  - {{id: rob, when: "b", require: "x {op} y"}}\n')
+    frame = {"x": x, "y": y, "b": True, "p_unsafe": 0.0}
+    offline = check_trace(spec, {k: np.array([v]) for k, v in frame.items()})
+    return [ethimon.Monitor(spec).step(frame).margins, ReferenceMonitor(spec).step(frame).margins,
+            tuple(float(m) for m in offline.margins[0])]
+
+
+def _same_float(a: float, b: float) -> bool:  # equal, sign of zero included
+    return a == b and math.copysign(1.0, a) == math.copysign(1.0, b)
+
+
+PAIRS = [(1.0, 2.5), (2.5, 1.0), (2.0, 2.0), (-0.0, 0.0), (0.0, -0.0), (-10.0, 10.0)]
+
+
+def test_the_three_compute_the_tables_margins():
+    from ethimon.spec._expr import COMPARISON_MARGINS, comparison_margin
+    assert COMPARISON_MARGINS["<"] == "b - a" and COMPARISON_MARGINS[">="] == "a - b"
+    assert comparison_margin("<", 2.0, 2.0) == 0.0 and math.copysign(1.0, comparison_margin("<", 2.0, 2.0)) == 1.0
+    for op in COMPARISONS:
+        for x, y in PAIRS:
+            want = comparison_margin(op, x, y)
+            for who, margins in zip(("compiled", "reference", "offline"), _margins_three_ways(op, x, y)):
+                assert all(_same_float(m, want) for m in margins), (op, x, y, who, margins, want)
+
+
+def test_the_three_read_the_one_table(monkeypatch):
+    """Rewrite the table (every operator's margin negated): all three follow it, none keeps its own copy."""
+    from ethimon.spec._expr import COMPARISON_MARGINS, MARGIN_SHAPES, comparison_margin
+    other = {"a - b": "b - a", "b - a": "a - b", "|a - b|": "-|a - b|", "-|a - b|": "|a - b|"}
+    assert set(other) == set(MARGIN_SHAPES)
+    before = {op: _margins_three_ways(op, 1.0, 2.5) for op in COMPARISONS}
+    for op in COMPARISONS:
+        monkeypatch.setitem(COMPARISON_MARGINS, op, other[COMPARISON_MARGINS[op]])
+    for op in COMPARISONS:
+        want = comparison_margin(op, 1.0, 2.5)
+        got = _margins_three_ways(op, 1.0, 2.5)
+        assert got != before[op], op
+        for who, margins in zip(("compiled", "reference", "offline"), got):
+            assert all(_same_float(m, want) for m in margins), (op, who, margins, want)
+
+
+def test_no_margin_table_is_written_again():
+    import pathlib
+    src = pathlib.Path(ethimon.__file__).parent
+    for rel in ("compiler/_closures.py", "testing/_reference.py", "offline/_eval.py"):
+        text = (src / rel).read_text(encoding="utf-8")
+        assert '("<", "<="' not in text and '(">", ">="' not in text and '"<": b - a' not in text, rel
+        assert "COMPARISON_MARGINS" in text or "comparison_margin" in text, rel

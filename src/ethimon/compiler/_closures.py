@@ -18,7 +18,8 @@ from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..spec._expr import Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance
+from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, COMPARISONS, Binary, BoolLit, Call, Name, Node, Num,
+                          Unary, separation_distance)
 from ._check import Plan
 
 __all__ = ["Machine", "build_machine"]
@@ -204,7 +205,7 @@ class _Gen:
                 f, g = self.fn(node.left), self.fn(node.right)
                 return lambda: (not f()) or g()
             a, b = self.d(node.left), self.d(node.right)
-            if op in ("<", "<=", ">", ">=", "==", "!="):
+            if op in COMPARISONS:
                 c = _cmp(op, a, b)
                 return c
             return _arith(op, a, b)
@@ -279,15 +280,8 @@ class _Gen:
         """Quantitative robustness: > 0 satisfied, < 0 violated; ±inf for boolean leaves."""
         if isinstance(node, Binary):
             op = node.op
-            if op in ("<", "<=", ">", ">=", "==", "!=") and self.plan.type_of(node.left).kind == "num":
-                f, g = self.fn(node.left), self.fn(node.right)
-                if op in ("<", "<="):
-                    return lambda: g() - f()
-                if op in (">", ">="):
-                    return lambda: f() - g()
-                if op == "==":
-                    return lambda: -abs(f() - g())
-                return lambda: abs(f() - g())
+            if op in COMPARISON_MARGINS and self.plan.type_of(node.left).kind == "num":
+                return _margin_closure(COMPARISON_MARGINS[op], self.fn(node.left), self.fn(node.right))
             if op == "and":
                 f, g = self.rob(node.left), self.rob(node.right)
                 return lambda: min(f(), g())
@@ -460,6 +454,18 @@ def _safe(f: Callable[[], float]) -> float:
         return math.nan  # the verdict short-circuits past); it is a diagnostic, never a fault
 
 
+def _margin_closure(shape: str, f: Callable[[], float], g: Callable[[], float]) -> Callable[[], float]:
+    """The margin of ``f() <op> g()`` for the shape ``COMPARISON_MARGINS[op]``, chosen here at compile time."""
+    if shape == "b - a":
+        return lambda: g() - f()
+    if shape == "a - b":
+        return lambda: f() - g()
+    if shape == "-|a - b|":
+        return lambda: -abs(f() - g())
+    assert shape == "|a - b|", shape
+    return lambda: abs(f() - g())
+
+
 def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: int):
     """Robustness of a bounded response ``when ⇒ require within n cycles``, O(1) amortised.
 
@@ -535,43 +541,35 @@ def _fused_comparison(g: _Gen, ob, mbuf: list, k: int):
     if ob.when is not None or ob.within_cycles or not isinstance(req, Binary):
         return None
     op = req.op
-    if op not in ("<", "<=", ">", ">=", "==", "!=") or g.plan.type_of(req.left).kind != "num":
+    if op not in COMPARISON_MARGINS or g.plan.type_of(req.left).kind != "num":
         return None
     f, h = g.fn(req.left), g.fn(req.right)
-    if op == "<":
+    holds = BINARY_OPS[op][1]  # the operator's function (a C call, as cheap as the inline comparison)
+    shape = COMPARISON_MARGINS[op]  # read here, once: the closure below has the margin's shape inline
+    if shape == "b - a":
         def violated() -> bool:
             a = f()
             b = h()
             mbuf[k] = b - a
-            return not a < b
-    elif op == "<=":
-        def violated() -> bool:
-            a = f()
-            b = h()
-            mbuf[k] = b - a
-            return not a <= b
-    elif op == ">":
+            return not holds(a, b)
+    elif shape == "a - b":
         def violated() -> bool:
             a = f()
             b = h()
             mbuf[k] = a - b
-            return not a > b
-    elif op == ">=":
-        def violated() -> bool:
-            a = f()
-            b = h()
-            mbuf[k] = a - b
-            return not a >= b
-    elif op == "==":
+            return not holds(a, b)
+    elif shape == "-|a - b|":
         def violated() -> bool:
             a = f()
             b = h()
             mbuf[k] = -abs(a - b)
-            return not a == b
+            return not holds(a, b)
     else:
+        assert shape == "|a - b|", shape
+
         def violated() -> bool:
             a = f()
             b = h()
             mbuf[k] = abs(a - b)
-            return not a != b
+            return not holds(a, b)
     return violated

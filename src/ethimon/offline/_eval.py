@@ -30,7 +30,8 @@ import math
 
 import numpy as np
 
-from ..spec._expr import TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance
+from ..spec._expr import (TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, comparison_margin,
+                          separation_distance)
 
 __all__ = ["Evaluator", "TEMPORAL_FUNCS"]
 
@@ -285,14 +286,7 @@ class Evaluator:
             op = node.op
             if op in _CMP and self.plan.type_of(node.left).kind == "num":
                 (a, ae), (b, be) = self.ev(node.left), self.ev(node.right)
-                e = _or(ae, be)
-                if op in ("<", "<="):
-                    return self.full(b - a, "num"), e
-                if op in (">", ">="):
-                    return self.full(a - b, "num"), e
-                if op == "==":
-                    return self.full(-np.abs(a - b), "num"), e
-                return self.full(np.abs(a - b), "num"), e
+                return self.full(comparison_margin(op, a, b), "num"), _or(ae, be)
             if op in ("and", "or", "implies"):
                 (f, fe), (g, ge) = self.rob(node.left), self.rob(node.right)
                 if op == "implies":

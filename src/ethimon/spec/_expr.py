@@ -49,7 +49,8 @@ from ..errors import ExprSyntaxError
 
 __all__ = [
     "Node", "Num", "BoolLit", "Name", "Unary", "Binary", "Call", "ExprSyntaxError",
-    "parse_expr", "BINARY_OPS", "FUNCTIONS", "TEMPORAL", "walk", "to_source",
+    "parse_expr", "BINARY_OPS", "COMPARISON_MARGINS", "MARGIN_SHAPES", "comparison_margin",
+    "FUNCTIONS", "TEMPORAL", "walk", "to_source",
     "SEPARATION_PARAMS", "separation_distance",
 ]
 
@@ -117,6 +118,29 @@ BINARY_OPS: dict[str, tuple[str, object]] = {
     "and": ("logic", None), "or": ("logic", None), "implies": ("logic", None),
 }
 assert set(COMPARISONS) == {op for op, (kind, _) in BINARY_OPS.items() if kind == "cmp"}
+
+#: The one table of comparison margins (robustness: > 0 holds, < 0 fails, the distance to the
+#: boundary): op -> shape, one of ``MARGIN_SHAPES``, with ``a`` the left and ``b`` the right
+#: operand's value. ``"b - a"`` subtracts in that order (never ``-(a - b)``: a tie is +0.0).
+#: The compiled closures pick one specialised closure per shape at compile time; the reference
+#: interpreter and the offline checker call :func:`comparison_margin` (floats or numpy arrays).
+MARGIN_SHAPES = ("a - b", "b - a", "|a - b|", "-|a - b|")
+COMPARISON_MARGINS: dict[str, str] = {
+    "<": "b - a", "<=": "b - a", ">": "a - b", ">=": "a - b", "==": "-|a - b|", "!=": "|a - b|",
+}
+assert set(COMPARISON_MARGINS) == set(COMPARISONS) and set(COMPARISON_MARGINS.values()) <= set(MARGIN_SHAPES)
+
+
+def comparison_margin(op: str, a, b):
+    """The margin of ``a <op> b`` by :data:`COMPARISON_MARGINS` (Python floats or numpy arrays)."""
+    shape = COMPARISON_MARGINS[op]
+    if shape == "a - b":
+        return a - b
+    if shape == "b - a":
+        return b - a
+    if shape == "|a - b|":
+        return abs(a - b)
+    return -abs(a - b)
 
 #: The parameters of ``separation_distance``, in call order: (symbol of ISO/TS 15066:2016, unit, meaning).
 SEPARATION_PARAMS: tuple[tuple[str, str, str], ...] = (

@@ -67,8 +67,8 @@ from typing import Any
 
 from ..compiler._check import RISK_NAME, Plan
 from ..compiler import plan_of
-from ..spec._expr import (BINARY_OPS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary,
-                          separation_distance, walk)
+from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num,
+                          Unary, comparison_margin, separation_distance, walk)
 from ..spec import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
 from ..runtime import Decision, Fault
@@ -245,10 +245,8 @@ class ReferenceMonitor:
         """Quantitative robustness of a condition at ``t`` (> 0 true, < 0 false, ±inf for boolean leaves)."""
         if isinstance(node, Binary):
             op = node.op
-            if op in ("<", "<=", ">", ">=", "==", "!=") and self.plan.type_of(node.left).kind == "num":
-                a, b = self.ev(node.left, t), self.ev(node.right, t)
-                return {"<": b - a, "<=": b - a, ">": a - b, ">=": a - b, "==": -abs(a - b),
-                        "!=": abs(a - b)}[op]
+            if op in COMPARISON_MARGINS and self.plan.type_of(node.left).kind == "num":
+                return comparison_margin(op, self.ev(node.left, t), self.ev(node.right, t))
             if op == "and":
                 return min(self.rob(node.left, t), self.rob(node.right, t))
             if op == "or":
