@@ -13,6 +13,7 @@ import json
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -174,7 +175,7 @@ def test_replay_on_ray_is_the_serial_run(ray_local, tmp_path, capsys, monkeypatc
             _bag(tmp_path / "c", "mcap", 9)]
     bags[2].write_bytes(b"not a bag at all")
     doc = _same_runs(capsys, monkeypatch, tmp_path, "replay", *map(str, bags), "--spec", str(tmp_path / "spec.yaml"),
-                     "--map", str(tmp_path / "map.yaml"))
+                     "--map", str(tmp_path / "map.yaml"), ray_args=("--ray", "--file-timeout", "300"))
     assert [r["path"] for r in doc["results"]] == [str(b) for b in bags]
     assert doc["errors"] == 1 and doc["results"][2]["error"].startswith(f"{bags[2]}: cannot open the bag")
     slow = [next(c for c in r["checks"] if c["id"] == "slow_near") for r in doc["results"] if "checks" in r]
@@ -194,12 +195,27 @@ def test_replay_ray_refuses_audit_and_bad_address(tmp_path, capsys):
 
 
 # ----------------------------------------------------------------------------------------- failures
-def _unit(label: str) -> int:
+def _unit(label: str, pid_dir: str | None = None) -> int:
     if label == "raises":
         raise ValueError("bad file content")
     if label == "dies":
         os._exit(3)  # the worker process dies (a segfault in a parser, the OOM killer)
+    if label == "hangs":  # a parser stuck in a loop (or in C code that never returns)
+        Path(pid_dir, "hangs.pid").write_text(str(os.getpid()))
+        time.sleep(60)
     return len(label)
+
+
+def _gone(pid: int, within_s: float = 15.0) -> bool:
+    """Whether process ``pid`` has ended (or ends within ``within_s``)."""
+    end = time.monotonic() + within_s
+    while time.monotonic() < end:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return True
+        time.sleep(0.1)
+    return False
 
 
 def test_a_worker_that_raises_or_dies_is_one_failure(ray_local):
@@ -216,6 +232,61 @@ def test_a_worker_that_raises_or_dies_is_one_failure(ray_local):
     assert len(seen) == 6 and seen[-1][:2] == (5, 5)
     # Ray's driver prints "a worker died" to sys.stdout from a thread: during the run that is stderr
     assert all(s[-1] for s in seen[1:]) and sys.stdout is not sys.stderr
+
+
+def test_a_hanging_worker_times_out_and_its_task_is_cancelled(ray_local, tmp_path):
+    import ray.cloudpickle
+    from ethimon.fleet import map_files
+    ray.cloudpickle.register_pickle_by_value(sys.modules[__name__])
+    labels = ["aa", "raises", "hangs", "bbb", "dies", "c"]
+    seen = []
+    t0 = time.monotonic()
+    got = map_files(_unit, [(x, str(tmp_path)) for x in labels], labels, max_retries=0, file_timeout=6,
+                    on_done=lambda *a: seen.append(a))
+    took = time.monotonic() - t0
+    assert [got[i] for i in (0, 3, 5)] == [2, 3, 1]  # the others are reported
+    assert isinstance(got[1], Failure) and got[1].what == "ValueError: bad file content"
+    assert isinstance(got[4], Failure) and "worker checking this file died" in got[4].what
+    assert isinstance(got[2], Failure) and got[2].what == "timed out after 6 s; its Ray task was cancelled"
+    assert took < 45  # not the hanging unit's 60 s: the run went on without it
+    assert _gone(int((tmp_path / "hangs.pid").read_text()))  # cancelled with force: its worker was killed
+    assert len(seen) == 7 and seen[-1][:2] == (6, 6) and sorted(s[2] for s in seen[1:]) == sorted(labels)
+
+
+def _hang_on_s1(run_id: str, cwd: str, path: str, sim: bool, model_dir: str | None):
+    """``check_unit``, but the file s1.yaml never finishes."""
+    from ethimon.fleet._units import check_unit
+    if path.endswith("s1.yaml"):
+        time.sleep(60)
+    return check_unit(run_id, cwd, path, sim, model_dir)
+
+
+def test_check_file_timeout_is_one_error_row(ray_local, tmp_path, capsys, monkeypatch):
+    import ray.cloudpickle
+    from ethimon.fleet import _run
+    ray.cloudpickle.register_pickle_by_value(sys.modules[__name__])
+    monkeypatch.setattr(_run, "check_unit", _hang_on_s1)
+    d = _scenarios(tmp_path / "sc")
+    rc_serial, _, _ = _main(capsys, "check", str(d), "--json", str(tmp_path / "serial.json"))
+    rc, _, err = _main(capsys, "check", str(d), "--json", str(tmp_path / "ray.json"), "--ray", "--file-timeout", "8")
+    serial, on_ray = (json.loads((tmp_path / f"{t}.json").read_text()) for t in ("serial", "ray"))
+    line = f"{d / 's1.yaml'}: timed out after 8 s; its Ray task was cancelled (this file could not be checked; " \
+           "the other files were)"
+    assert on_ray["results"][1] == {"name": str(d / "s1.yaml"), "path": str(d / "s1.yaml"), "passed": False,
+                                    "error": line}
+    assert line in err.splitlines()
+    assert on_ray["results"][:1] + on_ray["results"][2:] == serial["results"][:1] + serial["results"][2:]
+    assert (on_ray["passed"], on_ray["errors"]) == (serial["passed"] - 1, serial["errors"] + 1)
+    assert rc == rc_serial == 2
+
+
+def test_file_timeout_needs_ray_and_seconds_above_0(capsys):
+    for cmd in (["check", str(ROOT / "scenarios")], ["replay", "x.bag", "--spec", "s", "--map", "m"]):
+        rc, _, err = _main(capsys, *cmd, "--file-timeout", "5")
+        assert rc == 2 and "--file-timeout needs --ray" in err
+        for bad in ("0", "-1", "nan", "inf"):
+            rc, _, err = _main(capsys, *cmd, "--ray", "--file-timeout", bad)
+            assert rc == 2 and "--file-timeout must be a number of seconds above 0" in err, (cmd, bad, err)
 
 
 def test_failed_units_are_error_rows_in_place(tmp_path, monkeypatch):

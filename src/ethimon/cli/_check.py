@@ -27,6 +27,9 @@ def add_check_parser(sub) -> None:
                    "(default: each spec's risk.estimator.model, else the shipped model)")
     p.add_argument("--quiet", "-q", action="store_true", help="print only problems and the summary")
     add_ray_options(p, "scenario files")
+    p.add_argument("--file-timeout", type=float, metavar="S", default=None,
+                   help="with --ray: a file whose task has not finished after S seconds is an ERROR row and its "
+                        "task is cancelled (default: no limit)")
     p.set_defaults(handler=cmd_check)
 
 
@@ -38,6 +41,8 @@ def cmd_check(args: argparse.Namespace) -> int:
     out = sys.stderr if json_to_stdout else sys.stdout  # stdout is the JSON's alone
     try:
         ray = ray_target(args, "paths")  # None: serial; else (address, workers) of a Ray run
+        from ..fleet import check_file_timeout
+        file_timeout = check_file_timeout(args.file_timeout, on_ray=ray is not None)
     except EthimonError as exc:
         return err(str(exc))
     if not args.paths:
@@ -48,7 +53,7 @@ def cmd_check(args: argparse.Namespace) -> int:
         else:
             from ..fleet import check_paths as check_on_ray
             report = check_on_ray(args.paths, sim=args.sim, model_dir=args.model, on_file=progress,
-                                  address=ray[0], num_cpus=ray[1])
+                                  address=ray[0], num_cpus=ray[1], file_timeout=file_timeout)
     if not args.quiet:
         print_table([(o.name, o.expected, o.got, "-" if o.first_override_cycle is None
                       else str(o.first_override_cycle), o.status) for o in report.outcomes], out)

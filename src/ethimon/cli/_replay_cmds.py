@@ -41,6 +41,9 @@ def add_replay_parsers(sub) -> None:
     p.add_argument("--schema", action="store_true", help="print the JSON Schema of mapping files and exit")
     p.add_argument("--quiet", "-q", action="store_true", help="print only problems and the summary")
     add_ray_options(p, "bags")
+    p.add_argument("--file-timeout", type=float, metavar="S", default=None,
+                   help="with --ray: a file whose task has not finished after S seconds is an ERROR row and its "
+                        "task is cancelled (default: no limit)")
     p.set_defaults(handler=cmd_replay)
 
 
@@ -55,6 +58,8 @@ def cmd_replay(args: argparse.Namespace) -> int:
         return 0
     try:
         ray = ray_target(args, "bags")  # None: serial; else (address, workers) of a Ray run
+        from ..fleet import check_file_timeout
+        file_timeout = check_file_timeout(args.file_timeout, on_ray=ray is not None)
     except EthimonError as exc:
         return err(str(exc))
     if not args.bags:
@@ -97,7 +102,8 @@ def cmd_replay(args: argparse.Namespace) -> int:
             else:  # the same records, each bag on a Ray worker
                 from ..fleet import replay_records
                 results = replay_records(args.bags, spec=args.spec, mapping=args.mapping, model_dir=args.model,
-                                         on_bag=progress, address=ray[0], num_cpus=ray[1])
+                                         on_bag=progress, address=ray[0], num_cpus=ray[1],
+                                         file_timeout=file_timeout)
     finally:
         if audit is not None:
             audit.close()

@@ -3,7 +3,8 @@
 Every unit of work is one file (a scenario file, a bag). A worker returns plain
 data (dicts, lists, str, int, float, bool, None); the driver puts the results back
 in input order. A unit that raises inside the worker, or whose worker process
-dies (after Ray's retries), becomes one failure for that file: the others still
+dies (after Ray's retries), or that has not returned within the per-file timeout
+(its task is then cancelled), becomes one failure for that file: the others still
 run and are reported. Ray is imported only here, and only when called.
 """
 
@@ -12,15 +13,17 @@ from __future__ import annotations
 import contextlib
 import enum
 import logging
+import math
 import os
 import re
 import sys
+import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
 from ..errors import DependencyNotInstalled, EthimonError
 
-__all__ = ["DEFAULT_LOCAL_CPUS", "Failure", "check_address", "map_files", "plain"]
+__all__ = ["DEFAULT_LOCAL_CPUS", "Failure", "check_address", "check_file_timeout", "map_files", "plain"]
 
 #: the most CPUs a local instance started for one run gets by default (it shares the machine)
 DEFAULT_LOCAL_CPUS = 4
@@ -46,9 +49,28 @@ def check_address(address: str | None) -> str | None:
                        "HOST:PORT; put --ray after the paths, or write --ray=ADDRESS)")
 
 
+def check_file_timeout(seconds: float | None, on_ray: bool = True) -> float | None:
+    """The ``--file-timeout`` of a run: ``None`` (no timeout) or a finite number of seconds above 0.
+
+    Raises:
+        EthimonError: a value that is not above 0 or not finite, or a timeout for a run without Ray
+            (a serial run checks each file in its own process, where a hung parser cannot be stopped;
+            that would need a subprocess per file).
+    """
+    if seconds is None:
+        return None
+    if not on_ray:
+        raise EthimonError("--file-timeout needs --ray (a serial run checks the files in this process, where a "
+                           "hung file cannot be stopped; add --ray to run each file as a Ray task)")
+    if not isinstance(seconds, (int, float)) or isinstance(seconds, bool) or not math.isfinite(seconds) \
+            or seconds <= 0:
+        raise EthimonError(f"--file-timeout must be a number of seconds above 0, got {seconds!r}")
+    return float(seconds)
+
+
 class Failure:
     """A file whose unit did not return: ``what`` says why in one line (an exception in the worker,
-    or the worker process died)."""
+    the worker process died, or it ran past the per-file timeout)."""
 
     __slots__ = ("what", "exc")
 
@@ -136,7 +158,8 @@ def _why(exc: BaseException, ray: Any) -> str:
 
 def map_files(fn: Callable[..., Any], calls: Sequence[tuple], labels: Sequence[str], *,
               address: str | None = None, num_cpus: int | None = None,
-              on_done: ProgressCallback | None = None, max_retries: int = 1) -> list[Any]:
+              on_done: ProgressCallback | None = None, max_retries: int = 1,
+              file_timeout: float | None = None) -> list[Any]:
     """Run ``fn(*calls[i])`` on Ray workers, one task per file; the results in input order.
 
     Args:
@@ -147,14 +170,22 @@ def map_files(fn: Callable[..., Any], calls: Sequence[tuple], labels: Sequence[s
             When this process is already connected (``ray.is_initialized()``), that connection is used.
         on_done: ``on_done(done, total, label)`` once before the first result (``done == 0``) and after each.
         max_retries: how often Ray re-runs a file whose worker process died.
+        file_timeout: ``None`` no limit; else seconds a file's task may take, counted from when the
+            driver hands it to Ray (a worker's start-up and Ray's retries count too). A task past it is
+            cancelled (``ray.cancel(force=True)``: its worker process is killed) and the file is a
+            :class:`Failure` ("timed out after S s"). So that a file's clock does not run while it waits
+            for a CPU, at most as many tasks as the cluster has CPUs (``ray.cluster_resources()``, read
+            once at the start) are in flight at a time; on a cluster busy with other jobs a task may still
+            wait for a CPU on its clock.
 
     Returns:
-        one entry per call: ``fn``'s result, or a :class:`Failure` (the worker raised, or died).
+        one entry per call: ``fn``'s result, or a :class:`Failure` (the worker raised, died, or timed out).
 
     Raises:
         DependencyNotInstalled: Ray is not installed.
-        EthimonError: no local instance could start, or the cluster cannot be reached.
+        EthimonError: no local instance could start, the cluster cannot be reached, or a bad ``file_timeout``.
     """
+    file_timeout = check_file_timeout(file_timeout)
     ray = _import_ray()
     total = len(calls)
     out: list[Any] = [None] * total
@@ -165,38 +196,67 @@ def map_files(fn: Callable[..., Any], calls: Sequence[tuple], labels: Sequence[s
     # Ray's driver prints cluster errors (a worker that died, ...) to sys.stdout from a thread: during the
     # run they go to stderr, so that stdout holds only what the command writes there (e.g. --json -)
     with contextlib.redirect_stdout(sys.stderr):
-        return _map(ray, fn, calls, labels, out, address, num_cpus, on_done, max_retries)
+        return _map(ray, fn, calls, labels, out, address, num_cpus, on_done, max_retries, file_timeout)
+
+
+def _timed_out(seconds: float) -> str:
+    return f"timed out after {seconds:g} s; its Ray task was cancelled"
 
 
 def _map(ray: Any, fn: Callable[..., Any], calls: Sequence[tuple], labels: Sequence[str], out: list[Any],
-         address: str | None, num_cpus: int | None, on_done: ProgressCallback | None, max_retries: int) -> list[Any]:
+         address: str | None, num_cpus: int | None, on_done: ProgressCallback | None, max_retries: int,
+         file_timeout: float | None) -> list[Any]:
     total = len(calls)
     started = _connect(ray, address, num_cpus)
+    done = 0
+
+    def finish(i: int, result: Any) -> None:
+        nonlocal done
+        out[i] = result
+        done += 1
+        if on_done is not None:
+            on_done(done, total, labels[i])
+
     try:
         task = ray.remote(num_cpus=1, max_retries=max_retries)(fn)
-        refs = [task.remote(*args) for args in calls]
-        index = {ref: i for i, ref in enumerate(refs)}
-        pending, done = list(refs), 0
-        while pending:
+        if file_timeout is None:
+            window = total  # every task at once: Ray queues them
+        else:  # a task's clock starts when it is submitted: submit no more than can run
+            window = max(1, int(ray.cluster_resources().get("CPU", 1)))
+        inflight: dict[Any, tuple[int, float]] = {}  # ref -> (index, deadline)
+        nxt = 0
+        while nxt < total or inflight:
             try:
-                ready, pending = ray.wait(pending, num_returns=len(pending), timeout=0.25)
+                while nxt < total and len(inflight) < window:
+                    deadline = math.inf if file_timeout is None else time.monotonic() + file_timeout
+                    inflight[task.remote(*calls[nxt])] = (nxt, deadline)
+                    nxt += 1
+                wait_s = 0.25
+                if file_timeout is not None:
+                    wait_s = min(wait_s, max(0.0, min(d for _, d in inflight.values()) - time.monotonic()))
+                refs = list(inflight)
+                ready, _ = ray.wait(refs, num_returns=1, timeout=wait_s)
+                if ready:  # all that are ready now, not only the first
+                    ready, _ = ray.wait(refs, num_returns=len(refs), timeout=0)
             except Exception as exc:  # noqa: BLE001 - the cluster went away: keep what finished
                 lost = Failure(f"the Ray cluster stopped answering ({type(exc).__name__}: {str(exc)[:200]})", exc)
-                for ref in pending:
-                    out[index[ref]] = lost
-                    done += 1
-                    if on_done is not None:
-                        on_done(done, total, labels[index[ref]])
+                for i in sorted([i for i, _ in inflight.values()] + list(range(nxt, total))):
+                    finish(i, lost)
                 break
             for ref in ready:
-                i = index[ref]
+                i, _ = inflight.pop(ref)
                 try:
-                    out[i] = ray.get(ref)
+                    res = ray.get(ref)
                 except Exception as exc:  # noqa: BLE001 - this file's failure; the others still report
-                    out[i] = Failure(_why(exc, ray), exc)
-                done += 1
-                if on_done is not None:
-                    on_done(done, total, labels[i])
+                    res = Failure(_why(exc, ray), exc)
+                finish(i, res)
+            if file_timeout is not None:
+                now = time.monotonic()
+                for ref in [r for r, (_, d) in inflight.items() if d <= now]:
+                    i, _ = inflight.pop(ref)
+                    with contextlib.suppress(Exception):  # a task that ended meanwhile: nothing to cancel
+                        ray.cancel(ref, force=True)
+                    finish(i, Failure(_timed_out(file_timeout)))
     finally:
         if started:
             ray.shutdown()
