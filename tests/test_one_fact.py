@@ -48,17 +48,19 @@ def test_one_error_prefix_in_the_cli():
 
 # -- the comparison margins: one table, read by the closures, the reference and the offline checker ----------
 
-def _margins_three_ways(op: str, x: float, y: float) -> list[tuple[float, ...]]:
-    """Margins of ``x <op> y`` (fused: no ``when``; and through ``rob``: under ``when``) by Monitor.step,
-    the reference interpreter and the offline checker, each compiled after the table was read."""
+def _margins_three_ways(op: str, x: float, y: float, obligations: str = "") -> list[tuple[float, ...]]:
+    """Margins of ``x <op> y`` (fused: no ``when``; and through ``rob``: under ``when``), or of the
+    given obligations, by Monitor.step, the reference interpreter and the offline checker, each
+    compiled after the table was read."""
     import numpy as np
 
     from ethimon.offline import check_trace
     from ethimon.testing import ReferenceMonitor
+    obligations = obligations or (f'  - {{id: fused, require: "x {op} y"}}\n'
+                                  f'  - {{id: rob, when: "b", require: "x {op} y"}}\n')
     spec = ethimon.load_spec_text(
         "ethimon: 1\nname: t\nsignals:\n  x: {range: [-10, 10]}\n  y: {range: [-10, 10]}\n  b: {type: bool}\n"
-        f'obligations:\n  - {{id: fused, require: "x {op} y"}}\n'
-        f'  - {{id: rob, when: "b", require: "x {op} y"}}\n')
+        f"obligations:\n{obligations}")
     frame = {"x": x, "y": y, "b": True, "p_unsafe": 0.0}
     offline = check_trace(spec, {k: np.array([v]) for k, v in frame.items()})
     return [ethimon.Monitor(spec).step(frame).margins, ReferenceMonitor(spec).step(frame).margins,
@@ -99,10 +101,35 @@ def test_the_three_read_the_one_table(monkeypatch):
             assert all(_same_float(m, want) for m in margins), (op, who, margins, want)
 
 
+def test_the_three_read_the_one_connective_table(monkeypatch):
+    """``and``/``or``/``implies`` combine the operands' margins as CONNECTIVE_MARGINS says (rewritten here)."""
+    from ethimon.spec._expr import CONNECTIVE_MARGINS, connective_margin
+    assert connective_margin("and", 1.5, 2.5) == 1.5 and connective_margin("or", 1.5, 2.5) == 2.5
+    assert connective_margin("implies", 1.5, 2.5) == 2.5 and connective_margin("implies", -3.0, 2.5) == 3.0
+    obligations = "".join(f'  - {{id: o{i}, require: "x < y {op} y <= 5"}}\n'
+                          for i, op in enumerate(CONNECTIVE_MARGINS))
+    x, y = 1.0, 2.5  # the comparisons' margins: 1.5 and 2.5
+    want = tuple(connective_margin(op, 1.5, 2.5) for op in CONNECTIVE_MARGINS)
+    assert want == (1.5, 2.5, 2.5)
+    assert _margins_three_ways("", x, y, obligations) == [want] * 3
+    for op, (combine, negate_left) in list(CONNECTIVE_MARGINS.items()):
+        monkeypatch.setitem(CONNECTIVE_MARGINS, op, ("max" if combine == "min" else "min", not negate_left))
+    rewritten = tuple(connective_margin(op, 1.5, 2.5) for op in CONNECTIVE_MARGINS)
+    assert rewritten == (2.5, -1.5, 1.5)
+    assert _margins_three_ways("", x, y, obligations) == [rewritten] * 3
+
+
 def test_no_margin_table_is_written_again():
-    import pathlib
-    src = pathlib.Path(ethimon.__file__).parent
-    for rel in ("compiler/_closures.py", "testing/_reference.py", "offline/_eval.py"):
-        text = (src / rel).read_text(encoding="utf-8")
-        assert '("<", "<="' not in text and '(">", ">="' not in text and '"<": b - a' not in text, rel
-        assert "COMPARISON_MARGINS" in text or "comparison_margin" in text, rel
+    """The three margin functions name no comparison or connective themselves: they read the tables."""
+    import inspect
+
+    from ethimon.compiler._closures import _fused_comparison, _Gen
+    from ethimon.offline._eval import Evaluator
+    from ethimon.testing import ReferenceMonitor
+    for fn in (_Gen.rob, _fused_comparison, ReferenceMonitor.rob, Evaluator._rob):
+        text = inspect.getsource(fn)
+        for literal in ('"<"', '"<="', '">"', '">="', '"=="', '"!="', '"and"', '"or"', '"implies"'):
+            assert literal not in text, (fn.__qualname__, literal)
+        assert "COMPARISON_MARGINS" in text or "comparison_margin" in text, fn.__qualname__
+    for fn in (_Gen.rob, ReferenceMonitor.rob, Evaluator._rob):
+        assert "CONNECTIVE_MARGINS" in inspect.getsource(fn), fn.__qualname__

@@ -18,8 +18,8 @@ from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, COMPARISONS, Binary, BoolLit, Call, Name, Node, Num,
-                          Unary, separation_distance)
+from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, COMPARISONS, CONNECTIVE_MARGINS, Binary, BoolLit, Call,
+                          Name, Node, Num, Unary, separation_distance)
 from ._check import Plan
 
 __all__ = ["Machine", "build_machine"]
@@ -282,15 +282,8 @@ class _Gen:
             op = node.op
             if op in COMPARISON_MARGINS and self.plan.type_of(node.left).kind == "num":
                 return _margin_closure(COMPARISON_MARGINS[op], self.fn(node.left), self.fn(node.right))
-            if op == "and":
-                f, g = self.rob(node.left), self.rob(node.right)
-                return lambda: min(f(), g())
-            if op == "or":
-                f, g = self.rob(node.left), self.rob(node.right)
-                return lambda: max(f(), g())
-            if op == "implies":
-                f, g = self.rob(node.left), self.rob(node.right)
-                return lambda: max(-f(), g())
+            if op in CONNECTIVE_MARGINS:
+                return _connective_closure(*CONNECTIVE_MARGINS[op], self.rob(node.left), self.rob(node.right))
         if isinstance(node, Unary) and node.op == "not":
             f = self.rob(node.operand)
             return lambda: -f()
@@ -464,6 +457,15 @@ def _margin_closure(shape: str, f: Callable[[], float], g: Callable[[], float]) 
         return lambda: -abs(f() - g())
     assert shape == "|a - b|", shape
     return lambda: abs(f() - g())
+
+
+def _connective_closure(combine: str, negate_left: bool, f: Callable[[], float],
+                        g: Callable[[], float]) -> Callable[[], float]:
+    """The margin of a connective, ``CONNECTIVE_MARGINS[op]`` read here at compile time."""
+    if combine == "min":
+        return (lambda: min(-f(), g())) if negate_left else (lambda: min(f(), g()))
+    assert combine == "max", combine
+    return (lambda: max(-f(), g())) if negate_left else (lambda: max(f(), g()))
 
 
 def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: int):

@@ -30,8 +30,8 @@ import math
 
 import numpy as np
 
-from ..spec._expr import (TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, comparison_margin,
-                          separation_distance)
+from ..spec._expr import (CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary,
+                          comparison_margin, separation_distance)
 
 __all__ = ["Evaluator", "TEMPORAL_FUNCS"]
 
@@ -287,11 +287,12 @@ class Evaluator:
             if op in _CMP and self.plan.type_of(node.left).kind == "num":
                 (a, ae), (b, be) = self.ev(node.left), self.ev(node.right)
                 return self.full(comparison_margin(op, a, b), "num"), _or(ae, be)
-            if op in ("and", "or", "implies"):
+            if op in CONNECTIVE_MARGINS:  # Python's min/max elementwise: the right where strictly smaller/larger
+                combine, negate_left = CONNECTIVE_MARGINS[op]
                 (f, fe), (g, ge) = self.rob(node.left), self.rob(node.right)
-                if op == "implies":
+                if negate_left:
                     f = -f
-                pick = (g < f) if op == "and" else (g > f)
+                pick = (g < f) if combine == "min" else (g > f)
                 return np.where(pick, g, f), _or(fe, ge)
         if isinstance(node, Unary) and node.op == "not":
             f, fe = self.rob(node.operand)

@@ -50,7 +50,7 @@ from ..errors import ExprSyntaxError
 __all__ = [
     "Node", "Num", "BoolLit", "Name", "Unary", "Binary", "Call", "ExprSyntaxError",
     "parse_expr", "BINARY_OPS", "COMPARISON_MARGINS", "MARGIN_SHAPES", "comparison_margin",
-    "FUNCTIONS", "TEMPORAL", "walk", "to_source",
+    "CONNECTIVE_MARGINS", "connective_margin", "FUNCTIONS", "TEMPORAL", "walk", "to_source",
     "SEPARATION_PARAMS", "separation_distance",
 ]
 
@@ -141,6 +141,25 @@ def comparison_margin(op: str, a, b):
     if shape == "|a - b|":
         return abs(a - b)
     return -abs(a - b)
+
+
+#: The one table of the connectives' margins: op -> (how the two margins combine, whether the left
+#: operand's margin is negated first). ``"min"``/``"max"`` are Python's ``min(l, r)``/``max(l, r)``:
+#: the left margin unless the right one is strictly smaller/larger (so a NaN on the left is kept, a
+#: NaN on the right is not; the offline checker picks the same way with ``numpy.where``).
+#: ``not e`` negates the margin of ``e``.
+CONNECTIVE_MARGINS: dict[str, tuple[str, bool]] = {
+    "and": ("min", False), "or": ("max", False), "implies": ("max", True),
+}
+assert set(CONNECTIVE_MARGINS) == {op for op, (kind, _) in BINARY_OPS.items() if kind == "logic"}
+
+
+def connective_margin(op: str, left: float, right: float) -> float:
+    """The margin of ``l <op> r`` from the two operands' margins by :data:`CONNECTIVE_MARGINS`."""
+    combine, negate_left = CONNECTIVE_MARGINS[op]
+    if negate_left:
+        left = -left
+    return min(left, right) if combine == "min" else max(left, right)
 
 #: The parameters of ``separation_distance``, in call order: (symbol of ISO/TS 15066:2016, unit, meaning).
 SEPARATION_PARAMS: tuple[tuple[str, str, str], ...] = (

@@ -67,8 +67,9 @@ from typing import Any
 
 from ..compiler._check import RISK_NAME, Plan
 from ..compiler import plan_of
-from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num,
-                          Unary, comparison_margin, separation_distance, walk)
+from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call,
+                          Name, Node, Num, Unary, comparison_margin, connective_margin, separation_distance,
+                          walk)
 from ..spec import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
 from ..runtime import Decision, Fault
@@ -247,12 +248,8 @@ class ReferenceMonitor:
             op = node.op
             if op in COMPARISON_MARGINS and self.plan.type_of(node.left).kind == "num":
                 return comparison_margin(op, self.ev(node.left, t), self.ev(node.right, t))
-            if op == "and":
-                return min(self.rob(node.left, t), self.rob(node.right, t))
-            if op == "or":
-                return max(self.rob(node.left, t), self.rob(node.right, t))
-            if op == "implies":
-                return max(-self.rob(node.left, t), self.rob(node.right, t))
+            if op in CONNECTIVE_MARGINS:
+                return connective_margin(op, self.rob(node.left, t), self.rob(node.right, t))
         if isinstance(node, Unary) and node.op == "not":
             return -self.rob(node.operand, t)
         return math.inf if self.ev(node, t) else -math.inf
