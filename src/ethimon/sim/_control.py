@@ -168,8 +168,19 @@ class TaskController:
 
     name = "task"
 
-    def __init__(self, segments: Sequence[Segment], q_start: np.ndarray, v_task: float) -> None:
+    def __init__(self, segments: Sequence[Segment], q_start: np.ndarray, v_task: float,
+                 holding: str | None = None) -> None:
         self.segments = list(segments)
+        #: per segment: the object the gripper should hold while it plays (``holding`` at the
+        #: start, then what the segments before it attached and did not let go)
+        self.carrying: list[str | None] = []
+        held = holding
+        for seg in self.segments:
+            self.carrying.append(held)
+            if seg.detach:
+                held = None
+            if seg.attach:
+                held = seg.attach
         self.v_task = v_task
         self.index = 0
         self.t = 0.0
@@ -185,6 +196,14 @@ class TaskController:
     @property
     def label(self) -> str:
         return self.segments[self.index].label if not self.done else "done"
+
+    def missing_object(self, sim: ArmSim) -> str | None:
+        """The object the current segment should carry when it is not in the gripper (it was
+        dropped: power removed, or slipped out); ``None`` when all is as planned."""
+        if self.done:
+            return None
+        want = self.carrying[self.index]
+        return want if want is not None and sim.held != want else None
 
     def resume(self, q_now: np.ndarray) -> None:
         """Restart the current segment from the measured pose ``q_now`` (after a release)."""

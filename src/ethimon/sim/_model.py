@@ -320,6 +320,9 @@ class SimExpect(_Model):
         None, ge=0.0, le=180.0, description="at the end of the run, the angle between a held "
         "object's hazard_axis and the direction from it to the nearest person is at least this "
         "(over 90: pointed away)")
+    task_stopped_object_missing: bool | None = Field(
+        None, description="the task found the object it should carry not in the gripper (dropped) "
+        "and stopped: the arm held in a stop 2, the task not resumed")
     object_end_z_m: dict[str, tuple[float, float]] | None = Field(
         None, description="object name -> [lowest, highest] height (m) of its centre at the end")
 
@@ -351,6 +354,9 @@ class SimBlock(_Model):
         default_factory=dict, description="per simulated signal: latency_s, noise (sd), seed")
     stuck_at: tuple[StuckAt, ...] = ()
     inputs_at: tuple[InputChange, ...] = ()
+    acknowledge_at_s: tuple[float, ...] = Field(
+        (), description="an operator acknowledges (Monitor.acknowledge) at these simulated "
+        "times: manual latches whose release condition has held are released, others refused")
     record_at_s: tuple[float, ...] = Field(
         (), description="extra PNG frames at these simulated times (with --record); start, "
         "override, safe pose reached, release and end are always recorded")

@@ -39,6 +39,7 @@ EVENT_LABELS = {
     "first_violation": "first violation", "first_fault": "first fault", "override": "override",
     "escalation": "escalation", "closest_approach": "closest approach",
     "peak_contact_force": "peak contact force", "standstill": "standstill", "power_off": "power off",
+    "object_dropped": "object dropped", "task_stopped": "task stopped (object missing)",
     "safe_pose": "safe pose reached", "release": "release",
 }
 _LANE = ("task", "safe_pose", "stop_2", "stop_1", "stop_0")

@@ -14,6 +14,10 @@ trace, so a recording and a test compute the same list):
 - ``standstill``: after the first stop controller (``stop_0/1/2``), the first cycle in which
   every joint stayed below 0.01 rad/s in every physics substep;
 - ``power_off``: the first cycle after which motor power is off (stop 0, the end of a stop 1);
+- ``object_dropped``: every cycle in which a held object left the gripper other than by the
+  task's release (detail: ``"knife (power_off)"`` or ``"(slipped)"``);
+- ``task_stopped``: the cycle the task found the object it should carry not in the gripper
+  and stopped (a stop 2; it is not resumed);
 - ``safe_pose``: the first cycle the safe-pose controller ends within the spec's tolerance;
 - ``release``: every cycle whose override is false after an override.
 
@@ -120,6 +124,10 @@ class _EventTracker:
             out += self._once("standstill", rec, f"{rec.controller}, max joint speed "
                                                  f"{rec.joint_speed_max_rad_s:.4f} rad/s",
                               float(rec.joint_speed_max_rad_s))
+        for what in getattr(rec, "dropped", ()):
+            out.append(self._add("object_dropped", rec, what))
+        if getattr(rec, "task_stopped", ""):
+            out.append(self._add("task_stopped", rec, rec.task_stopped))
         if not getattr(rec, "powered", True):
             out += self._once("power_off", rec, rec.controller)
         if (self._overridden and rec.controller == "safe_pose"

@@ -53,6 +53,9 @@ class CycleRecord:
         link_speed_max_m_s: the fastest link frame or held object at the end of the cycle.
         contact_force_true_n: the simulated contact force (also during a sensor dropout).
         powered: motor power on after the cycle.
+        dropped: ``"object (why)"`` for each held object that left the gripper in this cycle
+            other than by the task's release.
+        task_stopped: in the cycle the task found its object missing and stopped, why.
     """
 
     cycle: int
@@ -77,6 +80,8 @@ class CycleRecord:
     powered: bool = True
     retreat_decelerating: bool = False
     hazard_distance_true_m: float = 10.0
+    dropped: tuple[str, ...] = ()
+    task_stopped: str = ""
 
 
 @dataclass
@@ -122,6 +127,8 @@ class SimResult:
         object_end_z_m: height of every object's centre at the end of the run.
         hazard_axis_angle_end_deg: at the end, the angle between the held object's declared
             ``hazard_axis`` and the direction to the nearest person (``None``: none held/declared).
+        task_stopped: why the task stopped for good (the object it should carry was not in the
+            gripper; the arm held in a stop 2), ``None`` when it did not.
         wrist_turn_rad: how far the retreat turned joint 7 from the spec's safe pose to point
             a held hazard away from people (``None``: no retreat).
     """
@@ -154,6 +161,7 @@ class SimResult:
     dropped: tuple[tuple[str, float, str], ...] = ()
     hazard_axis_angle_end_deg: float | None = None
     wrist_turn_rad: float | None = None
+    task_stopped: str | None = None
     object_end_z_m: dict[str, float] = field(default_factory=dict)
 
     @property
@@ -247,7 +255,9 @@ class GovernedArm:
         self.signal_filter = signal_filter
         self.stop_ramp_s = stop_ramp_s
         q0, _ = sim.joint_state()
-        self.task = TaskController(segments, q0, task_joint_speed_rad_s)
+        self.task = TaskController(segments, q0, task_joint_speed_rad_s, holding=sim.held)
+        #: why the task was stopped for good (the object it should carry is not in the gripper)
+        self.task_stopped: str | None = None
         self.controller: Any = self.task
         self.active = "none"       # response being executed
         self.last_decision = None
@@ -258,6 +268,7 @@ class GovernedArm:
         sim = self.sim
         t = sim.time_s
         cycle = sim.cycle
+        n_dropped = len(sim.dropped)
         sig = sim.signals()
         true_dist = sig["human_distance"]
         true_force = sig["contact_force"]
@@ -279,6 +290,15 @@ class GovernedArm:
             self.task.resume(q)
             self.controller = self.task
             self.active = "none"
+        stopped_now = ""
+        if self.controller is self.task and self.task_stopped is None:
+            missing = self.task.missing_object(sim)
+            if missing is not None:  # dropped (power off, slipped): carrying on would carry nothing
+                why = next((f"dropped at {tt:g} s, {w}" for n, tt, w in reversed(sim.dropped)
+                            if n == missing), "not in the gripper")
+                self.task_stopped = stopped_now = (f"{missing} not in the gripper at step "
+                                                   f"{self.task.label} ({why}): stop 2, task not resumed")
+                self._switch("stop_2")
         self.controller.command(sim)        # same cycle as the decision
         label = self.controller.name if self.controller is not self.task else "task"
         if label in SEVERITY and SEVERITY[label] > SEVERITY[self.active]:
@@ -301,9 +321,13 @@ class GovernedArm:
             human_distance_true_m=true_dist, joint_speed_start_rad_s=speed_start,
             accel_ratio=sim.max_accel_ratio_substep, link_speed_max_m_s=sim.link_speed_max,
             contact_force_true_n=true_force, powered=bool(sim.powered),
-            retreat_decelerating=decel, hazard_distance_true_m=true_hazard)
+            retreat_decelerating=decel, hazard_distance_true_m=true_hazard,
+            dropped=tuple(f"{n} ({w})" for n, _, w in sim.dropped[n_dropped:]),
+            task_stopped=stopped_now)
 
     def _must_finish(self) -> bool:
+        if self.task_stopped is not None:
+            return True  # the task lost its object: it holds until someone looks, never resumes
         """A stop 0/1 in progress is never cut short by a release: it runs to power-off."""
         c = self.controller
         if isinstance(c, SafePoseController) and c.holding is not None:
@@ -469,7 +493,12 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         stop_v0: float | None = None
         t_stop: float | None = None
         near = block.expect.near_human_m
+        acks = sorted(block.acknowledge_at_s)
         for _ in range(n_cycles):
+            while acks and sim.time_s >= acks[0] - 1e-9:  # the operator's acknowledgement
+                acks.pop(0)
+                if hasattr(monitor, "acknowledge"):
+                    monitor.acknowledge()
             rec = arm.step()
             res.trace.append(rec)
             if recorder:
@@ -530,6 +559,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         sp = arm.controller if isinstance(arm.controller, SafePoseController) else arm.last_safe_pose
         res.route = sp.route if sp is not None else None
         res.dropped = tuple(sim.dropped)
+        res.task_stopped = arm.task_stopped
         ang = sim.hazard_axis_angles_deg()
         res.hazard_axis_angle_end_deg = round(ang[0], 2) if ang else None
         res.wrist_turn_rad = round(sp.wrist_turn_rad, 4) if sp is not None else None
@@ -631,6 +661,10 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
             out.append(f"sim: at the end the held object's hazard axis is {a:.1f} deg from the "
                        f"direction to the nearest person, expected at least "
                        f"{ex.min_hazard_axis_angle_deg:g} deg (pointed away)")
+    if ex.task_stopped_object_missing is not None and \
+            (r.task_stopped is not None) != ex.task_stopped_object_missing:
+        out.append(f"sim: task stopped for a missing object: {r.task_stopped or 'no'}; expected "
+                   f"task_stopped_object_missing: {str(ex.task_stopped_object_missing).lower()}")
     if ex.object_dropped is not None and bool(r.dropped) != ex.object_dropped:
         what = ", ".join(f"{n} at {t:g} s ({why})" for n, t, why in r.dropped) or "none"
         out.append(f"sim: held objects dropped: {what}; expected object_dropped: "
