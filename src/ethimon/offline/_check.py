@@ -36,8 +36,8 @@ import numpy as np
 
 from ..runtime import Decision
 from ..runtime import Monitor
-from ..spec._expr import TEMPORAL, Call, Name, walk
 from ..spec import SEVERITY_ORDER, Response, Spec
+from ..compiler import stateless_slots
 from ..compiler._risk_formula import release_bound
 from ._columns import Inputs, read_inputs, row
 from ._eval import Evaluator, last_index
@@ -405,20 +405,12 @@ def _step_all(res: OfflineResult, inp: Inputs, margins: bool) -> None:
 # -- fault cycles --------------------------------------------------------------------------
 
 def _stateless_names(plan, ob) -> set[str] | None:
-    """Inputs a stateless obligation reads (signal names, ``risk``), or ``None`` if it keeps state."""
-    if ob.within_cycles:
+    """Inputs a stateless obligation reads (signal names, ``risk``), or ``None`` if it keeps state:
+    the monitor's own rule (:func:`ethimon.compiler.stateless_slots`), by name."""
+    used = stateless_slots(plan, ob)
+    if used is None:
         return None
-    inputs = {s.name for s in plan.signals} | {"risk"}
-    used = set()
-    for root in (ob.when, ob.require):
-        if root is None:
-            continue
-        for node in walk(root):
-            if isinstance(node, Call) and node.func in TEMPORAL:
-                return None
-            if isinstance(node, Name) and node.id in inputs and node.id not in plan.constants:
-                used.add(node.id)
-    return used
+    return {name for name, slot in plan.slots.items() if slot in used}
 
 
 def _fault_cycles(res: OfflineResult, plan, inp: Inputs) -> None:
