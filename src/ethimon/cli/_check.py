@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ._common import Progress, add_ray_options, emit_json, emit_report, err, ray_target
+from ._common import Progress, add_ray_options, emit_json, emit_report, err, ray_options
 
 __all__ = ["add_check_parser", "cmd_check"]
 
@@ -27,9 +27,6 @@ def add_check_parser(sub) -> None:
                    "(default: each spec's risk.estimator.model, else the shipped model)")
     p.add_argument("--quiet", "-q", action="store_true", help="print only problems and the summary")
     add_ray_options(p, "scenario files")
-    p.add_argument("--file-timeout", type=float, metavar="S", default=None,
-                   help="with --ray: a file whose task has not finished after S seconds is an ERROR row and its "
-                        "task is cancelled (default: no limit)")
     p.set_defaults(handler=cmd_check)
 
 
@@ -40,9 +37,7 @@ def cmd_check(args: argparse.Namespace) -> int:
     json_to_stdout = args.json == "-"
     out = sys.stderr if json_to_stdout else sys.stdout  # stdout is the JSON's alone
     try:
-        ray = ray_target(args, "paths")  # None: serial; else (address, workers) of a Ray run
-        from ..fleet import check_file_timeout
-        file_timeout = check_file_timeout(args.file_timeout, on_ray=ray is not None)
+        ray, file_timeout = ray_options(args, "paths")  # ray None: serial; else (address, workers)
     except EthimonError as exc:
         return err(str(exc))
     if not args.paths:

@@ -9,7 +9,7 @@ from typing import Any
 from ..errors import SpecError
 
 __all__ = ["err", "ERROR_PREFIX", "write_report", "emit_report", "emit_json", "Progress", "add_ray_options",
-           "ray_target"]
+           "ray_options", "ray_target"]
 
 #: the one prefix of a CLI error that is not located in a file (located ones read ``path:line:col: ...``)
 ERROR_PREFIX = "ethimon: error: "
@@ -106,13 +106,29 @@ def _short(path: str, width: int = 40) -> str:
 
 
 def add_ray_options(p, what: str) -> None:
-    """``--ray [ADDRESS]`` and ``--ray-workers N`` of a command that works through many files."""
+    """``--ray [ADDRESS]``, ``--ray-workers N`` and ``--file-timeout S`` of a command that works
+    through many files (read back with :func:`ray_options`)."""
     p.add_argument("--ray", nargs="?", const="local", default=None, metavar="ADDRESS",
                    help=f"spread the {what} over a Ray cluster (needs ethimon[fleet]); no ADDRESS: a local "
                         "instance; 'auto': the cluster of 'ray start' on this machine; 'ray://HOST:10001': a "
                         "remote one. The results are the serial run's, in the same order")
     p.add_argument("--ray-workers", type=int, metavar="N", default=None,
                    help="CPUs (parallel workers) of the local Ray instance (default: up to 4)")
+    p.add_argument("--file-timeout", type=float, metavar="S", default=None,
+                   help="with --ray: a file whose task has not finished after S seconds is an ERROR row and its "
+                        "task is cancelled (default: no limit)")
+
+
+def ray_options(args, paths_attr: str) -> tuple[tuple[str | None, int | None] | None, float | None]:
+    """``(ray_target(args, paths_attr), file timeout)`` from the options of :func:`add_ray_options`.
+
+    Raises:
+        EthimonError: a bad ``--ray``/``--ray-workers`` value, or ``--file-timeout`` that is not a
+            positive finite number or is given without ``--ray``.
+    """
+    from ..fleet import check_file_timeout
+    ray = ray_target(args, paths_attr)
+    return ray, check_file_timeout(args.file_timeout, on_ray=ray is not None)
 
 
 def ray_target(args, paths_attr: str) -> tuple[str | None, int | None] | None:

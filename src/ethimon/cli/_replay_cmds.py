@@ -15,7 +15,7 @@ import sys
 import time
 import xml.etree.ElementTree as ET
 
-from ._common import Progress, add_ray_options, emit_json, emit_report, err, ray_target
+from ._common import Progress, add_ray_options, emit_json, emit_report, err, ray_options
 
 __all__ = ["add_replay_parsers", "cmd_replay"]
 
@@ -41,9 +41,6 @@ def add_replay_parsers(sub) -> None:
     p.add_argument("--schema", action="store_true", help="print the JSON Schema of mapping files and exit")
     p.add_argument("--quiet", "-q", action="store_true", help="print only problems and the summary")
     add_ray_options(p, "bags")
-    p.add_argument("--file-timeout", type=float, metavar="S", default=None,
-                   help="with --ray: a file whose task has not finished after S seconds is an ERROR row and its "
-                        "task is cancelled (default: no limit)")
     p.set_defaults(handler=cmd_replay)
 
 
@@ -57,9 +54,7 @@ def cmd_replay(args: argparse.Namespace) -> int:
         emit_json("-", mapping_json_schema(), "JSON Schema")
         return 0
     try:
-        ray = ray_target(args, "bags")  # None: serial; else (address, workers) of a Ray run
-        from ..fleet import check_file_timeout
-        file_timeout = check_file_timeout(args.file_timeout, on_ray=ray is not None)
+        ray, file_timeout = ray_options(args, "bags")  # ray None: serial; else (address, workers)
     except EthimonError as exc:
         return err(str(exc))
     if not args.bags:
