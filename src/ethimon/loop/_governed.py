@@ -290,14 +290,10 @@ class GovernedLoop:
                 reasons.append(Fault("stall", f"control loop stalled for {gap * 1e3:.1f} ms before cycle "
                                      f"{st.cycles} (stall_s {self.stall_s * 1e3:g} ms): no decision was made "
                                      "meanwhile"))
-        if self.audit is not None:
-            try:
-                afault = getattr(self.audit, "fault", None)
-            except Exception as exc:  # noqa: BLE001 - a broken log is a fault, not a crash
-                afault = f"audit log health check raised {type(exc).__name__}: {exc}"[:300]
-            if isinstance(afault, str) and afault:
-                reasons.append(Fault("audit", afault))
-                st.audit_faults += 1
+        afault = self._audit_health()
+        if afault:
+            reasons.append(Fault("audit", afault))
+            st.audit_faults += 1
         try:
             if signals is None:
                 if self._signals is None:
@@ -400,6 +396,16 @@ class GovernedLoop:
         if not ok:
             self._state_key = None  # log the state again once the queue has room
 
+    def _audit_health(self) -> str | None:
+        """What the audit log reports as its fault (its ``fault`` text), or ``None`` when healthy or absent."""
+        if self.audit is None:
+            return None
+        try:
+            afault = getattr(self.audit, "fault", None)
+        except Exception as exc:  # noqa: BLE001 - a broken log is a fault, not a crash
+            return f"audit log health check raised {type(exc).__name__}: {exc}"[:300]
+        return afault if isinstance(afault, str) and afault else None
+
     def _log(self, kind: str, **fields: Any) -> bool:
         if self.audit is None:
             return True
@@ -501,11 +507,8 @@ class GovernedLoop:
 
     def _ack_now(self, req: list[Any]) -> None:
         operator, reason, done, _ = req
-        try:
-            afault = getattr(self.audit, "fault", None) if self.audit is not None else None
-        except Exception as exc:  # noqa: BLE001 - a broken log refuses, never crashes
-            afault = f"audit log health check raised {type(exc).__name__}"
-        if self.audit is not None and (self._audit_failed or (isinstance(afault, str) and afault)):
+        afault = self._audit_health()
+        if self.audit is not None and (self._audit_failed or afault):
             a = Acknowledgement(False, (), "refused: the audit log cannot record it "
                                 f"({afault or 'a record was refused'})")
         else:
