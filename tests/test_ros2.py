@@ -423,3 +423,54 @@ def test_standin_robot_governed_live_by_ethimon_ros2(tmp_path):
     stale = phase(t_none + 0.1 + 0.05, t_none + 0.8)
     assert stale and all(d["override"] for d in stale)
     assert all(any(f["kind"] == "stale" and f["subject"] == "joint_speed_max" for f in d["faults"]) for d in stale)
+
+
+class _Words:
+    """A stand-in estimator: texts with 'knife' are unsafe."""
+
+    model_id = "words@test"
+
+    def probs(self, text):
+        return (0.1, 0.9) if "knife" in text else (0.95, 0.05)
+
+
+def test_example_mapping_fits_its_types_and_spec():
+    spec = ethimon.load_spec(ROOT / "examples" / "replay" / "spec.yaml")
+    node = Ros2Monitor(spec, str(ROOT / "examples" / "ros2" / "mapping.yaml"), domain_id=DOMAIN, config=LOOPBACK,
+                       estimator=_Words())
+    try:
+        assert {s.topic: s.msgtype for s in node._subs} == {
+            "/joint_states": "sensor_msgs/msg/JointState", "/ee/twist": "geometry_msgs/msg/TwistStamped",
+            "/ee/wrench": "geometry_msgs/msg/WrenchStamped", "/human/range": "sensor_msgs/msg/Range",
+            "/task": "std_msgs/msg/String"}
+    finally:
+        node.close()
+
+
+def test_task_text_is_scored_live():
+    mp = ("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.2\nsignals:\n  joint_speed_max: {topic: /joint_states, "
+          "type: sensor_msgs/msg/JointState, field: velocity, reduce: max_abs}\ntask: {topic: /ethimon_test/task}\n")
+    peer = Peer()
+    node = Ros2Monitor(_spec(), load_mapping_text(mp, "m.yaml"), domain_id=DOMAIN, config=LOOPBACK,
+                       estimator=_Words())
+    try:
+        js = peer.writer("/joint_states", "sensor_msgs/msg/JointState")
+        task = peer.writer("/ethimon_test/task", "std_msgs/msg/String")
+        S = peer.types.idl("std_msgs/msg/String")
+        node.start()
+        assert _wait(lambda: len(task.get_matched_subscriptions()) > 0, 5.0)
+        d0 = node.loop.last_decision
+        assert d0 is None or any(f.kind == "estimator" for f in d0.faults) or d0.override  # no text yet
+        task.write(S(data="wipe the table"))
+
+        def state(over: bool):
+            js.write(peer.joint_state(0.5))
+            d = node.loop.last_decision
+            return d is not None and d.override is over and d.risk is not None
+        assert _wait(lambda: state(False), 5.0, 0.01)
+        task.write(S(data="hand the knife to the child"))
+        assert _wait(lambda: state(True), 5.0, 0.01)
+        assert "risk" in node.loop.last_decision.violations
+    finally:
+        node.close()
+        peer.close()

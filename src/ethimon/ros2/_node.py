@@ -311,6 +311,8 @@ class Ros2Monitor:
         mono = time.monotonic()
         wall = None
         for sub in self._subs:
+            if not sub.task:
+                self._dds.drain(sub)
             if sub.dirty:
                 self._dds.check_publishers(sub)
             if sub.foreign:
@@ -471,8 +473,14 @@ class _Dds:
             self._listeners = []
             for sub in node._subs:
                 cls = types.idl(sub.msgtype)
-                lst = Listener(on_data_available=self._data_cb(sub),
-                               on_subscription_matched=self._matched_cb(sub))
+                # signal topics are taken by the loop thread at the start of each cycle (no Python callback
+                # per sample in Cyclone's receive thread: under load those queue up behind the GIL); the
+                # task text, rare and needed at once by the estimator thread, comes through a listener
+                if sub.task:
+                    lst = Listener(on_data_available=self._data_cb(sub),
+                                   on_subscription_matched=self._matched_cb(sub))
+                else:
+                    lst = Listener(on_subscription_matched=self._matched_cb(sub))
                 self._listeners.append(lst)
                 qos = to_cyclone(DEFAULT if sub.task else SENSOR_DATA)
                 sub.reader = DataReader(self.dp, Topic(self.dp, dds_topic(sub.topic), cls), qos, listener=lst)
@@ -517,6 +525,25 @@ class _Dds:
                 except Exception:  # noqa: BLE001 - never raise into Cyclone's thread; the value goes stale
                     pass
         return on_data
+
+    def drain(self, sub: _Sub) -> None:
+        """Take the samples waiting on ``sub``'s reader (the loop thread, once per cycle)."""
+        reader = sub.reader
+        if reader is None:
+            return
+        try:
+            samples = reader.take(N=64)
+        except Exception:  # noqa: BLE001 - nothing taken: the held values age and go stale
+            return
+        node = self.node
+        for smp in samples:
+            info = getattr(smp, "sample_info", None)
+            if info is not None and not info.valid_data:
+                continue
+            try:
+                node._on_sample(sub, smp, info)
+            except Exception:  # noqa: BLE001
+                pass
 
     def _matched_cb(self, sub: _Sub) -> Callable:
         def on_matched(reader: Any, status: Any) -> None:

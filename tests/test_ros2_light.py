@@ -1,0 +1,50 @@
+"""ethimon ros2 without its extra: `import ethimon.ros2` and the CLI stay light; a missing cyclonedds is a
+clear error naming the pip extra, never a traceback."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _run(code: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=str(ROOT))
+
+
+def test_import_ethimon_ros2_does_not_load_cyclonedds_or_rosbags():
+    out = _run("import sys, ethimon, ethimon.ros2, ethimon.cli\n"
+               "from ethimon.cli import _build_parser\n"
+               "_build_parser()\n"
+               "print([m for m in ('cyclonedds', 'rosbags', 'torch', 'z3') if m in sys.modules])\n")
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "[]"
+
+
+def test_cli_without_cyclonedds_names_the_extra(tmp_path):
+    spec = tmp_path / "s.yaml"
+    spec.write_text("ethimon: 1\nname: s\nsignals:\n  v: {unit: m/s, range: [0, 10]}\n")
+    mp = tmp_path / "m.yaml"
+    mp.write_text("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.1\nsignals:\n"
+                  "  v: {topic: /v, type: std_msgs/msg/Float64}\n  p_unsafe: {topic: /p, type: std_msgs/msg/Float64}\n")
+    code = ("import sys; sys.modules['cyclonedds'] = None\n"
+            "from ethimon.cli import main\n"
+            f"sys.exit(main(['ros2', '--spec', {str(spec)!r}, '--map', {str(mp)!r}, '--duration', '1']))\n")
+    out = _run(code)
+    assert out.returncode == 2, out.stderr
+    assert "pip install 'ethimon[ros2]'" in out.stderr and "Traceback" not in out.stderr
+
+
+def test_cli_bad_mapping_is_located(tmp_path):
+    spec = tmp_path / "s.yaml"
+    spec.write_text("ethimon: 1\nname: s\nsignals:\n  v: {unit: m/s, range: [0, 10]}\n")
+    mp = tmp_path / "m.yaml"
+    mp.write_text("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.1\nsignals:\n"
+                  "  v: {topic: /v, type: std_msgs/msg/Float64}\n  p_unsafe: {topic: /p, type: std_msgs/msg/Float64}\n"
+                  "ros2: {publisher: 2}\n")
+    out = _run(f"import sys\nfrom ethimon.cli import main\nsys.exit(main(['ros2', '--spec', {str(spec)!r}, "
+               f"'--map', {str(mp)!r}]))\n")
+    assert out.returncode == 2
+    assert f"{mp}:7:" in out.stderr and "did you mean 'publishers'" in out.stderr and "Traceback" not in out.stderr
