@@ -157,6 +157,11 @@ class Ros2Monitor:
             mapping = load_mapping(mapping)
         if not (isinstance(domain_id, int) and 0 <= domain_id <= 232):
             raise ValueError(f"domain_id={domain_id!r}; a ROS 2 domain id is 0..232 (ROS_DOMAIN_ID)")
+        if getattr(mapping, "risk", None) == "none":  # replay's `risk: none` (the risk rule NOT CHECKED)
+            raise _merr(mapping, "'risk: none' cannot run live: the monitor's risk rule would have no input and "
+                        "fail closed on every cycle (replay reports it NOT CHECKED; a live monitor cannot skip it)",
+                        ("risk",), hint="map the task text ('task: {topic: /task}') or a 'p_unsafe' topic for "
+                        "ethimon ros2")
         check_against_spec(mapping, spec)
         self.spec, self.mapping, self.domain_id = spec, mapping, domain_id
         self.secure = enclave is not None
