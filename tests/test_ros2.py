@@ -416,7 +416,12 @@ def test_standin_robot_governed_live_by_ethimon_ros2(tmp_path):
         return [d for t, d in got if a <= t < b]
 
     slow = phase(t_slow + 0.5, t_fast)  # after the held values settled (auto release, 2 good cycles)
-    assert slow and not any(d["override"] for d in slow), [d for d in slow if d["override"]][:2]
+    # off while slow; the only overrides allowed are a loaded machine's missed deadlines (they fail closed)
+    timing = {"deadline", "stall"}
+    over = [d for d in slow if d["override"]]
+    # (and the auto release of such a fault latch, a few cycles with no fault of their own)
+    assert slow and all({f["kind"] for f in d["faults"]} <= timing and not d["violations"] for d in over), over[:2]
+    assert len(over) <= 0.1 * len(slow), f"{len(over)} of {len(slow)} slow-phase decisions overrode"
     on = [t for t, d in got if t >= t_fast and d["override"] and "joint_speed" in d["violations"]]
     assert on and on[0] - t_fast <= 0.15, f"override {on[0] - t_fast if on else None} s after the fast samples"
     assert all(d["override"] for d in phase(t_fast + 0.15, t_none))

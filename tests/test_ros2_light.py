@@ -71,3 +71,22 @@ def test_governed_loop_reads_a_sources_own_faults():
     loop2 = GovernedLoop(ethimon.Monitor(spec), signals=lambda: bad, period_s=1.0)
     d = loop2.cycle()
     assert d.override and [(f.kind, f.subject) for f in d.faults] == [("stale", "v"), ("signals", "")]
+
+
+def test_watchdog_start_does_not_count_the_time_before_it_as_a_stall():
+    """Regression (found on `ethimon ros2`, which joins the DDS domain between building its loop and running
+    it): Watchdog.start() kicked, so the time since the watchdog was *built* fired a stall ("no cycle for
+    411 ms") and faulted the first cycle of every GovernedLoop started later than watchdog_s after it was made."""
+    from ethimon.loop import Watchdog
+
+    now = [0.0]
+    fired: list[str] = []
+    wd = Watchdog(0.05, fired.append, clock=lambda: now[0])
+    now[0] = 5.0  # built long before it is started
+    wd.start()
+    try:
+        assert fired == [] and wd.kick() is None
+        now[0] = 5.2  # a real stall after the start still fires
+        assert wd.kick() is not None and len(fired) == 1
+    finally:
+        wd.stop()

@@ -170,6 +170,7 @@ class Ros2Monitor:
         self._user_on_decision = on_decision
         period = 1.0 / float(mapping.rate_hz)
         risk: Any = None
+        self._child: ProcessEstimator | None = None
         if mapping.task is not None:
             if estimator is None:
                 from ..risk import estimator_kwargs as _ekw
@@ -177,7 +178,15 @@ class Ros2Monitor:
                 if estimator_kwargs is None:
                     estimator_kwargs = {k: v for k, v in _ekw(spec).items() if v is not None}
             if isinstance(estimator, str):
-                risk = AsyncRiskSource(ProcessEstimator(estimator, estimator_kwargs), text=None)
+                self._child = ProcessEstimator(estimator, estimator_kwargs)
+                try:
+                    # start the child and load its model now, not when the first task text arrives (its
+                    # first inference would otherwise be reported hung for the seconds a model load takes)
+                    self._child.probs("warm up")
+                except Exception as exc:  # noqa: BLE001
+                    self._child.close()
+                    raise Ros2Error(f"the risk estimator {estimator} did not start: {exc}"[:600]) from None
+                risk = AsyncRiskSource(self._child, text=None)
             elif estimator_kwargs is not None:
                 raise ValueError("estimator_kwargs need estimator='module:function'")
             else:
@@ -185,24 +194,27 @@ class Ros2Monitor:
         elif estimator is not None:
             raise ValueError("an estimator needs a task topic in the mapping ('task: {topic: ...}')")
         self._risk_slot = next((s for sub in self._subs for s in sub.slots if s.name in RISK_INPUTS), None)
-        self._dds = _Dds(self, config if config is not None else cyclone_config(
-            interface=interface, peers=tuple(peers), multicast=multicast, enclave=enclave))
         if watchdog_s is None:
             watchdog_s = max(0.05, 5 * period)
-        try:
-            self.loop = GovernedLoop(Monitor(spec), signals=self._frame, risk=risk, period_s=period, audit=audit,
-                                     on_decision=self._publish, watchdog_s=watchdog_s, on_stall=self._stalled,
-                                     **loop_kwargs)
-        except BaseException:
-            self._dds.close()
-            if risk is not None:
-                risk.stop()
-            raise
-        self._ids = self.loop.monitor.obligation_ids
         self.acks_refused = 0
         self._ack_q: queue.Queue = queue.Queue(maxsize=64)
         self._ack_thread = threading.Thread(target=self._ack_worker, name="ethimon-ros2-ack", daemon=True)
         self._ack_thread.start()
+        try:
+            # the loop first: the DDS listeners (task text, acknowledgements) may fire as soon as they exist
+            self.loop = GovernedLoop(Monitor(spec), signals=self._frame, risk=risk, period_s=period, audit=audit,
+                                     on_decision=self._publish, watchdog_s=watchdog_s, on_stall=self._stalled,
+                                     **loop_kwargs)
+            self._dds = _Dds(self, config if config is not None else cyclone_config(
+                interface=interface, peers=tuple(peers), multicast=multicast, enclave=enclave))
+        except BaseException:
+            self._ack_q.put(None)
+            if risk is not None:
+                risk.stop()
+            if self._child is not None:
+                self._child.close()
+            raise
+        self._ids = self.loop.monitor.obligation_ids
         self._closed = False
         if audit is not None:
             audit.append("ros2", domain_id=domain_id, secure=self.secure, rate_hz=float(mapping.rate_hz),
@@ -301,6 +313,8 @@ class Ros2Monitor:
         self._ack_q.put(None)
         if self.loop.risk is not None:
             self.loop.risk.stop()
+        if self._child is not None:
+            self._child.close()
         self._dds.close()
 
     def __enter__(self) -> "Ros2Monitor":
