@@ -153,3 +153,47 @@ def test_monitor_and_reference_agree_on_random_tier_traces():
             if rng.random() < 0.15:
                 x, y = m.acknowledge(), ref.acknowledge()
                 assert (x.released, x.rules) == (y.released, y.rules), (trial, t)
+
+
+# -- verify: the tier rules are proved, and the proofs can fail -----------------------------------------
+
+def _verify(text, tmp_path):
+    from ethimon.verify import verify_spec
+    p = tmp_path / "tiers.yaml"
+    p.write_text(text)
+    rep = verify_spec(ethimon.load_spec(p))
+    return {f.name: f for f in rep.findings}
+
+
+def test_verify_proves_the_tier_rules(tmp_path):
+    pytest.importorskip("z3")
+    got = _verify(TIERS, tmp_path)
+    for name in ("tier.stop", "tier.band", "tier.judge_unsafe", "tier.raise_only", "tier.adds_only"):
+        assert got[name].status == "proved", got[name]
+    assert got["tier.agrees"].status == "ok" and got["lint.confirm_band"].status == "ok"
+    assert got["model.agrees"].status == "ok" and got["risk.override"].status == "proved"
+
+
+def test_verify_refutes_a_monitor_that_executes_in_the_band(tmp_path, monkeypatch):
+    pytest.importorskip("z3")
+    real_tier = ethimon.Monitor._tier
+
+    def lax(self, r, jp, get):  # a regression: a missing judgement in the band executes
+        out = real_tier(self, r, jp, get)
+        return None if out is not None and out[0] == "confirm" and jp is None else out
+    monkeypatch.setattr(ethimon.Monitor, "_tier", lax)
+    assert _verify(TIERS, tmp_path)["tier.agrees"].status == "refuted"
+
+
+def test_lint_warns_on_a_band_covering_every_reachable_risk(tmp_path):
+    pytest.importorskip("z3")
+    got = _verify(TIERS.replace("confirm_threshold: 0.3", "confirm_threshold: 0.05"), tmp_path)
+    assert got["lint.confirm_band"].status == "warning"
+
+
+def test_cli_lint_names_the_line_of_a_bad_confirm_threshold(tmp_path):
+    from _cli import run_cli
+    p = tmp_path / "bad.yaml"
+    p.write_text("ethimon: 1\nname: x\nrisk:\n  threshold: 0.4\n  confirm_threshold: 0.45\n")
+    res = run_cli("lint", str(p))
+    assert res.returncode == 2 and f"{p}:5:" in res.stdout + res.stderr and "Traceback" not in res.stderr
