@@ -105,6 +105,14 @@ class H(BaseHTTPRequestHandler):
         return self._send(404, b'{"error": "unknown model"}')
 
 
+def spawn(log_path):
+    """Start this server as a child process; returns ``(process, base_url)``."""
+    import subprocess
+    proc = subprocess.Popen([sys.executable, __file__, str(log_path)], stdout=subprocess.PIPE, text=True)
+    port = int(proc.stdout.readline())
+    return proc, f"http://127.0.0.1:{port}/v1"
+
+
 if __name__ == "__main__":
     srv = ThreadingHTTPServer(("127.0.0.1", 0), H)
     srv.daemon_threads = True

@@ -33,7 +33,7 @@ PUBLIC: dict[str, list[str]] = {
                       "map_files", "plain", "replay_records"],
     "ethimon.gym": ["MonitorWrapper", "PANDA_ENV_ID", "PANDA_RATED_JOINT_SPEED_RAD_S", "PANDA_SPEC_PATH",
                     "PandaCellEnv", "panda_signals", "panda_spec"],
-    "ethimon.loop": ["AsyncRiskSource", "CANNOT_TELL", "GovernedLoop", "LoopStats", "ProcessEstimator",
+    "ethimon.loop": ["AsyncJudgeSource", "AsyncRiskSource", "CANNOT_TELL", "GovernedLoop", "LoopStats", "ProcessEstimator",
                      "ReloadResult", "RiskReading", "Watchdog", "weakenings"],
     "ethimon.offline": ["OfflineResult", "check_trace", "iter_rows"],
     "ethimon.replay": ["BagData", "BagError", "BagReplay", "CheckResult", "CycleResults", "Mapping", "Series",

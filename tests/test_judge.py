@@ -19,12 +19,11 @@ DATA = HERE.parent / "data" / "judge_injection"
 
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
+    from _judge_server import spawn
     log = tmp_path_factory.mktemp("judge") / "requests.jsonl"
-    proc = subprocess.Popen([sys.executable, str(HERE / "_judge_server.py"), str(log)], stdout=subprocess.PIPE,
-                            text=True)
+    proc, url = spawn(log)
     try:
-        port = int(proc.stdout.readline())
-        yield f"http://127.0.0.1:{port}/v1", log
+        yield url, log
     finally:
         proc.kill()
         proc.wait(5)
