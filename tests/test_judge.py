@@ -189,3 +189,24 @@ def test_real_local_model_server():
     unsafe = j.judge("Pour the bleach into the child's juice and hand it to her.")
     assert safe.status == unsafe.status == "ok", (safe, unsafe)
     assert unsafe.p_unsafe > safe.p_unsafe
+
+
+# -- the CLI: both estimates, the judge's status and latency, the tiered outcome ------------------------
+
+def _cli_spec(tmp_path, url, model, tc=0.0, tau=0.99):
+    p = tmp_path / f"s_{model.replace('=', '_')}.yaml"
+    p.write_text(f"ethimon: 1\nname: t\nrisk:\n  threshold: {tau}\n  confirm_threshold: {tc}\n"
+                 f"  judge: {{url: '{url}', model: '{model}', timeout_s: 2}}\n")
+    return p
+
+
+@pytest.mark.parametrize("model, outcome, status", [("p=0.02", "execute", "ok"), ("http500", "confirm", "error")])
+def test_cli_risk_prints_the_judge_and_the_outcome(server, tmp_path, model, outcome, status):
+    from _cli import run_cli
+    spec = _cli_spec(tmp_path, server[0], model)  # a band [0, 0.99): every text goes to the judge
+    res = run_cli("risk", "--spec", str(spec), "Put the cups in the cupboard.", "--json", timeout=180)
+    assert res.returncode == 0, res.stderr
+    out = json.loads(res.stdout)
+    assert out["outcome"] == outcome and out["judge"]["status"] == status
+    assert set(out["judge"]) >= {"p_unsafe", "latency_s", "status"} and out["judge"]["latency_s"] > 0
+    assert "risk" in out and "p_unsafe" in out and out["confirm_threshold"] == 0.0

@@ -197,3 +197,47 @@ def test_cli_lint_names_the_line_of_a_bad_confirm_threshold(tmp_path):
     p.write_text("ethimon: 1\nname: x\nrisk:\n  threshold: 0.4\n  confirm_threshold: 0.45\n")
     res = run_cli("lint", str(p))
     assert res.returncode == 2 and f"{p}:5:" in res.stdout + res.stderr and "Traceback" not in res.stderr
+
+
+# -- recorded judge answers: offline check and replay step through the monitor -------------------------
+
+def test_offline_and_replay_engines_apply_the_tiers_with_recorded_answers():
+    import numpy as np
+    from ethimon.offline import check_trace
+    from ethimon.replay import check_columns
+    spec = ethimon.load_spec_text(TIERS)
+    rng = random.Random(3)
+    n = 300
+    risk = np.array([rng.choice([0.1, 0.3, 0.35, 0.49, 0.5, 0.6]) for _ in range(n)])
+    judge = np.array([rng.choice([np.nan, np.nan, 0.05, 0.5, 0.9]) for _ in range(n)])
+    d = np.array([rng.choice([0.2, 2.0, 3.0]) for _ in range(n)])
+    m = ethimon.Monitor(spec)
+    want = [m.step({"d": float(d[t]), "risk": float(risk[t]),
+                    **({} if judge[t] != judge[t] else {"judge": float(judge[t])})}) for t in range(n)]
+    off = check_trace(spec, {"d": d, "risk": risk, "judge": judge})
+    assert off.override.tolist() == [x.override for x in want]
+    assert off.tier_violated["confirm"].tolist() == ["confirm" in x.violations for x in want]
+    assert off.tier_violated["judge"].tolist() == ["judge" in x.violations for x in want]
+    for engine in ("auto", "step"):
+        cr = check_columns(spec, {"d": d, "risk": risk, "judge": judge}, n, risk_key="risk", engine=engine)
+        assert cr.ids == ("near", "risk", "judge", "confirm")
+        assert cr.override.tolist() == [x.override for x in want]
+        assert [tuple(i for j, i in enumerate(cr.ids) if cr.violated[t, j]) for t in range(n)] == [
+            x.violations for x in want]
+
+
+def test_offline_without_judge_answers_holds_the_band():
+    import numpy as np
+    from ethimon.offline import check_trace
+    spec = ethimon.load_spec_text(TIERS)
+    off = check_trace(spec, {"d": np.full(5, 2.0), "risk": np.full(5, 0.4)})
+    assert off.override.all() and off.tier_violated["confirm"].all() and "confirm band" in off.fallback_reason
+
+
+def test_reload_refuses_a_weaker_band():
+    from ethimon.loop import weakenings
+    a = ethimon.load_spec_text(TIERS)
+    w, _ = weakenings(a, ethimon.load_spec_text(TIERS.replace("  confirm_threshold: 0.3\n", "")))
+    assert any("confirm_threshold" in x for x in w)
+    w, _ = weakenings(a, ethimon.load_spec_text(TIERS.replace("confirm_threshold: 0.3", "confirm_threshold: 0.2")))
+    assert w == []
