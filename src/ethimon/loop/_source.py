@@ -278,7 +278,7 @@ class AsyncJudgeSource:
         >>> src = AsyncJudgeSource(Always(), start=False)
         >>> src.ask("wipe the table"); src.result("wipe the table") is None
         True
-        >>> src.work_once(); src.result("wipe the table").p_unsafe
+        >>> _ = src.work_once(); src.result("wipe the table").p_unsafe
         0.05
     """
 
