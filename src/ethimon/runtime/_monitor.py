@@ -63,6 +63,12 @@ class Monitor:
     ``risk_age_s`` (seconds since the estimate) is required too, and an older
     estimate is a ``"stale"`` fault. Keys the spec does not declare are ignored.
 
+    With a confirm band (``risk.confirm_threshold``) or a judge (``risk.judge``), two more inputs:
+    ``judge``, the judge's p_unsafe (absent or ``None``: no judgement; anything else outside [0, 1]
+    is an ``"invalid"`` fault), and ``task_id``, any value naming the task text (its hash), to which
+    an operator's confirmation is bound. The rule ``"judge"`` fires on an unsafe verdict at any R_e;
+    ``"confirm"`` (stop 2) fires in [τ_confirm, τ) unless the judge said safe or the task is confirmed.
+
     Every rule (each obligation, the risk rule, the fault rule) has its own latch:
     an override lasts while any is set, with the most severe latched response. An
     ``auto`` latch releases once its condition has held ``hold_cycles`` cycles in a
@@ -238,7 +244,9 @@ class Monitor:
         Refused (nothing is released) while any of them has not met its release
         condition on the last ``hold_cycles`` consecutive cycles: the obligation held,
         R_e < τ − δ for the risk rule, no fault for the fault latch. Automatic latches
-        keep their own rule. Takes effect from the next :meth:`step`, which overrides
+        keep their own rule. A latched ``"confirm"`` (the confirm band) needs no count: the
+        acknowledgement is the confirmation, and it holds for the last cycle's ``task_id`` until
+        that changes, R_e leaves the band, or a cycle faults. Takes effect from the next :meth:`step`, which overrides
         again if a rule is violated or an input is bad.
 
         Returns:
