@@ -121,3 +121,21 @@ def test_api_key_never_reaches_the_audit_log(server, tmp_path, monkeypatch):
         loop.cycle({})
     log.close()
     assert "sk-loop-secret" not in (tmp_path / "k.jsonl").read_text()
+
+
+def test_reload_with_another_judge_asks_the_new_one(server, tmp_path):
+    loop, src, log = _loop(server, "http500", BAND, tmp_path)
+    loop.cycle({})
+    assert wait_for(lambda: loop.judge.result(src.text) is not None)
+    assert loop.cycle({}).violations == ("confirm",)
+    res = loop.reload(_spec(server, "p=0.05"), allow_weaker=True)  # a changed judge cannot be told
+    assert res.ok, res.error
+    loop.cycle({})
+    assert wait_for(lambda: loop.judge.result(src.text) is not None)
+    assert loop.judge.result(src.text).status == "ok"
+    for _ in range(12):
+        d = loop.cycle({})
+    assert d.override and d.violations == () and d.awaiting_release  # the latch carried over the reload
+    assert loop.acknowledge("op").released
+    assert not loop.cycle({}).override  # the new judge's safe verdict: no confirm hold
+    log.close()

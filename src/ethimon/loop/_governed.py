@@ -210,6 +210,7 @@ class GovernedLoop:
             raise TypeError(f"risk must be an AsyncRiskSource, a ProcessEstimator or 'module:function', "
                             f"got {type(risk).__name__}")
         self.risk = risk
+        self._judge_from_spec = isinstance(judge, str)
         if isinstance(judge, str):
             if judge != "spec":
                 raise ValueError(f"judge={judge!r}; expected 'spec', None, a Judge or an AsyncJudgeSource")
@@ -678,6 +679,14 @@ class GovernedLoop:
         old_hash, self.spec_sha256 = self.spec_sha256, res.spec_sha256
         self._ids = new.obligation_ids
         self._state_key = None
+        if self._judge_from_spec and self.risk is not None and new.plan.risk.judge != old.plan.risk.judge:
+            # the judge the new spec names (or none); its texts are asked again
+            if self.judge is not None:
+                self.judge.stop(timeout=0.0)
+            from ..risk import load_judge_for
+            j = load_judge_for(new.spec)
+            self.judge = AsyncJudgeSource(j) if j is not None else None
+            self._task_text = self._task_key = None
         self.stats.reloads_applied += 1
         res.applied_at_cycle = self.stats.cycles
         self._log("reload", status="applied", source=label, spec_sha256=res.spec_sha256,
