@@ -114,10 +114,12 @@ def test_confirm_releases_itself_when_the_judge_answers_safe():
     ("{threshold: 0.5, confirm_threshold: 0.5}", "confirm_threshold"),
     ("{threshold: 0.5, confirm_threshold: 0.6}", "confirm_threshold"),
     ("{threshold: 0.5, confirm_threshold: -0.1}", "confirm_threshold"),
-    ("{threshold: 0.5, judge: {url: u, model: m, safe_below: 0.9, unsafe_from: 0.5}}", "safe_below"),
-    ("{threshold: 0.5, judge: {url: u, model: m, timeout_s: 0}}", "timeout_s"),
-    ("{threshold: 0.5, judge: {url: u, model: m, api_key_env: 'not a name'}}", "api_key_env"),
+    ("{threshold: 0.5, judge: {url: 'http://h/v1', model: m, safe_below: 0.9, unsafe_from: 0.5}}", "safe_below"),
+    ("{threshold: 0.5, judge: {url: 'http://h/v1', model: m, timeout_s: 0}}", "timeout_s"),
+    ("{threshold: 0.5, judge: {url: 'http://h/v1', model: m, api_key_env: 'not a name'}}", "api_key_env"),
     ("{threshold: 0.5, judge: {model: m}}", "url"),
+    ("{threshold: 0.5, judge: {url: 'ftp://x/v1', model: m}}", "url"),
+    ("{threshold: 0.5, judge: {url: 'localhost:8080', model: m}}", "url"),
 ])
 def test_bad_tier_keys_are_located(risk_yaml, where):
     with pytest.raises(SpecError) as ei:

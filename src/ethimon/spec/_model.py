@@ -212,6 +212,12 @@ class JudgeConfig(BaseModel):
 
     @model_validator(mode="after")
     def _check(self) -> "JudgeConfig":
+        import urllib.parse
+        u = urllib.parse.urlsplit(self.url)
+        if u.scheme not in ("http", "https") or not u.hostname:
+            raise _LocError(f"risk.judge.url {self.url!r} is not an http(s) URL", ("risk", "judge", "url"),
+                            hint="e.g. http://127.0.0.1:8080/v1 (llama-server), http://127.0.0.1:8000/v1 (vLLM), "
+                            "http://127.0.0.1:11434/v1 (Ollama)")
         if self.safe_below > self.unsafe_from:
             raise _LocError(f"risk.judge.safe_below {self.safe_below} is above unsafe_from {self.unsafe_from}: "
                             "a verdict would be both safe and unsafe", ("risk", "judge", "safe_below"),
