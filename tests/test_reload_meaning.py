@@ -100,3 +100,65 @@ def test_an_unread_constant_changing_is_not_a_weakening():
     old = ethimon.load_spec_text(text)
     new = ethimon.load_spec_text(text.replace("spare: 1.0", "spare: -5.0"))
     assert weakenings(old, new) == ([], [])
+
+
+# ------------------------------------------------------------------ row 1: latches carried by identity
+STOP = {"d": 2.0, "f": 300.0, "p_unsafe": 0.0}
+
+
+@pytest.mark.parametrize("fault", ["manual", "auto"])
+def test_a_latched_manual_stop_stays_latched_across_a_reload_of_the_same_spec(fault):
+    spec = _spec(fault=fault)
+    loop, clock = _loop(spec)
+    d = loop.cycle(STOP)
+    assert d.response.value == "stop_0" and loop.monitor.latched_rules == ("contact",)
+    res = loop.reload(_spec(fault=fault))
+    assert res.ok
+    for _ in range(60):  # far past every hold: a manual latch never releases by itself
+        clock.advance(0.001)
+        d = loop.cycle(SAFE)
+        assert d.override and d.response.value == "stop_0", d  # not on_fault's safe_pose: the arm stays put
+    assert res.wait_applied(0) and loop.monitor.latched_rules == ("contact",)
+    assert not d.faults
+    assert loop.acknowledge("op").released
+    clock.advance(0.001)
+    assert not loop.cycle(SAFE).override
+
+
+def test_a_reload_that_cannot_map_a_latched_rule_is_refused(tmp_path):
+    log = AuditLog(tmp_path / "a.jsonl")
+    loop, clock = _loop(_spec(), audit=log)
+    before = loop.spec_sha256
+    loop.cycle(STOP)
+    weaker_rel = ethimon.load_spec_text(BASE.replace("MODE", "auto").replace("FAULT", "manual")
+                                        .replace("response: stop_0}", "response: stop_0, release: auto}"))
+    res = loop.reload(weaker_rel, allow_weaker=True)  # allow_weaker does not waive a latch
+    assert not res.ok and "contact: latched" in res.error and "cannot be carried over" in res.error
+    gone = ethimon.load_spec_text(BASE.replace("MODE", "auto").replace("FAULT", "manual")
+                                  .replace('  - {id: contact, require: "f <= 140", response: stop_0}\n', ""))
+    assert "no such rule" in loop.reload(gone, allow_weaker=True).error
+    clock.advance(0.001)
+    assert loop.cycle(SAFE).response.value == "stop_0" and loop.spec_sha256 == before
+    log.close()
+    recs = [r for r in read_log(tmp_path / "a.jsonl") if r["kind"] == "reload"]
+    assert [r["status"] for r in recs] == ["rejected", "rejected"] and "contact" in recs[0]["error"]
+
+
+def test_a_rule_latched_between_reload_and_swap_refuses_the_swap(tmp_path):
+    log = AuditLog(tmp_path / "s.jsonl")
+    loop, clock = _loop(_spec(), audit=log)
+    loop.cycle(SAFE)
+    before = loop.spec_sha256
+    other = ethimon.load_spec_text(BASE.replace("MODE", "auto").replace("FAULT", "manual")
+                                   .replace("response: stop_0}", "response: stop_0, release: {mode: manual, "
+                                            "hold_cycles: 80}}"))
+    res = loop.reload(other)
+    assert res.ok  # nothing latched yet
+    loop.monitor.step(STOP)  # the contact rule latches before the loop swaps (a cycle of its own)
+    clock.advance(0.001)
+    d = loop.cycle(SAFE)
+    assert not res.ok and not res.wait_applied(0) and "contact" in res.error
+    assert loop.spec_sha256 == before and d.response.value == "stop_0"
+    log.close()
+    recs = [r for r in read_log(tmp_path / "s.jsonl") if r["kind"] == "reload"]
+    assert recs[-1]["status"] == "rejected" and recs[-1]["stage"] == "swap" and recs[-1]["latched"] == ["contact"]

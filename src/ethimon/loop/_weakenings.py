@@ -9,7 +9,7 @@ from ..compiler._risk_formula import release_bound, risk_range
 from ..spec import Response, Spec
 from ..spec._expr import Name, walk
 
-__all__ = ["CANNOT_TELL", "weakenings"]
+__all__ = ["CANNOT_TELL", "weakenings", "unmapped_latches"]
 
 
 def _sev(response: Any) -> int:
@@ -216,3 +216,37 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
         unjudged.append("risk.allow opt-outs changed")
     unjudged = [f"{u}: {CANNOT_TELL}" for u in unjudged]
     return weak + unjudged, unjudged
+
+
+def _rule_identity(spec: Spec, name: str) -> tuple | None:
+    """What a latch of rule ``name`` means in ``spec``: its response and its release, defaults filled in
+    (``None``: no such rule)."""
+    if name == "risk":
+        r = spec.risk
+        return (Response(r.response).value, r.release.mode, int(r.release.hold_cycles),
+                release_bound(r.threshold, r.release.hysteresis)[0])
+    if name == "fault":
+        return (Response(spec.on_fault).value, *spec.fault_release())
+    for ob in spec.obligations:
+        if ob.id == name:
+            return (Response(ob.response).value, *spec.obligation_release(ob))
+    return None
+
+
+def unmapped_latches(old: Spec, new: Spec, latched) -> list[str]:
+    """The latched rules of ``old`` (names as in ``Monitor.latched_rules``) that a reload to ``new``
+    cannot carry by identity: the same rule must exist with the same response and the same release
+    (mode, hold_cycles; for the risk rule also its bound τ − δ). Empty: every latch carries over."""
+    out = []
+    for name in latched:
+        a, b = _rule_identity(old, name), _rule_identity(new, name)
+        if b is None:
+            out.append(f"{name}: latched, and the new spec has no such rule")
+        elif a != b:
+            out.append(f"{name}: latched as (response, release) {_show(a)}, the new spec has {_show(b)}")
+    return out
+
+
+def _show(ident: tuple | None) -> str:
+    return "none" if ident is None else "(" + ", ".join(
+        f"bound {float(x):g}" if not isinstance(x, (str, int)) else str(x) for x in ident) + ")"
