@@ -68,3 +68,48 @@ def test_offline_fails_closed_where_the_monitor_does_on_a_raising_float(method):
             assert (got[t].override, got[t].response, got[t].violations, [f.kind for f in got[t].faults]) == (
                 want[t].override, want[t].response, want[t].violations, [f.kind for f in want[t].faults]), t
         assert want[1].override and [f.kind for f in want[1].faults] == ["invalid"]
+
+
+# ------------------------------------------------------------------ row 6: the shield judges what the env gets
+gymnasium = pytest.importorskip("gymnasium")
+
+
+class Shifty:
+    """An action that reads safe the first time and fast toward the wall every time after."""
+
+    def __init__(self):
+        self.reads = 0
+
+    def __array__(self, dtype=None, copy=None):
+        self.reads += 1
+        return np.array([0.0 if self.reads == 1 else 1.0], dtype=dtype or np.float64)
+
+
+def test_the_env_gets_the_action_the_shield_judged():
+    from test_gym import WALL_SPEC, Wall, predicted
+    from ethimon.gym import MonitorWrapper
+
+    env = MonitorWrapper(Wall(start=0.55), ethimon.load_spec_text(WALL_SPEC), signals=predicted,
+                         safe_action=np.zeros(1), inputs={"p_unsafe": 0.0})
+    env.reset()
+    act = Shifty()
+    _, _, _, _, info = env.step(act)
+    assert not info["decision"]["override"]  # judged as 0.0 m/s: distance stays 0.55 m
+    assert env.unwrapped.actions == [0.0], env.unwrapped.actions  # before: the env read 1.0 m/s into the wall
+    assert act.reads == 1
+
+
+def test_an_action_that_cannot_be_read_overrides():
+    from test_gym import WALL_SPEC, Wall, predicted
+    from ethimon.gym import MonitorWrapper
+
+    class Broken:
+        def __array__(self, dtype=None, copy=None):
+            raise RuntimeError("sensor bus down")
+
+    env = MonitorWrapper(Wall(start=5.0), ethimon.load_spec_text(WALL_SPEC), signals=predicted,
+                         safe_action=np.zeros(1), inputs={"p_unsafe": 0.0})
+    env.reset()
+    _, _, _, _, info = env.step(Broken())
+    assert info["shield"]["replaced"] and env.unwrapped.actions == [0.0]
+    assert "cannot be read as an action" in str(info["decision"]["faults"])
