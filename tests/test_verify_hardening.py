@@ -141,7 +141,7 @@ def test_release_bound_is_exact_in_the_decision_model():
     # would release as soon as it holds, whatever R_e)
     base = [*dt.init, *dt.start_with(["risk"]), *enc.constraints]
     released = z3.Or([z3.Not(o) for o in dt.override])
-    for pin in (real(0.22), z3.Q(11, 50)):  # the float 0.22 and the decimal 0.22
+    for pin in (real(0.22),):  # the float 0.22 reads as 0.22: not below 0.22 (R_e is always a float)
         s = z3.Solver()
         s.add(*base, *[r == pin for r in enc.R], *[enc.sig[t]["x"] == 0 for t in range(3)], released)
         assert s.check() == z3.unsat, pin
@@ -374,3 +374,33 @@ obligations:
                 assert st == "sat", (run, first, end, why)
                 checked += 1
     assert checked > 50
+
+
+def test_one_reading_of_numbers_for_the_release_bound():
+    """Issue 25 row 8: R_e = 0.42 under τ 0.47, δ 0.05 released (its binary value is below 0.42)
+    while R_e = 0.22 under τ 0.27 did not; both read as decimals now: neither releases, in the
+    monitor, the reference, the offline checker and the z3 model alike."""
+    from ethimon.offline import check_trace
+    from ethimon.testing import ReferenceMonitor
+    from ethimon.verify._checks import Verifier
+    from ethimon.verify._encode import Unrolled, decision_trace, real
+    import math
+    for tau, r_eq in ((0.47, 0.42), (0.27, 0.22), (0.3, 0.25), (0.51, 0.46)):
+        text = (RELEASE_027 % (1, "  - {id: small, require: x <= 0.5}")).replace("threshold: 0.27", f"threshold: {tau}")
+        spec = _spec(text)
+        just_below = math.nextafter(r_eq, 0.0)
+        trace = [{"x": 0.0, "risk": 0.9}] + [{"x": 0.0, "risk": r_eq}] * 3 + [{"x": 0.0, "risk": just_below}]
+        for impl in (ethimon.Monitor(spec), ReferenceMonitor(spec)):
+            got = [impl.step(f).override for f in trace]
+            assert got == [True, True, True, True, False], (tau, type(impl).__name__, got)
+        res = check_trace(spec, {"x": [f["x"] for f in trace], "risk": [f["risk"] for f in trace]})
+        assert [d.override for d in res.decisions()] == [True, True, True, True, False], tau
+        v = Verifier(spec, path="t", timeout_s=20, max_unroll=4)
+        enc = Unrolled(v.plan, 3)
+        dt = decision_trace(enc)
+        base = [*dt.init, *dt.start_with(["risk"]), *enc.constraints, *[enc.sig[t]["x"] == 0 for t in range(3)]]
+        released = z3.Or([z3.Not(o) for o in dt.override])
+        for pin, want in ((r_eq, z3.unsat), (just_below, z3.sat)):
+            s = z3.Solver()
+            s.add(*base, *[r == real(pin) for r in enc.R], released)
+            assert s.check() == want, (tau, pin)

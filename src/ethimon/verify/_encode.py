@@ -26,8 +26,9 @@ types that ``ethimon.compiler._closures.build_machine`` compiles:
   cycle is a fresh unconstrained value (any history), and an unbounded
   ``since`` carries an unknown bit in. Such a trace over-approximates every
   run, so "no such window" is a proof about all runs of any length;
-* the release bound ``τ − δ`` is the exact rational of the spec's decimals
-  (:func:`release_below`), not the float ``0.27 - 0.05 == 0.22000000000000003``;
+* the release bound ``τ − δ`` is the exact rational of the spec's decimals and R_e
+  is read as the decimal it prints as (:func:`release_below`: ``R < cut``), not the
+  float ``0.27 - 0.05 == 0.22000000000000003`` nor R_e's binary value;
 * :func:`decision_trace` encodes the decision logic of ``Monitor.step``
   (severity, latch, hysteresis release) from a symbolic initial latch state.
 """
@@ -55,9 +56,11 @@ def real(x: float) -> z3.ArithRef:
 
 
 def release_below(spec) -> z3.ArithRef:
-    """The release bound ``τ − δ`` of ``spec`` as an exact z3 rational (0.27 − 0.05 is 11/50)."""
-    exact, _ = release_bound(spec.risk.threshold, spec.risk.release.hysteresis)
-    return z3.Q(exact.numerator, exact.denominator)
+    """The release test ``R_e < τ − δ`` as the monitor makes it: ``R < cut``, the float of
+    :func:`~ethimon.compiler._risk_formula.release_bound` (R_e read as the decimal it prints as,
+    against the exact τ − δ of the spec's decimals; for every float R_e the two tests agree)."""
+    _, cut = release_bound(spec.risk.threshold, spec.risk.release.hysteresis)
+    return real(cut)
 
 
 def z3_value(model: z3.ModelRef, expr) -> float | bool:
