@@ -404,3 +404,50 @@ def test_one_reading_of_numbers_for_the_release_bound():
             s = z3.Solver()
             s.add(*base, *[r == real(pin) for r in enc.R], released)
             assert s.check() == want, (tau, pin)
+
+
+FLOATS = """
+ethimon: 1
+name: floats
+signals:
+  a: {range: [0, 1]}
+  b: {range: [0, 1]}
+  x: {range: [0, 10]}
+obligations:
+%s
+"""
+
+
+def test_defined_is_refuted_where_a_product_underflows_to_a_float_zero():
+    """Issue 25 row 5: ``1/(a*b)`` with a, b > 0 was "defined: proved" (a*b > 0 over the reals) yet
+    a = b = 1e-200 makes a*b == 0.0 and the monitor faults. The IEEE-754 model refutes it now,
+    with a counterexample the Monitor replays."""
+    spec = _spec(FLOATS % '  - {id: inv, when: "a > 0 and b > 0", require: "1 / (a * b) >= 0"}')
+    m = ethimon.Monitor(spec)
+    d = m.step({"a": 1e-200, "b": 1e-200, "x": 0.0, "risk": 0.0})
+    assert d.override and d.faults[0].kind == "internal"  # what the monitor does
+    f = verify_spec(spec).finding("inv.defined")
+    assert f.status == "refuted" and "floating point" in f.message, f.message
+    assert f.counterexample is not None and f.counterexample.confirmed
+
+
+def test_response_over_an_overflowing_term_is_proved_in_real_arithmetic_only():
+    """``x*1e308/1e308 >= 2`` was "response: proved", yet x = 1.9 does not override (x*1e308 is inf)."""
+    spec = _spec(FLOATS % '  - {id: big, require: "x * 1e308 / 1e308 >= 2"}')
+    assert not ethimon.Monitor(spec).step({"a": 0.0, "b": 0.0, "x": 1.9, "risk": 0.0}).override
+    rep = verify_spec(spec)
+    f = rep.finding("big.response")
+    assert f.status == "proved (real arithmetic)" and "x * 1e+308" in f.message and "overflow" in f.message
+    assert "x in [0, 10]" in f.message
+    assert rep.exit_code == 0 and rep.counts()["proved_real_arithmetic"] == 1
+
+
+def test_harmless_arithmetic_stays_proved_in_doubles():
+    """An underflow that no comparison can see (a*b <= 0.5) and a divisor bounded away from 0 are no
+    reason to weaken a proof; and they are decided without the (slow) IEEE-754 solver."""
+    spec = _spec(FLOATS % ('  - {id: prod, require: "a * b <= 0.5 + x"}\n'
+                           '  - {id: quot, require: "x / (1 + a) <= 10"}'))
+    rep = verify_spec(spec)
+    for name in ("prod.defined", "prod.response", "quot.defined", "quot.response"):
+        assert rep.finding(name).status == "proved", (name, rep.finding(name).message)
+    assert "in doubles too" in rep.finding("quot.defined").message
