@@ -214,6 +214,19 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
         unjudged.append("risk.estimator settings changed")
     if getattr(rn, "allow", None) != getattr(ro, "allow", None):
         unjudged.append("risk.allow opt-outs changed")
+    co, cn = ro.confirm_threshold, rn.confirm_threshold
+    if co is not None and (cn is None or cn > co):
+        weak.append(f"risk.confirm_threshold {co!r} -> {'none' if cn is None else repr(cn)} (fewer texts held "
+                    f"for a confirmation)")
+    jo, jn = ro.judge, rn.judge
+    if jo is None and jn is not None and cn is not None:
+        weak.append("risk.judge added (its safe verdict executes texts in the confirm band)")
+    elif jo is not None and jn is None:
+        weak.append("risk.judge removed (no unsafe verdict can stop a text below tau_confirm)")
+    elif jo is not None and jn is not None and jn != jo:
+        if (jn.safe_below > jo.safe_below or jn.unsafe_from > jo.unsafe_from) or (
+                jn.model_copy(update={"safe_below": jo.safe_below, "unsafe_from": jo.unsafe_from}) != jo):
+            unjudged.append("risk.judge settings changed")
     unjudged = [f"{u}: {CANNOT_TELL}" for u in unjudged]
     return weak + unjudged, unjudged
 
@@ -227,6 +240,18 @@ def _rule_identity(spec: Spec, name: str) -> tuple | None:
                 release_bound(r.threshold, r.release.hysteresis)[0])
     if name == "fault":
         return (Response(spec.on_fault).value, *spec.fault_release())
+    if name == "judge":  # the judge's unsafe verdict: the risk rule's response and release
+        r = spec.risk
+        if r.judge is None:
+            return None
+        return (Response(r.response).value, r.release.mode, int(r.release.hold_cycles),
+                release_bound(r.threshold, r.release.hysteresis)[0], r.judge)
+    if name == "confirm":  # the confirm band [τ_confirm, τ): stop_2, released by a confirmation
+        r = spec.risk
+        if r.confirm_threshold is None:
+            return None
+        # released by a confirmation or by the judge's safe verdict: another judge is another release
+        return ("stop_2", "band", r.confirm_threshold, r.threshold, r.judge)
     for ob in spec.obligations:
         if ob.id == name:
             return (Response(ob.response).value, *spec.obligation_release(ob))
@@ -248,5 +273,10 @@ def unmapped_latches(old: Spec, new: Spec, latched) -> list[str]:
 
 
 def _show(ident: tuple | None) -> str:
-    return "none" if ident is None else "(" + ", ".join(
-        f"bound {float(x):g}" if not isinstance(x, (str, int)) else str(x) for x in ident) + ")"
+    def one(x) -> str:
+        if isinstance(x, (str, int, float)) or x is None:
+            return str(x)
+        if hasattr(x, "numerator"):
+            return f"bound {float(x):g}"
+        return f"judge {getattr(x, 'url', x)}"
+    return "none" if ident is None else "(" + ", ".join(one(x) for x in ident) + ")"
