@@ -216,6 +216,25 @@ class Monitor:
         """The rules whose latch holds the override now: obligation ids, ``"risk"``, ``"fault"``."""
         return tuple(name for name, s in zip(self._names, self._lat) if s)
 
+    def carry_latches(self, rules) -> None:
+        """Latch ``rules`` (names as in :attr:`latched_rules` of the monitor this one replaces) here,
+        each with this monitor's response and release for it, its release count at 0: the release
+        condition must hold its ``hold_cycles`` again, and a manual rule still needs :meth:`acknowledge`.
+
+        Raises:
+            ValueError: a name that is no rule of this monitor (nothing is latched then).
+        """
+        idx = {n: k for k, n in enumerate(self._names)}
+        missing = [n for n in rules if n not in idx]
+        if missing:
+            raise ValueError(f"no rule {', '.join(map(repr, missing))} in spec {self.spec.name!r}")
+        for n in rules:
+            k = idx[n]
+            if not self._lat[k]:
+                self._lat[k] = self._sevs[k]
+                self._nlat += 1
+            self._run[k] = 0
+
     def _clear(self) -> None:
         for k in range(self._nsrc):
             self._lat[k] = 0

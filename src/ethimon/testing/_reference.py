@@ -79,7 +79,7 @@ from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TE
                           Name, Node, Num, Unary, comparison_margin, connective_margin, separation_distance,
                           walk)
 from ..spec import SEVERITY_ORDER, Response, Spec
-from ..compiler._risk_formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
+from ..compiler._risk_formula import decimal_reading, release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
 from ..runtime import Decision, Fault
 # the monitor's own input rules (what counts as a number, a flag, a probability vector): the
 # reference must read inputs exactly as the monitor does, so it uses the same private helpers
@@ -438,7 +438,8 @@ class ReferenceMonitor:
             judged_safe = judge is not None and jp is not None and jp < judge.safe_below
             if in_band and self.confirmed is None and not judged_safe:
                 violations.append("confirm")
-        below = Fraction(r) < release_bound(tau, spec.risk.release.hysteresis)[0]
+        # one reading of numbers: R_e as the decimal it prints as, against the exact τ − δ
+        below = decimal_reading(r) < release_bound(tau, spec.risk.release.hysteresis)[0]
         lsev, awaiting = self._decide(violations, False, below)
         if violations:
             return Decision(True, _BY_SEV[lsev], tuple(violations), margins, r, cycle, False, (), awaiting)
