@@ -24,7 +24,7 @@ PUBLIC: dict[str, list[str]] = {
                 "ModelError", "Monitor", "ProcessEstimator", "Response", "Spec", "SpecError", "__version__",
                 "load_spec", "load_spec_text", "risk_from_p_unsafe", "risk_from_probs"],
     "ethimon.errors": ["AuditFormatError", "AuditTampered", "BagError", "DependencyNotInstalled", "EthimonError",
-                       "ExprSyntaxError", "ModelError", "RiskInferenceError", "SimError", "SpecError"],
+                       "ExprSyntaxError", "ModelError", "RiskInferenceError", "Ros2Error", "SimError", "SpecError"],
     "ethimon.audit": ["AuditFormatError", "AuditLag", "AuditLog", "AuditReport", "AuditTampered", "FSYNC_POLICIES",
                       "MAX_RECORD_BYTES", "read_log", "spec_hash", "verify_log"],
     "ethimon.cli": ["main"],
@@ -45,6 +45,10 @@ PUBLIC: dict[str, list[str]] = {
                      "load_estimator_for", "risk_bounds", "risk_from_p_unsafe", "risk_from_probs",
                      "OUTCOMES", "judge_verdict", "tier_outcome", "BUILTIN_JUDGE_PROMPT", "JUDGE_STATUSES", "Judge",
                      "JudgeResult", "injection_signs", "load_judge_for", "parse_judge_reply", "text_sha256"],
+    "ethimon.ros2": ["ACK_RESULT_TOPIC", "ACK_TOPIC", "DECISION_TOPIC", "DEFAULT", "ENCLAVE_FILES", "MessageTypes",
+                     "OVERRIDE_TOPIC", "QosProfile", "Ros2Monitor", "SENSOR_DATA", "cyclone_config", "dds_topic",
+                     "dds_type", "decision_json", "normalize_type", "ros_topic", "run_ros2", "security_available",
+                     "to_cyclone"],
     "ethimon.runtime": ["Acknowledgement", "Decision", "FAULT_KINDS", "Fault", "Monitor"],
     "ethimon.scenario": ["BUILTIN_INPUTS", "CheckOutcome", "CheckReport", "Expect", "Scenario", "ScenarioResult",
                          "ScenarioSession", "TimelineEntry", "build_inputs", "check_expectations",
@@ -125,6 +129,8 @@ INTERNAL_REACHES: dict[str, tuple[set[str], str]] = {
     "sim._limits": ({"cli"}, "lint checks a safe pose against the rated joint range"),
     "verify._policy": ({"cli"}, "lint's release-policy warnings (no z3)"),
     "replay._record": ({"cli", "fleet"}, "one bag's record, shared by the serial loop and the Ray workers"),
+    "replay._bag": ({"ros2"}, "reduce_value: live samples become numbers exactly as a bag's do"),
+    "replay._mapping": ({"ros2"}, "RISK_INPUTS and parse_field_path of the one mapping format"),
     "scenario._check": ({"fleet"}, "the skipped-file rows of a check report"),
 }
 

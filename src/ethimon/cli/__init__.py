@@ -19,7 +19,7 @@ __all__ = ["main"]
 #: optional sub-command modules: (module, function that adds its parsers)
 _PLUGINS = (("_risk_cmds", "add_risk_parsers"), ("_sim_cmds", "add_sim_parsers"),
             ("_verify_cmds", "add_verify_parsers"), ("_audit_cmds", "add_audit_parsers"),
-            ("_replay_cmds", "add_replay_parsers"))
+            ("_replay_cmds", "add_replay_parsers"), ("_ros2_cmds", "add_ros2_parsers"))
 
 
 def _build_parser() -> argparse.ArgumentParser:

@@ -123,7 +123,9 @@ class GovernedLoop:
     Args:
         monitor: a :class:`~ethimon.Monitor` (or a :class:`~ethimon.Spec` to build one).
         signals: called once per cycle for the spec's signals (a mapping); it may
-            also be passed to :meth:`cycle` directly. An exception from it is a fault.
+            also be passed to :meth:`cycle` directly. An exception from it is a fault, and
+            so is each entry of the mapping's ``faults`` attribute when it has one (a
+            source that judges its own inputs: ``ethimon.ros2`` reports stale topics there).
         risk: an :class:`AsyncRiskSource`; each cycle feeds its latest ``p`` and
             ``risk_age_s`` (and drops any ``risk``/``p_unsafe`` keys from the signals).
             A ``"module:function"`` string (or a :class:`ProcessEstimator`) builds one
@@ -333,6 +335,9 @@ class GovernedLoop:
                     raise EthimonError("no signals given and no signals source configured")
                 signals = self._signals()
             inputs = dict(signals)
+            extra = getattr(signals, "faults", None)  # a source's own verdicts (stale, a foreign publisher)
+            if extra:
+                reasons.extend(f if isinstance(f, Fault) else Fault("signals", str(f)[:300]) for f in extra)
         except Exception as exc:  # noqa: BLE001
             reasons.append(Fault("signals", f"signal source raised {type(exc).__name__}: {exc}"[:300]))
             inputs = {}

@@ -15,6 +15,10 @@ hint exactly as spec errors do; :func:`mapping_json_schema` is its JSON Schema.
       ee_speed:        {topic: /ee/twist, field: twist.linear, reduce: norm}
       contact_force:   {topic: /ee/wrench, field: wrench.force, reduce: norm, scale: 1.0}
     task: {topic: /task}         # std_msgs/String, scored by the risk estimator
+
+Live (``ethimon ros2``) the same file names each topic's message ``type:``
+(``sensor_msgs/msg/JointState``; a bag says it itself) and may hold a
+``ros2:`` block of settings only the live node reads.
 """
 
 from __future__ import annotations
@@ -31,7 +35,7 @@ from ..spec._load import validate_document
 from ..spec._model import FiniteFloat, Spec
 from ..spec._yaml import SourceMap, parse_yaml_text, read_yaml
 
-__all__ = ["FIELD_PATH", "REDUCTIONS", "RISK_INPUTS", "Mapping", "SignalMap", "TaskMap", "load_mapping",
+__all__ = ["FIELD_PATH", "MSGTYPE", "REDUCTIONS", "RISK_INPUTS", "Mapping", "Ros2Map", "SignalMap", "TaskMap", "load_mapping",
            "load_mapping_text", "mapping_json_schema", "check_against_spec", "parse_field_path"]
 
 _CFG = ConfigDict(extra="forbid", frozen=True, populate_by_name=True, strict=True)
@@ -43,6 +47,10 @@ REDUCTIONS = ("value", "max", "min", "max_abs", "norm", "mean", "index")
 #: built-in monitor inputs a topic may carry instead of a spec signal
 RISK_INPUTS = ("risk", "p_unsafe")
 TOPIC = r"^/?[A-Za-z0-9_~{}][A-Za-z0-9_/~{}.-]*$"
+#: a ROS 2 message type: ``pkg/msg/Name`` (``pkg/Name`` is read as ``pkg/msg/Name``)
+MSGTYPE = r"^[A-Za-z][A-Za-z0-9_]*/(msg/)?[A-Za-z][A-Za-z0-9_]*$"
+_TYPE_DOC = ("the topic's ROS 2 message type, e.g. sensor_msgs/msg/JointState (ethimon ros2: required; replay "
+             "reads the types a bag names itself)")
 
 
 class SignalMap(BaseModel):
@@ -64,6 +72,7 @@ class SignalMap(BaseModel):
                         "max_age_s says")
     time: Literal["log", "header"] = Field(
         "log", description="sample time: the bag's log (receive) time, or the message's header.stamp")
+    type: str | None = Field(None, pattern=MSGTYPE, max_length=200, description=_TYPE_DOC)
 
     @model_validator(mode="after")
     def _check(self) -> "SignalMap":
@@ -80,6 +89,22 @@ class TaskMap(BaseModel):
     model_config = _CFG
     topic: str = Field(pattern=TOPIC, max_length=400, description="the task-text topic, e.g. /task")
     field: str = Field("data", pattern=FIELD_PATH, max_length=400, description="the text field (default 'data')")
+    type: str | None = Field(None, pattern=MSGTYPE, max_length=200,
+                             description="its message type (default std_msgs/msg/String)")
+
+
+class Ros2Map(BaseModel):
+    """Settings only the live node (``ethimon ros2``) reads; replay ignores them."""
+
+    model_config = _CFG
+    allow_unauthenticated_acknowledge: str | None = Field(
+        None, min_length=1, max_length=400, description="null (default): an operator acknowledgement on "
+        "/ethimon/acknowledge is refused unless DDS Security authenticates the sender; a reason here (e.g. "
+        "'bench cell on an isolated network') accepts unauthenticated ones, audited as such")
+    publishers: int = Field(1, ge=1, le=64, description="how many publishers each monitored topic may have; "
+                            "one more (or a publisher that replaces the first) is a fault naming it")
+    deadline_cycles: int = Field(3, ge=1, le=1_000_000, description="the deadline QoS offered on "
+                                 "/ethimon/override and /ethimon/decision, in cycles of rate_hz")
 
 
 class Mapping(BaseModel):
@@ -99,6 +124,7 @@ class Mapping(BaseModel):
     signals: dict[str, SignalMap] = Field(
         description="spec signal (or 'p_unsafe' / 'risk') → where it comes from", min_length=1)
     task: TaskMap | None = Field(None, description="optional: the task-text topic scored by the risk estimator")
+    ros2: Ros2Map = Field(default_factory=Ros2Map, description="live node settings (ethimon ros2)")
 
     _source: SourceMap | None = PrivateAttr(default=None)
 
@@ -155,6 +181,8 @@ def _validate(data: Any, smap: SourceMap) -> Mapping:
                     _known_keys(sm, SignalMap, ("signals", name), smap)
         if isinstance(data.get("task"), dict):
             _known_keys(data["task"], TaskMap, ("task",), smap)
+        if isinstance(data.get("ros2"), dict):
+            _known_keys(data["ros2"], Ros2Map, ("ros2",), smap)
     return validate_document(Mapping, data, smap, "mapping")
 
 
