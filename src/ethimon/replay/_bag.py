@@ -245,7 +245,7 @@ class _Collector:
     """The samples of one mapped signal, gathered message by message (compact arrays, not lists)."""
 
     __slots__ = ("name", "sm", "fpath", "spath", "times", "values", "raw", "bad", "past_end", "read", "bools",
-                 "zero", "header", "off", "where", "names_key", "names_idx", "names_last", "fast")
+                 "zero", "header", "off", "where", "names_key", "names_idx", "names_last", "fast", "named", "pending")
 
     def __init__(self, name: str, sm: SignalMap, spath: str) -> None:
         self.name, self.sm, self.spath = name, sm, spath
@@ -259,45 +259,88 @@ class _Collector:
         self.names_key: Any = None
         self.names_idx: dict[str, int] = {}
         self.names_last: list[str] = []
+        self.pending: list[Any] = []
         # the common case: one plain field name, no index
         self.fast = self.fpath[0] if len(self.fpath) == 1 and isinstance(self.fpath[0], str) else None
+        self.named = (self.fpath if len(self.fpath) == 2 and not isinstance(self.fpath[0], ByName)
+                      and isinstance(self.fpath[1], ByName) else None)  # e.g. position[panda_joint4]
 
     def add(self, msg: Any, t_log: int, topic: str, msgtype: str) -> None:
-        self.read += 1
+        """One message: its field value is kept as is (reduced in batches by :meth:`_flush`)."""
         fast = self.fast
-        if fast is not None and fast in getattr(msg, "__dataclass_fields__", ()):
+        named = self.named
+        if fast is not None and fast in msg.__dataclass_fields__:
             v = getattr(msg, fast)
-        else:
-            v = self._get(msg, topic, msgtype)
-        if v is _PAST:
-            self.past_end += 1
-            v = math.nan
-        elif self.sm.reduce == "index":
+        elif named is not None and named[0] in msg.__dataclass_fields__ and "name" in msg.__dataclass_fields__:
+            idx = self._by_name(msg, named[1], named[:1], topic, msgtype)
+            arr = getattr(msg, named[0])
             try:
-                if len(v) <= self.sm.index:  # type: ignore[operator]
-                    self.past_end += 1
-            except TypeError:
-                pass
-        if isinstance(v, (bool, np.bool_)) or (isinstance(v, np.ndarray) and v.dtype.kind == "b"):
-            self.bools += 1
+                v = _PAST if idx is None else arr[idx]
+            except (IndexError, TypeError, KeyError):
+                v = _PAST
+        else:
+            if not self.where:
+                self.where = f"signal {self.name!r}: {topic} ({msgtype}) field {self.sm.field!r}"
+            v = self._get(msg, topic, msgtype)
         if self.header:
             t = _stamp(msg, topic, msgtype, self.spath, self.name)
             if t == 0:
                 self.zero += 1
         else:
-            t = int(t_log)
+            t = t_log
+        self.times.append(t + self.off)
+        pending = self.pending
+        pending.append(v)
+        if len(pending) >= _BATCH:
+            self._flush(topic, msgtype)
+
+    def _flush(self, topic: str, msgtype: str) -> None:
+        """Reduce the pending field values: whole batches of same-shape numeric arrays at once, else one
+        by one (:func:`reduce_value`, which refuses text, messages and other kinds with a located error)."""
+        vals = self.pending
+        if not vals:
+            return
+        self.pending = []
+        self.read += len(vals)
         if not self.where:
             self.where = f"signal {self.name!r}: {topic} ({msgtype}) field {self.sm.field!r}"
-        if self.raw is not None:
-            arr = _numbers_of(v, self.where, self.spath)
-            self.raw.append(arr)
-            self.times.append(t + self.off)
-            return
-        x = reduce_value(v, self.sm, where=self.where, path=self.spath)
-        if x != x:
-            self.bad += 1
-        self.times.append(t + self.off)
-        self.values.append(x)
+        sm = self.sm
+        first = vals[0]
+        if self.raw is None and sm.reduce != "value" and type(first) is np.ndarray and first.ndim == 1 \
+                and first.dtype.kind in "iuf":
+            shape, kind = first.shape, first.dtype
+            if all(type(v) is np.ndarray and v.shape == shape and v.dtype == kind for v in vals):
+                x = _reduce_rows(np.stack(vals).astype(np.float64, copy=False), sm)
+                if sm.reduce == "index" and sm.index is not None and sm.index >= shape[0]:
+                    self.past_end += len(vals)
+                self.bad += int(np.isnan(x).sum())
+                self.values.frombytes(x.tobytes())
+                return
+        if self.raw is None and sm.reduce == "value" and type(first) in _FLOATS:
+            if all(type(v) in _FLOATS for v in vals):
+                x = np.asarray(vals, dtype=np.float64) * sm.scale + sm.offset
+                self.bad += int(np.isnan(x).sum())
+                self.values.frombytes(x.tobytes())
+                return
+        for v in vals:
+            if v is _PAST:
+                self.past_end += 1
+                v = math.nan
+            elif sm.reduce == "index":
+                try:
+                    if len(v) <= sm.index:  # type: ignore[operator]
+                        self.past_end += 1
+                except TypeError:
+                    pass
+            if isinstance(v, (bool, np.bool_)) or (isinstance(v, np.ndarray) and v.dtype.kind == "b"):
+                self.bools += 1
+            if self.raw is not None:
+                self.raw.append(_numbers_of(v, self.where, self.spath))
+                continue
+            x = reduce_value(v, sm, where=self.where, path=self.spath)
+            if x != x:
+                self.bad += 1
+            self.values.append(x)
 
     def _get(self, msg: Any, topic: str, msgtype: str) -> Any:
         cur, parent = msg, None
@@ -342,6 +385,7 @@ class _Collector:
 
     def series(self, topic: str, msgtype: str) -> Series:
         sm = self.sm
+        self._flush(topic, msgtype)
         if self.header and self.zero:
             raise BagError(f"signal {self.name!r}: {self.zero:,} of {self.read:,} header stamps on {topic} are unset "
                            "(0), but the mapping sets 'time: header'", self.spath,
@@ -545,6 +589,33 @@ def _numbers_of(v: Any, where: str, path: str) -> np.ndarray | None:
         raise BagError(f"{where} is {_kind(v)}: 'derive: rate' needs a number, an array of numbers or a vector "
                        "(x, y, z)", path, hint="point 'field' at e.g. 'pose.position'")
     return np.array(arr, dtype=np.float64)
+
+
+_FLOATS = (float, np.float64, np.float32)
+#: field values reduced together (bounded memory: a batch, never the bag)
+_BATCH = 4096
+
+
+def _reduce_rows(a: np.ndarray, sm: SignalMap) -> np.ndarray:
+    """:func:`_reduce_arr` of every row of ``a`` (rows: messages), then ``* scale + offset``."""
+    if a.shape[1] == 0:
+        return np.full(a.shape[0], np.nan)
+    red = sm.reduce
+    if red == "index":
+        if sm.index is None or sm.index >= a.shape[1]:
+            return np.full(a.shape[0], np.nan)
+        x = a[:, sm.index].copy()
+    elif red == "max":
+        x = a.max(axis=1)
+    elif red == "min":
+        x = a.min(axis=1)
+    elif red == "max_abs":
+        x = np.abs(a).max(axis=1)
+    elif red == "norm":
+        x = np.sqrt(np.einsum("ij,ij->i", a, a))
+    else:  # mean
+        x = a.mean(axis=1)
+    return x * sm.scale + sm.offset
 
 
 def _reduce_arr(arr: np.ndarray, sm: SignalMap) -> float:
