@@ -232,6 +232,12 @@ def test_rate_from_message_times_not_prev_of_a_held_value(tmp_path):
     res_p = replay_bag(bag, spec_p, mp)
     assert res_p.check("slow").cycles > 40  # the false violations the rate reduction avoids
     assert any("prev(x)" in w and "every 40.0 ms" in w for w in res_p.warnings)
+    (tmp_path / "spec.yaml").write_text("ethimon: 1\nname: s\nsignals:\n  x: {unit: m, range: [-10, 10]}\n"
+                                        "obligations:\n  - {id: slow, require: '(x - prev(x, x)) * 100 <= 0.6'}\n")
+    (tmp_path / "map.yaml").write_text("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.1\nrisk: none\nsignals:\n"
+                                       "  x: {topic: /pose, field: pose.position.x}\n")
+    r = run_cli("lint", str(tmp_path / "spec.yaml"), "--map", str(tmp_path / "map.yaml"))
+    assert r.returncode == 0 and f"{tmp_path / 'map.yaml'}: warning: obligation 'slow': prev(x)" in r.stdout
 
 
 # ----------------------------------------------------------------------------- row: rosbag2's MCAP folder

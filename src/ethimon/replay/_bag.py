@@ -743,7 +743,7 @@ def list_topics(path: str | os.PathLike, *, on_progress: Callable[[int, int], No
                     ti.error = _why(exc)
                     continue
                 if ti.count == 1:
-                    ti.fields = tuple(_fields(msg))
+                    ti.fields = tuple(f for f in _fields(msg) if not f.isupper())  # not the constants
                     names = getattr(msg, "name", None)
                     if isinstance(names, list) and all(isinstance(x, str) for x in names):
                         ti.names = tuple(names[:64])
