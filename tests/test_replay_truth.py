@@ -515,3 +515,25 @@ def test_mcap_output_on_the_bag_timeline_read_back(tmp_path):
     assert got["/ethimon/inputs/b"][15][1] == {"value": None} and dec[15][1]["fault"]
     assert got["/ethimon/risk"][0][1] == {"R_e": 0.0, "tau": 0.5}
     assert f"MCAP messages to {out}" in r.stderr
+
+
+def test_progress_bar_for_long_bags_on_a_terminal_only(monkeypatch, capsys):
+    pytest.importorskip("tqdm")
+    import sys
+
+    from ethimon.cli._replay_cmds import _MessageBar
+    with _MessageBar(enabled=True) as bar:  # pytest's stdout is no terminal: no bar
+        bar.new("b")
+        bar(200_000, 300_000)
+        assert bar.bar is None
+    monkeypatch.setattr(sys.stdout, "isatty", lambda: True, raising=False)
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True, raising=False)
+    with _MessageBar(enabled=True) as bar:
+        bar.new("long.mcap")
+        bar(8192, 50_000)  # a short bag: no bar
+        assert bar.bar is None
+        bar(150_000, 300_000)
+        assert bar.bar is not None and bar.bar.n == 150_000
+    assert bar.bar is None
+    err = capsys.readouterr()
+    assert "long.mcap" in err.err and err.out == ""

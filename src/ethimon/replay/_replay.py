@@ -199,6 +199,9 @@ def _judge_counts(data: BagData, mapping: Mapping, grid: np.ndarray, idxs: dict[
         ok = judged(s.times, s.values, idxs[name])
         early = s.times < grid[0]
         before[name] = int((early & ~ok).sum())
+        if before[name]:
+            warnings.append(f"{name}: {before[name]:,} of {n:,} samples on {s.topic} come before the first cycle "
+                            f"('start: all_seen') and are not judged")
         between = ~ok & ~early
         cnt = int(between.sum())
         out[name] = int(ok.sum())
