@@ -537,3 +537,21 @@ def test_progress_bar_for_long_bags_on_a_terminal_only(monkeypatch, capsys):
     assert bar.bar is None
     err = capsys.readouterr()
     assert "long.mcap" in err.err and err.out == ""
+
+
+def test_a_task_text_replaced_before_any_cycle_is_not_hidden(tmp_path):
+    # a risky command replaced 2 ms later by a harmless one: at 10 Hz no cycle ever sees it
+    scores = {"Stack the boxes.": (0.9, 0.1), "Throw the box at the person.": (0.1, 0.9)}
+    msgs = [(ns(i * 0.1), "/d", "f64", 2.0) for i in range(10)]
+    msgs += [(ns(0.0), "/task", "str", "Stack the boxes."), (ns(0.501), "/task", "str", "Throw the box at the person."),
+             (ns(0.503), "/task", "str", "Stack the boxes.")]
+    bag = write(tmp_path / "b", "mcap", msgs)
+    text = "ethimon: 1\nrate_hz: 10\nmax_age_s: 0.2\n%ssignals:\n  d: {topic: /d}\ntask: {topic: /task}\n"
+    with pytest.raises(BagError, match=r"task: 1 of 3 task texts on /task are replaced before a cycle sees them "
+                                       r"\(first at t = 0.501 s: 'Throw the box at the person.'\)"):
+        replay_bag(bag, spec_d(), load_mapping_text(text % ""), score=scores.__getitem__)
+    res = replay_bag(bag, spec_d(), load_mapping_text(text % "samples: latest\n"), score=scores.__getitem__)
+    assert res.passed and res.signals["task"]["judged"] == 2
+    assert any(w.startswith("task: 1 of 3 task texts") for w in res.warnings)
+    assert res.topics == {"/d": {"read": 10, "judged": 10, "signals": ["d"]},
+                          "/task": {"read": 3, "judged": 2, "signals": ["task"]}}

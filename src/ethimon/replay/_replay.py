@@ -82,6 +82,7 @@ class BagReplay:
     latches: list[dict[str, Any]] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
     started: dict[str, Any] = field(default_factory=dict)
+    topics: dict[str, dict[str, Any]] = field(default_factory=dict)  # topic -> messages read, samples judged
     trace: CycleResults | None = field(default=None, repr=False)
     grid: np.ndarray | None = field(default=None, repr=False)
     columns: dict[str, np.ndarray] | None = field(default=None, repr=False)
@@ -104,7 +105,7 @@ class BagReplay:
                 "end_ns": self.end_ns, "duration_s": (self.end_ns - self.start_ns) / 1e9,
                 "override_cycles": self.override_cycles, "first_override_cycle": self.first_override,
                 "checks": [c.as_dict() for c in self.checks], "signals": self.signals, "tasks": self.tasks,
-                "latches": self.latches, "warnings": self.warnings, "started": self.started,
+                "topics": self.topics, "latches": self.latches, "warnings": self.warnings, "started": self.started,
                 "engine": self.engine}
 
 
@@ -293,6 +294,7 @@ def resample(data: BagData, mapping: Mapping, spec: Spec, *, score: Scorer | Non
             idx_of_msg[i] = j
         times = np.asarray([t for t, _ in texts], dtype=np.int64)
         pos = np.searchsorted(times, grid, side="right") - 1
+        judged_n["task"] = _judge_texts(data, mapping, grid, times, pos, warnings)
         rows = np.full((len(table) + 1, k_cls), np.nan)  # last row: no text yet / unusable
         for j, probs in enumerate(table):
             if probs is not None:
@@ -317,6 +319,31 @@ def resample(data: BagData, mapping: Mapping, spec: Spec, *, score: Scorer | Non
             columns["risk_age_s"] = np.where(idx >= 0, (grid - s.times[np.maximum(idx, 0)]) / 1e9, np.nan)
     warnings.extend(_held_prev_warnings(data, mapping, spec))
     return Resampled(grid, columns, codes, risk_key, risk_note, tasks, judged_n, before, warnings)
+
+
+def _judge_texts(data: BagData, mapping: Mapping, grid: np.ndarray, times: np.ndarray, pos: np.ndarray,
+                 warnings: list[str]) -> int:
+    """Task texts judged: a text replaced before any cycle saw it would never reach the monitor (its
+    risk score hidden), an error unless ``samples: latest``; same-time texts are judged if equal."""
+    texts = data.texts
+    ok = np.zeros(len(texts), dtype=bool)
+    ok[pos[pos >= 0]] = True
+    for i in range(len(texts) - 2, -1, -1):  # a repeat at the same time is judged with its twin
+        if texts[i][0] == texts[i + 1][0] and texts[i][1] == texts[i + 1][1]:
+            ok[i] = ok[i] or ok[i + 1]
+    missed = ~ok & (times >= grid[0])
+    if missed.any():
+        k = int(np.argmax(missed))
+        what = (f"{int(missed.sum()):,} of {len(texts):,} task texts on {mapping.task.topic} are replaced before a "
+                f"cycle sees them (first at t = {(int(times[k]) - int(grid[0])) / 1e9:.3f} s: "
+                f"{texts[k][1][:60]!r})")
+        if mapping.samples == "latest":
+            warnings.append(f"task: {what}: not judged ('samples: latest')")
+        else:
+            raise BagError(f"task: {what}: the risk of those commands would never reach the monitor", data.path,
+                           hint="raise rate_hz so that each text gets a cycle, or write 'samples: latest' to judge "
+                           "only the text current at each cycle, as the monitor does online")
+    return int(ok.sum())
 
 
 def _held_prev_warnings(data: BagData, mapping: Mapping, spec: Spec) -> list[str]:
@@ -545,14 +572,21 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
     if mapping.task is not None and p is None:
         code = rs.codes["p"]
         signals["task"] = {"topic": mapping.task.topic, "messages": len(data.texts),
-                           "judged": len({tt for tt, _ in data.texts}), "missing_cycles": int((code == MISSING).sum())}
+                           "judged": rs.judged.get("task", 0), "missing_cycles": int((code == MISSING).sum())}
+    topics: dict[str, dict[str, Any]] = {}
+    for name, sg in signals.items():  # per topic: messages read, and the fewest of them any of its signals judged
+        tp = topics.setdefault(sg["topic"], {"read": sg["messages"], "judged": sg["judged"], "signals": []})
+        tp["read"] = max(tp["read"], sg["messages"])
+        tp["judged"] = min(tp["judged"], sg["judged"])
+        tp["signals"].append(name)
     n_over = int(tr.override.sum())
     res = BagReplay(data.path, data.storage, float(mapping.rate_hz), n, t0, int(grid[-1]), checks, n_over,
                     int(np.argmax(tr.override)) if n_over else None, signals, rs.tasks, tr.engine,
                     _latches(tr, grid, float(mapping.rate_hz)), rs.warnings,
                     {"cycle": s0, "t_s": round((int(grid[s0]) - t0) / 1e9, 9), "note": (
                         f"every input seen from cycle {s0}: the monitor starts fresh there (the {s0} cycle"
-                        f"{'s' if s0 != 1 else ''} before fail closed but latch nothing after)") if s0 else ""})
+                        f"{'s' if s0 != 1 else ''} before fail closed but latch nothing after)") if s0 else ""},
+                    topics)
     if keep_trace:
         res.trace, res.grid, res.columns = tr, grid, rs.columns
     if audit is not None:
