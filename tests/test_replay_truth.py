@@ -113,6 +113,12 @@ def test_risk_none_checks_every_other_rule(tmp_path, fmt):
     ok = replay_bag(good, spec_d(), map_d(rate=20, max_age=0.1, extra="risk: none\n"))
     assert ok.passed and ok.check("risk").status == "NOT CHECKED"
     assert ok.as_dict()["checks"][-2]["status"] == "NOT CHECKED"
+    from ethimon.audit import AuditLog, read_log
+    log = AuditLog(str(tmp_path / "a.jsonl"), fsync="interval")
+    replay_bag(bag, spec_d(), map_d(rate=20, max_age=0.1, extra="risk: none\n"), audit=log)
+    log.close()
+    decisions = [r for r in read_log(str(tmp_path / "a.jsonl")) if r["kind"] == "decision"]
+    assert decisions and all(r["risk"] is None for r in decisions)  # R_e held at 0 is no measured value
     with pytest.raises(SpecError, match="risk: none"):
         load_mapping_text("ethimon: 1\nrate_hz: 10\nmax_age_s: 0.2\nrisk: none\nsignals:\n  d: {topic: /d}\n"
                           "task: {topic: /task}\n")
@@ -513,7 +519,7 @@ def test_mcap_output_on_the_bag_timeline_read_back(tmp_path):
     assert faults[0][0] == int(res.grid[15]) and faults[0][1]["faults"][0]["kind"] == "missing"
     assert faults[1] == (int(res.grid[16]), {"faults": []})
     assert got["/ethimon/inputs/b"][15][1] == {"value": None} and dec[15][1]["fault"]
-    assert got["/ethimon/risk"][0][1] == {"R_e": 0.0, "tau": 0.5}
+    assert got["/ethimon/risk"][0][1] == {"R_e": None, "tau": 0.5, "checked": False}  # risk: none
     assert f"MCAP messages to {out}" in r.stderr
 
 

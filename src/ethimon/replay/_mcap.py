@@ -7,7 +7,8 @@ cycle's bag time (ns). Topics:
 
 * ``/ethimon/decision``: ``override``, ``response``, ``violations``, ``fault``, ``latched`` (every cycle)
 * ``/ethimon/margins``: one number per obligation (``null`` where not evaluated; every cycle)
-* ``/ethimon/risk``: ``R_e`` (``null``: no usable risk input) and the threshold ``tau`` (every cycle)
+* ``/ethimon/risk``: ``R_e`` (``null``: no usable risk input, or ``risk: none``), the threshold ``tau``
+  and ``checked`` (false with ``risk: none``; every cycle)
 * ``/ethimon/faults``: the monitor's fault reasons, written when they change (``[]`` when they clear)
 * ``/ethimon/inputs/<signal>``: the held value the monitor read (``null``: missing or stale; every cycle)
 
@@ -88,12 +89,14 @@ def write_mcap(res: Any, path: str | os.PathLike, spec: Spec) -> int:
             "violations": {"type": "array", "items": {"type": "string"}}, "fault": {"type": "boolean"},
             "latched": {"type": "boolean"}, "cycle": {"type": "integer"}})
         c_mg = channel("/ethimon/margins", "ethimon.Margins", {oid: _NUM for oid in ids})
-        c_risk = channel("/ethimon/risk", "ethimon.Risk", {"R_e": _NUM, "tau": {"type": "number"}})
+        c_risk = channel("/ethimon/risk", "ethimon.Risk", {"R_e": _NUM, "tau": {"type": "number"},
+                                                           "checked": {"type": "boolean"}})
         c_f = channel("/ethimon/faults", "ethimon.Faults", {"faults": {"type": "array", "items": {
             "type": "object", "properties": {"kind": {"type": "string"}, "message": {"type": "string"},
                                              "subject": {"type": ["string", "null"]}}}}})
         c_in = {nm: channel(f"/ethimon/inputs/{nm}", "ethimon.Input", {"value": _NUM}) for nm in names}
         tau = float(spec.risk.threshold)
+        checked = not any(c.id == "risk" and c.status == "NOT CHECKED" for c in res.checks)
         over, sev, viol, fault, lat = (tr.override.tolist(), tr.severity.tolist(), tr.violated, tr.fault.tolist(),
                                        tr.latched.tolist())
         margins, risk = tr.margins.tolist(), tr.risk.tolist()
@@ -110,7 +113,7 @@ def write_mcap(res: Any, path: str | os.PathLike, spec: Spec) -> int:
             put(c_dec, {"cycle": k, "override": bool(over[k]), "response": _RESP[int(sev[k])] if over[k] else "none",
                         "violations": v, "fault": bool(fault[k]), "latched": bool(lat[k])})
             put(c_mg, {oid: _num(margins[k][j]) for j, oid in enumerate(ids)})
-            put(c_risk, {"R_e": _num(risk[k]), "tau": tau})
+            put(c_risk, {"R_e": _num(risk[k]) if checked else None, "tau": tau, "checked": checked})
             fs = tr.faults_at(k) if fault[k] else ()
             if fs != prev_faults:
                 put(c_f, {"faults": [{"kind": getattr(x, "kind", "fault"), "message": str(getattr(x, "message", x)),

@@ -673,6 +673,7 @@ def _audit(log: Any, res: BagReplay, tr: CycleResults, rs: Resampled, spec: Spec
            start_ns=res.start_ns, engine=res.engine)
     prev = None
     names = list(spec.signals)
+    checked = res.check("risk").status != "NOT CHECKED"  # risk: none holds R_e at 0: not a measured value
     for k in range(res.cycles):
         viol = tuple(oid for j, oid in enumerate(tr.ids) if tr.violated[k, j])
         key = (bool(tr.override[k]), int(tr.severity[k]), viol, bool(tr.fault[k]))
@@ -686,7 +687,7 @@ def _audit(log: Any, res: BagReplay, tr: CycleResults, rs: Resampled, spec: Spec
                override=bool(tr.override[k]), response=resp, violations=list(viol),
                faults=[_fault_dict(f) for f in tr.faults_at(k)],
                latched=bool(tr.latched[k]),
-               risk=None if tr.risk[k] != tr.risk[k] else float(tr.risk[k]),
+               risk=None if (tr.risk[k] != tr.risk[k] or not checked) else float(tr.risk[k]),
                margins={oid: float(tr.margins[k, j]) for j, oid in enumerate(ids)},
                inputs={nm: float(rs.columns[nm][k]) for nm in names})
     append("replay_result", bag=res.path, passed=res.passed,
