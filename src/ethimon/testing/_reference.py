@@ -146,6 +146,12 @@ class ReferenceMonitor:
             return Acknowledgement(False, waiting, "refused: " + "; ".join(
                 f"{k} still fails" if self.latches[k] == 0 else
                 f"{k} has held {self.latches[k]} of {rules[k][2]} cycles" for k in waiting))
+        if "confirm" in manual and self.last_task is None:  # a confirmation must name its text
+            manual.remove("confirm")
+            if not manual:
+                return Acknowledgement(False, ("confirm",), "refused: confirm needs the task_id input on the "
+                                       "cycle it confirms (a confirmation names the text it confirms: pass "
+                                       "the task text's hash as task_id)")
         if not manual:
             return Acknowledgement(False, (), "nothing awaits an acknowledgement" + (
                 " (the override is held by automatic releases)" if self.latches else ""))
@@ -432,7 +438,7 @@ class ReferenceMonitor:
         elif spec.risk.confirm_threshold is not None:
             task = signals.get("task_id")
             in_band = spec.risk.confirm_threshold <= r < tau
-            if self.confirmed is not None and (self.confirmed[0] != task or not in_band):
+            if self.confirmed is not None and (task is None or self.confirmed[0] != task or not in_band):
                 self.confirmed = None
             self.last_task = task
             judged_safe = judge is not None and jp is not None and jp < judge.safe_below
