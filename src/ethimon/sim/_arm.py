@@ -106,6 +106,39 @@ class _HumanBody:
         ts = self.times
         return np.array([np.interp(t, ts, self.xy[:, 0]), np.interp(t, ts, self.xy[:, 1])])
 
+    def _segment(self, t: float) -> int:
+        """Index ``k`` of the segment ``times[k] <= t < times[k+1]`` (-1 before, n-1 after)."""
+        return int(np.searchsorted(self.times, t, side="right")) - 1
+
+    def velocity_at(self, t: float) -> np.ndarray:
+        """The scripted horizontal velocity at ``t`` (0 standing, before and after the script)."""
+        k = self._segment(t)
+        if k < 0 or k >= len(self.times) - 1:
+            return np.zeros(2)
+        return (self.xy[k + 1] - self.xy[k]) / (self.times[k + 1] - self.times[k])
+
+    def speeds(self) -> np.ndarray:
+        """The scripted speed of every segment (m/s)."""
+        if len(self.times) < 2:
+            return np.zeros(0)
+        return (np.linalg.norm(np.diff(self.xy, axis=0), axis=1) / np.diff(self.times))
+
+    def walk_speed(self, t: float) -> float:
+        """How fast the person walks at ``t``: the current segment's scripted speed; standing,
+        the last segment walked (else the next one to walk): a person held up catches up at
+        the speed the script gives them, never faster."""
+        sp = self.speeds()
+        if sp.size == 0:
+            return 0.0
+        k = self._segment(t)
+        if 0 <= k < sp.size and sp[k] > 0:
+            return float(sp[k])
+        before = [v for v in sp[:max(k, 0)] if v > 0]
+        if before:
+            return float(before[-1])
+        after = [v for v in sp[max(k, 0):] if v > 0]
+        return float(after[0]) if after else 0.0
+
 
 class ArmSim:
     """A Panda arm on the floor at the origin, with humans and objects, at 240 Hz.
@@ -264,11 +297,11 @@ class ArmSim:
         hb = _HumanBody(h, body, np.array([w.t_s for w in h.waypoints], dtype=float),
                         np.array([w.xy_m for w in h.waypoints], dtype=float))
         if h.compliant:
-            # no floor friction (the constraint does the walking); upright, held by the drive
-            p.changeDynamics(body, -1, lateralFriction=0.0, physicsClientId=cid)
-            hb.drive = p.createConstraint(body, -1, -1, -1, p.JOINT_FIXED, (0, 0, 0), (0, 0, 0),
-                                          (0, 0, h.height_m / 2), physicsClientId=cid)
-            p.changeConstraint(hb.drive, maxForce=h.max_push_n, physicsClientId=cid)
+            # no floor friction (the drive does the walking); upright: a rotational inertia no
+            # contact can tip, the orientation reset upright every cycle
+            p.changeDynamics(body, -1, lateralFriction=0.0, localInertiaDiagonal=(1e4, 1e4, 1e4),
+                             linearDamping=0.0, angularDamping=0.0, physicsClientId=cid)
+            hb.drive = 1
         self.humans[h.name] = hb
         self._place_human(hb, 0.0)
         return body
@@ -280,18 +313,46 @@ class ArmSim:
         self._p.resetBasePositionAndOrientation(hb.body, pos, (0, 0, 0, 1), physicsClientId=self.cid)
         if hb.drive is not None:
             self._p.resetBaseVelocity(hb.body, (0, 0, 0), (0, 0, 0), physicsClientId=self.cid)
-            self._p.changeConstraint(hb.drive, jointChildPivot=pos, maxForce=hb.spec.max_push_n,
-                                     physicsClientId=self.cid)
 
     def _move_human(self, hb: _HumanBody, t: float) -> None:
-        """Advance the person to time ``t``: a kinematic one is placed, a compliant one is
-        pulled towards its waypoint position (with at most ``max_push_n``)."""
+        """Advance a kinematic person to time ``t`` (placed where the waypoints say); a
+        compliant one is walked by :meth:`_drive_human` at every physics step instead."""
         if hb.drive is None:
             self._place_human(hb, t)
             return
-        x, y = hb.xy_at(t)
-        self._p.changeConstraint(hb.drive, jointChildPivot=(float(x), float(y), hb.spec.height_m / 2),
-                                 maxForce=hb.spec.max_push_n, physicsClientId=self.cid)
+        p, cid = self._p, self.cid
+        pos, _ = p.getBasePositionAndOrientation(hb.body, physicsClientId=cid)
+        v, _ = p.getBaseVelocity(hb.body, physicsClientId=cid)
+        p.resetBasePositionAndOrientation(hb.body, pos, (0, 0, 0, 1), physicsClientId=cid)
+        p.resetBaseVelocity(hb.body, v, (0, 0, 0), physicsClientId=cid)
+
+    def _drive_human(self, hb: _HumanBody, t: float) -> None:
+        """One physics step of a compliant person's walk: a horizontal force of at most
+        ``max_push_n`` toward the velocity the script asks for now.
+
+        The wanted velocity is the script's velocity plus a pull (2 s⁻¹) toward the scripted
+        position, never faster than the person walks (:meth:`_HumanBody.walk_speed`, the speed
+        of the current segment or, standing, of the last one walked) nor faster than lets
+        them stop at the scripted position with half their drive: so a person held up by
+        the arm catches up at walking speed, never runs, and stops at the last waypoint."""
+        p, cid = self._p, self.cid
+        pos, _ = p.getBasePositionAndOrientation(hb.body, physicsClientId=cid)
+        v, _ = p.getBaseVelocity(hb.body, physicsClientId=cid)
+        xy, vxy = np.array(pos[:2]), np.array(v[:2])
+        target = hb.xy_at(t)
+        want = hb.velocity_at(t) + 2.0 * (target - xy)
+        lim = hb.walk_speed(t)
+        a_stop = 0.5 * hb.spec.max_push_n / hb.spec.mass_kg
+        lim = min(lim, math.sqrt(2.0 * a_stop * float(np.linalg.norm(target - xy))))
+        n = float(np.linalg.norm(want))
+        if n > lim:
+            want = want * (lim / n) if n > 0 else want
+        f = hb.spec.mass_kg * (want - vxy) / 0.05  # 50 ms to reach the wanted velocity
+        fn = float(np.linalg.norm(f))
+        if fn > hb.spec.max_push_n:
+            f = f * (hb.spec.max_push_n / fn)
+        p.applyExternalForce(hb.body, -1, (float(f[0]), float(f[1]), 0.0), pos, p.WORLD_FRAME,
+                             physicsClientId=cid)
 
     def close(self) -> None:
         """Disconnect from PyBullet (idempotent)."""
@@ -351,6 +412,10 @@ class ArmSim:
         pos, _ = self._p.getBasePositionAndOrientation(self.humans[name].body,
                                                        physicsClientId=self.cid)
         return np.array(pos)
+
+    def human_xy(self) -> dict[str, np.ndarray]:
+        """Every person's horizontal position now (capsule centre)."""
+        return {n: self.human_position(n)[:2] for n in self.humans}
 
     # ------------------------------------------------------------ signals
 
@@ -666,7 +731,10 @@ class ArmSim:
             v0 = v1
         h = 1.0 / PHYSICS_HZ
         _, qd_prev = self.joint_state()
+        compliant = [hb for hb in self.humans.values() if hb.drive is not None]
         for k in range(1, n + 1):
+            for hb in compliant:
+                self._drive_human(hb, self.time_s - self.dt + k * h)
             if self.powered:  # interpolate the reference at the physics rate
                 s = k / n
                 s2, s3 = s * s, s * s * s

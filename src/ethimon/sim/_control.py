@@ -473,8 +473,19 @@ class SafePoseController:
         self.t = 0.0
         self._decel: _Decel | None = None
         self._moves: list[_Move] = []
+        self._gains: list[float] = []   # per move: link metres per rad of path (fastest joint)
         self._hold: StopController | None = None
         self._started = False
+        #: path time along the planned moves and its rate (1 = as planned; lowered when a
+        #: person comes into range, 0 = paused on the path before a re-plan)
+        self.tau = 0.0
+        self.rate = 1.0
+        self.min_rate = 1.0
+        #: every change of plan after the first: ``(t_s, why)`` (controller time)
+        self.replans: list[tuple[float, str]] = []
+        self._need: tuple[float, float] = (0.0, 0.0)   # (human, hazard) clearance the route keeps
+        self._checked_xy: dict[str, np.ndarray] = {}
+        self._blocked = False
 
     @property
     def holding(self) -> StopController | None:
@@ -490,7 +501,12 @@ class SafePoseController:
     @property
     def done(self) -> bool:
         """The reference has arrived (the measured pose may still be settling) or it holds."""
-        return self._started and (self._hold is not None or self.t >= self.plan_s)
+        if not self._started:
+            return False
+        if self._hold is not None:
+            return True
+        t_dec = self._decel.T if self._decel else 0.0
+        return self.t >= t_dec and self.tau >= sum(m.T for m in self._moves) - 1e-12
 
     # -- planning
 
@@ -562,12 +578,9 @@ class SafePoseController:
             self.route, self._moves = "direct", self._moves_for([q_start, self.q_safe])
             return
         now = sim.probe([q_start])[0]
-        keep = self.near_human[0] if self.near_human else 0.3
-        # never nearer a person than now (or than the near-human zone), less 0.1 m of slack
-        # for the sampling and the arm's swing; never within 0.3 m
-        need_h = max(min(now["human"], keep) - 0.1, min(now["human"], 0.3))
-        keep_z = max(keep, _HAZARD_KEEP_M)
-        need_z = max(min(now["hazard"], keep_z) - 0.05, min(now["hazard"], 0.3))
+        need_h, need_z = self._needs(now)
+        self._need = (need_h, need_z)
+        self._checked_xy = sim.human_xy()
         best = None
         for name, wps in self._candidates(sim, q_start):
             pts = sim.probe(self._samples(wps))
@@ -587,8 +600,30 @@ class SafePoseController:
         if best is None:
             self.route = "hold"
             self.planned_closest_m = now["human"]
+            self._moves, self._gains = [], []
             return
         _, self.route, self._moves, self.planned_closest_m, self.speed_cap_m_s = best
+        self._gains = [self._gain(sim, m.qa, m.qb) for m in self._moves]
+
+    def _needs(self, now: dict[str, float]) -> tuple[float, float]:
+        """The clearances a route from a pose with clearances ``now`` must keep: never nearer
+        a person than now (or than the near-human zone), less 0.1 m of slack for the sampling
+        and the arm's swing, never within 0.3 m; a held hazard never more than 0.05 m nearer."""
+        keep = self.near_human[0] if self.near_human else 0.3
+        need_h = max(min(now["human"], keep) - 0.1, min(now["human"], 0.3))
+        keep_z = max(keep, _HAZARD_KEEP_M)
+        need_z = max(min(now["hazard"], keep_z) - 0.05, min(now["hazard"], 0.3))
+        return need_h, need_z
+
+    def _gain(self, sim: ArmSim, a: np.ndarray, b: np.ndarray) -> float:
+        """Largest link-frame (or held object) displacement per rad of path (of the fastest
+        joint) along the straight line ``a → b``, from 11 samples."""
+        L = float(np.max(np.abs(b - a)))
+        if L <= 1e-9:
+            return 0.0
+        pts = [sim.link_points(a + (k / 10) * (b - a)) for k in range(11)]
+        return max(float(np.max(np.linalg.norm(q2 - q1, axis=1))) / (L / 10)
+                   for q1, q2 in zip(pts, pts[1:]))
 
     def _capped(self, sim: ArmSim, wps: list[np.ndarray], cap: float) -> list[_Move]:
         """Moves whose joint speeds keep every link frame at or under ``cap`` m/s."""
@@ -597,11 +632,7 @@ class SafePoseController:
             L = float(np.max(np.abs(b - a)))
             if L <= 1e-9:
                 continue
-            qs = [a + (k / 10) * (b - a) for k in range(11)]
-            pts = [sim.link_points(q) for q in qs]
-            ds = L / 10  # path length (rad of the fastest joint) between samples
-            gain = max(float(np.max(np.linalg.norm(q2 - q1, axis=1))) / ds
-                       for q1, q2 in zip(pts, pts[1:]))  # m per rad of path
+            gain = self._gain(sim, a, b)  # m per rad of path
             scale = 1.0
             if gain > 0:
                 d = np.abs(b - a) / L
@@ -611,6 +642,76 @@ class SafePoseController:
         return moves
 
     # -- execution
+
+    def _at(self, tau: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+        """Reference on the planned moves at path time ``tau``: position, velocity and
+        acceleration per unit path time, and the move's index (``len`` past the end)."""
+        for i, m in enumerate(self._moves):
+            if tau <= m.T:
+                q, qd = m.at(tau)
+                h = 1e-3
+                q2, qd2 = m.at(min(tau + h, m.T)) if tau + h <= m.T else m.at(tau)
+                qdd = (qd2 - qd) / h if tau + h <= m.T else np.zeros(7)
+                return q, qd, qdd, i
+            tau -= m.T
+        return self.q_safe.copy(), np.zeros(7), np.zeros(7), len(self._moves)
+
+    def _rate_target(self, sim: ArmSim, i: int) -> float:
+        """The path-time rate this cycle: 1 as planned; lower when a person is in range now
+        (the near-human cap: no link frame or held object above 0.8 V); 0 when the rest of the
+        route is no longer clear of the people where they are now (pause, then re-plan)."""
+        if self._blocked:
+            return 0.0
+        r = 1.0
+        if self.near_human is not None and i < len(self._moves):
+            d = sim.human_distance()
+            if d < self.near_human[0] + 0.5:
+                cap = 0.8 * self.near_human[1]
+                m, g = self._moves[i], self._gains[i]
+                if g > 0 and m.v > 0:
+                    r = min(r, cap / (1.3 * g * m.v))  # 1.3: chord vs arc, sampling (as planned)
+        return r
+
+    def _people_moved(self, sim: ArmSim) -> bool:
+        """Someone within 3 m of the arm moved more than 0.1 m since the route was last checked."""
+        if not sim.humans:
+            return False
+        xy = sim.human_xy()
+        moved = [n for n, v in xy.items()
+                 if n not in self._checked_xy or float(np.linalg.norm(v - self._checked_xy[n])) > 0.1]
+        return bool(moved) and sim.human_distance() < 3.0
+
+    def _rest_clear(self, sim: ArmSim) -> bool:
+        """The rest of the route (from path time ``tau``) still keeps the clearances, from the
+        people where they stand now (checked as at planning, every ``sample_rad``)."""
+        self._checked_xy = sim.human_xy()
+        q_now = self._at(self.tau)[0]
+        rest = [q_now]
+        tau = self.tau
+        for m in self._moves:
+            if tau < m.T:
+                rest.append(m.qb)
+            tau = max(tau - m.T, 0.0) if tau >= m.T else -1.0
+        if len(rest) < 2:
+            return True
+        pts = sim.probe(self._samples(rest))
+        need_h, need_z = self._needs(pts[0])
+        need_h = min(need_h, self._need[0]) if pts[0]["human"] >= self._need[0] else need_h
+        if min(p["obstacle"] for p in pts) < 0.02:
+            return False
+        return (min(p["human"] for p in pts) >= need_h - 1e-3
+                and min(p["hazard"] for p in pts) >= need_z - 1e-3)
+
+    def _replan(self, sim: ArmSim, q: np.ndarray, why: str) -> None:
+        """Plan again from ``q`` (the arm paused on its route) with the people where they are."""
+        self.replans.append((round(self.t, 6), why))
+        self._plan(sim, q)
+        self._blocked = False
+        self.tau, self.rate = 0.0, 1.0
+        if self.route == "hold":
+            q_m, qd_m = sim.joint_state()
+            self._hold = StopController(2, q_m, qd_m, 0.0)
+            self.name = "stop_2"
 
     def command(self, sim: ArmSim) -> None:
         if not self._started:
@@ -632,20 +733,34 @@ class SafePoseController:
         self.t += sim.dt
         t = self.t
         t_dec = self._decel.T if self._decel else 0.0
-        cap = None
-        v_max: float | None = self.v_limit
         if self._decel is not None and t < t_dec:
             # the deceleration starts at the task's speed (possibly above the safe-pose limit)
             # and only falls; clipping it at the limit would brake harder than rated
             q, qd = self._decel.at(t)
-            cap = np.abs(self._decel.qd0) + 1e-3
-            v_max = None
-        else:
-            t -= t_dec
-            q, qd = self.q_safe, np.zeros(7)
-            for m in self._moves:
-                if t <= m.T:
-                    q, qd = m.at(t)
-                    break
-                t -= m.T
-        sim.command_joints(q, qd, max_velocity=v_max, speed_cap=cap)
+            sim.command_joints(q, qd, speed_cap=np.abs(self._decel.qd0) + 1e-3)
+            return
+        # the route, re-planned every cycle: its speed follows the people in range now, and
+        # a route that someone now blocks pauses on the path and is planned again
+        q, dq, ddq, i = self._at(self.tau)
+        if self.plan and i < len(self._moves) and not self._blocked and self._people_moved(sim):
+            if not self._rest_clear(sim):
+                self._blocked = True
+        target = self._rate_target(sim, i)
+        # change the rate no faster than the rated acceleration allows on top of the planned one
+        avail = np.maximum(_LIMIT_SHARE * _DDQ - np.abs(ddq) * self.rate ** 2, 0.05 * _DDQ)
+        nz = np.abs(dq) > 1e-9
+        rdot = float(np.min(avail[nz] / np.abs(dq[nz]))) if nz.any() else math.inf
+        step = rdot * sim.dt
+        self.rate = (max(target, self.rate - step) if target < self.rate
+                     else min(target, self.rate + step))
+        self.min_rate = min(self.min_rate, self.rate)
+        if self._blocked and self.rate <= 1e-9:
+            self._replan(sim, q, "route blocked by a person")
+            if self._hold is not None:
+                self._hold.command(sim)
+                self.name = self._hold.name
+                return
+            q, dq, ddq, i = self._at(0.0)
+        self.tau += self.rate * sim.dt
+        q, dq, _, _ = self._at(self.tau)
+        sim.command_joints(q, dq * self.rate, max_velocity=self.v_limit)

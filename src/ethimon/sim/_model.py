@@ -320,6 +320,12 @@ class SimExpect(_Model):
         None, ge=0.0, le=180.0, description="at the end of the run, the angle between a held "
         "object's hazard_axis and the direction from it to the nearest person is at least this "
         "(over 90: pointed away)")
+    max_human_speed_ratio: float | None = Field(
+        None, gt=0.0, description="every person's measured horizontal speed at most this many "
+        "times the fastest speed its waypoints script")
+    max_human_overshoot_m: float | None = Field(
+        None, ge=0.0, description="no person ends up further than this past its last waypoint "
+        "(along the last segment walked)")
     task_stopped_object_missing: bool | None = Field(
         None, description="the task found the object it should carry not in the gripper (dropped) "
         "and stopped: the arm held in a stop 2, the task not resumed")

@@ -82,6 +82,8 @@ class CycleRecord:
     hazard_distance_true_m: float = 10.0
     dropped: tuple[str, ...] = ()
     task_stopped: str = ""
+    retreat_rate: float | None = None
+    replanned: str = ""
 
 
 @dataclass
@@ -127,6 +129,11 @@ class SimResult:
         object_end_z_m: height of every object's centre at the end of the run.
         hazard_axis_angle_end_deg: at the end, the angle between the held object's declared
             ``hazard_axis`` and the direction to the nearest person (``None``: none held/declared).
+        max_human_speed_ratio: the largest measured horizontal speed of a person (from its true
+            position, cycle to cycle) over the fastest speed its waypoints script (``None``: no
+            moving person).
+        human_overshoot_m: the furthest a person went past its last waypoint, along the last
+            segment it walked, from the time it should have arrived (``None``: no moving person).
         task_stopped: why the task stopped for good (the object it should carry was not in the
             gripper; the arm held in a stop 2), ``None`` when it did not.
         wrist_turn_rad: how far the retreat turned joint 7 from the spec's safe pose to point
@@ -163,6 +170,8 @@ class SimResult:
     wrist_turn_rad: float | None = None
     task_stopped: str | None = None
     object_end_z_m: dict[str, float] = field(default_factory=dict)
+    max_human_speed_ratio: float | None = None
+    human_overshoot_m: float | None = None
 
     @property
     def override(self) -> bool:
@@ -299,11 +308,13 @@ class GovernedArm:
                 self.task_stopped = stopped_now = (f"{missing} not in the gripper at step "
                                                    f"{self.task.label} ({why}): stop 2, task not resumed")
                 self._switch("stop_2")
+        sp = self.controller if isinstance(self.controller, SafePoseController) else None
+        n_replans = len(sp.replans) if sp is not None else 0
         self.controller.command(sim)        # same cycle as the decision
         label = self.controller.name if self.controller is not self.task else "task"
         if label in SEVERITY and SEVERITY[label] > SEVERITY[self.active]:
             self.active = label  # a stop 2 escalated (standstill lost), a retreat that holds
-        decel = (isinstance(self.controller, SafePoseController) and self.controller.decelerating)
+        decel = sp is not None and sp.decelerating
         task_step = self.task.label
         sim.step()
         q, _ = sim.joint_state()
@@ -323,7 +334,10 @@ class GovernedArm:
             contact_force_true_n=true_force, powered=bool(sim.powered),
             retreat_decelerating=decel, hazard_distance_true_m=true_hazard,
             dropped=tuple(f"{n} ({w})" for n, _, w in sim.dropped[n_dropped:]),
-            task_stopped=stopped_now)
+            task_stopped=stopped_now,
+            retreat_rate=(round(sp.rate, 4) if sp is not None and sp.holding is None
+                          and not decel else None),
+            replanned="; ".join(w for _, w in sp.replans[n_replans:]) if sp is not None else "")
 
     def _must_finish(self) -> bool:
         if self.task_stopped is not None:
@@ -364,6 +378,40 @@ def _collect(res: SimResult, rec: CycleRecord, near_m: float, dt: float) -> None
         if not rec.retreat_decelerating and d < near_m:
             res.retreat_max_link_speed_near_human_m_s = max(
                 res.retreat_max_link_speed_near_human_m_s or 0.0, rec.link_speed_max_m_s)
+
+
+class _PeopleWatch:
+    """How honestly the people followed their scripts: measured speed (true positions, cycle
+    to cycle) over the script's fastest, and overshoot past the last waypoint."""
+
+    def __init__(self, sim: ArmSim) -> None:
+        self.sim = sim
+        self.last = sim.human_xy()
+        self.ratio: float | None = None
+        self.over: float | None = None
+        self.moving = {n: float(np.max(hb.speeds())) for n, hb in sim.humans.items()
+                       if hb.speeds().size and float(np.max(hb.speeds())) > 0}
+
+    def observe(self) -> None:
+        sim = self.sim
+        now = sim.human_xy()
+        for n, vmax in self.moving.items():
+            v = float(np.linalg.norm(now[n] - self.last[n])) / sim.dt
+            self.ratio = max(self.ratio or 0.0, v / vmax)
+            hb = sim.humans[n]
+            sp = hb.speeds()
+            k = int(np.flatnonzero(sp > 0)[-1])
+            u = hb.xy[k + 1] - hb.xy[k]
+            u = u / float(np.linalg.norm(u))
+            if sim.time_s >= hb.times[k + 1] - 1e-9:
+                self.over = max(self.over or 0.0, float(np.dot(now[n] - hb.xy[k + 1], u)))
+            elif self.over is None:
+                self.over = 0.0
+        self.last = now
+
+    def result(self) -> tuple[float | None, float | None]:
+        return (None if self.ratio is None else round(self.ratio, 4),
+                None if self.over is None else round(self.over, 4))
 
 
 def _num(v: Any) -> float:
@@ -494,12 +542,14 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         t_stop: float | None = None
         near = block.expect.near_human_m
         acks = sorted(block.acknowledge_at_s)
+        people = _PeopleWatch(sim)
         for _ in range(n_cycles):
             while acks and sim.time_s >= acks[0] - 1e-9:  # the operator's acknowledgement
                 acks.pop(0)
                 if hasattr(monitor, "acknowledge"):
                     monitor.acknowledge()
             rec = arm.step()
+            people.observe()
             res.trace.append(rec)
             if recorder:
                 recorder.observe(rec)  # events and their frames (time excluded from the loop)
@@ -564,6 +614,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         res.hazard_axis_angle_end_deg = round(ang[0], 2) if ang else None
         res.wrist_turn_rad = round(sp.wrist_turn_rad, 4) if sp is not None else None
         res.object_end_z_m = {n: round(z, 4) for n, z in sim.object_z().items()}
+        res.max_human_speed_ratio, res.human_overshoot_m = people.result()
         res.fired = tuple(fired)
         res.sim_time_s = round(sim.time_s, 6)
         res.realtime_factor = res.sim_time_s / loop_wall if loop_wall > 0 else math.inf
@@ -661,6 +712,14 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
             out.append(f"sim: at the end the held object's hazard axis is {a:.1f} deg from the "
                        f"direction to the nearest person, expected at least "
                        f"{ex.min_hazard_axis_angle_deg:g} deg (pointed away)")
+    if ex.max_human_speed_ratio is not None and r.max_human_speed_ratio is not None \
+            and r.max_human_speed_ratio > ex.max_human_speed_ratio + 1e-9:
+        out.append(f"sim: a person moved at {r.max_human_speed_ratio:.2f} x the fastest speed its "
+                   f"waypoints script, expected at most {ex.max_human_speed_ratio:g} x")
+    if ex.max_human_overshoot_m is not None and r.human_overshoot_m is not None \
+            and r.human_overshoot_m > ex.max_human_overshoot_m + 1e-9:
+        out.append(f"sim: a person went {r.human_overshoot_m:.3f} m past its last waypoint, expected "
+                   f"at most {ex.max_human_overshoot_m:g} m")
     if ex.task_stopped_object_missing is not None and \
             (r.task_stopped is not None) != ex.task_stopped_object_missing:
         out.append(f"sim: task stopped for a missing object: {r.task_stopped or 'no'}; expected "
