@@ -326,6 +326,11 @@ class SimExpect(_Model):
     max_human_overshoot_m: float | None = Field(
         None, ge=0.0, description="no person ends up further than this past its last waypoint "
         "(along the last segment walked)")
+    acknowledgements: tuple[bool, ...] | None = Field(
+        None, description="per acknowledge_at_s, in order: accepted (true) or refused (false)")
+    min_response_s: float | None = Field(
+        None, ge=0.0, description="every response lasted at least this long before the task "
+        "resumed (no chatter)")
     task_stopped_object_missing: bool | None = Field(
         None, description="the task found the object it should carry not in the gripper (dropped) "
         "and stopped: the arm held in a stop 2, the task not resumed")
@@ -361,8 +366,14 @@ class SimBlock(_Model):
     stuck_at: tuple[StuckAt, ...] = ()
     inputs_at: tuple[InputChange, ...] = ()
     acknowledge_at_s: tuple[float, ...] = Field(
-        (), description="an operator acknowledges (Monitor.acknowledge) at these simulated "
-        "times: manual latches whose release condition has held are released, others refused")
+        (), description="an operator acknowledges (GovernedArm.acknowledge) at these simulated "
+        "times: refused while a rule fires, a fault is reported or a person is within the "
+        "protective distance; otherwise Monitor.acknowledge releases the manual latches whose "
+        "condition has held. A refused acknowledgement is not remembered")
+    release_dwell_s: float = Field(
+        1.0, ge=0.0, le=60.0, description="after an automatic release the task resumes only once "
+        "the monitor has stayed released this long (the response carries on meanwhile), so task "
+        "and response cannot chatter; an accepted acknowledgement resumes at once")
     record_at_s: tuple[float, ...] = Field(
         (), description="extra PNG frames at these simulated times (with --record); start, "
         "override, safe pose reached, release and end are always recorded")

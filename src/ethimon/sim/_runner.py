@@ -22,6 +22,7 @@ from ._control import SEVERITY, SafePoseController, StopController, TaskControll
 from ._limits import out_of_range, safe_pose_problem
 from ._model import SimBlock
 from ._rules import near_human_speed_rule
+from ..runtime import Acknowledgement
 
 __all__ = ["GovernedArm", "CycleRecord", "SimResult", "run_sim", "check_sim_expectations"]
 
@@ -134,6 +135,10 @@ class SimResult:
             moving person).
         human_overshoot_m: the furthest a person went past its last waypoint, along the last
             segment it walked, from the time it should have arrived (``None``: no moving person).
+        acknowledgements: ``(t_s, accepted, message)`` for every operator acknowledgement.
+        task_resumes: how often the task resumed after a response.
+        min_response_s: the shortest time a response drove the arm before the task resumed
+            (``None``: the task never resumed).
         task_stopped: why the task stopped for good (the object it should carry was not in the
             gripper; the arm held in a stop 2), ``None`` when it did not.
         wrist_turn_rad: how far the retreat turned joint 7 from the spec's safe pose to point
@@ -172,6 +177,9 @@ class SimResult:
     object_end_z_m: dict[str, float] = field(default_factory=dict)
     max_human_speed_ratio: float | None = None
     human_overshoot_m: float | None = None
+    acknowledgements: tuple[tuple[float, bool, str], ...] = ()
+    task_resumes: int = 0
+    min_response_s: float | None = None
 
     @property
     def override(self) -> bool:
@@ -227,7 +235,8 @@ class GovernedArm:
                  safe_pose: Any = None, inputs: Mapping[str, Any] | None = None,
                  signal_filter=None, task_joint_speed_rad_s: float = 0.8,
                  stop_ramp_s: float = 0.25, standstill_tolerance_rad: float = 0.02,
-                 near_human: Any = "spec") -> None:
+                 near_human: Any = "spec", release_dwell_s: float = 1.0,
+                 acknowledge_clear_m: Any = "spec") -> None:
         self.sim = sim
         self.monitor = monitor
         sp = safe_pose if safe_pose is not None else getattr(getattr(monitor, "spec", None),
@@ -259,6 +268,15 @@ class GovernedArm:
             spec = getattr(monitor, "spec", None)
             near_human = near_human_speed_rule(spec) if spec is not None else None
         self.near_human = near_human
+        #: an acknowledgement is refused while the monitor's human_distance is below this (m);
+        #: default the spec's near-human zone (none without such a rule: then only "no rule
+        #: fires", which includes a separation rule)
+        self.acknowledge_clear_m = (near_human[0] if near_human else None) \
+            if acknowledge_clear_m == "spec" else acknowledge_clear_m
+        self.release_dwell_s = float(release_dwell_s)
+        self._clear_since: float | None = None   # monitor released (no override) since
+        self._acked = False                      # an accepted acknowledgement since the override
+        self._fed: dict[str, Any] = {}
         self.standstill_tolerance_rad = standstill_tolerance_rad
         self.inputs = dict(inputs or {})
         self.signal_filter = signal_filter
@@ -288,17 +306,25 @@ class GovernedArm:
             fed = self.signal_filter(t, fed)
         d = self.monitor.step(fed)
         self.last_decision = d
+        self._fed = fed
         resp = _response_name(d.response)
         if d.override:
+            self._clear_since = None
             if resp == "none":
                 resp = "safe_pose"
             if SEVERITY[resp] > SEVERITY[self.active]:
                 self._switch(resp)
         elif self.active != "none" and not self._must_finish():
-            q, _ = sim.joint_state()
-            self.task.resume(q)
-            self.controller = self.task
-            self.active = "none"
+            if self._clear_since is None:
+                self._clear_since = t
+            # an automatic release resumes the task only after the minimum dwell (the response
+            # carries on meanwhile); an operator's accepted acknowledgement resumes at once
+            if self._acked or t - self._clear_since >= self.release_dwell_s - 1e-9:
+                q, _ = sim.joint_state()
+                self.task.resume(q)
+                self.controller = self.task
+                self.active = "none"
+                self._acked = False
         stopped_now = ""
         if self.controller is self.task and self.task_stopped is None:
             missing = self.task.missing_object(sim)
@@ -338,6 +364,39 @@ class GovernedArm:
             retreat_rate=(round(sp.rate, 4) if sp is not None and sp.holding is None
                           and not decel else None),
             replanned="; ".join(w for _, w in sp.replans[n_replans:]) if sp is not None else "")
+
+    def acknowledge(self) -> Acknowledgement:
+        """An operator's acknowledgement (a manual reset), checked before the monitor sees it.
+
+        Refused, and not remembered, while the last cycle's decision had a rule firing or a
+        fault, or while the monitor's ``human_distance`` reading is missing or below
+        ``acknowledge_clear_m`` (a person inside the protective zone; the spec's near-human
+        zone by default). Otherwise :meth:`Monitor.acknowledge` decides (it releases the
+        manual latches whose condition has held). ISO 13849-1:2015 5.2.2 (manual reset: the
+        stop condition is kept until safe conditions for restarting exist).
+        """
+        d = self.last_decision
+        why = ""
+        if d is None:
+            why = "no cycle judged yet"
+        elif d.violations:
+            why = "rules still fire: " + ", ".join(d.violations)
+        elif d.faults:
+            why = f"a fault is reported: {d.faults[0]}"
+        elif self.acknowledge_clear_m is not None:
+            v = _num(self._fed.get("human_distance", math.nan))
+            if math.isnan(v):
+                why = "no human_distance reading"
+            elif v < self.acknowledge_clear_m:
+                why = (f"a person is {v:.2f} m away, inside the {self.acknowledge_clear_m:g} m "
+                       "protective zone")
+        if why:
+            return Acknowledgement(False, (), "refused: " + why)
+        a = self.monitor.acknowledge() if hasattr(self.monitor, "acknowledge") else \
+            Acknowledgement(False, (), "the monitor takes no acknowledgement")
+        if a.released:
+            self._acked = True
+        return a
 
     def _must_finish(self) -> bool:
         if self.task_stopped is not None:
@@ -521,7 +580,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
                           signal_filter=_signal_filter(block),
                           task_joint_speed_rad_s=block.task_joint_speed_rad_s,
                           stop_ramp_s=block.stop_ramp_s,
-                          standstill_tolerance_rad=block.standstill_tolerance_rad)
+                          standstill_tolerance_rad=block.standstill_tolerance_rad,
+                          release_dwell_s=block.release_dwell_s)
         if record_dir is not None:
             from ._record import Recorder
             recorder = Recorder(record_dir, sim, spec=getattr(monitor, "spec", None), block=block,
@@ -543,12 +603,21 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         near = block.expect.near_human_m
         acks = sorted(block.acknowledge_at_s)
         people = _PeopleWatch(sim)
+        ack_log: list[tuple[float, bool, str]] = []
+        resp_since: float | None = None
         for _ in range(n_cycles):
             while acks and sim.time_s >= acks[0] - 1e-9:  # the operator's acknowledgement
                 acks.pop(0)
-                if hasattr(monitor, "acknowledge"):
-                    monitor.acknowledge()
+                a = arm.acknowledge()
+                ack_log.append((round(sim.time_s, 6), bool(a.released), a.message))
+            prev_ctrl = res.trace[-1].controller if res.trace else "task"
             rec = arm.step()
+            if rec.controller != "task" and prev_ctrl == "task":
+                resp_since = rec.t_s
+            elif rec.controller == "task" and prev_ctrl != "task" and resp_since is not None:
+                res.task_resumes += 1
+                dur = round(rec.t_s - resp_since, 6)
+                res.min_response_s = dur if res.min_response_s is None else min(res.min_response_s, dur)
             people.observe()
             res.trace.append(rec)
             if recorder:
@@ -615,6 +684,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         res.wrist_turn_rad = round(sp.wrist_turn_rad, 4) if sp is not None else None
         res.object_end_z_m = {n: round(z, 4) for n, z in sim.object_z().items()}
         res.max_human_speed_ratio, res.human_overshoot_m = people.result()
+        res.acknowledgements = tuple(ack_log)
         res.fired = tuple(fired)
         res.sim_time_s = round(sim.time_s, 6)
         res.realtime_factor = res.sim_time_s / loop_wall if loop_wall > 0 else math.inf
@@ -720,6 +790,17 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
             and r.human_overshoot_m > ex.max_human_overshoot_m + 1e-9:
         out.append(f"sim: a person went {r.human_overshoot_m:.3f} m past its last waypoint, expected "
                    f"at most {ex.max_human_overshoot_m:g} m")
+    if ex.acknowledgements is not None:
+        got = tuple(a for _, a, _ in r.acknowledgements)
+        if got != tuple(ex.acknowledgements):
+            said = "; ".join(f"{t:g} s {'accepted' if a else 'refused'} ({m})"
+                             for t, a, m in r.acknowledgements) or "none"
+            out.append(f"sim: acknowledgements {[str(a).lower() for a in got]} ({said}), expected "
+                       f"{[str(a).lower() for a in ex.acknowledgements]}")
+    if ex.min_response_s is not None and r.min_response_s is not None \
+            and r.min_response_s < ex.min_response_s - 1e-9:
+        out.append(f"sim: a response lasted only {r.min_response_s:.3f} s before the task resumed "
+                   f"({r.task_resumes} resumptions), expected at least {ex.min_response_s:g} s")
     if ex.task_stopped_object_missing is not None and \
             (r.task_stopped is not None) != ex.task_stopped_object_missing:
         out.append(f"sim: task stopped for a missing object: {r.task_stopped or 'no'}; expected "
