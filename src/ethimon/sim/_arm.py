@@ -904,6 +904,10 @@ class ArmSim:
         q_now, qd_now = self.joint_state()
         held = self.objects.get(self.held) if self.held else None
         held_pose = p.getBasePositionAndOrientation(held, physicsClientId=cid) if held is not None else None
+        # resetting a body's pose zeroes its velocity: keep it, or the grasp constraint has to
+        # re-accelerate the held object from rest in one physics step (issue 23: a 3 kg pot
+        # yanked joint 5 at 16.9 x its rated acceleration at every re-plan)
+        held_vel = p.getBaseVelocity(held, physicsClientId=cid) if held is not None else None
         hazardous = held is not None and bool(self.object_specs[self.held].hazard)
         obstacles = [b for n, b in self.objects.items() if n not in self.graspable and b != held]
         out = []
@@ -941,6 +945,7 @@ class ArmSim:
                 p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
             if held is not None:
                 p.resetBasePositionAndOrientation(held, held_pose[0], held_pose[1], physicsClientId=cid)
+                p.resetBaseVelocity(held, held_vel[0], held_vel[1], physicsClientId=cid)
         return out
 
     def link_points(self, q: Sequence[float]) -> np.ndarray:

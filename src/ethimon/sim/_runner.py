@@ -111,8 +111,9 @@ class SimResult:
         sim_time_s, wall_time_s, realtime_factor: simulated time; wall-clock time of the run
             (setup, loop and recorded frames); simulated over wall-clock time of the loop alone.
         files: every path written to ``record_dir`` (frames, traces, ``summary.json``, ``plot.png``).
-        stop_speed_gain: peak joint speed while a stop controller ran over the largest joint
-            speed at its command (``None``: no stop, or the arm was at rest).
+        stop_speed_gain: peak joint speed while a stop controller ran, or the safe pose
+            decelerated from the task's speed, over the largest joint speed at its command
+            (``None``: no stop, or the arm was at rest).
         max_accel_ratio: peak |q̈_j| / rated q̈_max,j while a response controller drove the
             arm, contact cycles left out (``None``: no response).
         time_to_standstill_s: from the first stop command to every joint below 0.01 rad/s.
@@ -599,6 +600,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         loop0 = time.perf_counter()
         rec_s0 = recorder.seconds if recorder else 0.0
         stop_v0: float | None = None
+        sp_v0: float | None = None
         t_stop: float | None = None
         near = block.expect.near_human_m
         acks = sorted(block.acknowledge_at_s)
@@ -623,6 +625,13 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
             if recorder:
                 recorder.observe(rec)  # events and their frames (time excluded from the loop)
             _collect(res, rec, near, sim.dt)
+            if rec.controller == "safe_pose" and rec.retreat_decelerating:
+                # the safe pose's deceleration is a controlled stop too: the speed never rises
+                if sp_v0 is None:
+                    sp_v0 = rec.joint_speed_start_rad_s
+                if sp_v0 > 0.05:
+                    res.stop_speed_gain = max(res.stop_speed_gain or 0.0,
+                                              rec.joint_speed_max_rad_s / sp_v0)
             if rec.controller.startswith("stop_"):
                 if t_stop is None:
                     t_stop, stop_v0 = rec.t_s, rec.joint_speed_start_rad_s
