@@ -18,7 +18,8 @@ import numpy as np
 
 from ..errors import DependencyNotInstalled
 from .._robot import PANDA_HOME_JOINTS_RAD
-from ._limits import (BRAKE_DECEL_RAD_S2, BRAKE_ENGAGE_S, BRAKE_TORQUE_N_M, RATED_DDDQ_MAX,
+from ._limits import (BRAKE_DECEL_RAD_S2, BRAKE_ENGAGE_S, BRAKE_TORQUE_N_M, LIMIT_MARGIN_RAD,
+                      RATED_DDDQ_MAX,
                       RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX, RATED_Q_MIN)
 from ._model import PHYSICS_HZ, Gripper, Human, SimBlock, SimObject
 
@@ -37,6 +38,8 @@ _RATED_DQ = np.array(RATED_DQ_MAX)
 _RATED_DDQ = np.array(RATED_DDQ_MAX)
 _RATED_DDDQ = np.array(RATED_DDDQ_MAX)
 _Q_MIN, _Q_MAX = np.array(RATED_Q_MIN), np.array(RATED_Q_MAX)
+#: the share of the rated acceleration the servo's limit guard plans with
+_LIMIT_SHARE = 0.8
 _BRAKE_DECEL = np.array(BRAKE_DECEL_RAD_S2)
 #: position feedback of the joint servo (1/s): velocity command = reference velocity
 #: + _K_POS × (reference position − measured position), then the rated limits
@@ -199,9 +202,12 @@ class ArmSim:
         self.speed_cap: np.ndarray | None = None
         self._hermite = False
         self.powered = True
+        self._brake_hold: np.ndarray | None = None
         self._off_substeps = 0
         self.max_joint_accel_substep = 0.0
         self.max_accel_ratio_substep = 0.0
+        #: the furthest any joint has been past its rated position limit (rad; every physics step)
+        self.max_past_limit_rad = 0.0
         self.link_speed_max = 0.0
         self.brakes = brakes
         self.gripper = gripper if gripper is not None else Gripper()
@@ -560,7 +566,8 @@ class ArmSim:
             self._q_sub, self._v_out = self.joint_state()
             self._qd_sub = self._v_out.copy()
             self._a_out = np.zeros(7)
-        self.q_cmd = np.clip(np.asarray(q, dtype=float), _Q_MIN, _Q_MAX)
+        self.q_cmd = np.clip(np.asarray(q, dtype=float), _Q_MIN + LIMIT_MARGIN_RAD,
+                             _Q_MAX - LIMIT_MARGIN_RAD)
         self._hermite = qd is not None
         self.qd_cmd = np.zeros(7) if qd is None else np.asarray(qd, dtype=float)
         if gripper_m is not None:
@@ -583,6 +590,7 @@ class ArmSim:
         if self.powered:
             self.powered = False
             self._off_substeps = 0
+            self._brake_hold = None
             if self.held is not None and not self.gripper.self_locking:
                 self.drop("power_off")  # the unpowered fingers no longer press on the object
             if brakes_already_engaged:  # a stop 1 engaged them at standstill, motors holding
@@ -598,16 +606,34 @@ class ArmSim:
     def _apply_unpowered(self) -> None:
         p, cid = self._p, self.cid
         if self.brakes_engaged:
-            _, qd = self.joint_state()
+            q, qd = self.joint_state()
             step = _BRAKE_DECEL / PHYSICS_HZ
             target = np.sign(qd) * np.maximum(np.abs(qd) - step, 0.0)
-            forces = list(BRAKE_TORQUE_N_M)
+            # a brake that has stopped its joint holds it where it stopped (friction up to its
+            # torque), it does not creep: a velocity loop at 0 drifts under gravity (0.55 mrad/s
+            # at a stretched elbow), so a stopped joint is held at its latched position
+            if self._brake_hold is None:
+                self._brake_hold = np.full(7, np.nan)
+            stopped = np.abs(qd) < 0.01
+            newly = stopped & np.isnan(self._brake_hold)
+            self._brake_hold[newly] = q[newly]
+            self._brake_hold[~stopped & (np.abs(q - np.nan_to_num(self._brake_hold, nan=0.0)) > 0.02)] = np.nan
+            held = ~np.isnan(self._brake_hold)
+            for j in range(7):
+                if held[j]:
+                    p.setJointMotorControl2(self.robot, ARM_JOINTS[j], p.POSITION_CONTROL,
+                                            targetPosition=float(self._brake_hold[j]), targetVelocity=0.0,
+                                            force=BRAKE_TORQUE_N_M[j], positionGain=1.0,
+                                            velocityGain=1.0, physicsClientId=cid)
+                else:
+                    p.setJointMotorControl2(self.robot, ARM_JOINTS[j], p.VELOCITY_CONTROL,
+                                            targetVelocity=float(target[j]), force=BRAKE_TORQUE_N_M[j],
+                                            physicsClientId=cid)
         else:  # coasting: no motor torque, brakes not (yet) engaged
-            target = np.zeros(7)
-            forces = [0.0] * 7
-        p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
-                                    targetVelocities=target.tolist(), forces=forces,
-                                    physicsClientId=cid)
+            self._brake_hold = None
+            p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
+                                        targetVelocities=[0.0] * 7, forces=[0.0] * 7,
+                                        physicsClientId=cid)
         if not self.gripper.self_locking:  # unpowered fingers are free (no holding torque)
             p.setJointMotorControlArray(self.robot, FINGER_JOINTS, p.VELOCITY_CONTROL,
                                         targetVelocities=[0.0, 0.0], forces=[0.0, 0.0],
@@ -623,6 +649,11 @@ class ArmSim:
         if self.speed_cap is not None:
             cap = np.minimum(cap, self.speed_cap)
         v = np.clip(v, -cap, cap)
+        # never faster toward a rated position limit than the joint can shed before it (at
+        # the planning share of its rated acceleration): no controller carries it past
+        up = np.sqrt(2.0 * _LIMIT_SHARE * _RATED_DDQ * np.maximum(_Q_MAX - LIMIT_MARGIN_RAD - q_meas, 0.0))
+        dn = np.sqrt(2.0 * _LIMIT_SHARE * _RATED_DDQ * np.maximum(q_meas - _Q_MIN - LIMIT_MARGIN_RAD, 0.0))
+        v = np.clip(v, -dn, up)
         a = np.clip((v - self._v_out) / h, -_RATED_DDQ, _RATED_DDQ)
         a = np.clip(a, self._a_out - _RATED_DDDQ * h, self._a_out + _RATED_DDDQ * h)
         self._a_out = a
@@ -751,6 +782,10 @@ class ArmSim:
             _, qd = self.joint_state()
             acc = np.abs(qd - qd_prev) / h
             qd_prev = qd
+            qm, _ = self.joint_state()
+            past = max(float(np.max(qm - _Q_MAX)), float(np.max(_Q_MIN - qm)))
+            if past > self.max_past_limit_rad:
+                self.max_past_limit_rad = past
             peak = max(peak, float(np.max(np.abs(qd))))
             peak_a = max(peak_a, float(np.max(acc)))
             ratio_a = max(ratio_a, float(np.max(acc / _RATED_DDQ)))

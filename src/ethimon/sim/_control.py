@@ -13,7 +13,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ._arm import ArmSim, Segment
-from ._limits import (BRAKE_ENGAGE_S, RATED_DDDQ_MAX, RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX,
+from ._limits import (BRAKE_ENGAGE_S, LIMIT_MARGIN_RAD, RATED_DDDQ_MAX, RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX,
                       RATED_Q_MIN)
 from ..spec import SEVERITY_ORDER
 from ._model import SimError, HandOver, Pick, Place, Pour, Reach, SimBlock, Wait, Wipe
@@ -38,6 +38,10 @@ _HAZARD_KEEP_M = 1.5
 #: a held object's declared hazard_axis (blade tip, spout) ends the retreat at least this far
 #: (deg) from the direction to the nearest person (90 = side-on; the margin allows for people moving)
 _HAZARD_AWAY_DEG = 135.0
+#: a hazard axis may turn this much (deg) toward a person along a route (sampling, the
+#: wrist's own swing) before the route counts as sweeping it through them; also the
+#: hysteresis before a moving person makes the retreat re-orient it
+_AXIS_SLACK_DEG = 10.0
 _DDQ = np.array(RATED_DDQ_MAX)
 _DDDQ = np.array(RATED_DDDQ_MAX)
 _Q_MIN, _Q_MAX = np.array(RATED_Q_MIN), np.array(RATED_Q_MAX)
@@ -244,11 +248,15 @@ class TaskController:
 class _Decel:
     """A rated-limited deceleration from the measured joint velocity ``qd0`` to rest.
 
-    Every joint follows ``qd(t) = qd0 · g(t/T)`` with ``g(u) = 1 − 3u² + 2u³``: the speed
+    Every joint follows ``qd(t) = qd0 · g(t/T_j)`` with ``g(u) = 1 − 3u² + 2u³``: the speed
     only falls (nothing adds speed), the acceleration starts and ends at zero, its peak is
-    ``1.5 |qd0| / T`` and the jerk peak ``6 |qd0| / T²``. ``T`` is the shortest time that
-    keeps both within ``_LIMIT_SHARE`` of every joint's rated limits, and at least ``min_s``.
-    The joints come to rest at ``q0 + qd0 · T / 2``.
+    ``1.5 |qd0| / T_j`` and the jerk peak ``6 |qd0| / T_j²``. ``T`` is the shortest time that
+    keeps both within ``_LIMIT_SHARE`` of every joint's rated limits, and at least ``min_s``;
+    every joint uses it (the stop keeps the path's direction) unless its stopping point
+    ``q0 + qd0 · T / 2`` would lie past its rated position limit (less ``LIMIT_MARGIN_RAD``):
+    that joint stops sooner, ``T_j = 2 · room / |qd0|``, down to the time its full rated
+    acceleration and jerk allow (a stop never plans a joint past its limit when the ratings
+    can prevent it). The joints come to rest at ``q0 + qd0 · T_j / 2``.
     """
 
     def __init__(self, q0: np.ndarray, qd0: np.ndarray, min_s: float = 0.0) -> None:
@@ -258,15 +266,25 @@ class _Decel:
         t_a = float(np.max(1.5 * v / (_LIMIT_SHARE * _DDQ)))
         t_j = float(np.max(np.sqrt(6.0 * v / (_LIMIT_SHARE * _DDDQ))))
         self.T = max(t_a, t_j, min_s) if float(np.max(v)) > 0 else 0.0
-        self.q_end = self.q0 + 0.5 * self.qd0 * self.T
+        Tj = np.full(7, self.T)
+        end = self.q0 + 0.5 * self.qd0 * Tj
+        lo, hi = _Q_MIN + LIMIT_MARGIN_RAD, _Q_MAX - LIMIT_MARGIN_RAD
+        room = np.where(self.qd0 > 0, hi - self.q0, self.q0 - lo)
+        over = ((end > hi) & (self.qd0 > 0)) | ((end < lo) & (self.qd0 < 0))
+        if over.any():
+            fastest = np.maximum(1.5 * v / _DDQ, np.sqrt(6.0 * v / _DDDQ))
+            want = 2.0 * np.maximum(room, 0.0) / np.maximum(v, 1e-12)
+            Tj = np.where(over, np.maximum(want, fastest), Tj)
+        self.Tj = Tj
+        self.q_end = self.q0 + 0.5 * self.qd0 * Tj
 
     def at(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         if self.T <= 0 or t >= self.T:
             return self.q_end.copy(), np.zeros(7)
-        u = max(t, 0.0) / self.T
+        u = np.minimum(max(t, 0.0) / np.maximum(self.Tj, 1e-12), 1.0)
         g = 1.0 - 3.0 * u * u + 2.0 * u ** 3
         big_g = u - u ** 3 + 0.5 * u ** 4
-        return self.q0 + self.qd0 * self.T * big_g, self.qd0 * g
+        return self.q0 + self.qd0 * self.Tj * big_g, self.qd0 * g
 
 
 class _Move:
@@ -457,6 +475,8 @@ class SafePoseController:
                  sample_rad: float = 0.05) -> None:
         self.q0 = np.asarray(q_now, dtype=float)
         self.q_safe = np.asarray(q_safe, dtype=float)
+        self._q_spec = self.q_safe.copy()
+        self._alt_safe: list[tuple[np.ndarray, float, float]] = []
         self.v_limit = float(max_joint_speed_rad_s)
         self.v_joint = np.minimum(margin * self.v_limit, 0.98 * _DQ)
         self.a_joint = np.minimum(accel_rad_s2, _LIMIT_SHARE * _DDQ)
@@ -527,50 +547,73 @@ class SafePoseController:
         fold = q_start.copy()
         fold[[1, 3, 5]] = qs[[1, 3, 5]]  # shoulder, elbow and wrist pitch to the safe pose first
         out.append(("fold", [q_start, fold, qs]))
-        try:
-            ee = sim.fk(q_start)
-            lift = np.clip(sim.solve_ik((ee[0], ee[1], ee[2] + 0.2), seed=q_start), _Q_MIN, _Q_MAX)
-            if np.linalg.norm(sim.fk(lift) - (ee + (0, 0, 0.2))) < 0.03:
-                out.append(("lift", [q_start, lift, qs]))
-            away = sim.away_from_humans(ee, 0.25)
-            if away is not None:
-                q_away = np.clip(sim.solve_ik(away, seed=q_start), _Q_MIN, _Q_MAX)
-                if np.linalg.norm(sim.fk(q_away) - away) < 0.03:
-                    out.append(("away", [q_start, q_away, qs]))
-        except Exception:  # noqa: BLE001 - IK trouble only removes candidates
-            pass
+        key = tuple(np.round(q_start, 9)) + tuple(np.round(np.concatenate(
+            list(sim.human_xy().values()) or [np.zeros(2)]), 6))
+        if getattr(self, "_via_key", None) != key:  # the lift/away waypoints (IK) once per start
+            self._via_key, self._via = key, []
+            try:
+                ee = sim.fk(q_start)
+                lift = np.clip(sim.solve_ik((ee[0], ee[1], ee[2] + 0.2), seed=q_start), _Q_MIN, _Q_MAX)
+                if np.linalg.norm(sim.fk(lift) - (ee + (0, 0, 0.2))) < 0.03:
+                    self._via.append(("lift", lift))
+                away = sim.away_from_humans(ee, 0.25)
+                if away is not None:
+                    q_away = np.clip(sim.solve_ik(away, seed=q_start), _Q_MIN, _Q_MAX)
+                    if np.linalg.norm(sim.fk(q_away) - away) < 0.03:
+                        self._via.append(("away", q_away))
+            except Exception:  # noqa: BLE001 - IK trouble only removes candidates
+                pass
+        out += [(name, [q_start, via, qs]) for name, via in self._via]
         return out
 
-    def _orient_hazard(self, sim: ArmSim) -> None:
+    def _orient_hazard(self, sim: ArmSim, q_start: np.ndarray | None = None) -> None:
         """With a held object whose ``hazard_axis`` is declared, turn the safe pose's wrist
-        (joint 7, within its rated range) so that the axis points away from the nearest person:
-        the spec's angle when it leaves the axis at least ``_HAZARD_AWAY_DEG`` from the
-        direction to them, else the nearest angle that does, else the one that points it
-        furthest away. The routes are then planned (and collision-checked) to that pose."""
-        base = sim.hazard_axis_angles_deg([self.q_safe])
+        (joint 7, within its rated range) so that the axis points away from the nearest person
+        (where people are now): the spec's angle when it leaves the axis at least
+        ``_HAZARD_AWAY_DEG`` from the direction to them, else the nearest angle that does, else
+        the one that points it furthest away. The routes are then planned (and collision-
+        checked) to that pose. Other angles that point it away (nearest the wrist's angle at
+        ``q_start`` first, at most 2) are kept in ``_alt_safe``: a route to the first pose may
+        sweep the axis through someone, one to another may not."""
+        spec = self._q_spec
+        self._alt_safe = []
+        base = sim.hazard_axis_angles_deg([spec])
         if base is None or base[0] >= _HAZARD_AWAY_DEG:
+            self.q_safe = spec.copy()
+            self.wrist_turn_rad = 0.0
             self.hazard_axis_angle_deg = base[0] if base else None
             return
         q7 = np.linspace(_Q_MIN[6] + 0.02, _Q_MAX[6] - 0.02, 121)
         poses = []
         for v in q7:
-            q = self.q_safe.copy()
+            q = spec.copy()
             q[6] = v
             poses.append(q)
         angles = np.asarray(sim.hazard_axis_angles_deg(poses))
         ok = np.flatnonzero(angles >= _HAZARD_AWAY_DEG)
-        i = (int(ok[np.argmin(np.abs(q7[ok] - self.q_safe[6]))]) if ok.size
+        i = (int(ok[np.argmin(np.abs(q7[ok] - spec[6]))]) if ok.size
              else int(np.argmax(angles)))
         if angles[i] > base[0]:
-            self.wrist_turn_rad = float(q7[i] - self.q_safe[6])
+            self.wrist_turn_rad = float(q7[i] - spec[6])
             self.q_safe = poses[i]
             self.hazard_axis_angle_deg = float(angles[i])
         else:
+            self.q_safe = spec.copy()
+            self.wrist_turn_rad = 0.0
             self.hazard_axis_angle_deg = base[0]
+        if ok.size and q_start is not None:
+            picked = [q7[i]]
+            for k in ok[np.argsort(np.abs(q7[ok] - q_start[6]))]:
+                if all(abs(q7[k] - v) > 0.3 for v in picked):
+                    picked.append(q7[k])
+                    self._alt_safe.append((poses[k], float(q7[k] - spec[6]), float(angles[k])))
+                if len(self._alt_safe) >= 2:
+                    break
 
     def _plan(self, sim: ArmSim, q_start: np.ndarray) -> None:
+        self._alt_safe = []
         if self.plan:
-            self._orient_hazard(sim)
+            self._orient_hazard(sim, q_start)
         if float(np.max(np.abs(self.q_safe - q_start))) <= 1e-6:
             self.route, self._moves = "none", []
             return
@@ -581,9 +624,99 @@ class SafePoseController:
         need_h, need_z = self._needs(now)
         self._need = (need_h, need_z)
         self._checked_xy = sim.human_xy()
+        first = (self.q_safe, self.wrist_turn_rad, self.hazard_axis_angle_deg)
+        for target in [first] + list(self._alt_safe):
+            self.q_safe, self.wrist_turn_rad, self.hazard_axis_angle_deg = target
+            best = self._best_route(sim, q_start, need_h, need_z)
+            if best is not None:
+                break
+        if best is None and self._alt_safe:
+            # no wrist angle that points the axis away is reachable without sweeping it through
+            # someone: the best angle that is (the largest end angle among up to 3 tried)
+            for target in self._reachable_wrist(sim, q_start):
+                self.q_safe, self.wrist_turn_rad, self.hazard_axis_angle_deg = target
+                best = self._best_route(sim, q_start, need_h, need_z)
+                if best is not None:
+                    break
+        if best is None:
+            turn = self._turn_away(sim, q_start, need_h, need_z)
+            if turn is not None:  # stay, but turn the held hazard away from the people
+                self.q_safe, self.hazard_axis_angle_deg, self._moves = turn
+                self.wrist_turn_rad = float(self.q_safe[6] - self._q_spec[6])
+                self.route, self.planned_closest_m = "turn", now["human"]
+                self._gains = [self._gain(sim, m.qa, m.qb) for m in self._moves]
+                return
+            self.q_safe, self.wrist_turn_rad, self.hazard_axis_angle_deg = first
+            self.route = "hold"
+            self.planned_closest_m = now["human"]
+            self._moves, self._gains = [], []
+            return
+        _, self.route, self._moves, self.planned_closest_m, self.speed_cap_m_s = best
+        self._gains = [self._gain(sim, m.qa, m.qb) for m in self._moves]
+
+    def _reachable_wrist(self, sim: ArmSim, q_start: np.ndarray) -> list[tuple[np.ndarray, float, float]]:
+        """Safe poses with joint 7 turned less far (from the wrist's angle now toward either
+        end of its range, every 0.25 rad), best end angle first, at most 3."""
+        spec = self._q_spec
+        vals = np.concatenate([np.arange(q_start[6], _Q_MAX[6] - 0.02, 0.25),
+                               np.arange(q_start[6], _Q_MIN[6] + 0.02, -0.25)])
+        poses = []
+        for v in vals:
+            q = spec.copy()
+            q[6] = v
+            poses.append(q)
+        angles = sim.hazard_axis_angles_deg(poses) or []
+        order = np.argsort(-np.asarray(angles))[:3]
+        return [(poses[k], float(vals[k] - spec[6]), float(angles[k])) for k in order]
+
+    def _turn_away(self, sim: ArmSim, q_start: np.ndarray, need_h: float, need_z: float):
+        """When no retreat passes: joint 7 alone, from where it is, turned in the direction that
+        points the held hazard's axis further from the people, as far as the angle keeps rising
+        (never through anyone's direction) and the range allows. ``(pose, angle, moves)``, or
+        ``None`` without an axis or when no turn gains 5 deg."""
+        now = sim.hazard_axis_angles_deg([q_start])
+        if now is None:
+            return None
+        best = None
+        for sign in (1.0, -1.0):
+            vals = np.arange(q_start[6], (_Q_MAX[6] if sign > 0 else _Q_MIN[6]) - sign * 0.02,
+                             sign * 0.1)[1:]
+            if vals.size == 0:
+                continue
+            poses = []
+            for v in vals:
+                q = q_start.copy()
+                q[6] = v
+                poses.append(q)
+            ang = sim.hazard_axis_angles_deg(poses)
+            k, top = -1, now[0]
+            for i, a in enumerate(ang):  # climb while the angle rises (never back toward them)
+                if a < top - 1.0:
+                    break
+                if a > top:
+                    k, top = i, a
+            if k >= 0 and top >= now[0] + 5.0 and (best is None or top > best[1]):
+                best = (poses[k], float(top))
+        if best is None:
+            return None
+        pts = sim.probe(self._samples([q_start, best[0]]))
+        if (min(p["obstacle"] for p in pts) < 0.02 or min(p["human"] for p in pts) < need_h - 1e-3
+                or min(p["hazard"] for p in pts) < need_z - 1e-3):
+            return None
+        moves = self._moves_for([q_start, best[0]])
+        if self.near_human is not None:
+            moves = self._capped(sim, [q_start, best[0]], 0.8 * self.near_human[1])
+        return best[0], best[1], moves
+
+    def _best_route(self, sim: ArmSim, q_start: np.ndarray, need_h: float, need_z: float):
+        """The fastest candidate route to ``q_safe`` that keeps the clearances and the hazard
+        axis, as ``(time, name, moves, closest, cap)``; ``None`` when none does."""
         best = None
         for name, wps in self._candidates(sim, q_start):
-            pts = sim.probe(self._samples(wps))
+            smp = self._samples(wps)
+            if not self._axis_ok(sim, smp):  # the cheaper check first
+                continue
+            pts = sim.probe(smp)
             h = min(p["human"] for p in pts)
             if min(p["obstacle"] for p in pts) < 0.02 or h < need_h - 1e-3:
                 continue
@@ -597,13 +730,17 @@ class SafePoseController:
             total = sum(m.T for m in moves)
             if best is None or total < best[0]:
                 best = (total, name, moves, h, cap)
-        if best is None:
-            self.route = "hold"
-            self.planned_closest_m = now["human"]
-            self._moves, self._gains = [], []
-            return
-        _, self.route, self._moves, self.planned_closest_m, self.speed_cap_m_s = best
-        self._gains = [self._gain(sim, m.qa, m.qb) for m in self._moves]
+        return best
+
+    def _axis_ok(self, sim: ArmSim, samples: list[np.ndarray]) -> bool:
+        """A held object's declared hazard axis never turns more toward a person along the
+        samples than it points now (or than ``_HAZARD_AWAY_DEG``), less ``_AXIS_SLACK_DEG``:
+        a blade or spout is never swept through someone's direction. True without an axis."""
+        angles = sim.hazard_axis_angles_deg(samples)
+        if not angles:
+            return True
+        floor = min(angles[0], _HAZARD_AWAY_DEG) - _AXIS_SLACK_DEG
+        return min(angles) >= floor - 1e-6
 
     def _needs(self, now: dict[str, float]) -> tuple[float, float]:
         """The clearances a route from a pose with clearances ``now`` must keep: never nearer
@@ -699,8 +836,15 @@ class SafePoseController:
         need_h = min(need_h, self._need[0]) if pts[0]["human"] >= self._need[0] else need_h
         if min(p["obstacle"] for p in pts) < 0.02:
             return False
-        return (min(p["human"] for p in pts) >= need_h - 1e-3
-                and min(p["hazard"] for p in pts) >= need_z - 1e-3)
+        if not (min(p["human"] for p in pts) >= need_h - 1e-3
+                and min(p["hazard"] for p in pts) >= need_z - 1e-3):
+            return False
+        # a held hazard's axis: still pointed away at the end from the people where they are
+        # now, and never swept through their direction on the way
+        end = sim.hazard_axis_angles_deg([self.q_safe])
+        if end is not None and end[0] < _HAZARD_AWAY_DEG - _AXIS_SLACK_DEG:
+            return False
+        return self._axis_ok(sim, self._samples(rest))
 
     def _replan(self, sim: ArmSim, q: np.ndarray, why: str) -> None:
         """Plan again from ``q`` (the arm paused on its route) with the people where they are."""
@@ -742,8 +886,12 @@ class SafePoseController:
         # the route, re-planned every cycle: its speed follows the people in range now, and
         # a route that someone now blocks pauses on the path and is planned again
         q, dq, ddq, i = self._at(self.tau)
-        if self.plan and i < len(self._moves) and not self._blocked and self._people_moved(sim):
-            if not self._rest_clear(sim):
+        if self.plan and not self._blocked and (i < len(self._moves) or self.route == "turn") \
+                and self._people_moved(sim):
+            if self.route == "turn" and i >= len(self._moves):
+                self._checked_xy = sim.human_xy()
+                self._blocked = True  # turned and resting: plan again for where people are now
+            elif not self._rest_clear(sim):
                 self._blocked = True
         target = self._rate_target(sim, i)
         # change the rate no faster than the rated acceleration allows on top of the planned one
@@ -755,7 +903,7 @@ class SafePoseController:
                      else min(target, self.rate + step))
         self.min_rate = min(self.min_rate, self.rate)
         if self._blocked and self.rate <= 1e-9:
-            self._replan(sim, q, "route blocked by a person")
+            self._replan(sim, q, "route or hazard axis no longer clear of the people where they are")
             if self._hold is not None:
                 self._hold.command(sim)
                 self.name = self._hold.name

@@ -326,6 +326,9 @@ class SimExpect(_Model):
     max_human_overshoot_m: float | None = Field(
         None, ge=0.0, description="no person ends up further than this past its last waypoint "
         "(along the last segment walked)")
+    max_past_limit_mrad: float | None = Field(
+        None, ge=0.0, description="no joint ever further than this past its rated position "
+        "limit (mrad), over the whole run, power-off included")
     acknowledgements: tuple[bool, ...] | None = Field(
         None, description="per acknowledge_at_s, in order: accepted (true) or refused (false)")
     min_response_s: float | None = Field(

@@ -136,6 +136,8 @@ class SimResult:
             moving person).
         human_overshoot_m: the furthest a person went past its last waypoint, along the last
             segment it walked, from the time it should have arrived (``None``: no moving person).
+        max_past_limit_mrad: the furthest any joint went past its rated position limit (mrad,
+            every physics step of the run; 0 = never outside).
         acknowledgements: ``(t_s, accepted, message)`` for every operator acknowledgement.
         task_resumes: how often the task resumed after a response.
         min_response_s: the shortest time a response drove the arm before the task resumed
@@ -179,6 +181,7 @@ class SimResult:
     max_human_speed_ratio: float | None = None
     human_overshoot_m: float | None = None
     acknowledgements: tuple[tuple[float, bool, str], ...] = ()
+    max_past_limit_mrad: float = 0.0
     task_resumes: int = 0
     min_response_s: float | None = None
 
@@ -347,7 +350,7 @@ class GovernedArm:
         q, _ = sim.joint_state()
         # the retreat's own target: the spec's safe pose, the wrist turned for a held hazard
         target = (self.controller.q_safe if isinstance(self.controller, SafePoseController)
-                  else self.safe_joints)
+                  and self.controller.route != "turn" else self.safe_joints)
         return CycleRecord(
             cycle=cycle, monitor_cycle=int(d.cycle), t_s=t,
             signals={k: _num(v) for k, v in fed.items() if not isinstance(v, (list, tuple))},
@@ -694,6 +697,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         res.object_end_z_m = {n: round(z, 4) for n, z in sim.object_z().items()}
         res.max_human_speed_ratio, res.human_overshoot_m = people.result()
         res.acknowledgements = tuple(ack_log)
+        res.max_past_limit_mrad = round(1000.0 * sim.max_past_limit_rad, 4)
         res.fired = tuple(fired)
         res.sim_time_s = round(sim.time_s, 6)
         res.realtime_factor = res.sim_time_s / loop_wall if loop_wall > 0 else math.inf
@@ -799,6 +803,9 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
             and r.human_overshoot_m > ex.max_human_overshoot_m + 1e-9:
         out.append(f"sim: a person went {r.human_overshoot_m:.3f} m past its last waypoint, expected "
                    f"at most {ex.max_human_overshoot_m:g} m")
+    if ex.max_past_limit_mrad is not None and r.max_past_limit_mrad > ex.max_past_limit_mrad + 1e-9:
+        out.append(f"sim: a joint went {r.max_past_limit_mrad:.2f} mrad past its rated position limit, "
+                   f"expected at most {ex.max_past_limit_mrad:g} mrad")
     if ex.acknowledgements is not None:
         got = tuple(a for _, a, _ in r.acknowledgements)
         if got != tuple(ex.acknowledgements):
