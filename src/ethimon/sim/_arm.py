@@ -246,7 +246,40 @@ class ArmSim:
             sim._apply_command()
         if block.start_holding is not None:
             sim.hold_at_start(block.start_holding)
+        problem = sim.start_collision()
+        if problem is not None:
+            key = "start_xyz_m" if block.start_xyz_m is not None else (
+                "start_joints_rad" if block.start_joints_rad is not None else "objects")
+            sim.close()
+            from ..errors import SimError
+            err = SimError(f"sim.{key}: {problem}")
+            err.loc = ("sim", key)  # where the fix goes: the scenario turns it into file:line:col
+            err.hint = ("move the start pose (or the object) so that the arm starts clear: a pose "
+                        "inside a fixed object is a contact the scenario never meant")
+            raise err
         return sim
+
+    def start_collision(self) -> str | None:
+        """What the arm (or the object it holds) penetrates now, more than 5 mm: an object the
+        task does not pick (a fixed one, a shelf) or the floor; ``None`` when it starts clear."""
+        p, cid = self._p, self.cid
+        held = self.objects.get(self.held) if self.held else None
+        worst = None
+        for name, b in self.objects.items():
+            if name in self.graspable or b == held:
+                continue
+            for body, who in ((self.robot, "the arm"), (held, f"the held {self.held}")):
+                if body is None:
+                    continue
+                for pt in p.getClosestPoints(body, b, 0.0, physicsClientId=cid):
+                    if pt[8] < -0.005 and (worst is None or pt[8] < worst[0]):
+                        link = f" (link {pt[3]})" if body == self.robot else ""
+                        worst = (pt[8], f"{who}{link} starts {-pt[8] * 100:.1f} cm inside {name!r}")
+        for link in range(2, 12):
+            for pt in p.getClosestPoints(self.robot, self.plane, 0.0, linkIndexA=link, physicsClientId=cid):
+                if pt[8] < -0.005 and (worst is None or pt[8] < worst[0]):
+                    worst = (pt[8], f"the arm (link {link}) starts {-pt[8] * 100:.1f} cm below the floor")
+        return None if worst is None else worst[1]
 
     def hold_at_start(self, name: str) -> None:
         """Teleport object ``name`` into the closed gripper and attach it."""
