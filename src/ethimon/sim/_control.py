@@ -899,6 +899,7 @@ class SafePoseController:
         nz = np.abs(dq) > 1e-9
         rdot = float(np.min(avail[nz] / np.abs(dq[nz]))) if nz.any() else math.inf
         step = rdot * sim.dt
+        rate_before = self.rate
         self.rate = (max(target, self.rate - step) if target < self.rate
                      else min(target, self.rate + step))
         self.min_rate = min(self.min_rate, self.rate)
@@ -909,6 +910,10 @@ class SafePoseController:
                 self.name = self._hold.name
                 return
             q, dq, ddq, i = self._at(0.0)
-        self.tau += self.rate * sim.dt
+            rate_before = self.rate
+        # the path time advances by the mean rate over the cycle: the position the servo is given
+        # then matches a linear change of the rate (its cubic interpolation keeps a constant
+        # acceleration; the end rate alone made it peak at 4x the mean, over the rating)
+        self.tau += 0.5 * (rate_before + self.rate) * sim.dt
         q, dq, _, _ = self._at(self.tau)
         sim.command_joints(q, dq * self.rate, max_velocity=self.v_limit)
