@@ -76,3 +76,38 @@ def test_a_compliant_person_held_up_catches_up_at_walking_speed_not_faster():
     _, res = _scenario("person_walks_into_arm")
     assert res.max_human_speed_ratio <= 1.1
     assert res.max_contact_force_n > 0.0  # the script does bring the worker into the arm
+
+
+def test_a_child_walking_round_a_knife_retreat_gets_the_blade_turned_away_on_arrival():
+    """Before: the wrist turned once, for where she stood at the override: 58 deg at the end."""
+    from ethimon.sim import check_sim_expectations
+    block, res = _scenario("knife_child_walks_around")
+    assert check_sim_expectations(block, res) == []
+    assert res.hazard_axis_angle_end_deg >= 70 and res.route == "turn"
+    assert res.time_to_safe_pose_s is not None  # it reached the safe pose, then turned the wrist
+    turned = [r for r in res.trace if r.replanned]
+    assert turned and turned[0].t_s >= res.time_to_safe_pose_s - 1e-9
+
+
+def test_a_route_never_sweeps_a_held_blade_further_toward_a_person():
+    """The planner's sweep check: the blade points 32 deg from the child; turning joint 7 one
+    way sweeps it through her (0.3 deg on the way) and is refused, the other way turns it away
+    (32 -> 126 deg) and passes."""
+    from ethimon.sim import ArmSim, Human, SimObject
+    from ethimon.sim._control import SafePoseController
+    knife = SimObject(name="knife", shape="box", xyz_m=(0.55, 0.25, 0.32), half_extents_m=(0.1, 0.012, 0.004),
+                      hazard="sharp", hazard_axis=(1, 0, 0), mass_kg=0.15)
+    child = Human(name="child", radius_m=0.14, height_m=1.1, waypoints=[{"t_s": 0, "xy_m": (1.6, 0.9)}])
+    with ArmSim(objects=[knife], humans=[child]) as sim:
+        q = sim.solve_ik((0.55, 0.25, 0.35))
+        sim.reset_joints(q)
+        sim.hold_at_start("knife")
+        sp = SafePoseController(q, (0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785), 1.0)
+        assert 25 < sim.hazard_axis_angles_deg([q])[0] < 40
+        through, away = q.copy(), q.copy()
+        through[6] -= 1.0
+        away[6] += 1.0
+        assert min(sim.hazard_axis_angles_deg(sp._samples([q, through]))) < 5.0
+        assert not sp._axis_ok(sim, sp._samples([q, through]))
+        assert sp._axis_ok(sim, sp._samples([q, away]))
+        assert max(sim.hazard_axis_angles_deg(sp._samples([q, away]))) > 80.0

@@ -506,6 +506,7 @@ class SafePoseController:
         self._need: tuple[float, float] = (0.0, 0.0)   # (human, hazard) clearance the route keeps
         self._checked_xy: dict[str, np.ndarray] = {}
         self._blocked = False
+        self._arrival_checked = False
 
     @property
     def holding(self) -> StopController | None:
@@ -839,12 +840,7 @@ class SafePoseController:
         if not (min(p["human"] for p in pts) >= need_h - 1e-3
                 and min(p["hazard"] for p in pts) >= need_z - 1e-3):
             return False
-        # a held hazard's axis: still pointed away at the end from the people where they are
-        # now, and never swept through their direction on the way
-        end = sim.hazard_axis_angles_deg([self.q_safe])
-        if end is not None and end[0] < _HAZARD_AWAY_DEG - _AXIS_SLACK_DEG:
-            return False
-        return self._axis_ok(sim, self._samples(rest))
+        return True
 
     def _replan(self, sim: ArmSim, q: np.ndarray, why: str) -> None:
         """Plan again from ``q`` (the arm paused on its route) with the people where they are."""
@@ -886,13 +882,19 @@ class SafePoseController:
         # the route, re-planned every cycle: its speed follows the people in range now, and
         # a route that someone now blocks pauses on the path and is planned again
         q, dq, ddq, i = self._at(self.tau)
-        if self.plan and not self._blocked and (i < len(self._moves) or self.route == "turn") \
-                and self._people_moved(sim):
-            if self.route == "turn" and i >= len(self._moves):
+        arrived_now = i >= len(self._moves) and not self._arrival_checked
+        if self.plan and not self._blocked and (arrived_now or self._people_moved(sim)):
+            self._arrival_checked = self._arrival_checked or i >= len(self._moves)
+            if i < len(self._moves):
+                if not self._rest_clear(sim):
+                    self._blocked = True
+            else:  # arrived: a held hazard's axis still pointed away from the people where they are?
                 self._checked_xy = sim.human_xy()
-                self._blocked = True  # turned and resting: plan again for where people are now
-            elif not self._rest_clear(sim):
-                self._blocked = True
+                now = sim.hazard_axis_angles_deg()
+                want = _HAZARD_AWAY_DEG if self.route != "turn" else min(
+                    _HAZARD_AWAY_DEG, (self.hazard_axis_angle_deg or 0.0) + _AXIS_SLACK_DEG)
+                if now is not None and now[0] < want - _AXIS_SLACK_DEG:
+                    self._blocked = True  # plan again from here (a wrist turn, as it can)
         target = self._rate_target(sim, i)
         # change the rate no faster than the rated acceleration allows on top of the planned one
         avail = np.maximum(_LIMIT_SHARE * _DDQ - np.abs(ddq) * self.rate ** 2, 0.05 * _DDQ)
@@ -911,6 +913,7 @@ class SafePoseController:
                 return
             q, dq, ddq, i = self._at(0.0)
             rate_before = self.rate
+            self._arrival_checked = False
         # the path time advances by the mean rate over the cycle: the position the servo is given
         # then matches a linear change of the rate (its cubic interpolation keeps a constant
         # acceleration; the end rate alone made it peak at 4x the mean, over the rating)
