@@ -189,6 +189,7 @@ class TaskController:
         self.index = 0
         self.t = 0.0
         self._from = np.asarray(q_start, dtype=float)
+        self.q_initial = self._from.copy()
         self._dur = self.segments[0].duration_s if self.segments else 0.0
         self.setpoint = self._from.copy()
 
@@ -208,6 +209,16 @@ class TaskController:
             return None
         want = self.carrying[self.index]
         return want if want is not None and sim.held != want else None
+
+    def path_back(self, most: int = 3) -> list[np.ndarray]:
+        """The way the arm came in, most recent first: where the current motion started, then
+        where each earlier one did (joint-space segment starts; at most ``most``)."""
+        out = [self._from.copy()]
+        for k in range(min(self.index, len(self.segments)) - 1, -1, -1):
+            out.append((self.segments[k - 1].q if k > 0 else self.q_initial).copy())
+            if len(out) >= most:
+                break
+        return out
 
     def resume(self, q_now: np.ndarray) -> None:
         """Restart the current segment from the measured pose ``q_now`` (after a release)."""
@@ -472,7 +483,7 @@ class SafePoseController:
     def __init__(self, q_now: np.ndarray, q_safe: Sequence[float], max_joint_speed_rad_s: float,
                  *, margin: float = 0.98, accel_rad_s2: float = 8.0,
                  near_human: tuple[float, float] | None = None, plan: bool = True,
-                 sample_rad: float = 0.05) -> None:
+                 sample_rad: float = 0.05, path_back: Sequence[np.ndarray] = ()) -> None:
         self.q0 = np.asarray(q_now, dtype=float)
         self.q_safe = np.asarray(q_safe, dtype=float)
         self._q_spec = self.q_safe.copy()
@@ -484,6 +495,8 @@ class SafePoseController:
         self.near_human = near_human
         self.plan = plan
         self.sample_rad = sample_rad
+        #: the way the arm came in (most recent first): route ``back`` retraces it
+        self.path_back = [np.asarray(q, dtype=float) for q in path_back]
         self.route = ""
         self.planned_closest_m: float | None = None
         self.speed_cap_m_s: float | None = None
@@ -565,6 +578,13 @@ class SafePoseController:
             except Exception:  # noqa: BLE001 - IK trouble only removes candidates
                 pass
         out += [(name, [q_start, via, qs]) for name, via in self._via]
+        # back out the way the arm came in (its task's joint-space path, reversed), then go
+        back, prev = [q_start], q_start
+        for p in self.path_back:
+            if float(np.max(np.abs(p - prev))) > 0.05:
+                back.append(p)
+                prev = p
+                out.append(("back", back + [qs]))
         return out
 
     def _orient_hazard(self, sim: ArmSim, q_start: np.ndarray | None = None) -> None:

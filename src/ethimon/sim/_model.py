@@ -311,7 +311,7 @@ class SimExpect(_Model):
     min_hazard_distance_m: float | None = Field(
         None, ge=0.0, description="a hazard-tagged object never nearer a person than this "
         "(simulated hazard_distance) once the monitor has overridden")
-    route: Literal["direct", "fold", "lift", "away", "hold", "none"] | None = Field(
+    route: Literal["direct", "fold", "lift", "away", "back", "turn", "hold", "none"] | None = Field(
         None, description="the safe-pose route the planner took (hold: none was collision-free)")
     object_dropped: bool | None = Field(
         None, description="a held object left the gripper other than by the task's release "

@@ -415,7 +415,8 @@ class GovernedArm:
         q, qd = self.sim.joint_state()
         if resp == "safe_pose":
             self.controller = SafePoseController(q, self.safe_joints, self.safe_speed,
-                                                 near_human=self.near_human)
+                                                 near_human=self.near_human,
+                                                 path_back=self.task.path_back())
         else:
             self.controller = StopController(int(resp[-1]), q, qd, self.stop_ramp_s,
                                              standstill_tol_rad=self.standstill_tolerance_rad)
