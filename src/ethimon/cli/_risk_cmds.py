@@ -47,6 +47,8 @@ def add_risk_parsers(subparsers) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--fail-on-flag", action="store_true", help="exit 1 when R_e >= tau")
     _threads_arg(p, "default 1: one sentence is too small to split")
+    _backend_arg(p, None, "default: the spec's risk.estimator.backend, else auto: ONNX Runtime (no torch) "
+                          "when installed and the model has an ONNX form")
     p.set_defaults(func=cmd_risk)
 
     from ..risk._recipe import Recipe as R  # no torch: the defaults of the training recipe
@@ -118,6 +120,7 @@ def add_risk_parsers(subparsers) -> None:
                    help="token budget per row, special tokens included (default: the model's own; "
                         "longer rows keep the model's truncation, head or head and tail)")
     _threads_arg(e, "default: 2, or 1 when the cores are busy")
+    _backend_arg(e, "torch", "default torch, as training evaluates its runs; onnx on a machine without torch")
     e.set_defaults(func=cmd_evaluate)
 
 
@@ -129,9 +132,14 @@ def _precision_args(parser) -> None:
                    help="full precision even where the spec's risk.estimator says quantize: int8")
 
 
+def _backend_arg(parser, default: str | None, default_help: str) -> None:
+    parser.add_argument("--backend", choices=["auto", "onnx", "torch"], default=default,
+                        help=f"inference backend ({default_help})")
+
+
 def _threads_arg(parser, default_help: str) -> None:
     parser.add_argument("--threads", type=int, default=None, metavar="N",
-                        help=f"torch threads ({default_help})")
+                        help=f"inference threads ({default_help})")
 
 
 def _threads(args: argparse.Namespace, rows: int) -> int:
@@ -145,7 +153,7 @@ def _threads(args: argparse.Namespace, rows: int) -> int:
 
 
 def _load(model: str | None, precision: str | None, max_length: int | None = None, spec=None, *,
-          threads: int | None = None):
+          threads: int | None = None, backend: str | None = None):
     """The estimator: command-line options win over the spec's ``risk.estimator`` block.
 
     ``precision``: ``"int8"``, ``"fp32"`` or ``None`` (the spec's choice, fp32 without one).
@@ -156,8 +164,9 @@ def _load(model: str | None, precision: str | None, max_length: int | None = Non
         raise ModelError(f"model directory {model!r} does not exist")
     if spec is not None:  # precision None keeps the spec's choice; "fp32" overrides a spec's int8
         return load_estimator_for(spec, model_dir=model, quantize=precision, max_length=max_length,
-                                  num_threads=threads)
-    return load_estimator(model, quantize=precision, max_length=max_length, num_threads=threads)
+                                  num_threads=threads, backend=backend)
+    return load_estimator(model, quantize=precision, max_length=max_length, num_threads=threads,
+                          backend=backend or "auto")
 
 
 def cmd_risk(args: argparse.Namespace) -> int:
@@ -165,7 +174,7 @@ def cmd_risk(args: argparse.Namespace) -> int:
         return err("empty text")
     try:
         cfg = risk_config(args.spec)
-        est = _load(args.model, args.precision, spec=cfg["spec"], threads=_threads(args, 1))
+        est = _load(args.model, args.precision, spec=cfg["spec"], threads=_threads(args, 1), backend=args.backend)
         r = est.estimate(args.text, cfg["alpha"], cfg["beta"], cfg["gamma"], cfg["variance"])
     except (EthimonError, ValueError, OSError) as exc:
         return err(str(exc))
@@ -173,6 +182,7 @@ def cmd_risk(args: argparse.Namespace) -> int:
     if args.json:
         emit_json("-", {"text": args.text, "p": list(r.p), "p_unsafe": r.p_unsafe, "risk": r.risk,
                         "tau": cfg["threshold"], "flagged": flagged, "model_id": est.model_id,
+                        "backend": getattr(est, "backend", None),
                         "temperature": est.temperature,
                         "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")}})
     else:
@@ -230,7 +240,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         rows = load_labelled_csv(args.data)
         cal = load_labelled_csv(args.calibrate_on) if args.calibrate_on else None
         est = _load(args.model, args.precision, args.max_length, spec=cfg["spec"],
-                    threads=_threads(args, len(rows)))
+                    threads=_threads(args, len(rows)), backend=args.backend)
         bar = _isatty(sys.stdout)
         logits = est.logits_batch(rows.texts, progress=bar, desc="evaluate")
         temperature = est.temperature

@@ -38,8 +38,8 @@ try:
     import transformers
 except ImportError as exc:  # pragma: no cover - exercised only without the extra
     raise DependencyNotInstalled(
-        f"the learned risk estimator needs torch and transformers ({exc.name} is missing): "
-        'pip install "ethimon[risk]"') from exc
+        f"the torch risk backend (training, evaluation, backend='torch') needs torch and transformers "
+        f'({exc.name} is missing): pip install "ethimon[train]"') from exc
 
 transformers.utils.logging.set_verbosity_error()
 transformers.utils.logging.disable_progress_bar()

