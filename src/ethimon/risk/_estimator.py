@@ -472,7 +472,7 @@ def _load_onnx(model_dir, backend: str, quantize, max_length, num_threads) -> An
         return None
     try:
         return O.load_onnx_model(model_dir, max_length=max_length, quantize=quantize, num_threads=num_threads)
-    except O.NoGraph as exc:  # never a trust failure: those are ModelError and propagate
+    except O._NoGraph as exc:  # never a trust failure: those are ModelError and propagate
         if backend == "onnx":
             raise ModelError(f"{model_dir}: no ONNX form: {exc}; write one with `ethimon export {model_dir}` "
                              "(needs torch once) or use backend torch") from None
