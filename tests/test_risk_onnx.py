@@ -297,12 +297,7 @@ def test_tampered_pinned_weights_are_refused_by_the_onnx_backend(dirs, tmp_path)
 
 
 def test_unsupported_family_onnx_refuses_auto_falls_back(tmp_path):
-    d = tmp_path / "mpnet"
-    transformers.BertTokenizer(vocab=str(_vocab(d)), do_lower_case=True).save_pretrained(str(d))
-    c = transformers.MPNetConfig(vocab_size=len(VOCAB), hidden_size=32, num_hidden_layers=1, num_attention_heads=4,
-                                 intermediate_size=64, max_position_embeddings=130, num_labels=2)
-    torch.manual_seed(0)
-    transformers.MPNetForSequenceClassification(c).save_pretrained(str(d), safe_serialization=True)
+    d = _mpnet(tmp_path / "mpnet")
     with pytest.raises(ModelError, match="no ONNX form.*ethimon export"):
         load_estimator(d, backend="onnx", max_length=24)
     assert load_estimator(d, max_length=24).backend == "torch"
@@ -457,3 +452,54 @@ def test_missing_onnxruntime_names_the_extra(dirs):
     assert r.returncode == 0, r.stderr[-2000:]
     assert r.stdout.splitlines()[0] == "torch" and 'ethimon[risk]' in r.stdout, r.stdout
     assert DependencyNotInstalled  # the class the message came from
+
+
+# ================================================================ ethimon export
+def _mpnet(d: Path) -> Path:
+    transformers.BertTokenizer(vocab=str(_vocab(d)), do_lower_case=True).save_pretrained(str(d))
+    c = transformers.MPNetConfig(vocab_size=len(VOCAB), hidden_size=32, num_hidden_layers=1, num_attention_heads=4,
+                                 intermediate_size=64, max_position_embeddings=130, num_labels=2)
+    torch.manual_seed(0)
+    transformers.MPNetForSequenceClassification(c).save_pretrained(str(d), safe_serialization=True)
+    return d
+
+
+def test_export_makes_an_unsupported_family_run_on_onnx_and_pins_it(tmp_path):
+    from tests._cli import run_cli
+    d = _mpnet(tmp_path / "mpnet")
+    assert load_estimator(d, max_length=24).backend == "torch"  # no ONNX form yet
+    r = run_cli("export", str(d), timeout=120)
+    assert r.returncode == 0 and "model.onnx" in r.stdout, r.stderr
+    side = json.loads((d / "ethimon_onnx.json").read_text())
+    assert side["graphs"]["fp32"]["sha256"] == _sha(d / "model.onnx")
+    o = load_estimator(d, backend="onnx", cache_size=0)
+    t = load_estimator(d, backend="torch", cache_size=0, jit=False)
+    assert o.backend == "onnx" and o.max_length == t.max_length
+    for a, b in zip(o.probs_batch(TEXTS), t.probs_batch(TEXTS)):
+        assert a == pytest.approx(b, abs=1e-5)
+    # the weights change: the graph left behind is stale, refused (never silently the old model)
+    from safetensors.torch import load_file
+    w = load_file(str(d / "model.safetensors"))
+    w["classifier.out_proj.bias"] = w["classifier.out_proj.bias"] + 1.0
+    save_file(w, str(d / "model.safetensors"), metadata={"format": "pt"})
+    with pytest.raises(ModelError, match="stale"):
+        load_estimator(d)
+
+
+def test_export_of_an_adapter_dir_equals_the_built_graph(dirs, tmp_path):
+    import shutil
+
+    from ethimon.risk._export import export_onnx
+    d = shutil.copytree(dirs["adapter"], tmp_path / "ad")
+    export_onnx(d)
+    e = load_estimator(d, cache_size=0)
+    assert e._m.graph_source == "model.onnx"
+    built = load_estimator(dirs["adapter"], cache_size=0)
+    for a, b in zip(e.probs_batch(TEXTS), built.probs_batch(TEXTS)):
+        assert a == pytest.approx(b, abs=1e-5)
+
+
+def test_export_cli_errors_are_one_line(tmp_path):
+    from tests._cli import run_cli
+    r = run_cli("export", str(tmp_path / "nope"))
+    assert r.returncode == 2 and r.stderr.startswith("ethimon: error:") and "Traceback" not in r.stderr

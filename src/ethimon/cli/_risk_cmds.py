@@ -1,4 +1,4 @@
-"""CLI sub-commands of the learned risk estimator: ``risk``, ``train``, ``average``, ``evaluate``.
+"""CLI sub-commands of the learned risk estimator: ``risk``, ``train``, ``average``, ``evaluate``, ``export``.
 
 Thin: every handler parses, calls the library and prints. Exit codes: 0 ok,
 1 ``risk --fail-on-flag`` and R_e ≥ τ, 2 bad input (one-line message, no traceback).
@@ -13,7 +13,7 @@ from pathlib import Path
 from ..errors import EthimonError, ModelError, SpecError
 from ._common import emit_json, err
 
-__all__ = ["add_risk_parsers", "cmd_risk", "cmd_train", "cmd_average", "cmd_evaluate"]
+__all__ = ["add_risk_parsers", "cmd_risk", "cmd_train", "cmd_average", "cmd_evaluate", "cmd_export"]
 
 def risk_config(spec_path: str | None) -> dict:
     """α, β, γ, variance, τ (and the ``spec`` itself) from a spec file.
@@ -122,6 +122,17 @@ def add_risk_parsers(subparsers) -> None:
     _threads_arg(e, "default: 2, or 1 when the cores are busy")
     _backend_arg(e, "torch", "default torch, as training evaluates its runs; onnx on a machine without torch")
     e.set_defaults(func=cmd_evaluate)
+
+    x = subparsers.add_parser(
+        "export", help="write MODEL_DIR/model.onnx for ONNX Runtime, pinned by sha256 (needs torch, once)",
+        description="Export a model directory's classifier with torch.onnx.export (standard operators only), "
+                    "check it against torch on probe texts (|dlogit| <= 1e-4, else nothing is written) and "
+                    "pin it in ethimon_onnx.json with the sha256 of the weights it was made from. Needed for "
+                    "families the ONNX backend does not build from the weights itself (MPNet, RoBERTa, ...); "
+                    "the shipped model and BERT/DistilBERT directories need no export.")
+    x.add_argument("model", metavar="MODEL_DIR", help="an ethimon adapter directory or a sequence-classification directory")
+    x.add_argument("--file", default="model.onnx", help="graph file name inside MODEL_DIR (default model.onnx)")
+    x.set_defaults(func=cmd_export)
 
 
 def _precision_args(parser) -> None:
@@ -310,3 +321,17 @@ def _isatty(stream) -> bool:
         return bool(stream.isatty())
     except (AttributeError, ValueError):
         return False
+
+
+def cmd_export(args: argparse.Namespace) -> int:
+    try:
+        if not Path(args.model).is_dir():
+            raise ModelError(f"model directory {args.model!r} does not exist")
+        from ..risk._export import export_onnx
+        side = export_onnx(args.model, file=args.file)
+    except (EthimonError, ValueError, OSError) as exc:
+        return err(str(exc))
+    g = side["graphs"]["fp32"]
+    print(f"wrote {Path(args.model) / g['file']} (sha256 {g['sha256'][:12]}…, from weights "
+          f"{side['source_sha256'][:12]}…) and {Path(args.model) / 'ethimon_onnx.json'}")
+    return 0

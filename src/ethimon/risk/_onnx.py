@@ -752,7 +752,8 @@ def _load_exported(d: Path, manifest: dict | None, max_length, quantize, num_thr
         if rel not in pins:
             raise ModelError(f"{gp}: external-data file {rel} is not pinned in {sp}")
         _read_pinned(f, pins[rel], sp, keep=False)
-    tok = FastTokenizer(d if (d / "tokenizer.json").is_file() else M.resolve_base(d, manifest or {"base": {}}))
+    tok = FastTokenizer(d if manifest is None or any((d / n).is_file() for n in M.TOKENIZER_FILES)
+                        else M.resolve_base(d, manifest))  # the tokenizer torch would read
     ml = int(max_length or side["max_length"])
     if files:  # ONNX Runtime reads external data next to the graph file: give it the checked path
         try:
