@@ -185,10 +185,15 @@ def _built(d: Path, int8: bool = False):
     cfg = json.loads((base / "config.json").read_text())
     w = O._strip(load_file(str(base / "model.safetensors")), "bert.")
     t = O._adapter_arrays(d / "adapter.safetensors")
-    if man.get("lora"):
-        O.merge_lora_np(w, t, man["lora"]["alpha"] / man["lora"]["r"], d / "adapter.safetensors")
+    pairs = None
+    if man.get("lora"):  # as load_onnx_model: merged in the graph (fp32) or in numpy (int8)
+        scale = man["lora"]["alpha"] / man["lora"]["r"]
+        if int8:
+            O.merge_lora_np(w, t, scale, d / "adapter.safetensors")
+        else:
+            pairs = O.lora_pairs(w, t, scale, d / "adapter.safetensors")
     w.update({k: t[k] for k in ("head.weight", "head.bias")})
-    return O.build_graph(w, cfg, man.get("pooling", "mean"), 2, str(d), int8=int8)
+    return O.build_graph(w, cfg, man.get("pooling", "mean"), 2, str(d), int8=int8, lora=pairs)
 
 
 # ================================================================ no torch in the process
@@ -513,3 +518,18 @@ def test_check_with_the_shipped_model_runs_without_torch():
              "assert not {m for m, v in sys.modules.items() if v is not None and m.split('.')[0] in ('torch', 'transformers')}\n"
              "sys.exit(rc)\n")
     assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
+
+
+def test_lora_factors_for_a_non_linear_weight_are_refused_by_both_backends(dirs, tmp_path):
+    """Factors that fit the word-embedding matrix's shape but name no linear layer: never merged silently."""
+    d = _adapter(tmp_path / "emb", dirs["base"], lora=False)
+    t = {"head.weight": torch.randn(2, 32), "head.bias": torch.zeros(2),
+         "lora.embeddings.word_embeddings.A": torch.randn(4, 32), "lora.embeddings.word_embeddings.B": torch.randn(len(VOCAB), 4)}
+    save_file(t, str(d / "adapter.safetensors"))
+    man = json.loads((d / "ethimon_model.json").read_text())
+    man.update(adapter_sha256=_sha(d / "adapter.safetensors"), lora={"r": 4, "alpha": 8.0})
+    (d / "ethimon_model.json").write_text(json.dumps(man))
+    with pytest.raises(ModelError, match="embeddings.word_embeddings"):
+        load_estimator(d, backend="onnx")
+    with pytest.raises(ModelError):
+        load_estimator(d, backend="torch")

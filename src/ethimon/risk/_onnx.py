@@ -188,9 +188,9 @@ def _adapter_arrays(adapter: Path) -> dict:
     return out
 
 
-def merge_lora_np(w: dict, tensors: dict, scale: float, adapter: Path) -> int:
-    """Fold ``scale·B·A`` into ``w[name + '.weight']`` (float32, as ``_backend.merge_lora``); return #merged."""
-    n = 0
+def lora_pairs(w: dict, tensors: dict, scale: float, adapter: Path) -> dict:
+    """``{weight name: (A, B, scale)}`` of an adapter, each checked to fit ``w`` (as ``_backend.merge_lora``)."""
+    out = {}
     for key, a in tensors.items():
         if not (key.startswith("lora.") and key.endswith(".A")):
             continue
@@ -202,9 +202,21 @@ def merge_lora_np(w: dict, tensors: dict, scale: float, adapter: Path) -> int:
         if b is None or b.ndim != 2 or a.ndim != 2 or (b.shape[0], a.shape[1]) != w[wk].shape \
                 or b.shape[1] != a.shape[0]:
             raise ModelError(f"{adapter}: adapter tensors for {name!r} do not fit the base model")
-        w[wk] = (w[wk].astype(np.float32) + np.float32(scale) * (b @ a)).astype(np.float32)
-        n += 1
-    return n
+        out[wk] = (a, b, float(scale))
+    return out
+
+
+def merge_lora_np(w: dict, tensors: dict, scale: float, adapter: Path) -> int:
+    """Fold ``scale·B·A`` into ``w[name + '.weight']`` in numpy (float32); return #merged.
+
+    Used for int8 graphs (the quantiser needs the merged matrix). fp32 graphs merge inside the
+    graph instead (:meth:`_G.linear`): numpy's BLAS starts a thread per core for these products,
+    and on busy shared cores that took 0.8 s instead of 0.02 s.
+    """
+    pairs = lora_pairs(w, tensors, scale, adapter)
+    for wk, (a, b, sc) in pairs.items():
+        w[wk] = (w[wk].astype(np.float32) + np.float32(sc) * (b @ a)).astype(np.float32)
+    return len(pairs)
 
 
 # ---------------------------------------------------------------- graph builder
@@ -310,12 +322,24 @@ class _G:
                           + _str(3, f"n{len(self.nodes)}") + _str(4, op_type)
                           + b"".join(_ld(5, _attribute(k, v)) for k, v in sorted(attrs.items())))
 
-    def linear(self, x: str, w, b, name: str) -> str:
-        """``x @ w.T + b`` for a 2-D ``x`` (``w`` as stored by torch, out × in: Gemm transB, no copy)."""
+    def linear(self, x: str, w, b, name: str, lora: tuple | None = None) -> str:
+        """``x @ w.T + b`` for a 2-D ``x`` (``w`` as stored by torch, out × in: Gemm transB, no copy).
+
+        ``lora = (A, B, scale)``: the weight is ``w + scale·B·A``, written as graph nodes over
+        initializers, which ONNX Runtime folds into one constant when the session starts (on its
+        own single intra-op thread), exactly the torch path's merge.
+        """
         w = np.asarray(w, np.float32)
         bias = self.init(f"{name}.b", np.asarray(b, np.float32))
         if not (self.int8 and name.rpartition(".")[2] in INT8_LINEARS):
-            return self.op("Gemm", x, self.init(f"{name}.w", w), bias, transB=1)
+            wn = self.init(f"{name}.w", w)
+            if lora is not None:
+                a, bb, sc = lora
+                delta = self.op("MatMul", self.init(f"{name}.lora_B", bb), self.init(f"{name}.lora_A", a))
+                wn = self.op("Add", wn, self.op("Mul", delta, self.const(sc, np.float32)))
+            return self.op("Gemm", x, wn, bias, transB=1)
+        if lora is not None:
+            raise ValueError("int8 layers take weights merged in numpy (merge_lora_np)")
         scale = np.maximum(np.abs(w).max(axis=1), 1e-12) / 127.0  # per output row of w
         q = np.clip(np.rint(w / scale[:, None]), -127, 127).astype(np.int8).T  # in × out
         xq, xs, xz = self.op("DynamicQuantizeLinear", x, n_out=3)
@@ -404,14 +428,17 @@ def _layout(cfg: dict) -> dict:
     raise _NoGraph(f"model_type {mt!r} (built graphs: {', '.join(BUILT_MODEL_TYPES)})")
 
 
-def build_graph(w: dict, cfg: dict, head: str, num_labels: int, where: str, *, int8: bool = False) -> BuiltGraph:
+def build_graph(w: dict, cfg: dict, head: str, num_labels: int, where: str, *, int8: bool = False,
+                lora: dict | None = None) -> BuiltGraph:
     """The classifier as an ONNX graph: ``(input_ids, attention_mask) -> logits``.
 
     ``w``: encoder weights without the model prefix (``embeddings.…``, ``encoder.layer.…``) plus the
     head's: ``head="mean"|"cls"`` reads ``head.weight``/``head.bias`` (ethimon's PooledClassifier);
     ``head="hf"`` reads the transformers sequence-classification head (BERT: pooler + classifier;
-    DistilBERT: pre_classifier + ReLU + classifier). ``int8``: see :class:`_G`.
+    DistilBERT: pre_classifier + ReLU + classifier). ``int8``: see :class:`_G`. ``lora``: from
+    :func:`lora_pairs`, merged inside the graph (every pair must name an encoder linear).
     """
+    lora = dict(lora or {})
     L = _layout(cfg)
     nl, hid, nh = L["layers"], L["hidden"], L["heads"]
     if not all(M._is_int(v) and v > 0 for v in (nl, hid, nh)) or hid % nh:
@@ -451,7 +478,8 @@ def build_graph(w: dict, cfg: dict, head: str, num_labels: int, where: str, *, i
         p = L["layer"].format(i=i)
 
         def lin(v: str, key: str, _p=p, _i=i) -> str:
-            return g.linear(v, get(f"{_p}{L[key]}.weight"), get(f"{_p}{L[key]}.bias"), f"l{_i}.{key}")
+            wk = f"{_p}{L[key]}.weight"
+            return g.linear(v, get(wk), get(f"{_p}{L[key]}.bias"), f"l{_i}.{key}", lora.pop(wk, None))
 
         q = g.op("Transpose", g.op("Reshape", lin(x, "q"), heads_shape), perm=[0, 2, 1, 3])
         k = g.op("Transpose", g.op("Reshape", lin(x, "k"), heads_shape), perm=[0, 2, 3, 1])
@@ -464,6 +492,9 @@ def build_graph(w: dict, cfg: dict, head: str, num_labels: int, where: str, *, i
         f = lin(_activation(g, lin(x, "ff1"), L["act"]), "ff2")
         x = g.layer_norm(g.op("Add", f, x), get(f"{p}{L['ln2']}.weight"), get(f"{p}{L['ln2']}.bias"),
                          L["eps"], f"l{i}.ln2")
+    if lora:
+        raise ModelError(f"{where}: adapter factors for {', '.join(sorted(lora)[:3])} name no linear layer of "
+                         "the encoder's blocks")
     x = g.op("Reshape", x, g.op("Concat", bl, g.const([hid]), axis=0))  # [B, L, H]
     cls = g.op("Squeeze", g.op("Gather", x, g.const([0]), axis=1), g.const([1]))
     if head == "mean":
@@ -631,9 +662,13 @@ def load_onnx_model(model_dir: str | os.PathLike, *, max_length: int | None = No
     tok = FastTokenizer(d if any((d / n).is_file() for n in M.TOKENIZER_FILES) else base_dir)
     w = _strip(_load_st(base_w, "weights"), layout["prefix"])
     tensors = _adapter_arrays(adapter)
-    lora = manifest.get("lora")
+    lora, pairs = manifest.get("lora"), None
     if lora:
-        merge_lora_np(w, tensors, float(lora["alpha"]) / float(lora["r"]), adapter)
+        scale = float(lora["alpha"]) / float(lora["r"])
+        if quantize == "int8":
+            merge_lora_np(w, tensors, scale, adapter)
+        else:
+            pairs = lora_pairs(w, tensors, scale, adapter)
     num_labels = manifest.get("num_labels", 2)
     for k in ("head.weight", "head.bias"):
         if k not in tensors:
@@ -647,7 +682,8 @@ def load_onnx_model(model_dir: str | os.PathLike, *, max_length: int | None = No
         mp = d / M.MANIFEST
         src = f"max_length={ml}" if max_length else f"{mp}: 'max_length' = {ml}"
         raise ModelError(f"{src}: more tokens than the base model's {pos} positions ({base_dir / 'config.json'})")
-    built = build_graph(w, cfg, manifest.get("pooling", "mean"), num_labels, str(d), int8=quantize == "int8")
+    built = build_graph(w, cfg, manifest.get("pooling", "mean"), num_labels, str(d), int8=quantize == "int8",
+                        lora=pairs)
     name = manifest.get("name", d.name)
     out = _finish(built, "built", tok, ml, manifest.get("truncation", "head_tail"),
                   float(manifest.get("temperature", 1.0)), manifest.get("unsafe_index", num_labels - 1),
