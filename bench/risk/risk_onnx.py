@@ -17,7 +17,9 @@ For the shipped model (or ``--model``):
   ``sys.modules`` is checked for torch/transformers.
 
 Prints a table and writes bench/results/risk/risk_onnx.json (or --json) with machine facts and the
-load at start and end.
+load at start and end. The one-shot rows carry CPU time (user + system of the child) beside wall
+time: on shared cores the wall time mostly measures the other jobs. ``--one-shot-only`` runs that
+part alone (risk_onnx_oneshot.json).
 """
 
 from __future__ import annotations
@@ -70,13 +72,18 @@ PROBE = ("import runpy, sys, json, atexit\n"
          "sys.exit(main())\n")
 
 
-def _one_shot(cmd: list[str]) -> tuple[float, str, str]:
+def _one_shot(cmd: list[str]) -> tuple[float, float, str, str]:
+    """Wall time and CPU time (user + system, the child and its threads) of one run."""
+    import resource
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t = time.perf_counter()
     r = subprocess.run(cmd, env=_child_env(), capture_output=True, text=True, timeout=300)
     dt = time.perf_counter() - t
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if r.returncode not in (0, 1):
         raise RuntimeError(f"{cmd}: exit {r.returncode}: {r.stderr[-500:]}")
-    return dt, r.stdout, r.stderr
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return dt, cpu, r.stdout, r.stderr
 
 
 def main() -> None:
@@ -85,8 +92,12 @@ def main() -> None:
     ap.add_argument("--data", default=str(ROOT / "data" / "natural_robot" / "natural_test.csv"))
     ap.add_argument("--reps", type=int, default=300, help="latency samples per configuration")
     ap.add_argument("--cli-runs", type=int, default=7, help="one-shot runs of each command")
-    ap.add_argument("--json", default=str(RESULTS / "risk" / "risk_onnx.json"))
+    ap.add_argument("--json", default=None, help="default bench/results/risk/risk_onnx.json "
+                    "(risk_onnx_oneshot.json with --one-shot-only)")
+    ap.add_argument("--one-shot-only", action="store_true", help="only the one-shot CLI comparison (s)")
     a = ap.parse_args()
+    if a.json is None:
+        a.json = str(RESULTS / "risk" / ("risk_onnx_oneshot.json" if a.one_shot_only else "risk_onnx.json"))
     load_start = loadavg()
     from ethimon.risk import DEFAULT_TAU, load_estimator, risk_from_probs
     from ethimon.spec import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA
@@ -97,59 +108,61 @@ def main() -> None:
     res: dict = {"model": a.model or "shipped", "data": str(Path(a.data).relative_to(ROOT))
                  if Path(a.data).is_relative_to(ROOT) else a.data, "tau": DEFAULT_TAU, "tolerance": TOL}
 
-    # ---- equality on every row
-    texts = _texts(Path(a.data))
-    ref = load_estimator(a.model, cache_size=0, jit=False, backend="torch", num_threads=2)
-    t0 = time.perf_counter()
-    p_ref = ref.probs_batch(texts)
-    res["torch_fp32_rows_s"] = time.perf_counter() - t0
-    ref_dec = [decide(p) for p in p_ref]
-    eq = {}
-    for name, kw in {"onnx_fp32": {"backend": "onnx"}, "onnx_int8": {"backend": "onnx", "quantize": "int8"},
-                     "torch_int8": {"backend": "torch", "quantize": "int8", "jit": False}}.items():
-        est = load_estimator(a.model, cache_size=0, num_threads=2, **kw)
-        p = est.probs_batch(texts)
-        d = [abs(x[1] - y[1]) for x, y in zip(p, p_ref)]
-        agree = sum(decide(x) == r for x, r in zip(p, ref_dec))
-        eq[name] = {"rows": len(texts), "max_abs_dp": max(d), "mean_abs_dp": statistics.mean(d),
-                    "rows_over_tol": sum(x > TOL for x in d), "decisions_agree": agree,
-                    "decision_agreement": agree / len(texts), "model_id": est.model_id,
-                    "graph_sha256": getattr(est, "graph_sha256", None)}
-        del est
-    res["equality_vs_torch_fp32"] = eq
-    res["flagged_by_torch_fp32"] = sum(ref_dec)
-    del ref
+    texts, eq, lat = [], {}, {}
+    if not a.one_shot_only:
+        # ---- equality on every row
+        texts = _texts(Path(a.data))
+        ref = load_estimator(a.model, cache_size=0, jit=False, backend="torch", num_threads=2)
+        t0 = time.perf_counter()
+        p_ref = ref.probs_batch(texts)
+        res["torch_fp32_rows_s"] = time.perf_counter() - t0
+        ref_dec = [decide(p) for p in p_ref]
+        eq = {}
+        for name, kw in {"onnx_fp32": {"backend": "onnx"}, "onnx_int8": {"backend": "onnx", "quantize": "int8"},
+                         "torch_int8": {"backend": "torch", "quantize": "int8", "jit": False}}.items():
+            est = load_estimator(a.model, cache_size=0, num_threads=2, **kw)
+            p = est.probs_batch(texts)
+            d = [abs(x[1] - y[1]) for x, y in zip(p, p_ref)]
+            agree = sum(decide(x) == r for x, r in zip(p, ref_dec))
+            eq[name] = {"rows": len(texts), "max_abs_dp": max(d), "mean_abs_dp": statistics.mean(d),
+                        "rows_over_tol": sum(x > TOL for x in d), "decisions_agree": agree,
+                        "decision_agreement": agree / len(texts), "model_id": est.model_id,
+                        "graph_sha256": getattr(est, "graph_sha256", None)}
+            del est
+        res["equality_vs_torch_fp32"] = eq
+        res["flagged_by_torch_fp32"] = sum(ref_dec)
+        del ref
 
-    # ---- latency and throughput, interleaved
-    confs = {"onnx_fp32": {"backend": "onnx"}, "onnx_int8": {"backend": "onnx", "quantize": "int8"},
-             "torch_fp32_jit": {"backend": "torch", "jit": True}, "torch_int8_jit": {"backend": "torch",
-                                                                                     "quantize": "int8", "jit": True}}
-    lat: dict = {}
-    import torch
-    for threads in (1, 2):
-        torch.set_num_threads(threads)
-        ests = {n: load_estimator(a.model, cache_size=0, num_threads=threads, **kw) for n, kw in confs.items()}
-        samples = {n: [] for n in ests}
-        for n, e in ests.items():
-            for _ in range(20):
-                e.probs(TEXT)
-        for _ in range(a.reps):
+        # ---- latency and throughput, interleaved
+        confs = {"onnx_fp32": {"backend": "onnx"}, "onnx_int8": {"backend": "onnx", "quantize": "int8"},
+                 "torch_fp32_jit": {"backend": "torch", "jit": True}, "torch_int8_jit": {"backend": "torch",
+                                                                                         "quantize": "int8", "jit": True}}
+        lat: dict = {}
+        import torch
+        for threads in (1, 2):
+            torch.set_num_threads(threads)
+            ests = {n: load_estimator(a.model, cache_size=0, num_threads=threads, **kw) for n, kw in confs.items()}
+            samples = {n: [] for n in ests}
             for n, e in ests.items():
-                t = time.perf_counter()
-                e.probs(TEXT)
-                samples[n].append(time.perf_counter() - t)
-        bt = {n: [] for n in ests}
-        for _ in range(12):
-            for n, e in ests.items():
-                t = time.perf_counter()
-                e.probs_batch(BATCH)
-                bt[n].append(time.perf_counter() - t)
-        for n in ests:
-            lat.setdefault(n, {})[f"threads_{threads}"] = {
-                "p50_ms": 1e3 * statistics.median(samples[n]), "p90_ms": 1e3 * _pct(samples[n], 0.9),
-                "batch32_rows_per_s": 32 / statistics.median(bt[n])}
-        del ests
-    res["latency"] = lat
+                for _ in range(20):
+                    e.probs(TEXT)
+            for _ in range(a.reps):
+                for n, e in ests.items():
+                    t = time.perf_counter()
+                    e.probs(TEXT)
+                    samples[n].append(time.perf_counter() - t)
+            bt = {n: [] for n in ests}
+            for _ in range(12):
+                for n, e in ests.items():
+                    t = time.perf_counter()
+                    e.probs_batch(BATCH)
+                    bt[n].append(time.perf_counter() - t)
+            for n in ests:
+                lat.setdefault(n, {})[f"threads_{threads}"] = {
+                    "p50_ms": 1e3 * statistics.median(samples[n]), "p90_ms": 1e3 * _pct(samples[n], 0.9),
+                    "batch32_rows_per_s": 32 / statistics.median(bt[n])}
+            del ests
+        res["latency"] = lat
 
     # ---- one-shot CLI vs the import of torch + transformers
     py = sys.executable
@@ -162,17 +175,21 @@ def main() -> None:
     for c in cmds.values():  # warm the page cache and the bytecode caches
         _one_shot(c)
     times = {k: [] for k in cmds}
+    cpus = {k: [] for k in cmds}
     modules = {}
     for _ in range(a.cli_runs):
         for k, c in cmds.items():
-            dt, out, err = _one_shot(c)
+            dt, cpu, out, err = _one_shot(c)
             times[k].append(dt)
+            cpus[k].append(cpu)
             if k.startswith("ethimon"):
                 modules[k] = json.loads(err.strip().splitlines()[-1])
     med = {k: statistics.median(v) for k, v in times.items()}
-    base = med["import_torch_transformers"]
-    res["one_shot"] = {"runs": a.cli_runs, "median_s": med, "all_s": times,
-                       "ratio_to_torch_import": {k: med[k] / base for k in med}, "modules_loaded": modules}
+    cmed = {k: statistics.median(v) for k, v in cpus.items()}
+    base, cbase = med["import_torch_transformers"], cmed["import_torch_transformers"]
+    res["one_shot"] = {"runs": a.cli_runs, "median_s": med, "all_s": times, "median_cpu_s": cmed, "all_cpu_s": cpus,
+                       "ratio_to_torch_import": {k: med[k] / base for k in med},
+                       "cpu_ratio_to_torch_import": {k: cmed[k] / cbase for k in cmed}, "modules_loaded": modules}
 
     import onnxruntime
     import tokenizers
@@ -182,8 +199,11 @@ def main() -> None:
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps(res, indent=2) + "\n")
 
-    print(f"equality on {len(texts)} rows of {res['data']} (vs torch fp32 eager; tau {DEFAULT_TAU}):")
-    print(f"{'':12} {'max|dp|':>9} {'>2e-3':>6} {'decisions agree':>16}")
+    if a.one_shot_only:
+        eq, lat = {}, {}
+    else:
+        print(f"equality on {len(texts)} rows of {res['data']} (vs torch fp32 eager; tau {DEFAULT_TAU}):")
+        print(f"{'':12} {'max|dp|':>9} {'>2e-3':>6} {'decisions agree':>16}")
     for n, e in eq.items():
         print(f"{n:12} {e['max_abs_dp']:9.2e} {e['rows_over_tol']:6d} {e['decisions_agree']:>6d}/{e['rows']} "
               f"({100 * e['decision_agreement']:.2f} %)")
@@ -191,9 +211,9 @@ def main() -> None:
     for n, d in lat.items():
         print(f"{n:16} {d['threads_1']['p50_ms']:7.2f}ms {d['threads_2']['p50_ms']:7.2f}ms "
               f"{d['threads_2']['p90_ms']:7.2f}ms {d['threads_2']['batch32_rows_per_s']:14.0f}")
-    print(f"\none-shot (median of {a.cli_runs}, alternated):")
+    print(f"\none-shot (median of {a.cli_runs}, alternated; wall and CPU time):")
     for k in cmds:
-        print(f"{k:28} {med[k]:6.3f} s  {med[k] / base:5.2f}x the torch+transformers import"
+        print(f"{k:28} {med[k]:6.3f} s {med[k] / base:5.2f}x  cpu {cmed[k]:6.3f} s {cmed[k] / cbase:5.2f}x"
               + (f"  torch in process: {modules[k]['torch']}" if k in modules else ""))
     print(f"\nload average: start {load_start}, end {res['machine']['loadavg']}; wrote {out}")
 

@@ -5,9 +5,10 @@ Imported only from inside functions (``ethimon.risk`` stays free of onnxruntime)
 Where the graph comes from. For an encoder family this module knows (BERT,
 which the shipped MiniLM-L6 is, and DistilBERT), the graph is *built* at load
 time from the safetensors weights the manifest already pins: numpy reads the
-base weights and the LoRA adapter, merges ``scale·B·A`` into the base matrices
-(as the torch path's ``merge_lora`` does) and a small protobuf writer emits the
-encoder, the pooling and the head as standard ONNX operators. Nothing is
+base weights and the LoRA adapter, and a small protobuf writer emits the
+encoder, the pooling and the head as standard ONNX operators, each adapted
+weight as ``W + scale·B·A`` over initializers (the torch path's ``merge_lora``),
+which ONNX Runtime folds into one matrix when the session starts. Nothing is
 downloaded or stored: the graph is a pure function of pinned inputs (its
 sha256 is reported as :attr:`OnnxModel.graph_sha256`, equal on every machine),
 so a retrained adapter needs no extra step, and the repository carries no
