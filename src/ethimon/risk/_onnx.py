@@ -336,8 +336,9 @@ class _G:
             wn = self.init(f"{name}.w", w)
             if lora is not None:
                 a, bb, sc = lora
-                delta = self.op("MatMul", self.init(f"{name}.lora_B", bb), self.init(f"{name}.lora_A", a))
-                wn = self.op("Add", wn, self.op("Mul", delta, self.const(sc, np.float32)))
+                # one Gemm: scale·B·A + W (alpha = scale, beta = 1), folded in one pass over W
+                wn = self.op("Gemm", self.init(f"{name}.lora_B", bb), self.init(f"{name}.lora_A", a), wn,
+                             alpha=float(sc), beta=1.0)
             return self.op("Gemm", x, wn, bias, transB=1)
         if lora is not None:
             raise ValueError("int8 layers take weights merged in numpy (merge_lora_np)")
