@@ -126,6 +126,7 @@ INTERNAL_REACHES: dict[str, tuple[set[str], str]] = {
     "risk._evaluate": ({"cli"}, "the CLI is the training/evaluation front end"),
     "risk._recipe": ({"cli"}, "the CLI is the training/evaluation front end"),
     "risk._train": ({"cli"}, "the CLI is the training/evaluation front end"),
+    "risk._export": ({"cli"}, "the CLI is the training/evaluation front end (ethimon export)"),
     "sim._arm": ({"gym"}, "the Panda cell env drives the simulated arm directly"),
     "sim._limits": ({"cli"}, "lint checks a safe pose against the rated joint range"),
     "verify._policy": ({"cli"}, "lint's release-policy warnings (no z3)"),
