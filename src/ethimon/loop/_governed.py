@@ -511,7 +511,8 @@ class GovernedLoop:
         return self.stats
 
     # ------------------------------------------------------------------ operator release
-    def acknowledge(self, operator: str, *, reason: str = "", timeout_s: float = 2.0) -> Acknowledgement:
+    def acknowledge(self, operator: str, *, reason: str = "", timeout_s: float = 2.0,
+                    task_sha256: str | None = None) -> Acknowledgement:
         """An operator's acknowledgement of the manual latches, checked and audited.
 
         :meth:`Monitor.acknowledge` through the loop: while :meth:`run` drives the
@@ -528,6 +529,10 @@ class GovernedLoop:
             operator: who acknowledges (a name or badge id; required).
             reason: why, in the operator's words (kept in the audit log).
             timeout_s: how long to wait for a running loop to apply it.
+            task_sha256: the sha256 of the task text the operator was shown (``ethimon.risk.text_sha256``).
+                While the confirm band holds, a confirmation naming another text than the one the loop
+                holds when it applies the request (the planner replaced it meanwhile) is refused.
+                ``None``: the text held then is confirmed (the audit record names it).
 
         Returns:
             The :class:`~ethimon.runtime.Acknowledgement`; refused if the loop did
@@ -537,7 +542,9 @@ class GovernedLoop:
             raise ValueError("acknowledge needs the operator's name or id (a non-empty string)")
         if not isinstance(reason, str):
             raise ValueError(f"reason must be a string, got {type(reason).__name__}")
-        req: list[Any] = [operator, reason, threading.Event(), None]
+        if task_sha256 is not None and not isinstance(task_sha256, str):
+            raise ValueError(f"task_sha256 must be a hex string, got {type(task_sha256).__name__}")
+        req: list[Any] = [operator, reason, threading.Event(), None, task_sha256]
         t = self._thread
         if self._running and t is not None and t is not threading.current_thread():
             with self._acks_lock:
@@ -560,14 +567,14 @@ class GovernedLoop:
             self._ack_now(req)
 
     def _ack_now(self, req: list[Any]) -> None:
-        operator, reason, done, _ = req
+        operator, reason, done, _, task = req
         afault = self._audit_health()
         if self.audit is not None and (self._audit_failed or afault):
             a = Acknowledgement(False, (), "refused: the audit log cannot record it "
                                 f"({afault or 'a record was refused'})")
         else:
             try:
-                a = self.monitor.acknowledge()
+                a = self.monitor.acknowledge() if task is None else self.monitor.acknowledge(task_id=task)
             except Exception as exc:  # noqa: BLE001 - never crash the loop on an operator request
                 a = Acknowledgement(False, (), f"refused: acknowledge raised {type(exc).__name__}: {exc}"[:300])
         if a.released and "confirm" in a.rules and self.risk is not None:  # what the operator confirmed
@@ -575,7 +582,7 @@ class GovernedLoop:
             self._log("confirm", operator=operator, reason=reason, task_text=text, task_sha256=self._task_key,
                       cycle=self.monitor.cycle)
         self._log("acknowledge", operator=operator, reason=reason, released=a.released, rules=list(a.rules),
-                  message=a.message, cycle=self.monitor.cycle,
+                  message=a.message, cycle=self.monitor.cycle, task_sha256=task,
                   loop_cycle=self.stats.cycles)
         req[3] = a
         done.set()

@@ -404,10 +404,13 @@ class Ros2Monitor:
         try:
             req = json.loads(msg.data)
             operator, reason = req.get("operator"), req.get("reason", "")
-            if not (isinstance(operator, str) and operator.strip() and isinstance(reason, str)):
+            task = req.get("task_sha256")  # the text the operator was shown: a confirmation binds to it
+            if not (isinstance(operator, str) and operator.strip() and isinstance(reason, str)
+                    and (task is None or isinstance(task, str))):
                 raise ValueError
         except Exception:  # noqa: BLE001 - any malformed request is refused
-            self._refuse_ack(None, "", sender, 'refused: expected {"operator": "<name>", "reason": "<text>"}')
+            self._refuse_ack(None, "", sender, 'refused: expected {"operator": "<name>", "reason": "<text>"'
+                             '[, "task_sha256": "<hex>"]}')
             return
         allow = self.mapping.ros2.allow_unauthenticated_acknowledge
         if not self.secure and allow is None:
@@ -416,7 +419,7 @@ class Ros2Monitor:
             return
         how = "DDS Security" if self.secure else f"unauthenticated, allowed by the mapping: {allow}"
         try:
-            self._ack_q.put_nowait((operator[:200], reason[:2000], f"{sender} ({how})"))
+            self._ack_q.put_nowait((operator[:200], reason[:2000], f"{sender} ({how})", task and task[:128]))
         except queue.Full:
             self._refuse_ack(operator, reason, sender, "refused: too many acknowledgements queued")
 
@@ -437,9 +440,10 @@ class Ros2Monitor:
             item = self._ack_q.get()
             if item is None:
                 return
-            operator, reason, via = item
+            operator, reason, via, task = item
             try:
-                a = self.loop.acknowledge(operator, reason=f"{reason} [via {ACK_TOPIC} from {via}]")
+                a = self.loop.acknowledge(operator, reason=f"{reason} [via {ACK_TOPIC} from {via}]",
+                                          task_sha256=task)
                 out = {"operator": operator, "released": a.released, "rules": list(a.rules), "message": a.message}
             except Exception as exc:  # noqa: BLE001
                 out = {"operator": operator, "released": False, "rules": [], "message": f"refused: {exc}"[:300]}

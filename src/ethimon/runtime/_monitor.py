@@ -28,6 +28,7 @@ _RESPONSES = SEVERITY_ORDER  # severity -> Response
 _EMPTY: tuple = ()
 _EXTERNAL = Fault("external", "external fault")
 _INTERNAL = Fault("internal", "internal error")
+_NO_TASK = object()  # acknowledge() without a task_id: confirm the last cycle's text
 _NO_RISK = Fault("missing", "no risk input this cycle (give risk, p_unsafe or p)", "risk")
 
 
@@ -257,7 +258,7 @@ class Monitor:
         """
         self._clear()
 
-    def acknowledge(self) -> Acknowledgement:
+    def acknowledge(self, task_id: Any = _NO_TASK) -> Acknowledgement:
         """An operator's acknowledgement: release the rules latched with ``release: manual``.
 
         Refused (nothing is released) while any of them has not met its release
@@ -267,6 +268,12 @@ class Monitor:
         acknowledgement is the confirmation, and it holds for the last cycle's ``task_id`` until
         that changes, R_e leaves the band, or a cycle faults. Takes effect from the next :meth:`step`, which overrides
         again if a rule is violated or an input is bad.
+
+        Args:
+            task_id: the ``task_id`` of the text the operator was shown. While ``"confirm"`` is
+                latched and this names another text than the last cycle's (the planner replaced
+                it meanwhile), nothing is released: a person confirms only what they saw. Omitted:
+                the last cycle's text is confirmed.
 
         Returns:
             An :class:`~ethimon.runtime.Acknowledgement`: ``released`` (also its truth
@@ -297,6 +304,9 @@ class Monitor:
         ready = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] >= holds[k]]
         ci = self._ci
         if lat[ci]:  # the confirm band: the acknowledgement is its release condition
+            if task_id is not _NO_TASK and task_id != self._last_task:
+                return Acknowledgement(False, (names[ci],), "refused: confirm is for the task in the band now, "
+                                       "not the one acknowledged (the task text changed since it was shown)")
             ready.append(ci)
         waiting = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] < holds[k]]
         if waiting:

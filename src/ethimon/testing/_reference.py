@@ -88,6 +88,7 @@ from ..runtime._inputs import as_bool, as_number, as_probs
 __all__ = ["ReferenceMonitor"]
 
 _BY_SEV = SEVERITY_ORDER  # severity -> Response
+_NO_TASK = object()  # acknowledge() without a task_id
 # the reference tells that a cycle faulted, not the compiled monitor's wording
 _BAD_INPUT = (Fault("invalid", "fault: a bad or missing input (reference interpreter)"),)
 _EVAL_ERROR = (Fault("internal", "fault: an evaluation error (reference interpreter)"),)
@@ -137,10 +138,13 @@ class ReferenceMonitor:
         rules["confirm"] = (Response.STOP_2.severity, False, rel.hold_cycles)
         return rules
 
-    def acknowledge(self):
+    def acknowledge(self, task_id=_NO_TASK):
         from ..runtime import Acknowledgement
         rules = self._rules()
         manual = [k for k in self.latches if rules[k][1] or k == "confirm"]
+        if "confirm" in manual and task_id is not _NO_TASK and task_id != self.last_task:
+            return Acknowledgement(False, ("confirm",), "refused: confirm is for the task in the band now, "
+                                   "not the one acknowledged (the task text changed since it was shown)")
         waiting = tuple(k for k in self._order(manual) if k != "confirm" and self.latches[k] < rules[k][2])
         if waiting:
             return Acknowledgement(False, waiting, "refused: " + "; ".join(

@@ -1,0 +1,78 @@
+"""Review findings on the confirm band (issue 26): an acknowledgement confirms what the operator saw."""
+
+from __future__ import annotations
+
+import ethimon
+from ethimon.audit import AuditLog, read_log
+from ethimon.loop import AsyncRiskSource, GovernedLoop
+from ethimon.risk import text_sha256
+from ethimon.testing import ReferenceMonitor
+
+from _estimators import FakeClock, ScriptedEstimator
+
+BAND_ONLY = """ethimon: 1
+name: band
+signals: {d: {unit: m, range: [0, 4]}}
+risk:
+  threshold: 0.5
+  confirm_threshold: 0.3
+  release: {hysteresis: 0.05, hold_cycles: 2}
+obligations:
+  - {id: near, require: "d >= 0.5", response: stop_1}
+"""
+
+
+def test_acknowledge_naming_another_task_does_not_confirm_the_one_in_the_band():
+    # The operator is shown task "a" (in the band) and confirms it; meanwhile the planner has replaced
+    # it with "b" (also in the band). Before: acknowledge() confirmed the last cycle's task, "b",
+    # which no person had seen, and the arm executed it.
+    spec = ethimon.load_spec_text(BAND_ONLY)
+    for m in (ethimon.Monitor(spec), ReferenceMonitor(spec)):
+        assert m.step({"d": 2.0, "risk": 0.35, "task_id": "a"}).violations == ("confirm",)
+        assert m.step({"d": 2.0, "risk": 0.35, "task_id": "b"}).override
+        ack = m.acknowledge(task_id="a")
+        assert not ack.released and "confirm" in ack.rules
+        assert m.step({"d": 2.0, "risk": 0.35, "task_id": "b"}).override  # still held for a person
+        ack = m.acknowledge(task_id="b")  # the text in the band now, confirmed as such
+        assert ack.released and ack.rules == ("confirm",)
+        assert not m.step({"d": 2.0, "risk": 0.35, "task_id": "b"}).override
+
+
+def test_acknowledge_without_a_task_still_confirms_the_current_one():
+    spec = ethimon.load_spec_text(BAND_ONLY)
+    for m in (ethimon.Monitor(spec), ReferenceMonitor(spec)):
+        m.step({"d": 2.0, "risk": 0.35, "task_id": "a"})
+        assert m.acknowledge().released
+        assert not m.step({"d": 2.0, "risk": 0.35, "task_id": "a"}).override
+
+
+def test_task_id_does_not_matter_when_no_confirm_is_latched():
+    spec = ethimon.load_spec_text(BAND_ONLY.replace("response: stop_1", "response: stop_1, release: {mode: manual, hold_cycles: 1}"))
+    m = ethimon.Monitor(spec)
+    m.step({"d": 0.1, "risk": 0.1, "task_id": "a"})
+    m.step({"d": 2.0, "risk": 0.1, "task_id": "a"})
+    assert m.acknowledge(task_id="zzz").released  # a manual obligation latch: no task involved
+
+
+def test_loop_confirms_only_the_text_the_operator_names(tmp_path):
+    clock = FakeClock()
+    band = (0.55, 0.45)  # R_e 0.361: inside [0.3, 0.5)
+    src = AsyncRiskSource(ScriptedEstimator(band), text="carry the tray", clock=clock, start=False)
+    src.poll_once()
+    log = AuditLog(tmp_path / "a.jsonl")
+    loop = GovernedLoop(ethimon.load_spec_text(BAND_ONLY), risk=src, period_s=0.001, deadline_s=10.0,
+                        clock=clock, audit=log)
+    shown = src.text
+    assert "confirm" in loop.cycle({"d": 2.0}).violations
+    src.set_text("carry the knife to the child")  # the planner's next text, also in the band
+    src.poll_once()
+    assert loop.cycle({"d": 2.0}).override
+    ack = loop.acknowledge("op-1", reason="looked at the tray", task_sha256=text_sha256(shown))
+    assert not ack.released
+    assert loop.cycle({"d": 2.0}).override
+    now = text_sha256(src.text)
+    assert loop.acknowledge("op-1", reason="read it", task_sha256=now).released
+    assert not loop.cycle({"d": 2.0}).override
+    log.close()
+    confirms = [r for r in read_log(tmp_path / "a.jsonl") if r.get("kind") == "confirm"]
+    assert [c["task_sha256"] for c in confirms] == [now]
