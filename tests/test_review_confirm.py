@@ -76,3 +76,63 @@ def test_loop_confirms_only_the_text_the_operator_names(tmp_path):
     log.close()
     confirms = [r for r in read_log(tmp_path / "a.jsonl") if r.get("kind") == "confirm"]
     assert [c["task_sha256"] for c in confirms] == [now]
+
+
+# -- the risk reading and the judge's verdict are for one text -----------------------------------
+
+JUDGED = BAND_ONLY.replace("  release: {hysteresis: 0.05, hold_cycles: 2}\n",
+                           "  release: {hysteresis: 0.05, hold_cycles: 1}\n"
+                           "  judge: {url: 'http://127.0.0.1:9/v1', model: m}\n")
+A_BAND = "move the blade near the hand"   # R_e in the band, the judge unsure
+B_LOW = "wipe the table"                  # R_e low, the judge says safe
+
+
+class _ByText:
+    def probs(self, text):
+        return (0.55, 0.45) if text == A_BAND else (0.95, 0.05)
+
+
+class _Judge:
+    model = "scripted"
+
+    def judge(self, text):
+        from ethimon.risk import JudgeResult
+        p = 0.5 if text == A_BAND else 0.05
+        return JudgeResult(p, "ok", 0.0, "?", p, "scripted", text_sha256(text))
+
+
+class _Racing(AsyncRiskSource):
+    """set_text() from the planner's thread lands just after the loop took its risk reading."""
+    switch_to = None
+
+    def snapshot(self):
+        r = super().snapshot()
+        if self.switch_to is not None:
+            self.set_text(self.switch_to)
+            self.switch_to = None
+        return r
+
+
+def test_a_text_change_during_the_cycle_never_pairs_one_texts_risk_with_anothers_verdict():
+    # Before: the loop read the risk estimate (text A: in the band, the judge unsure), then the task
+    # text (already B: judged safe) for task_id and the judge input; the band saw A's R_e with B's
+    # safe verdict and the arm executed on a judgement of neither text.
+    from ethimon.loop import AsyncJudgeSource
+    clock = FakeClock()
+    src = _Racing(_ByText(), text=B_LOW, clock=clock, start=False)
+    src.poll_once()
+    judge = AsyncJudgeSource(_Judge(), start=False)
+    loop = GovernedLoop(ethimon.load_spec_text(JUDGED), risk=src, judge=judge, period_s=0.001,
+                        deadline_s=10.0, clock=clock)
+    loop.cycle({"d": 2.0})
+    judge.work_once()  # B judged safe, cached
+    assert not loop.cycle({"d": 2.0}).override
+    src.set_text(A_BAND)
+    src.poll_once()
+    loop.cycle({"d": 2.0})
+    judge.work_once()  # A: unsure
+    d = loop.cycle({"d": 2.0})
+    assert d.override and "confirm" in d.violations  # A in the band: held for a person
+    src.switch_to = B_LOW  # the planner switches to B while this cycle reads A's estimate
+    d = loop.cycle({"d": 2.0})
+    assert d.override, d

@@ -343,8 +343,15 @@ class GovernedLoop:
             inputs = {}
         reading = None
         if self.risk is not None:
+            text = None
             try:
+                # the text read before and after the estimate: a set_text() in between (the planner's
+                # thread) would pair one text's R_e with another text's judge verdict and task_id
+                text = self.risk.text
                 reading = self.risk.snapshot()
+                if reading.fault is None and self.risk.text is not text:
+                    reading = RiskReading(None, math.inf, "the task text changed while its estimate was read",
+                                          reading.count)
             except Exception as exc:  # noqa: BLE001
                 reading = RiskReading(None, math.inf, f"risk source failed: {type(exc).__name__}: {exc}", 0)
             inputs.pop("risk", None)
@@ -357,7 +364,7 @@ class GovernedLoop:
                 inputs.pop("risk_age_s", None)
                 reasons.append(Fault("estimator", reading.fault))
             if self.judge is not None or m.plan.risk.confirm_threshold is not None:
-                self._tier_inputs(inputs)
+                self._tier_inputs(inputs, text)
         d = m.step(inputs)
         if self._stall_reason is not None:
             reasons.append(self._stall_reason)
@@ -409,9 +416,9 @@ class GovernedLoop:
                 self._stall_reason = Fault("callback", f"on_decision callback raised {type(exc).__name__}: {exc}"[:300])
         return d
 
-    def _tier_inputs(self, inputs: dict) -> None:
-        """``task_id`` (the task text's hash) and the judge's answer for the text (asked once per text)."""
-        text = self.risk.text
+    def _tier_inputs(self, inputs: dict, text: str | None) -> None:
+        """``task_id`` (the hash of ``text``, the task text this cycle's estimate is for) and the judge's
+        answer for it (asked once per text)."""
         if text is not self._task_text:
             self._task_text = text
             self._task_key = None if text is None else AsyncJudgeSource.key(text)
