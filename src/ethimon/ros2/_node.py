@@ -241,7 +241,14 @@ class Ros2Monitor:
             elif sub.msgtype != t:
                 raise _merr(m, f"signal {name!r}: topic {sm.topic} is mapped with two types, {sub.msgtype} and {t}",
                             loc + ("type",), hint="a topic has one message type")
-            sub.slots.append(_Slot(name, sm, m.limit_s(name)))
+            limit = m.limit_s(name)
+            if limit is None and sm.stale:  # never stale by default, not by choice: a dead topic held forever
+                raise _merr(m, f"signal {name!r}: live, every topic needs a staleness limit, and the mapping's "
+                            "max_age_s is null: a publisher that dies would leave its last value in force "
+                            "forever (override off)", ("max_age_s",),
+                            hint=f"set 'max_age_s: <s>' at the top or on this signal; 'stale: false' on "
+                            f"{name!r} if its topic is latched (published once) on purpose")
+            sub.slots.append(_Slot(name, sm, limit))
         subs = list(by_topic.values())
         if m.task is not None:
             t = normalize_type(m.task.type or "std_msgs/msg/String")
