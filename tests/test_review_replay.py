@@ -37,3 +37,18 @@ def test_rules_reading_re_are_not_checked_under_risk_none(tmp_path):
         c = res.check(rule)
         assert c.status == "NOT CHECKED" and not c.passed, (rule, c)
     assert "R_e" in res.check("risky_far").detail
+
+
+@pytest.mark.parametrize("value", ["1e300", "1e7"])
+def test_a_signals_own_max_age_is_bounded_like_the_mappings(tmp_path, value):
+    # Before: the top-level max_age_s was capped at 1e6 s but a signal's own was not: 'max_age_s: 1e300'
+    # on one signal made it never stale (replay and live) with no error.
+    from ethimon.errors import SpecError
+    from ethimon.replay import load_mapping
+    f = tmp_path / "m.yaml"
+    f.write_text(f"ethimon: 1\nrate_hz: 10\nmax_age_s: 0.1\nsignals:\n  d: {{topic: /d, max_age_s: {value}}}\n")
+    with pytest.raises(SpecError) as ei:
+        load_mapping(f)
+    e = ei.value
+    assert (e.path, e.line, e.column) == (str(f), 5, 29), str(e)
+    assert "1000000" in str(e)
