@@ -107,6 +107,13 @@ def _latch_refusal(cannot: list[str]) -> str:
             "first (acknowledge it, or let it release) or keep the rule as it is")
 
 
+def _due_refusal(due: tuple[str, ...]) -> str:
+    return ("reload refused: a bounded response is due (" + ", ".join(f"obligation {o}: its when fired, its "
+            "require is not met yet, within_cycles running" for o in due) + "); a new monitor starts with a "
+            "fresh history and would forget the deadline. The running spec stays; reload once it is met or "
+            "has fired")
+
+
 def _verify_smt(spec: Spec) -> None:
     """Reject a spec unless every decision-logic property is proved (``ethimon.verify``, z3)."""
     from ..verify import verify_spec  # lazy: z3 only when verify='smt'
@@ -668,6 +675,9 @@ class GovernedLoop:
             cannot = unmapped_latches(self.monitor.spec, spec, self.monitor.latched_rules)
             if cannot:
                 raise EthimonError(_latch_refusal(cannot))
+            due = self.monitor.pending_responses  # checked again at the swap, like the latches
+            if due:
+                raise EthimonError(_due_refusal(due))
             if self._verify is not None:
                 verdict = self._verify(spec)
                 if verdict is False:
@@ -718,9 +728,13 @@ class GovernedLoop:
                 new.carry_latches(latched)  # same id, same response, same release: the latch goes on
         except Exception as exc:  # noqa: BLE001 - a latch that cannot be carried keeps the old spec
             cannot = [f"carrying the latches raised {type(exc).__name__}: {exc}"]
-        if cannot:
+        try:
+            due = () if cannot else old.pending_responses
+        except Exception as exc:  # noqa: BLE001 - cannot tell: keep the old spec
+            due = (f"? ({type(exc).__name__}: {exc})",)
+        if cannot or due:
             res.ok = False
-            res.error = _latch_refusal(cannot)[:4000]
+            res.error = (_latch_refusal(cannot) if cannot else _due_refusal(due))[:4000]
             self.stats.reloads_rejected += 1
             self._log("reload", status="rejected", stage="swap", source=label, spec_sha256=res.spec_sha256,
                       error=res.error, running_spec_sha256=self.spec_sha256, latched=list(latched),

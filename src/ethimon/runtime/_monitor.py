@@ -217,6 +217,12 @@ class Monitor:
         """The rules whose latch holds the override now: obligation ids, ``"risk"``, ``"fault"``."""
         return tuple(name for name, s in zip(self._names, self._lat) if s)
 
+    @property
+    def pending_responses(self) -> tuple[str, ...]:
+        """The obligations whose bounded response is due: ``when`` fired, ``require`` not met yet,
+        ``within_cycles`` not yet passed (a fresh monitor would forget the deadline)."""
+        return tuple(oid for oid, due in self._m.pending if due())
+
     def carry_latches(self, rules) -> None:
         """Latch ``rules`` (names as in :attr:`latched_rules` of the monitor this one replaces) here,
         each with this monitor's response and release for it, its release count at 0: the release
