@@ -136,3 +136,15 @@ def test_a_text_change_during_the_cycle_never_pairs_one_texts_risk_with_anothers
     src.switch_to = B_LOW  # the planner switches to B while this cycle reads A's estimate
     d = loop.cycle({"d": 2.0})
     assert d.override, d
+
+
+def test_judge_url_with_an_impossible_port_is_a_located_error():
+    # Before: 'http://127.0.0.1:99999/v1' loaded; every judge call then failed (ValueError: Port out of
+    # range), found only at run time.
+    import pytest
+    from ethimon.errors import SpecError
+    text = ('ethimon: 1\nname: j\nrisk:\n  threshold: 0.5\n  confirm_threshold: 0.3\n'
+            '  judge: {url: "http://127.0.0.1:99999/v1", model: m}\n')
+    with pytest.raises(SpecError) as ei:
+        ethimon.load_spec_text(text, path="j.yaml")
+    assert (ei.value.line, "port") == (6, "port") and "99999" in str(ei.value)
