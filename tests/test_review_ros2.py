@@ -59,3 +59,28 @@ def test_live_refuses_a_signal_that_can_never_go_stale():
 def test_live_accepts_a_per_signal_limit_or_an_explicit_latched_topic():
     _try(MAPPING.replace("reduce: max_abs}", "reduce: max_abs, max_age_s: 0.1}"))
     _try(MAPPING.replace("reduce: max_abs}", "reduce: max_abs, stale: false}"))  # stated, not defaulted
+
+
+def test_a_header_stamp_from_the_future_is_a_fault_not_a_value_that_never_ages():
+    # Before: with 'time: header' the age is (now - header stamp); a stamp 100 s ahead (a robot PC
+    # whose clock runs ahead, or a forged stamp) gave a negative age, never above max_age_s: once
+    # the topic died its last value stayed in force for those 100 s (override off).
+    import time
+    mp = MAPPING.replace("max_age_s: null", "max_age_s: 0.1").replace(
+        "reduce: max_abs}", "reduce: max_abs, time: header}")
+    spec = ethimon.load_spec_text(SPEC)
+    node = Ros2Monitor(spec, load_mapping_text(mp, "m.yaml"), domain_id=DOMAIN, config=LOOPBACK)
+    try:
+        slot = next(s for sub in node._subs for s in sub.slots if s.name == "joint_speed_max")
+        risk = next(s for sub in node._subs for s in sub.slots if s.name == "p_unsafe")
+        risk.last = (0.0, time.monotonic())
+        slot.last = (0.5, time.time() + 100.0)
+        frame = node._frame()
+        assert "joint_speed_max" not in frame
+        assert [(f.kind, f.subject) for f in frame.faults] == [("stale", "joint_speed_max")]
+        assert "future" in frame.faults[0].message
+        slot.last = (0.5, time.time() - 0.01)  # a fresh stamp is a value
+        frame = node._frame()
+        assert frame["joint_speed_max"] == 0.5 and not frame.faults
+    finally:
+        node.close()

@@ -357,6 +357,12 @@ class Ros2Monitor:
                     faults.append(Fault("stale", f"{s.name}: stale (last {sub.topic} message {age:.3f} s old, "
                                         f"max_age_s {s.limit:g})", s.name))
                     continue
+                if s.limit is not None and -age > s.limit:  # a header stamp ahead of this clock never ages
+                    faults.append(Fault("stale", f"{s.name}: the last {sub.topic} message is stamped {-age:.3f} s "
+                                        f"in the future (more than max_age_s {s.limit:g}): its age cannot be "
+                                        "judged (the robot's clock runs ahead of this one, or the stamp is forged)",
+                                        s.name))
+                    continue
                 frame[s.name] = value
                 if s is self._risk_slot:
                     frame["risk_age_s"] = max(0.0, age)
