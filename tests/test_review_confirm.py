@@ -148,3 +148,37 @@ def test_judge_url_with_an_impossible_port_is_a_located_error():
     with pytest.raises(SpecError) as ei:
         ethimon.load_spec_text(text, path="j.yaml")
     assert (ei.value.line, "port") == (6, "port") and "99999" in str(ei.value)
+
+
+TIERS_J = BAND_ONLY.replace("  release: {hysteresis: 0.05, hold_cycles: 2}\n",
+                            "  release: {hysteresis: 0.05, hold_cycles: 1}\n"
+                            "  judge: {url: 'http://127.0.0.1:9/v1', model: m}\n")
+
+
+def test_a_text_the_judge_stops_ends_the_confirmation_of_the_one_before():
+    # Before: a cycle where the judge's unsafe verdict fired returned before the confirmation was
+    # checked against its task_id: task "a" confirmed, then "b" (judged unsafe), then "a" again
+    # executed on the old confirmation, although the confirmation holds "until the text changes".
+    spec = ethimon.load_spec_text(TIERS_J)
+    for m in (ethimon.Monitor(spec), ReferenceMonitor(spec)):
+        assert m.step({"d": 2.0, "risk": 0.35, "task_id": "a"}).violations == ("confirm",)
+        assert m.acknowledge(task_id="a").released
+        assert not m.step({"d": 2.0, "risk": 0.35, "task_id": "a"}).override
+        assert m.step({"d": 2.0, "risk": 0.35, "task_id": "b", "judge": 0.95}).violations == ("judge",)
+        for _ in range(2):
+            d = m.step({"d": 2.0, "risk": 0.35, "task_id": "a"})
+        assert d.override and "confirm" in d.violations, (type(m).__name__, d)
+
+
+def test_confirming_while_the_judge_stops_a_text_confirms_that_text():
+    # Before: the judge's cycles did not record their task_id, so a confirmation then bound to the
+    # text before it ("a"), which the operator no longer saw, and "a" executed when it came back.
+    spec = ethimon.load_spec_text(TIERS_J.replace("hold_cycles: 1", "hold_cycles: 5"))
+    for m in (ethimon.Monitor(spec), ReferenceMonitor(spec)):
+        m.step({"d": 2.0, "risk": 0.35, "task_id": "a"})
+        m.step({"d": 2.0, "risk": 0.35, "task_id": "b", "judge": 0.95})
+        ack = m.acknowledge()  # the text held now is b
+        assert ack.released and ack.rules == ("confirm",)
+        for _ in range(2):
+            d = m.step({"d": 2.0, "risk": 0.35, "task_id": "a"})
+        assert d.override and "confirm" in d.violations, (type(m).__name__, d)

@@ -545,15 +545,16 @@ class Monitor:
         execute; anything else (unsure, no judgement) fires ``"confirm"`` (stop 2). R_e ≥ τ is the
         risk rule's, whatever the judge says.
         """
+        tc = self._tc
+        if tc is not None:  # first, on every cycle (the judge's too): the text this cycle is about
+            task = get("task_id")
+            if self._confirmed and (task != self._ctask or not tc <= r < self._tau):
+                self._confirmed = False  # a confirmation is for one text while it stays in the band
+            self._last_task = task
         if jp is not None and jp >= self._junsafe:
             return "judge", self._ji
-        tc = self._tc
         if tc is None:
             return None
-        task = get("task_id")
-        if self._confirmed and (task != self._ctask or not tc <= r < self._tau):
-            self._confirmed = False  # a confirmation is for one text while it stays in the band
-        self._last_task = task
         if tc <= r < self._tau and not self._confirmed and not (jp is not None and jp < self._jsafe):
             return "confirm", self._ci
         return None

@@ -431,14 +431,15 @@ class ReferenceMonitor:
             violations.append("risk")
         # the tiers: an unsafe verdict stops at any R_e; in [τ_confirm, τ) only a safe verdict or a
         # confirmation of this task executes
-        if judge is not None and jp is not None and jp >= judge.unsafe_from:
-            violations.append("judge")
-        elif spec.risk.confirm_threshold is not None:
+        if spec.risk.confirm_threshold is not None:  # every cycle: the text it is about
             task = signals.get("task_id")
             in_band = spec.risk.confirm_threshold <= r < tau
             if self.confirmed is not None and (self.confirmed[0] != task or not in_band):
                 self.confirmed = None
             self.last_task = task
+        if judge is not None and jp is not None and jp >= judge.unsafe_from:
+            violations.append("judge")
+        elif spec.risk.confirm_threshold is not None:
             judged_safe = judge is not None and jp is not None and jp < judge.safe_below
             if in_band and self.confirmed is None and not judged_safe:
                 violations.append("confirm")
