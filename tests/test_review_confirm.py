@@ -182,3 +182,18 @@ def test_confirming_while_the_judge_stops_a_text_confirms_that_text():
         for _ in range(2):
             d = m.step({"d": 2.0, "risk": 0.35, "task_id": "a"})
         assert d.override and "confirm" in d.violations, (type(m).__name__, d)
+
+
+def test_a_confirmation_needs_a_task_id_to_bind_to():
+    # Before: with no task_id input (a source that gives p_unsafe only, e.g. an ethimon ros2 mapping
+    # with a p_unsafe topic) a confirmation was bound to None and held for every later text while
+    # R_e stayed in the band: the operator confirmed one command and the next ones executed unseen.
+    spec = ethimon.load_spec_text(BAND_ONLY)
+    for m in (ethimon.Monitor(spec), ReferenceMonitor(spec)):
+        assert m.step({"d": 2.0, "risk": 0.35}).violations == ("confirm",)
+        ack = m.acknowledge()
+        assert not ack.released and ack.rules == ("confirm",) and "task_id" in ack.message
+        assert m.step({"d": 2.0, "risk": 0.41}).override  # another command, still in the band: held
+        for _ in range(2):  # leaving the band releases the hold by itself (hold_cycles 2)
+            d = m.step({"d": 2.0, "risk": 0.2})
+        assert not d.override

@@ -272,7 +272,8 @@ class Monitor:
         R_e < τ − δ for the risk rule, no fault for the fault latch. Automatic latches
         keep their own rule. A latched ``"confirm"`` (the confirm band) needs no count: the
         acknowledgement is the confirmation, and it holds for the last cycle's ``task_id`` until
-        that changes, R_e leaves the band, or a cycle faults. Takes effect from the next :meth:`step`, which overrides
+        that changes, R_e leaves the band, or a cycle faults (refused while that cycle gave no
+        ``task_id``: a confirmation bound to no text would hold for every text in the band). Takes effect from the next :meth:`step`, which overrides
         again if a rule is violated or an input is bad.
 
         Args:
@@ -309,16 +310,19 @@ class Monitor:
         lat, run, holds, manual, names = self._lat, self._run, self._holds, self._manual, self._names
         ready = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] >= holds[k]]
         ci = self._ci
-        if lat[ci]:  # the confirm band: the acknowledgement is its release condition
-            if task_id is not _NO_TASK and task_id != self._last_task:
-                return Acknowledgement(False, (names[ci],), "refused: confirm is for the task in the band now, "
-                                       "not the one acknowledged (the task text changed since it was shown)")
-            ready.append(ci)
         waiting = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] < holds[k]]
         if waiting:
             return Acknowledgement(False, tuple(names[k] for k in waiting), "refused: " + "; ".join(
                 f"{names[k]} still fails" if run[k] <= 0 else
                 f"{names[k]} has held {run[k]} of {holds[k]} cycles" for k in waiting))
+        if lat[ci]:  # the confirm band: the acknowledgement is its release condition
+            if task_id is not _NO_TASK and task_id != self._last_task:
+                return Acknowledgement(False, (names[ci],), "refused: confirm is for the task in the band now, "
+                                       "not the one acknowledged (the task text changed since it was shown)")
+            if self._last_task is None:  # bound to nothing, it would hold for every text in the band
+                return Acknowledgement(False, (names[ci],), "refused: confirm needs the task_id of the text "
+                                       "in the band (none was given this cycle) to bind the confirmation to")
+            ready.append(ci)
         if not ready:
             return Acknowledgement(False, (), "nothing awaits an acknowledgement" + (
                 " (the override is held by automatic releases)" if self._nlat else ""))

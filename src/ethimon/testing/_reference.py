@@ -142,14 +142,17 @@ class ReferenceMonitor:
         from ..runtime import Acknowledgement
         rules = self._rules()
         manual = [k for k in self.latches if rules[k][1] or k == "confirm"]
-        if "confirm" in manual and task_id is not _NO_TASK and task_id != self.last_task:
-            return Acknowledgement(False, ("confirm",), "refused: confirm is for the task in the band now, "
-                                   "not the one acknowledged (the task text changed since it was shown)")
         waiting = tuple(k for k in self._order(manual) if k != "confirm" and self.latches[k] < rules[k][2])
         if waiting:
             return Acknowledgement(False, waiting, "refused: " + "; ".join(
                 f"{k} still fails" if self.latches[k] == 0 else
                 f"{k} has held {self.latches[k]} of {rules[k][2]} cycles" for k in waiting))
+        if "confirm" in manual and task_id is not _NO_TASK and task_id != self.last_task:
+            return Acknowledgement(False, ("confirm",), "refused: confirm is for the task in the band now, "
+                                   "not the one acknowledged (the task text changed since it was shown)")
+        if "confirm" in manual and self.last_task is None:
+            return Acknowledgement(False, ("confirm",), "refused: confirm needs the task_id of the text in the "
+                                   "band (none was given this cycle) to bind the confirmation to")
         if not manual:
             return Acknowledgement(False, (), "nothing awaits an acknowledgement" + (
                 " (the override is held by automatic releases)" if self.latches else ""))
