@@ -39,6 +39,9 @@ class Machine:
     resets: tuple[Callable[[], None], ...]
     violated: tuple[Callable[[], bool], ...]
     margins: tuple[Callable[[], float], ...]
+    #: (obligation id, probe) per bounded response: the probe is true while its ``when`` has fired and
+    #: ``require`` has not been met within ``within_cycles`` yet (a deadline running)
+    pending: tuple[tuple[str, Callable[[], bool]], ...] = ()
 
     def reset(self) -> None:
         """Forget every temporal state and pending response (a fresh trace)."""
@@ -166,6 +169,7 @@ class _Gen:
         self.tindex = {id(n): k for k, n in enumerate(plan.temporal)}
         self.slots = plan.slots
         self.consts = plan.constants
+        self.pending: list[tuple[str, Callable[[], bool]]] = []
 
     # -- values --------------------------------------------------------------
     def d(self, node: Node):
@@ -404,6 +408,7 @@ class _Gen:
         def rst() -> None:
             nonlocal pend
             pend = -1
+        self.pending.append((ob.id, lambda: 0 <= pend < n))
         return violated, rst
 
 
@@ -437,7 +442,7 @@ def build_machine(plan: Plan) -> Machine:
             margins.append(lambda rw=rw, rr=rr: max(-rw(), rr()))
         else:
             margins.append(rr)
-    return Machine(g.vals, g.tv, tuple(updates), tuple(resets), tuple(violated), tuple(margins))
+    return Machine(g.vals, g.tv, tuple(updates), tuple(resets), tuple(violated), tuple(margins), tuple(g.pending))
 
 
 def _safe(f: Callable[[], float]) -> float:

@@ -107,6 +107,13 @@ def _latch_refusal(cannot: list[str]) -> str:
             "first (acknowledge it, or let it release) or keep the rule as it is")
 
 
+def _due_refusal(due: tuple[str, ...]) -> str:
+    return ("reload refused: a bounded response is due (" + ", ".join(f"obligation {o}: its when fired, its "
+            "require is not met yet, within_cycles running" for o in due) + "); a new monitor starts with a "
+            "fresh history and would forget the deadline. The running spec stays; reload once it is met or "
+            "has fired")
+
+
 def _verify_smt(spec: Spec) -> None:
     """Reject a spec unless every decision-logic property is proved (``ethimon.verify``, z3)."""
     from ..verify import verify_spec  # lazy: z3 only when verify='smt'
@@ -343,8 +350,15 @@ class GovernedLoop:
             inputs = {}
         reading = None
         if self.risk is not None:
+            text = None
             try:
+                # the text read before and after the estimate: a set_text() in between (the planner's
+                # thread) would pair one text's R_e with another text's judge verdict and task_id
+                text = self.risk.text
                 reading = self.risk.snapshot()
+                if reading.fault is None and self.risk.text is not text:
+                    reading = RiskReading(None, math.inf, "the task text changed while its estimate was read",
+                                          reading.count)
             except Exception as exc:  # noqa: BLE001
                 reading = RiskReading(None, math.inf, f"risk source failed: {type(exc).__name__}: {exc}", 0)
             inputs.pop("risk", None)
@@ -357,7 +371,7 @@ class GovernedLoop:
                 inputs.pop("risk_age_s", None)
                 reasons.append(Fault("estimator", reading.fault))
             if self.judge is not None or m.plan.risk.confirm_threshold is not None:
-                self._tier_inputs(inputs)
+                self._tier_inputs(inputs, text)
         d = m.step(inputs)
         if self._stall_reason is not None:
             reasons.append(self._stall_reason)
@@ -409,9 +423,9 @@ class GovernedLoop:
                 self._stall_reason = Fault("callback", f"on_decision callback raised {type(exc).__name__}: {exc}"[:300])
         return d
 
-    def _tier_inputs(self, inputs: dict) -> None:
-        """``task_id`` (the task text's hash) and the judge's answer for the text (asked once per text)."""
-        text = self.risk.text
+    def _tier_inputs(self, inputs: dict, text: str | None) -> None:
+        """``task_id`` (the hash of ``text``, the task text this cycle's estimate is for) and the judge's
+        answer for it (asked once per text)."""
         if text is not self._task_text:
             self._task_text = text
             self._task_key = None if text is None else AsyncJudgeSource.key(text)
@@ -511,7 +525,8 @@ class GovernedLoop:
         return self.stats
 
     # ------------------------------------------------------------------ operator release
-    def acknowledge(self, operator: str, *, reason: str = "", timeout_s: float = 2.0) -> Acknowledgement:
+    def acknowledge(self, operator: str, *, reason: str = "", timeout_s: float = 2.0,
+                    task_sha256: str | None = None) -> Acknowledgement:
         """An operator's acknowledgement of the manual latches, checked and audited.
 
         :meth:`Monitor.acknowledge` through the loop: while :meth:`run` drives the
@@ -528,6 +543,10 @@ class GovernedLoop:
             operator: who acknowledges (a name or badge id; required).
             reason: why, in the operator's words (kept in the audit log).
             timeout_s: how long to wait for a running loop to apply it.
+            task_sha256: the sha256 of the task text the operator was shown (``ethimon.risk.text_sha256``).
+                While the confirm band holds, a confirmation naming another text than the one the loop
+                holds when it applies the request (the planner replaced it meanwhile) is refused.
+                ``None``: the text held then is confirmed (the audit record names it).
 
         Returns:
             The :class:`~ethimon.runtime.Acknowledgement`; refused if the loop did
@@ -537,7 +556,9 @@ class GovernedLoop:
             raise ValueError("acknowledge needs the operator's name or id (a non-empty string)")
         if not isinstance(reason, str):
             raise ValueError(f"reason must be a string, got {type(reason).__name__}")
-        req: list[Any] = [operator, reason, threading.Event(), None]
+        if task_sha256 is not None and not isinstance(task_sha256, str):
+            raise ValueError(f"task_sha256 must be a hex string, got {type(task_sha256).__name__}")
+        req: list[Any] = [operator, reason, threading.Event(), None, task_sha256]
         t = self._thread
         if self._running and t is not None and t is not threading.current_thread():
             with self._acks_lock:
@@ -560,14 +581,14 @@ class GovernedLoop:
             self._ack_now(req)
 
     def _ack_now(self, req: list[Any]) -> None:
-        operator, reason, done, _ = req
+        operator, reason, done, _, task = req
         afault = self._audit_health()
         if self.audit is not None and (self._audit_failed or afault):
             a = Acknowledgement(False, (), "refused: the audit log cannot record it "
                                 f"({afault or 'a record was refused'})")
         else:
             try:
-                a = self.monitor.acknowledge()
+                a = self.monitor.acknowledge() if task is None else self.monitor.acknowledge(task_id=task)
             except Exception as exc:  # noqa: BLE001 - never crash the loop on an operator request
                 a = Acknowledgement(False, (), f"refused: acknowledge raised {type(exc).__name__}: {exc}"[:300])
         if a.released and "confirm" in a.rules and self.risk is not None:  # what the operator confirmed
@@ -575,7 +596,7 @@ class GovernedLoop:
             self._log("confirm", operator=operator, reason=reason, task_text=text, task_sha256=self._task_key,
                       cycle=self.monitor.cycle)
         self._log("acknowledge", operator=operator, reason=reason, released=a.released, rules=list(a.rules),
-                  message=a.message, cycle=self.monitor.cycle,
+                  message=a.message, cycle=self.monitor.cycle, task_sha256=task,
                   loop_cycle=self.stats.cycles)
         req[3] = a
         done.set()
@@ -654,6 +675,9 @@ class GovernedLoop:
             cannot = unmapped_latches(self.monitor.spec, spec, self.monitor.latched_rules)
             if cannot:
                 raise EthimonError(_latch_refusal(cannot))
+            due = self.monitor.pending_responses  # checked again at the swap, like the latches
+            if due:
+                raise EthimonError(_due_refusal(due))
             if self._verify is not None:
                 verdict = self._verify(spec)
                 if verdict is False:
@@ -704,9 +728,13 @@ class GovernedLoop:
                 new.carry_latches(latched)  # same id, same response, same release: the latch goes on
         except Exception as exc:  # noqa: BLE001 - a latch that cannot be carried keeps the old spec
             cannot = [f"carrying the latches raised {type(exc).__name__}: {exc}"]
-        if cannot:
+        try:
+            due = () if cannot else old.pending_responses
+        except Exception as exc:  # noqa: BLE001 - cannot tell: keep the old spec
+            due = (f"? ({type(exc).__name__}: {exc})",)
+        if cannot or due:
             res.ok = False
-            res.error = _latch_refusal(cannot)[:4000]
+            res.error = (_latch_refusal(cannot) if cannot else _due_refusal(due))[:4000]
             self.stats.reloads_rejected += 1
             self._log("reload", status="rejected", stage="swap", source=label, spec_sha256=res.spec_sha256,
                       error=res.error, running_spec_sha256=self.spec_sha256, latched=list(latched),

@@ -78,7 +78,8 @@ class SignalMap(BaseModel):
     scale: FiniteFloat = Field(1.0, description="unit scaling: value * scale + offset")
     offset: FiniteFloat = Field(0.0, description="unit offset: value * scale + offset")
     max_age_s: FiniteFloat | None = Field(
-        None, gt=0.0, description="staleness limit of this signal (s); default: the mapping's max_age_s")
+        None, gt=0.0, le=1e6, description="staleness limit of this signal (s, at most 1e6); default: the "
+        "mapping's max_age_s")
     stale: bool = Field(True, description="false: this signal is never stale (a latched topic), whatever "
                         "max_age_s says")
     time: Literal["log", "header"] = Field(

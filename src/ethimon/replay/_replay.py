@@ -533,11 +533,21 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
     checks: list[CheckResult] = []
     ob_resp = {ob.id: str(ob.response) for ob in spec.obligations}
     can = _evaluable(rs, spec)
+    # 'risk: none' holds R_e at 0: a rule that reads R_e (an obligation naming it, the tier rules)
+    # would be judged on that stand-in, so it is NOT CHECKED, never PASS (or FAIL)
+    no_re = _reads_risk(spec) | {"judge", "confirm"} if p is None and not mapping.risk_checked else set()
     for j, oid in enumerate(tr.ids):
         col = tr.violated[:, j]
         cnt = int(col.sum())
         first = int(np.argmax(col)) if cnt else None
         detail, status = "", ""
+        if oid in no_re and oid != "risk":
+            kind = "obligation" if oid in ob_resp else "tier"
+            resp = ob_resp.get(oid) or (str(spec.risk.response) if oid == "judge" else "stop_2")
+            checks.append(CheckResult(oid, kind, resp, 0, None, None, None, None,
+                                      "reads R_e, which 'risk: none' in the mapping does not give (the bag has "
+                                      "no task text): not checked", "NOT CHECKED"))
+            continue
         if oid == "risk":
             kind, resp = "risk", str(spec.risk.response)
             if p is None and not mapping.risk_checked:
@@ -596,6 +606,20 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
     if audit is not None:
         _audit(audit, res, tr, rs, spec)
     return res
+
+
+def _reads_risk(spec: Spec) -> set[str]:
+    """The ids of the obligations whose ``when`` or ``require`` reads R_e (a name that is neither a
+    signal nor a constant: the built-in ``risk``)."""
+    from ..compiler import plan_of
+    from ..spec._expr import Name, walk
+    known = set(spec.signals) | set(spec.constants)
+    out = set()
+    for ob in plan_of(spec).obligations:
+        for root in (ob.when, ob.require):
+            if root is not None and any(isinstance(n, Name) and n.id not in known for n in walk(root)):
+                out.add(ob.id)
+    return out
 
 
 def _why_fault(rs: Resampled, tr: CycleResults, data: BagData, mapping: Mapping, spec: Spec) -> list[str]:

@@ -241,7 +241,14 @@ class Ros2Monitor:
             elif sub.msgtype != t:
                 raise _merr(m, f"signal {name!r}: topic {sm.topic} is mapped with two types, {sub.msgtype} and {t}",
                             loc + ("type",), hint="a topic has one message type")
-            sub.slots.append(_Slot(name, sm, m.limit_s(name)))
+            limit = m.limit_s(name)
+            if limit is None and sm.stale:  # never stale by default, not by choice: a dead topic held forever
+                raise _merr(m, f"signal {name!r}: live, every topic needs a staleness limit, and the mapping's "
+                            "max_age_s is null: a publisher that dies would leave its last value in force "
+                            "forever (override off)", ("max_age_s",),
+                            hint=f"set 'max_age_s: <s>' at the top or on this signal; 'stale: false' on "
+                            f"{name!r} if its topic is latched (published once) on purpose")
+            sub.slots.append(_Slot(name, sm, limit))
         subs = list(by_topic.values())
         if m.task is not None:
             t = normalize_type(m.task.type or "std_msgs/msg/String")
@@ -350,6 +357,12 @@ class Ros2Monitor:
                     faults.append(Fault("stale", f"{s.name}: stale (last {sub.topic} message {age:.3f} s old, "
                                         f"max_age_s {s.limit:g})", s.name))
                     continue
+                if s.limit is not None and -age > s.limit:  # a header stamp ahead of this clock never ages
+                    faults.append(Fault("stale", f"{s.name}: the last {sub.topic} message is stamped {-age:.3f} s "
+                                        f"in the future (more than max_age_s {s.limit:g}): its age cannot be "
+                                        "judged (the robot's clock runs ahead of this one, or the stamp is forged)",
+                                        s.name))
+                    continue
                 frame[s.name] = value
                 if s is self._risk_slot:
                     frame["risk_age_s"] = max(0.0, age)
@@ -404,10 +417,13 @@ class Ros2Monitor:
         try:
             req = json.loads(msg.data)
             operator, reason = req.get("operator"), req.get("reason", "")
-            if not (isinstance(operator, str) and operator.strip() and isinstance(reason, str)):
+            task = req.get("task_sha256")  # the text the operator was shown: a confirmation binds to it
+            if not (isinstance(operator, str) and operator.strip() and isinstance(reason, str)
+                    and (task is None or isinstance(task, str))):
                 raise ValueError
         except Exception:  # noqa: BLE001 - any malformed request is refused
-            self._refuse_ack(None, "", sender, 'refused: expected {"operator": "<name>", "reason": "<text>"}')
+            self._refuse_ack(None, "", sender, 'refused: expected {"operator": "<name>", "reason": "<text>"'
+                             '[, "task_sha256": "<hex>"]}')
             return
         allow = self.mapping.ros2.allow_unauthenticated_acknowledge
         if not self.secure and allow is None:
@@ -416,7 +432,7 @@ class Ros2Monitor:
             return
         how = "DDS Security" if self.secure else f"unauthenticated, allowed by the mapping: {allow}"
         try:
-            self._ack_q.put_nowait((operator[:200], reason[:2000], f"{sender} ({how})"))
+            self._ack_q.put_nowait((operator[:200], reason[:2000], f"{sender} ({how})", task and task[:128]))
         except queue.Full:
             self._refuse_ack(operator, reason, sender, "refused: too many acknowledgements queued")
 
@@ -437,9 +453,10 @@ class Ros2Monitor:
             item = self._ack_q.get()
             if item is None:
                 return
-            operator, reason, via = item
+            operator, reason, via, task = item
             try:
-                a = self.loop.acknowledge(operator, reason=f"{reason} [via {ACK_TOPIC} from {via}]")
+                a = self.loop.acknowledge(operator, reason=f"{reason} [via {ACK_TOPIC} from {via}]",
+                                          task_sha256=task)
                 out = {"operator": operator, "released": a.released, "rules": list(a.rules), "message": a.message}
             except Exception as exc:  # noqa: BLE001
                 out = {"operator": operator, "released": False, "rules": [], "message": f"refused: {exc}"[:300]}

@@ -28,6 +28,7 @@ _RESPONSES = SEVERITY_ORDER  # severity -> Response
 _EMPTY: tuple = ()
 _EXTERNAL = Fault("external", "external fault")
 _INTERNAL = Fault("internal", "internal error")
+_NO_TASK = object()  # acknowledge() without a task_id: confirm the last cycle's text
 _NO_RISK = Fault("missing", "no risk input this cycle (give risk, p_unsafe or p)", "risk")
 
 
@@ -46,11 +47,6 @@ def _all_margins(fns: tuple) -> tuple[float, ...]:
             out.append(math.nan)
             i += 1
     return tuple(out)
-
-
-#: why acknowledge() refuses a confirmation without a task_id (monitor and reference say the same)
-_UNBOUND_CONFIRM = ("refused: confirm needs the task_id input on the cycle it confirms (a confirmation "
-                    "names the text it confirms: pass the task text's hash as task_id)")
 
 
 class Monitor:
@@ -221,6 +217,12 @@ class Monitor:
         """The rules whose latch holds the override now: obligation ids, ``"risk"``, ``"fault"``."""
         return tuple(name for name, s in zip(self._names, self._lat) if s)
 
+    @property
+    def pending_responses(self) -> tuple[str, ...]:
+        """The obligations whose bounded response is due: ``when`` fired, ``require`` not met yet,
+        ``within_cycles`` not yet passed (a fresh monitor would forget the deadline)."""
+        return tuple(oid for oid, due in self._m.pending if due())
+
     def carry_latches(self, rules) -> None:
         """Latch ``rules`` (names as in :attr:`latched_rules` of the monitor this one replaces) here,
         each with this monitor's response and release for it, its release count at 0: the release
@@ -262,7 +264,7 @@ class Monitor:
         """
         self._clear()
 
-    def acknowledge(self) -> Acknowledgement:
+    def acknowledge(self, task_id: Any = _NO_TASK) -> Acknowledgement:
         """An operator's acknowledgement: release the rules latched with ``release: manual``.
 
         Refused (nothing is released) while any of them has not met its release
@@ -270,9 +272,15 @@ class Monitor:
         R_e < τ − δ for the risk rule, no fault for the fault latch. Automatic latches
         keep their own rule. A latched ``"confirm"`` (the confirm band) needs no count: the
         acknowledgement is the confirmation, and it holds for the last cycle's ``task_id`` until
-        that changes or goes missing, R_e leaves the band, or a cycle faults; without a ``task_id``
-        on the last cycle it is refused (a confirmation must name the text it confirms). Takes effect from the next :meth:`step`, which overrides
+        that changes, R_e leaves the band, or a cycle faults (refused while that cycle gave no
+        ``task_id``: a confirmation bound to no text would hold for every text in the band). Takes effect from the next :meth:`step`, which overrides
         again if a rule is violated or an input is bad.
+
+        Args:
+            task_id: the ``task_id`` of the text the operator was shown. While ``"confirm"`` is
+                latched and this names another text than the last cycle's (the planner replaced
+                it meanwhile), nothing is released: a person confirms only what they saw. Omitted:
+                the last cycle's text is confirmed.
 
         Returns:
             An :class:`~ethimon.runtime.Acknowledgement`: ``released`` (also its truth
@@ -302,19 +310,19 @@ class Monitor:
         lat, run, holds, manual, names = self._lat, self._run, self._holds, self._manual, self._names
         ready = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] >= holds[k]]
         ci = self._ci
-        unbound = False
-        if lat[ci]:  # the confirm band: the acknowledgement is its release condition
-            if self._last_task is None:  # a confirmation must name the text it confirms
-                unbound = True
-            else:
-                ready.append(ci)
         waiting = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] < holds[k]]
         if waiting:
             return Acknowledgement(False, tuple(names[k] for k in waiting), "refused: " + "; ".join(
                 f"{names[k]} still fails" if run[k] <= 0 else
                 f"{names[k]} has held {run[k]} of {holds[k]} cycles" for k in waiting))
-        if unbound and not ready:
-            return Acknowledgement(False, ("confirm",), _UNBOUND_CONFIRM)
+        if lat[ci]:  # the confirm band: the acknowledgement is its release condition
+            if task_id is not _NO_TASK and task_id != self._last_task:
+                return Acknowledgement(False, (names[ci],), "refused: confirm is for the task in the band now, "
+                                       "not the one acknowledged (the task text changed since it was shown)")
+            if self._last_task is None:  # bound to nothing, it would hold for every text in the band
+                return Acknowledgement(False, (names[ci],), "refused: confirm needs the task_id of the text "
+                                       "in the band (none was given this cycle) to bind the confirmation to")
+            ready.append(ci)
         if not ready:
             return Acknowledgement(False, (), "nothing awaits an acknowledgement" + (
                 " (the override is held by automatic releases)" if self._nlat else ""))
@@ -541,15 +549,16 @@ class Monitor:
         execute; anything else (unsure, no judgement) fires ``"confirm"`` (stop 2). R_e ≥ τ is the
         risk rule's, whatever the judge says.
         """
+        tc = self._tc
+        if tc is not None:  # first, on every cycle (the judge's too): the text this cycle is about
+            task = get("task_id")
+            if self._confirmed and (task != self._ctask or not tc <= r < self._tau):
+                self._confirmed = False  # a confirmation is for one text while it stays in the band
+            self._last_task = task
         if jp is not None and jp >= self._junsafe:
             return "judge", self._ji
-        tc = self._tc
         if tc is None:
             return None
-        task = get("task_id")
-        if self._confirmed and (task is None or task != self._ctask or not tc <= r < self._tau):
-            self._confirmed = False  # a confirmation is for one text while it stays in the band
-        self._last_task = task
         if tc <= r < self._tau and not self._confirmed and not (jp is not None and jp < self._jsafe):
             return "confirm", self._ci
         return None

@@ -217,6 +217,13 @@ class JudgeConfig(BaseModel):
     def _check(self) -> "JudgeConfig":
         import urllib.parse
         u = urllib.parse.urlsplit(self.url)
+        try:
+            port = u.port  # raises for a port outside 0-65535 or not a number
+        except ValueError:
+            port = -1
+        if port == 0 or port == -1:
+            raise _LocError(f"risk.judge.url {self.url!r} has no usable port (1-65535)", ("risk", "judge", "url"),
+                            hint="e.g. http://127.0.0.1:8080/v1; leave the port out for the scheme's default")
         if u.scheme not in ("http", "https") or not u.hostname:
             raise _LocError(f"risk.judge.url {self.url!r} is not an http(s) URL", ("risk", "judge", "url"),
                             hint="e.g. http://127.0.0.1:8080/v1 (llama-server), http://127.0.0.1:8000/v1 (vLLM), "

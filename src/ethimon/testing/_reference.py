@@ -88,6 +88,7 @@ from ..runtime._inputs import as_bool, as_number, as_probs
 __all__ = ["ReferenceMonitor"]
 
 _BY_SEV = SEVERITY_ORDER  # severity -> Response
+_NO_TASK = object()  # acknowledge() without a task_id
 # the reference tells that a cycle faulted, not the compiled monitor's wording
 _BAD_INPUT = (Fault("invalid", "fault: a bad or missing input (reference interpreter)"),)
 _EVAL_ERROR = (Fault("internal", "fault: an evaluation error (reference interpreter)"),)
@@ -137,7 +138,7 @@ class ReferenceMonitor:
         rules["confirm"] = (Response.STOP_2.severity, False, rel.hold_cycles)
         return rules
 
-    def acknowledge(self):
+    def acknowledge(self, task_id=_NO_TASK):
         from ..runtime import Acknowledgement
         rules = self._rules()
         manual = [k for k in self.latches if rules[k][1] or k == "confirm"]
@@ -146,12 +147,12 @@ class ReferenceMonitor:
             return Acknowledgement(False, waiting, "refused: " + "; ".join(
                 f"{k} still fails" if self.latches[k] == 0 else
                 f"{k} has held {self.latches[k]} of {rules[k][2]} cycles" for k in waiting))
-        if "confirm" in manual and self.last_task is None:  # a confirmation must name its text
-            manual.remove("confirm")
-            if not manual:
-                return Acknowledgement(False, ("confirm",), "refused: confirm needs the task_id input on the "
-                                       "cycle it confirms (a confirmation names the text it confirms: pass "
-                                       "the task text's hash as task_id)")
+        if "confirm" in manual and task_id is not _NO_TASK and task_id != self.last_task:
+            return Acknowledgement(False, ("confirm",), "refused: confirm is for the task in the band now, "
+                                   "not the one acknowledged (the task text changed since it was shown)")
+        if "confirm" in manual and self.last_task is None:
+            return Acknowledgement(False, ("confirm",), "refused: confirm needs the task_id of the text in the "
+                                   "band (none was given this cycle) to bind the confirmation to")
         if not manual:
             return Acknowledgement(False, (), "nothing awaits an acknowledgement" + (
                 " (the override is held by automatic releases)" if self.latches else ""))
@@ -433,14 +434,15 @@ class ReferenceMonitor:
             violations.append("risk")
         # the tiers: an unsafe verdict stops at any R_e; in [τ_confirm, τ) only a safe verdict or a
         # confirmation of this task executes
-        if judge is not None and jp is not None and jp >= judge.unsafe_from:
-            violations.append("judge")
-        elif spec.risk.confirm_threshold is not None:
+        if spec.risk.confirm_threshold is not None:  # every cycle: the text it is about
             task = signals.get("task_id")
             in_band = spec.risk.confirm_threshold <= r < tau
             if self.confirmed is not None and (task is None or self.confirmed[0] != task or not in_band):
                 self.confirmed = None
             self.last_task = task
+        if judge is not None and jp is not None and jp >= judge.unsafe_from:
+            violations.append("judge")
+        elif spec.risk.confirm_threshold is not None:
             judged_safe = judge is not None and jp is not None and jp < judge.safe_below
             if in_band and self.confirmed is None and not judged_safe:
                 violations.append("confirm")
