@@ -561,3 +561,27 @@ def test_a_task_text_replaced_before_any_cycle_is_not_hidden(tmp_path):
     assert any(w.startswith("task: 1 of 3 task texts") for w in res.warnings)
     assert res.topics == {"/d": {"read": 10, "judged": 10, "signals": ["d"]},
                           "/task": {"read": 3, "judged": 2, "signals": ["task"]}}
+
+
+def test_start_all_seen_with_samples_every_never_leaves_early_samples_unjudged(tmp_path):
+    """Regression (review): 'start: all_seen' under the default 'samples: every' skipped the samples
+    before the first cycle with only a warning, so violating samples there passed (exit 0)."""
+    from ethimon.replay import replay_bag
+    from ethimon.replay._mapping import load_mapping_text
+    from ethimon.errors import BagError
+    import pytest as _pytest
+    import test_replay as tr  # the bag writer and mapping of the replay tests
+
+    msgs = tr.make_messages(seed=8, dropout=None)
+    # the distance sensor starts 0.5 s late: the joint states before it come before the first cycle
+    msgs = [m for m in msgs if not (m[1] == "/human/distance_cm" and m[0] < tr.T0 + 5 * 10**8)]
+    bag = tr.write_bag(tmp_path / "b", "mcap", msgs)
+    spec = ethimon.load_spec_text(tr.SPEC)
+    with _pytest.raises(BagError) as e:
+        replay_bag(bag, spec, load_mapping_text(tr.MAPPING.replace("samples: latest", "samples: every").replace(
+                                                    "rate_hz: 50", "rate_hz: 2000")
+                                                + "start: all_seen\n"), score=tr._score)
+    assert "before the first cycle" in str(e.value) and "samples: latest" in (e.value.hint or "")
+    # said explicitly, the start-up samples are counted, not judged (a warning), as before
+    res = replay_bag(bag, spec, load_mapping_text(tr.MAPPING + "start: all_seen\n"), score=tr._score)  # latest
+    assert any("before the first cycle" in w for w in res.warnings)

@@ -201,6 +201,14 @@ def _judge_counts(data: BagData, mapping: Mapping, grid: np.ndarray, idxs: dict[
         early = s.times < grid[0]
         before[name] = int((early & ~ok).sum())
         if before[name]:
+            if mapping.samples_of(name) != "latest":  # 'every': no sample goes unjudged in silence
+                raise BagError(
+                    f"signal {name!r}: {before[name]:,} of {n:,} samples on {s.topic} come before the first cycle "
+                    f"('start: all_seen' starts once every input has been seen) and no cycle would judge them",
+                    data.path,
+                    hint="drop 'start: all_seen' (the cycles then start at the first message and fail closed until "
+                         "every input is there), or write 'samples: latest' to accept that the start-up samples "
+                         "are counted, not judged")
             warnings.append(f"{name}: {before[name]:,} of {n:,} samples on {s.topic} come before the first cycle "
                             f"('start: all_seen') and are not judged")
         between = ~ok & ~early
