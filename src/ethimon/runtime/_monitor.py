@@ -48,6 +48,38 @@ def _all_margins(fns: tuple) -> tuple[float, ...]:
     return tuple(out)
 
 
+def _tuple_of_calls(fns: tuple):
+    """A closure returning ``tuple(f() for f in fns)``, written out for up to 8 (no generator, no list)."""
+    n = len(fns)
+    if n == 0:
+        return lambda: _EMPTY
+    if n == 1:
+        f0, = fns
+        return lambda: (f0(),)
+    if n == 2:
+        f0, f1 = fns
+        return lambda: (f0(), f1())
+    if n == 3:
+        f0, f1, f2 = fns
+        return lambda: (f0(), f1(), f2())
+    if n == 4:
+        f0, f1, f2, f3 = fns
+        return lambda: (f0(), f1(), f2(), f3())
+    if n == 5:
+        f0, f1, f2, f3, f4 = fns
+        return lambda: (f0(), f1(), f2(), f3(), f4())
+    if n == 6:
+        f0, f1, f2, f3, f4, f5 = fns
+        return lambda: (f0(), f1(), f2(), f3(), f4(), f5())
+    if n == 7:
+        f0, f1, f2, f3, f4, f5, f6 = fns
+        return lambda: (f0(), f1(), f2(), f3(), f4(), f5(), f6())
+    if n == 8:
+        f0, f1, f2, f3, f4, f5, f6, f7 = fns
+        return lambda: (f0(), f1(), f2(), f3(), f4(), f5(), f6(), f7())
+    return lambda: tuple([f() for f in fns])
+
+
 class Monitor:
     """Runtime monitor compiled from a spec; call :meth:`step` once per control cycle.
 
@@ -103,7 +135,7 @@ class Monitor:
                  "_max_age", "_age_missing", "_cycle", "_margins_on", "_stateless",
                  "_lat", "_run", "_sevs", "_holds", "_manual", "_names", "_nlat", "_ri", "_fi", "_nsrc",
                  "_ji", "_ci", "_tiers", "_judge_on", "_tc", "_jsafe", "_junsafe", "_confirmed", "_ctask",
-                 "_last_task")
+                 "_last_task", "_fsig", "_mcall", "_p2")
 
     def __init__(self, plan: Plan | Spec, *, margins: bool = True, max_age_s: float | None = None) -> None:
         plan = plan_of(plan)
@@ -115,6 +147,9 @@ class Monitor:
         self._sig = tuple((s.name, s.slot, s.kind == "bool", s.lo, s.hi,
                            Fault("missing", f"signal {s.name!r} is missing", s.name))  # built once, not per cycle
                           for s in plan.signals)
+        # the fast reading: (index, name, slot, is_bool, lo, hi); the first input that is not a
+        # built-in float in range (or a bool) hands over to _read_rest, which judges it as before
+        self._fsig = tuple((k, s.name, s.slot, s.kind == "bool", s.lo, s.hi) for k, s in enumerate(plan.signals))
         self._rslot = plan.risk_slot
         self._updates = m.updates
         self._obs = tuple((fn, ob.id, ob.response.severity, i)
@@ -125,6 +160,10 @@ class Monitor:
         self.obligation_ids: tuple[str, ...] = tuple(ob.id for ob in plan.obligations)
         self._margins_on = margins
         self._margin_fns = m.margins
+        # every margin once per cycle: unguarded in one tuple when none can raise (chosen at compile
+        # time: no division, sqrt or separation_distance), else each guarded (NaN where one raises)
+        self._mcall = _tuple_of_calls(m.margins) if not m.margins_raise else (
+            lambda fns=m.margins: _all_margins(fns))
         self._nan_margins = tuple(math.nan for _ in plan.obligations)
         r = plan.risk
         self._tau = float(r.threshold)
@@ -164,6 +203,7 @@ class Monitor:
         self._alpha, self._beta, self._gamma = float(r.alpha), float(r.beta), float(r.gamma)
         self._sample = r.variance == "sample"
         self._k = int(r.classes)
+        self._p2 = self._k == 2
         self._uidx = int(r.unsafe_index)
         lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)  # exact, any K
         self._rlo, self._rhi = min(0.0, lo), max(1.0, hi)
@@ -360,13 +400,20 @@ class Monitor:
         """R_e from this cycle's risk input, converted once at the boundary (see ``_inputs``)."""
         r = get("risk")
         if r is not None:
-            f = r if type(r) is float else as_number(r)
-            if f is None or not self._rlo <= f <= self._rhi:
-                return None, Fault("invalid" if f is None else "range",
-                                   f"risk input R_e={r!r} is NaN, not a number or outside "
-                                   f"[{self._rlo:g}, {self._rhi:g}]", "risk")
-            return f, None
-        q = get("p_unsafe")
+            return self._risk_direct(r)
+        return self._risk_p(get, get("p_unsafe"))
+
+    def _risk_direct(self, r) -> tuple[float | None, Fault | None]:
+        """R_e given directly (``risk``), read once by the caller."""
+        f = r if type(r) is float else as_number(r)
+        if f is None or not self._rlo <= f <= self._rhi:
+            return None, Fault("invalid" if f is None else "range",
+                               f"risk input R_e={r!r} is NaN, not a number or outside "
+                               f"[{self._rlo:g}, {self._rhi:g}]", "risk")
+        return f, None
+
+    def _risk_p(self, get, q) -> tuple[float | None, Fault | None]:
+        """R_e from ``p_unsafe`` (``q``, read once by the caller; ``None``: absent) or else ``p``."""
         if q is not None:
             if self._k != 2:
                 return None, Fault("invalid",
@@ -406,35 +453,29 @@ class Monitor:
             vals = self._vals
             faults = None
             bad = None  # slots whose input is unusable this cycle (fault path only)
-            for name, slot, is_bool, lo, hi, missing in self._sig:
+            for k, name, slot, is_bool, lo, hi in self._fsig:
                 v = get(name)
-                if v is None:
-                    (faults := faults or []).append(missing)
-                    (bad := bad or []).append(slot)
-                elif is_bool:
-                    b = v if (v is True or v is False) else as_bool(v)
-                    if b is None:
-                        (faults := faults or []).append(
-                            Fault("invalid", f"signal {name!r} must be true/false, got {v!r}", name))
-                        (bad := bad or []).append(slot)
-                    else:
-                        vals[slot] = b
+                if is_bool:
+                    if v is True or v is False:
+                        vals[slot] = v
+                        continue
+                elif type(v) is float and lo <= v <= hi:  # the common case: a built-in float in range
+                    vals[slot] = v
+                    continue
+                faults, bad = self._read_rest(get, k, v)  # anything else: judged there, once
+                break
+            rin = get("risk")
+            if rin is not None:
+                r, why = self._risk_direct(rin)
+            else:
+                q = get("p_unsafe")
+                if type(q) is float and self._p2 and 0.0 <= q <= 1.0:  # the common case, as _risk_p
+                    d = q - 0.5
+                    var = 2.0 * d * d if self._sample else d * d
+                    top = q if q >= 0.5 else 1.0 - q
+                    r, why = self._alpha * q + self._beta * (1.0 - top) + self._gamma * var, None
                 else:
-                    # the common case (a built-in float) first; anything else is converted once
-                    f = v if type(v) is float else as_number(v)
-                    if f is None:
-                        (faults := faults or []).append(Fault(
-                            "invalid", f"signal {name!r} must be a number, got {v!r} (a finite int, float or "
-                            f"numpy scalar; not a bool, string or NaN)", name))
-                        (bad := bad or []).append(slot)
-                    elif lo <= f <= hi:
-                        vals[slot] = f
-                    else:
-                        (faults := faults or []).append(Fault(
-                            "range" if _isfinite(f) else "invalid",
-                            f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]", name))
-                        (bad := bad or []).append(slot)
-            r, why = self._risk(get)
+                    r, why = self._risk_p(get, q)
             if why is None and not _isfinite(r):  # weights and inputs are finite; never trust it blindly
                 r, why = None, Fault("internal", f"R_e={r!r} is not finite")
             if why is not None:
@@ -502,7 +543,7 @@ class Monitor:
                     run[i] = -1
             margins = _EMPTY
             if self._margins_on:
-                margins = _all_margins(self._margin_fns)  # a margin that cannot be computed is NaN
+                margins = self._mcall()  # a margin that cannot be computed is NaN
             if not self._nlat:
                 return Decision(False, Response.NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
             sev, awaiting = self._release_pass(r < self._below)
@@ -519,6 +560,45 @@ class Monitor:
             except BaseException:  # pragma: no cover - a broken __str__
                 reason = _INTERNAL
             return self._fault(cycle, (reason,), r if type(r) is float else None)
+
+    def _read_rest(self, get, start: int, v0) -> tuple[list | None, list | None]:
+        """The signals from index ``start`` on (``v0``: the value already read for it), each
+        converted once at the boundary (see ``_inputs``): ``(faults, bad slots)``, ``None`` each if
+        every one was usable."""
+        vals = self._vals
+        faults = None
+        bad = None
+        sig = self._sig
+        for j in range(start, len(sig)):
+            name, slot, is_bool, lo, hi, missing = sig[j]
+            v = v0 if j == start else get(name)
+            if v is None:
+                (faults := faults or []).append(missing)
+                (bad := bad or []).append(slot)
+            elif is_bool:
+                b = v if (v is True or v is False) else as_bool(v)
+                if b is None:
+                    (faults := faults or []).append(
+                        Fault("invalid", f"signal {name!r} must be true/false, got {v!r}", name))
+                    (bad := bad or []).append(slot)
+                else:
+                    vals[slot] = b
+            else:
+                # the common case (a built-in float) first; anything else is converted once
+                f = v if type(v) is float else as_number(v)
+                if f is None:
+                    (faults := faults or []).append(Fault(
+                        "invalid", f"signal {name!r} must be a number, got {v!r} (a finite int, float or "
+                        f"numpy scalar; not a bool, string or NaN)", name))
+                    (bad := bad or []).append(slot)
+                elif lo <= f <= hi:
+                    vals[slot] = f
+                else:
+                    (faults := faults or []).append(Fault(
+                        "range" if _isfinite(f) else "invalid",
+                        f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]", name))
+                    (bad := bad or []).append(slot)
+        return faults, bad
 
     def _tier(self, r: float, jp: float | None, get) -> tuple[str, int] | None:
         """The judge tier and the confirm band on a valid cycle (R_e = ``r``, judge p_unsafe ``jp``).
