@@ -398,6 +398,14 @@ class _Gen:
         n = ob.within_cycles
         if not n:
             if when is None:
+                rq = ob.require
+                if isinstance(rq, Binary) and rq.op in ("or", "and", "implies"):  # one call less
+                    f, g = self.fn(rq.left), self.fn(rq.right)
+                    if rq.op == "or":
+                        return (lambda: not (f() or g())), None
+                    if rq.op == "and":
+                        return (lambda: not (f() and g())), None
+                    return (lambda: not ((not f()) or g())), None
                 return (lambda: not req()), None
             return (lambda: bool(when()) and not req()), None
         pend = -1

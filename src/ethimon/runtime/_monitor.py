@@ -26,6 +26,7 @@ __all__ = ["Monitor"]
 
 _RESPONSES = SEVERITY_ORDER  # severity -> Response
 _EMPTY: tuple = ()
+_NONE = Response.NONE  # read once: an Enum member's attribute access is slow on CPython 3.11
 _EXTERNAL = Fault("external", "external fault")
 _INTERNAL = Fault("internal", "internal error")
 _NO_RISK = Fault("missing", "no risk input this cycle (give risk, p_unsafe or p)", "risk")
@@ -135,7 +136,7 @@ class Monitor:
                  "_max_age", "_age_missing", "_cycle", "_margins_on", "_stateless",
                  "_lat", "_run", "_sevs", "_holds", "_manual", "_names", "_nlat", "_ri", "_fi", "_nsrc",
                  "_ji", "_ci", "_tiers", "_judge_on", "_tc", "_jsafe", "_junsafe", "_confirmed", "_ctask",
-                 "_last_task", "_fsig", "_mcall", "_p2")
+                 "_last_task", "_fsig", "_mcall", "_p2", "_ucall", "_vcall")
 
     def __init__(self, plan: Plan | Spec, *, margins: bool = True, max_age_s: float | None = None) -> None:
         plan = plan_of(plan)
@@ -152,6 +153,10 @@ class Monitor:
         self._fsig = tuple((k, s.name, s.slot, s.kind == "bool", s.lo, s.hi) for k, s in enumerate(plan.signals))
         self._rslot = plan.risk_slot
         self._updates = m.updates
+        # one call each per cycle: every temporal update (inner operators first), then every
+        # obligation's verdict (all of them, in order: bounded responses keep state), as one tuple
+        self._ucall = _tuple_of_calls(m.updates)
+        self._vcall = _tuple_of_calls(m.violated)
         self._obs = tuple((fn, ob.id, ob.response.severity, i)
                           for i, (fn, ob) in enumerate(zip(m.violated, plan.obligations)))
         self._stateless = tuple((fn, ob.id, ob.response.severity, slots, i)
@@ -506,16 +511,15 @@ class Monitor:
             if faults is not None:
                 return self._fault(cycle, tuple(faults), r, bad)
             vals[self._rslot] = r
-            for u in self._updates:
-                u()
+            self._ucall()
             violations = None
             hits = None  # latched only once every obligation was judged (a later one may raise)
-            for fn, oid, s, i in self._obs:
-                if fn():
-                    if violations is None:
-                        violations = [oid]
-                        hits = [i]
-                    else:
+            vs = self._vcall()  # each verdict is a bool
+            if True in vs:
+                violations = []
+                hits = []
+                for (fn, oid, s, i), v in zip(self._obs, vs):
+                    if v:
                         violations.append(oid)
                         hits.append(i)
             if r >= self._tau:
@@ -545,13 +549,13 @@ class Monitor:
             if self._margins_on:
                 margins = self._mcall()  # a margin that cannot be computed is NaN
             if not self._nlat:
-                return Decision(False, Response.NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
+                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
             sev, awaiting = self._release_pass(r < self._below)
             if violations is not None:
                 return Decision(True, _RESPONSES[sev], tuple(violations), margins, r, cycle, False, _EMPTY,
                                 awaiting)
             if not self._nlat:  # the last latch released this cycle
-                return Decision(False, Response.NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
+                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
             return Decision(True, _RESPONSES[sev], _EMPTY, margins, r, cycle, True, _EMPTY, awaiting)
         except BaseException as exc:  # fail closed: nothing escapes into the control loop, not even
             # a KeyboardInterrupt raised by a hostile input's __float__: the arm is told to stop instead
