@@ -591,6 +591,7 @@ def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: 
         rw = (lambda f: lambda: _safe(f))(rw)
     if raise_r:
         rr = (lambda f: lambda: _safe(f))(rr)
+    has_w = rw is not None
     size = n + 1
     ring_w = [0.0] * size  # −rob(when) of the last n + 1 cycles
     ring_r = [0.0] * size  # rob(require) of the last n + 1 cycles
@@ -602,7 +603,7 @@ def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: 
     def margin() -> float:
         nonlocal t, m, unknown
         t += 1
-        a = -rw() if rw is not None else -INF
+        a = -rw() if has_w else -INF
         b = rr()
         if b != b:
             unknown = True  # every window from now on contains it (the oldest trigger's does)
@@ -620,6 +621,8 @@ def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: 
             m = b
         if t >= n:
             cand = ring_w[(t - n) % size]
+            if cand == INF:  # no trigger at t - n (a false boolean `when`): max(inf, W) < m never holds
+                return m
             if cand != cand:
                 unknown = True
                 return NAN
