@@ -11,7 +11,6 @@ separation distance, contact flag, contact force; window W of S2 and S4), checke
 one cycle at a time, by:
 
 * ``Monitor.step`` with margins (robustness of every obligation) and without;
-* ``Monitor.step_many`` (the batched form over the same rows) with and without margins;
 * RTAMT's discrete-time online monitor (``StlDiscreteTimeSpecification.update``, one
   specification per obligation; it computes robustness);
 * Reelay's discrete-time monitors (``update`` per cycle, one per obligation), with its
@@ -93,18 +92,6 @@ def _loop_step(make):
     return run
 
 
-def _loop_step_many(make):
-    def run(rows):
-        m = make()
-        gc.disable()
-        t0 = time.perf_counter()
-        out = m.step_many(rows)
-        dt = time.perf_counter() - t0
-        gc.enable()
-        return dt, out
-    return run
-
-
 def _loop_rtamt(formulas):
     import rtamt
 
@@ -146,6 +133,12 @@ def _loop_reelay(formulas, semantics):
     return run
 
 
+def _key(d) -> tuple:
+    """A Decision as plain values (the two trees' Decision classes differ, so == between them is False)."""
+    return (d.cycle, d.override, d.response.value, d.violations, d.risk, d.latched,
+            tuple((f.kind, f.message) for f in d.faults), d.awaiting_release)
+
+
 def _viol_ethimon(ds) -> np.ndarray:
     index = {oid: k for k, oid in enumerate(IDS)}
     viol = np.zeros((len(ds), len(IDS)), bool)
@@ -178,14 +171,10 @@ def main() -> int:
     tools = {
         "step_margins": (_loop_step(lambda: ethimon.Monitor(spec, margins=True)), rows),
         "step_no_margins": (_loop_step(lambda: ethimon.Monitor(spec, margins=False)), rows),
-        "step_many_margins": (_loop_step_many(lambda: ethimon.Monitor(spec, margins=True)), rows),
-        "step_many_no_margins": (_loop_step_many(lambda: ethimon.Monitor(spec, margins=False)), rows),
         "rtamt_online": (_loop_rtamt(rtamt_formulas(w)), rows_rt),
         "reelay_boolean": (_loop_reelay(reelay_formulas(w, False), "boolean"), rows),
         "reelay_robustness": (_loop_reelay(reelay_formulas(w, True), "robustness"), rows_rb),
     }
-    if not hasattr(ethimon.Monitor, "step_many"):  # a tree before step_many
-        del tools["step_many_margins"], tools["step_many_no_margins"]
     if args.baseline:
         base = load_baseline(args.baseline)
         bspec = base.load_spec_text(spec_text(w), f"<s1_s4_w{w}>")
@@ -218,11 +207,11 @@ def main() -> int:
         else:
             v = ~np.array(outs[k], dtype=bool).T
         agree[k] = int((v == v_step).sum())
-    for k in ("step_many_margins", "baseline_step_margins"):
-        if k in outs:  # margins bit for bit
-            same = all(a.margins == b.margins or all((x == y) or (x != x and y != y) for x, y in zip(a.margins, b.margins))
-                       for a, b in zip(outs[k], outs["step_margins"]))
-            agree[k + "_margins_identical"] = bool(same)
+    if "baseline_step_margins" in outs:  # the same Decision on every cycle, margins bit for bit
+        agree["baseline_decisions_identical"] = all(
+            _key(a) == _key(b) and len(a.margins) == len(b.margins) and all(
+                (x != x and y != y) or (x == y and str(x) == str(y)) for x, y in zip(a.margins, b.margins))
+            for a, b in zip(outs["baseline_step_margins"], outs["step_margins"]))
 
     med = {k: statistics.median(v) for k, v in times.items()}
 
@@ -235,11 +224,6 @@ def main() -> int:
         "reelay_boolean_over_step_margins": ratio("reelay_boolean", "step_margins"),
         "reelay_boolean_over_step_no_margins": ratio("reelay_boolean", "step_no_margins"),
     }
-    if "step_many_margins" in times:
-        ratios.update({
-            "rtamt_over_step_many_margins": ratio("rtamt_online", "step_many_margins"),
-            "reelay_robustness_over_step_many_margins": ratio("reelay_robustness", "step_many_margins"),
-            "reelay_boolean_over_step_many_no_margins": ratio("reelay_boolean", "step_many_no_margins")})
     if args.baseline:
         ratios["baseline_over_step_margins"] = ratio("baseline_step_margins", "step_margins")
         ratios["baseline_over_step_no_margins"] = ratio("baseline_step_no_margins", "step_no_margins")
@@ -251,6 +235,9 @@ def main() -> int:
           "agreement with Monitor.step's verdicts")
     for k in names:
         print(f"  {k:<26} {med[k]:>8.2f} µs   min {min(times[k]):>7.2f}   agree {agree[k]:,}/{v_step.size:,}")
+    if "baseline_decisions_identical" in agree:
+        print(f"  baseline and this tree: the same Decision (margins bit for bit) on every cycle: "
+              f"{agree['baseline_decisions_identical']}")
     print("ratios (peer time / ethimon time, median of per-round ratios; > 1: ethimon faster):")
     for k, v in ratios.items():
         print(f"  {k:<44} {v:>6.2f}")

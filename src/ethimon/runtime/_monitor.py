@@ -155,7 +155,7 @@ class Monitor:
         self._updates = m.updates
         # one call each per cycle: every temporal update (inner operators first), then every
         # obligation's verdict (all of them, in order: bounded responses keep state), as one tuple
-        self._ucall = _tuple_of_calls(m.updates)
+        self._ucall = m.updates[0] if len(m.updates) == 1 else _tuple_of_calls(m.updates)
         self._vcall = _tuple_of_calls(m.violated)
         self._obs = tuple((fn, ob.id, ob.response.severity, i)
                           for i, (fn, ob) in enumerate(zip(m.violated, plan.obligations)))
