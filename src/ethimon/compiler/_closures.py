@@ -19,7 +19,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, COMPARISONS, CONNECTIVE_MARGINS, Binary, BoolLit, Call,
-                          Name, Node, Num, Unary, separation_distance)
+                          Name, Node, Num, Unary, separation_distance, walk)
 from ._check import Plan
 
 __all__ = ["Machine", "build_machine"]
@@ -39,6 +39,7 @@ class Machine:
     resets: tuple[Callable[[], None], ...]
     violated: tuple[Callable[[], bool], ...]
     margins: tuple[Callable[[], float], ...]
+    margins_raise: bool = True  # some margin closure may raise (then the monitor guards each one)
     #: (obligation id, probe) per bounded response: the probe is true while its ``when`` has fired and
     #: ``require`` has not been met within ``within_cycles`` yet (a deadline running)
     pending: tuple[tuple[str, Callable[[], bool]], ...] = ()
@@ -281,17 +282,29 @@ class _Gen:
 
     # -- robustness (margins) ------------------------------------------------
     def rob(self, node: Node) -> Callable[[], float]:
-        """Quantitative robustness: > 0 satisfied, < 0 violated; ±inf for boolean leaves."""
+        """Quantitative robustness: > 0 satisfied, < 0 violated; ±inf for boolean leaves.
+
+        Operands that are a slot or a constant are read inline (one call per comparison, not
+        three); ``max``/``min`` of two are written out as the built-ins compute them (the first
+        argument unless the second is strictly greater/smaller), so every float is the same.
+        """
         if isinstance(node, Binary):
             op = node.op
             if op in COMPARISON_MARGINS and self.plan.type_of(node.left).kind == "num":
-                return _margin_closure(COMPARISON_MARGINS[op], self.fn(node.left), self.fn(node.right))
+                return _margin_closure(COMPARISON_MARGINS[op], self.d(node.left), self.d(node.right))
             if op in CONNECTIVE_MARGINS:
                 return _connective_closure(*CONNECTIVE_MARGINS[op], self.rob(node.left), self.rob(node.right))
         if isinstance(node, Unary) and node.op == "not":
             f = self.rob(node.operand)
             return lambda: -f()
-        b = self.fn(node)
+        d = self.d(node)
+        if d[0] == "r":
+            lst, i = d[1], d[2]
+            return lambda: INF if lst[i] else -INF
+        if d[0] == "c":
+            v = INF if d[1] else -INF
+            return lambda: v
+        b = d[1]
         return lambda: INF if b() else -INF
 
     # -- temporal operators ----------------------------------------------------
@@ -389,6 +402,14 @@ class _Gen:
         n = ob.within_cycles
         if not n:
             if when is None:
+                rq = ob.require
+                if isinstance(rq, Binary) and rq.op in ("or", "and", "implies"):  # one call less
+                    f, g = self.fn(rq.left), self.fn(rq.right)
+                    if rq.op == "or":
+                        return (lambda: not (f() or g())), None
+                    if rq.op == "and":
+                        return (lambda: not (f() and g())), None
+                    return (lambda: not ((not f()) or g())), None
                 return (lambda: not req()), None
             return (lambda: bool(when()) and not req()), None
         pend = -1
@@ -422,6 +443,7 @@ def build_machine(plan: Plan) -> Machine:
         resets.append(r)
     violated, margins = [], []
     mbuf = [math.nan] * len(plan.obligations)
+    may_raise = False
     for k, ob in enumerate(plan.obligations):
         fused = _fused_comparison(g, ob, mbuf, k)
         if fused is not None:  # verdict and margin from one evaluation of both sides
@@ -434,15 +456,37 @@ def build_machine(plan: Plan) -> Machine:
             resets.append(r)
         rw = g.rob(ob.when) if ob.when is not None else None
         rr = g.rob(ob.require)
-        if ob.within_cycles:
-            mf, mr = _bounded_margin(rw, rr, ob.within_cycles)
+        raise_w = ob.when is not None and _may_raise(ob.when)
+        raise_r = _may_raise(ob.require)
+        if ob.within_cycles:  # guards its own terms (never raises)
+            mf, mr = _bounded_margin(rw, rr, ob.within_cycles, raise_w, raise_r)
             margins.append(mf)
             resets.append(mr)
-        elif rw is not None:
-            margins.append(lambda rw=rw, rr=rr: max(-rw(), rr()))
+            continue
+        may_raise = may_raise or raise_w or raise_r
+        if rw is not None:
+            def both(rw=rw, rr=rr) -> float:  # max(-rw(), rr()) as the built-in computes it
+                a = -rw()
+                b = rr()
+                return b if b > a else a
+            margins.append(both)
         else:
             margins.append(rr)
-    return Machine(g.vals, g.tv, tuple(updates), tuple(resets), tuple(violated), tuple(margins), tuple(g.pending))
+    return Machine(g.vals, g.tv, tuple(updates), tuple(resets), tuple(violated), tuple(margins), may_raise,
+                   tuple(g.pending))
+
+
+def _may_raise(node: Node) -> bool:
+    """Whether evaluating ``node`` can raise on finite float inputs: a division (by zero),
+    ``sqrt`` (of a negative) or ``separation_distance`` (a negative argument) somewhere in it.
+    ``+ - *``, comparisons, connectives, ``abs``/``min``/``max`` and slot reads never raise
+    (overflow gives inf, inf - inf NaN: values, not exceptions)."""
+    for n in walk(node):
+        if isinstance(n, Binary) and n.op == "/":
+            return True
+        if isinstance(n, Call) and n.func in ("sqrt", "separation_distance"):
+            return True
+    return False
 
 
 def _safe(f: Callable[[], float]) -> float:
@@ -452,8 +496,41 @@ def _safe(f: Callable[[], float]) -> float:
         return math.nan  # the verdict short-circuits past); it is a diagnostic, never a fault
 
 
-def _margin_closure(shape: str, f: Callable[[], float], g: Callable[[], float]) -> Callable[[], float]:
-    """The margin of ``f() <op> g()`` for the shape ``COMPARISON_MARGINS[op]``, chosen here at compile time."""
+def _margin_closure(shape: str, a, b) -> Callable[[], float]:
+    """The margin of ``a <op> b`` for the shape ``COMPARISON_MARGINS[op]``, chosen here at compile time;
+    ``a``, ``b`` are operand descriptors (a slot or a constant is read inline, same arithmetic)."""
+    ka, kb = a[0], b[0]
+    if ka == "r" and kb == "c":
+        lst, i, c = a[1], a[2], b[1]
+        if shape == "b - a":
+            return lambda: c - lst[i]
+        if shape == "a - b":
+            return lambda: lst[i] - c
+        if shape == "-|a - b|":
+            return lambda: -abs(lst[i] - c)
+        assert shape == "|a - b|", shape
+        return lambda: abs(lst[i] - c)
+    if ka == "c" and kb == "r":
+        c, lst, i = a[1], b[1], b[2]
+        if shape == "b - a":
+            return lambda: lst[i] - c
+        if shape == "a - b":
+            return lambda: c - lst[i]
+        if shape == "-|a - b|":
+            return lambda: -abs(c - lst[i])
+        assert shape == "|a - b|", shape
+        return lambda: abs(c - lst[i])
+    if ka == "r" and kb == "r":
+        la, i, lb, j = a[1], a[2], b[1], b[2]
+        if shape == "b - a":
+            return lambda: lb[j] - la[i]
+        if shape == "a - b":
+            return lambda: la[i] - lb[j]
+        if shape == "-|a - b|":
+            return lambda: -abs(la[i] - lb[j])
+        assert shape == "|a - b|", shape
+        return lambda: abs(la[i] - lb[j])
+    f, g = _as_fn(a), _as_fn(b)
     if shape == "b - a":
         return lambda: g() - f()
     if shape == "a - b":
@@ -466,14 +543,39 @@ def _margin_closure(shape: str, f: Callable[[], float], g: Callable[[], float]) 
 
 def _connective_closure(combine: str, negate_left: bool, f: Callable[[], float],
                         g: Callable[[], float]) -> Callable[[], float]:
-    """The margin of a connective, ``CONNECTIVE_MARGINS[op]`` read here at compile time."""
+    """The margin of a connective, ``CONNECTIVE_MARGINS[op]`` read here at compile time; ``min``/``max``
+    of the two written out as the built-ins compute them (keep the first unless the second is
+    strictly smaller/greater), so NaN and ±0.0 come out the same."""
     if combine == "min":
-        return (lambda: min(-f(), g())) if negate_left else (lambda: min(f(), g()))
+        if negate_left:
+            def mn_neg() -> float:
+                a = -f()
+                b = g()
+                return b if b < a else a
+            return mn_neg
+
+        def mn() -> float:
+            a = f()
+            b = g()
+            return b if b < a else a
+        return mn
     assert combine == "max", combine
-    return (lambda: max(-f(), g())) if negate_left else (lambda: max(f(), g()))
+    if negate_left:
+        def mx_neg() -> float:
+            a = -f()
+            b = g()
+            return b if b > a else a
+        return mx_neg
+
+    def mx() -> float:
+        a = f()
+        b = g()
+        return b if b > a else a
+    return mx
 
 
-def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: int):
+def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: int,
+                    raise_w: bool = True, raise_r: bool = True):
     """Robustness of a bounded response ``when ⇒ require within n cycles``, O(1) amortised.
 
     The obligation is violated at ``t`` iff some trigger ``s ≤ t − n`` saw ``require``
@@ -489,7 +591,13 @@ def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: 
 
     Must be called exactly once per valid cycle (the monitor computes every margin
     once per cycle, and each call here never raises); the returned reset clears it.
+    ``raise_w``/``raise_r``: whether ``rw``/``rr`` can raise (else they are called unguarded).
     """
+    if raise_w and rw is not None:
+        rw = (lambda f: lambda: _safe(f))(rw)
+    if raise_r:
+        rr = (lambda f: lambda: _safe(f))(rr)
+    has_w = rw is not None
     size = n + 1
     ring_w = [0.0] * size  # −rob(when) of the last n + 1 cycles
     ring_r = [0.0] * size  # rob(require) of the last n + 1 cycles
@@ -501,8 +609,8 @@ def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: 
     def margin() -> float:
         nonlocal t, m, unknown
         t += 1
-        a = -_safe(rw) if rw is not None else -INF
-        b = _safe(rr)
+        a = -rw() if has_w else -INF
+        b = rr()
         if b != b:
             unknown = True  # every window from now on contains it (the oldest trigger's does)
         if unknown:
@@ -519,6 +627,8 @@ def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: 
             m = b
         if t >= n:
             cand = ring_w[(t - n) % size]
+            if cand == INF:  # no trigger at t - n (a false boolean `when`): max(inf, W) < m never holds
+                return m
             if cand != cand:
                 unknown = True
                 return NAN
@@ -550,6 +660,9 @@ def _fused_comparison(g: _Gen, ob, mbuf: list, k: int):
     op = req.op
     if op not in COMPARISON_MARGINS or g.plan.type_of(req.left).kind != "num":
         return None
+    da, db = g.d(req.left), g.d(req.right)
+    if da[0] == "r" and db[0] == "c":  # slot <op> constant, the usual shape: both read inline
+        return _fused_slot_const(op, da[1], da[2], db[1], mbuf, k)
     f, h = g.fn(req.left), g.fn(req.right)
     holds = BINARY_OPS[op][1]  # the operator's function (a C call, as cheap as the inline comparison)
     shape = COMPARISON_MARGINS[op]  # read here, once: the closure below has the margin's shape inline
@@ -579,4 +692,44 @@ def _fused_comparison(g: _Gen, ob, mbuf: list, k: int):
             b = h()
             mbuf[k] = abs(a - b)
             return not holds(a, b)
+    return violated
+
+
+def _fused_slot_const(op: str, lst: list, i: int, c, mbuf: list, k: int):
+    """:func:`_fused_comparison` for ``slot <op> constant``: the margin of ``COMPARISON_MARGINS[op]``
+    and the verdict ``not (a <op> c)`` (the same comparison as ``BINARY_OPS[op]``), no calls."""
+    if op == "<=":
+        def violated() -> bool:
+            a = lst[i]
+            mbuf[k] = c - a
+            return not a <= c
+    elif op == "<":
+        def violated() -> bool:
+            a = lst[i]
+            mbuf[k] = c - a
+            return not a < c
+    elif op == ">=":
+        def violated() -> bool:
+            a = lst[i]
+            mbuf[k] = a - c
+            return not a >= c
+    elif op == ">":
+        def violated() -> bool:
+            a = lst[i]
+            mbuf[k] = a - c
+            return not a > c
+    elif op == "==":
+        def violated() -> bool:
+            a = lst[i]
+            mbuf[k] = -abs(a - c)
+            return not a == c
+    else:
+        assert op == "!=", op
+
+        def violated() -> bool:
+            a = lst[i]
+            mbuf[k] = abs(a - c)
+            return not a != c
+    assert {"<=": "b - a", "<": "b - a", ">=": "a - b", ">": "a - b", "==": "-|a - b|",
+            "!=": "|a - b|"}[op] == COMPARISON_MARGINS[op]
     return violated

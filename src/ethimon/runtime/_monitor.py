@@ -26,6 +26,7 @@ __all__ = ["Monitor"]
 
 _RESPONSES = SEVERITY_ORDER  # severity -> Response
 _EMPTY: tuple = ()
+_NONE = Response.NONE  # read once: an Enum member's attribute access is slow on CPython 3.11
 _EXTERNAL = Fault("external", "external fault")
 _INTERNAL = Fault("internal", "internal error")
 _NO_TASK = object()  # acknowledge() without a task_id: confirm the last cycle's text
@@ -47,6 +48,38 @@ def _all_margins(fns: tuple) -> tuple[float, ...]:
             out.append(math.nan)
             i += 1
     return tuple(out)
+
+
+def _tuple_of_calls(fns: tuple):
+    """A closure returning ``tuple(f() for f in fns)``, written out for up to 8 (no generator, no list)."""
+    n = len(fns)
+    if n == 0:
+        return lambda: _EMPTY
+    if n == 1:
+        f0, = fns
+        return lambda: (f0(),)
+    if n == 2:
+        f0, f1 = fns
+        return lambda: (f0(), f1())
+    if n == 3:
+        f0, f1, f2 = fns
+        return lambda: (f0(), f1(), f2())
+    if n == 4:
+        f0, f1, f2, f3 = fns
+        return lambda: (f0(), f1(), f2(), f3())
+    if n == 5:
+        f0, f1, f2, f3, f4 = fns
+        return lambda: (f0(), f1(), f2(), f3(), f4())
+    if n == 6:
+        f0, f1, f2, f3, f4, f5 = fns
+        return lambda: (f0(), f1(), f2(), f3(), f4(), f5())
+    if n == 7:
+        f0, f1, f2, f3, f4, f5, f6 = fns
+        return lambda: (f0(), f1(), f2(), f3(), f4(), f5(), f6())
+    if n == 8:
+        f0, f1, f2, f3, f4, f5, f6, f7 = fns
+        return lambda: (f0(), f1(), f2(), f3(), f4(), f5(), f6(), f7())
+    return lambda: tuple([f() for f in fns])
 
 
 class Monitor:
@@ -104,7 +137,7 @@ class Monitor:
                  "_max_age", "_age_missing", "_cycle", "_margins_on", "_stateless",
                  "_lat", "_run", "_sevs", "_holds", "_manual", "_names", "_nlat", "_ri", "_fi", "_nsrc",
                  "_ji", "_ci", "_tiers", "_judge_on", "_tc", "_jsafe", "_junsafe", "_confirmed", "_ctask",
-                 "_last_task")
+                 "_last_task", "_fsig", "_mcall", "_p2", "_ucall", "_vcall")
 
     def __init__(self, plan: Plan | Spec, *, margins: bool = True, max_age_s: float | None = None) -> None:
         plan = plan_of(plan)
@@ -116,8 +149,15 @@ class Monitor:
         self._sig = tuple((s.name, s.slot, s.kind == "bool", s.lo, s.hi,
                            Fault("missing", f"signal {s.name!r} is missing", s.name))  # built once, not per cycle
                           for s in plan.signals)
+        # the fast reading: (index, name, slot, is_bool, lo, hi); the first input that is not a
+        # built-in float in range (or a bool) hands over to _read_rest, which judges it as before
+        self._fsig = tuple((k, s.name, s.slot, s.kind == "bool", s.lo, s.hi) for k, s in enumerate(plan.signals))
         self._rslot = plan.risk_slot
         self._updates = m.updates
+        # one call each per cycle: every temporal update (inner operators first), then every
+        # obligation's verdict (all of them, in order: bounded responses keep state), as one tuple
+        self._ucall = m.updates[0] if len(m.updates) == 1 else _tuple_of_calls(m.updates)
+        self._vcall = _tuple_of_calls(m.violated)
         self._obs = tuple((fn, ob.id, ob.response.severity, i)
                           for i, (fn, ob) in enumerate(zip(m.violated, plan.obligations)))
         self._stateless = tuple((fn, ob.id, ob.response.severity, slots, i)
@@ -126,6 +166,10 @@ class Monitor:
         self.obligation_ids: tuple[str, ...] = tuple(ob.id for ob in plan.obligations)
         self._margins_on = margins
         self._margin_fns = m.margins
+        # every margin once per cycle: unguarded in one tuple when none can raise (chosen at compile
+        # time: no division, sqrt or separation_distance), else each guarded (NaN where one raises)
+        self._mcall = _tuple_of_calls(m.margins) if not m.margins_raise else (
+            lambda fns=m.margins: _all_margins(fns))
         self._nan_margins = tuple(math.nan for _ in plan.obligations)
         r = plan.risk
         self._tau = float(r.threshold)
@@ -165,6 +209,7 @@ class Monitor:
         self._alpha, self._beta, self._gamma = float(r.alpha), float(r.beta), float(r.gamma)
         self._sample = r.variance == "sample"
         self._k = int(r.classes)
+        self._p2 = self._k == 2
         self._uidx = int(r.unsafe_index)
         lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)  # exact, any K
         self._rlo, self._rhi = min(0.0, lo), max(1.0, hi)
@@ -380,13 +425,20 @@ class Monitor:
         """R_e from this cycle's risk input, converted once at the boundary (see ``_inputs``)."""
         r = get("risk")
         if r is not None:
-            f = r if type(r) is float else as_number(r)
-            if f is None or not self._rlo <= f <= self._rhi:
-                return None, Fault("invalid" if f is None else "range",
-                                   f"risk input R_e={r!r} is NaN, not a number or outside "
-                                   f"[{self._rlo:g}, {self._rhi:g}]", "risk")
-            return f, None
-        q = get("p_unsafe")
+            return self._risk_direct(r)
+        return self._risk_p(get, get("p_unsafe"))
+
+    def _risk_direct(self, r) -> tuple[float | None, Fault | None]:
+        """R_e given directly (``risk``), read once by the caller."""
+        f = r if type(r) is float else as_number(r)
+        if f is None or not self._rlo <= f <= self._rhi:
+            return None, Fault("invalid" if f is None else "range",
+                               f"risk input R_e={r!r} is NaN, not a number or outside "
+                               f"[{self._rlo:g}, {self._rhi:g}]", "risk")
+        return f, None
+
+    def _risk_p(self, get, q) -> tuple[float | None, Fault | None]:
+        """R_e from ``p_unsafe`` (``q``, read once by the caller; ``None``: absent) or else ``p``."""
         if q is not None:
             if self._k != 2:
                 return None, Fault("invalid",
@@ -426,35 +478,29 @@ class Monitor:
             vals = self._vals
             faults = None
             bad = None  # slots whose input is unusable this cycle (fault path only)
-            for name, slot, is_bool, lo, hi, missing in self._sig:
+            for k, name, slot, is_bool, lo, hi in self._fsig:
                 v = get(name)
-                if v is None:
-                    (faults := faults or []).append(missing)
-                    (bad := bad or []).append(slot)
-                elif is_bool:
-                    b = v if (v is True or v is False) else as_bool(v)
-                    if b is None:
-                        (faults := faults or []).append(
-                            Fault("invalid", f"signal {name!r} must be true/false, got {v!r}", name))
-                        (bad := bad or []).append(slot)
-                    else:
-                        vals[slot] = b
+                if is_bool:
+                    if v is True or v is False:
+                        vals[slot] = v
+                        continue
+                elif type(v) is float and lo <= v <= hi:  # the common case: a built-in float in range
+                    vals[slot] = v
+                    continue
+                faults, bad = self._read_rest(get, k, v)  # anything else: judged there, once
+                break
+            rin = get("risk")
+            if rin is not None:
+                r, why = self._risk_direct(rin)
+            else:
+                q = get("p_unsafe")
+                if type(q) is float and self._p2 and 0.0 <= q <= 1.0:  # the common case, as _risk_p
+                    d = q - 0.5
+                    var = 2.0 * d * d if self._sample else d * d
+                    top = q if q >= 0.5 else 1.0 - q
+                    r, why = self._alpha * q + self._beta * (1.0 - top) + self._gamma * var, None
                 else:
-                    # the common case (a built-in float) first; anything else is converted once
-                    f = v if type(v) is float else as_number(v)
-                    if f is None:
-                        (faults := faults or []).append(Fault(
-                            "invalid", f"signal {name!r} must be a number, got {v!r} (a finite int, float or "
-                            f"numpy scalar; not a bool, string or NaN)", name))
-                        (bad := bad or []).append(slot)
-                    elif lo <= f <= hi:
-                        vals[slot] = f
-                    else:
-                        (faults := faults or []).append(Fault(
-                            "range" if _isfinite(f) else "invalid",
-                            f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]", name))
-                        (bad := bad or []).append(slot)
-            r, why = self._risk(get)
+                    r, why = self._risk_p(get, q)
             if why is None and not _isfinite(r):  # weights and inputs are finite; never trust it blindly
                 r, why = None, Fault("internal", f"R_e={r!r} is not finite")
             if why is not None:
@@ -485,16 +531,15 @@ class Monitor:
             if faults is not None:
                 return self._fault(cycle, tuple(faults), r, bad)
             vals[self._rslot] = r
-            for u in self._updates:
-                u()
+            self._ucall()
             violations = None
             hits = None  # latched only once every obligation was judged (a later one may raise)
-            for fn, oid, s, i in self._obs:
-                if fn():
-                    if violations is None:
-                        violations = [oid]
-                        hits = [i]
-                    else:
+            vs = self._vcall()  # each verdict is a bool
+            if True in vs:
+                violations = []
+                hits = []
+                for (fn, oid, s, i), v in zip(self._obs, vs):
+                    if v:
                         violations.append(oid)
                         hits.append(i)
             if r >= self._tau:
@@ -522,15 +567,15 @@ class Monitor:
                     run[i] = -1
             margins = _EMPTY
             if self._margins_on:
-                margins = _all_margins(self._margin_fns)  # a margin that cannot be computed is NaN
+                margins = self._mcall()  # a margin that cannot be computed is NaN
             if not self._nlat:
-                return Decision(False, Response.NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
+                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
             sev, awaiting = self._release_pass(r < self._below)
             if violations is not None:
                 return Decision(True, _RESPONSES[sev], tuple(violations), margins, r, cycle, False, _EMPTY,
                                 awaiting)
             if not self._nlat:  # the last latch released this cycle
-                return Decision(False, Response.NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
+                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
             return Decision(True, _RESPONSES[sev], _EMPTY, margins, r, cycle, True, _EMPTY, awaiting)
         except BaseException as exc:  # fail closed: nothing escapes into the control loop, not even
             # a KeyboardInterrupt raised by a hostile input's __float__: the arm is told to stop instead
@@ -539,6 +584,45 @@ class Monitor:
             except BaseException:  # pragma: no cover - a broken __str__
                 reason = _INTERNAL
             return self._fault(cycle, (reason,), r if type(r) is float else None)
+
+    def _read_rest(self, get, start: int, v0) -> tuple[list | None, list | None]:
+        """The signals from index ``start`` on (``v0``: the value already read for it), each
+        converted once at the boundary (see ``_inputs``): ``(faults, bad slots)``, ``None`` each if
+        every one was usable."""
+        vals = self._vals
+        faults = None
+        bad = None
+        sig = self._sig
+        for j in range(start, len(sig)):
+            name, slot, is_bool, lo, hi, missing = sig[j]
+            v = v0 if j == start else get(name)
+            if v is None:
+                (faults := faults or []).append(missing)
+                (bad := bad or []).append(slot)
+            elif is_bool:
+                b = v if (v is True or v is False) else as_bool(v)
+                if b is None:
+                    (faults := faults or []).append(
+                        Fault("invalid", f"signal {name!r} must be true/false, got {v!r}", name))
+                    (bad := bad or []).append(slot)
+                else:
+                    vals[slot] = b
+            else:
+                # the common case (a built-in float) first; anything else is converted once
+                f = v if type(v) is float else as_number(v)
+                if f is None:
+                    (faults := faults or []).append(Fault(
+                        "invalid", f"signal {name!r} must be a number, got {v!r} (a finite int, float or "
+                        f"numpy scalar; not a bool, string or NaN)", name))
+                    (bad := bad or []).append(slot)
+                elif lo <= f <= hi:
+                    vals[slot] = f
+                else:
+                    (faults := faults or []).append(Fault(
+                        "range" if _isfinite(f) else "invalid",
+                        f"signal {name!r} = {v!r} is NaN or outside its range [{lo:g}, {hi:g}]", name))
+                    (bad := bad or []).append(slot)
+        return faults, bad
 
     def _tier(self, r: float, jp: float | None, get) -> tuple[str, int] | None:
         """The judge tier and the confirm band on a valid cycle (R_e = ``r``, judge p_unsafe ``jp``).
