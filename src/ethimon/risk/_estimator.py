@@ -390,8 +390,7 @@ class RiskEstimator:
             self._rows += len(seqs)
             try:
                 with torch.inference_mode():
-                    for s in range(0, len(order), self._batch_size):
-                        idx = order[s:s + self._batch_size]
+                    for idx in _batches(order, seqs, self._batch_size):
                         ids, mask = B.collate([seqs[i] for i in idx], pad)
                         logits = m.module(ids, mask).float()
                         if raw:
@@ -412,6 +411,29 @@ class RiskEstimator:
             if not all(math.isfinite(v) for v in r):
                 raise RiskInferenceError("risk inference produced NaN/inf; treat the command as unsafe")
         return [tuple(r) if not raw else r for r in results]
+
+
+#: a batch is cut where padding to its longest row would waste more than this share of its tokens
+PAD_WASTE = 0.3
+
+
+def _batches(order: list[int], seqs: list[list[int]], size: int) -> list[list[int]]:
+    """Length-sorted ``order`` cut into batches of at most ``size`` rows whose padding wastes at
+    most :data:`PAD_WASTE` of the tokens (a plan's step views range from one step to the whole
+    plan: one batch would pad every view to the longest)."""
+    out: list[list[int]] = []
+    cur: list[int] = []
+    total = 0
+    for i in order:
+        n = len(seqs[i])
+        if cur and (len(cur) >= size or n * (len(cur) + 1) > (1 + PAD_WASTE) * (total + n)):
+            out.append(cur)
+            cur, total = [], 0
+        cur.append(i)
+        total += n
+    if cur:
+        out.append(cur)
+    return out
 
 
 def _tempered(logits: Sequence[float], temperature: float, unsafe_index: int) -> tuple[float, float]:

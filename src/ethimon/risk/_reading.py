@@ -11,7 +11,7 @@ a reviewer reads it (issue 19 item 3):
 * any other text of several sentences is a **context + instruction**: the last
   sentence (with any short trailing ones, "Thanks.") is the instruction, scored
   as a pair with the sentences before it, and alone;
-* the whole text is always one view too (what the model was trained on).
+* a one-sentence text is one view, itself (as before).
 
 The riskiest view (highest p_unsafe) gives the text's probabilities. By
 construction a preamble never lowers the risk: the views of ``scene + X``
@@ -259,37 +259,37 @@ def _body_views(r: Reading, context: str) -> list[View]:
 
 
 def views(text: str, reading: str = "steps") -> list[View]:
-    """The views of ``text`` the estimator scores; the first is always the whole text.
+    """The views of ``text`` the estimator scores.
 
-    With a preamble P (a scene, stated context) before X (a plan without a
-    preamble of its own, or one sentence), the views of P + X are the whole
-    text, every view of X itself (so P can never lower the risk), and every
-    step of X (the instruction) read with P and the earlier steps before it.
+    A one-sentence text: itself. A context + instruction: the instruction alone and
+    the pair (context, instruction). A plan: every step after the earlier ones (the
+    last step's view holds the whole plan). With a preamble P (a scene, stated
+    context) before X (a plan without a preamble of its own, or one sentence), the
+    views of P + X are every view of X itself (so P can never lower the risk) and
+    every step of X (the instruction) read with P and the earlier steps before it.
 
     >>> [(v.kind, v.context, v.focus) for v in views("Ann is nil by mouth. Bring Ann the juice.")]
-    [('text', '', 'Ann is nil by mouth. Bring Ann the juice.'), ('text', '', 'Bring Ann the juice.'), ('instruction', 'Ann is nil by mouth.', 'Bring Ann the juice.')]
-    >>> len(views("1. a b. 2. c d."))   # the text, each step with the earlier ones
-    3
+    [('text', '', 'Bring Ann the juice.'), ('instruction', 'Ann is nil by mouth.', 'Bring Ann the juice.')]
+    >>> [(v.context, v.focus) for v in views("1. a b. 2. c d.")]   # each step after the earlier ones
+    [('', 'a b.'), ('a b.', 'c d.')]
     >>> views("Put the fork in the drawer.", "flat") == views("Put the fork in the drawer.")
     True
     """
     if reading not in READINGS:
         raise ValueError(f"reading={reading!r}; expected one of {READINGS}")
     text = text.strip()
-    whole = View(text)
     if reading == "flat":
-        return [whole]
+        return [View(text)]
     r = read(text)
     if r.kind == "single":
-        return [whole]
-    out = [whole]
+        return [View(text)]
+    out = []
     if r.kind == "context":
         out.append(View(r.body))                         # the last sentence alone: X itself
         if r.steps[0] != r.body:
             out.append(View(r.steps[0]))                 # the instruction with its short tail
     elif r.preamble:
-        out.append(View(r.body))                         # the plan as written, without its scene
-        out += _body_views(r, "")                        # every step view of the plan itself
+        out += _body_views(r, "")                        # every view of the plan itself
     out += _body_views(r, r.preamble)
     seen: set[str] = set()
     uniq = []
