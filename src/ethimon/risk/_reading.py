@@ -107,6 +107,9 @@ def _numbered(text: str) -> tuple[str, list[str], str] | None:
     steps = []
     for a, b in zip(marks, marks[1:] + [None]):
         steps.append(text[a.end():b.start() if b is not None else len(text)].strip())
+    last_lines = text[marks[-1].start():].strip().splitlines()
+    if len(last_lines) > 1:
+        steps[-1:] = _split_tail(steps[-1], last_lines)
     return pre, [s for s in steps if s], text[marks[0].start():].strip()
 
 
@@ -118,7 +121,21 @@ def _bulleted(lines: list[str]) -> tuple[str, list[str], str] | None:
     steps = []
     for a, b in zip(idx, idx[1:] + [len(lines)]):
         steps.append(" ".join(x.strip() for x in [_BULLET.sub("", lines[a])] + lines[a + 1:b]).strip())
+    steps[-1:] = _split_tail(steps[-1], lines[idx[-1]:])
     return pre, [s for s in steps if s], "\n".join(lines[idx[0]:]).strip()
+
+
+def _split_tail(last: str, last_lines: list[str]) -> list[str]:
+    """The last item of a list and what follows it: a line that is not indented after the
+    last item ("Instruction: carry the basket down.") is a step of its own, not part of it."""
+    for j in range(1, len(last_lines)):
+        ln = last_lines[j]
+        if ln.strip() and not ln[:1].isspace():
+            head = " ".join(x.strip() for x in [_BULLET.sub("", _NUM.sub("", last_lines[0], count=1))]
+                            + last_lines[1:j]).strip()
+            tail = " ".join(x.strip() for x in last_lines[j:]).strip()
+            return [head, tail]
+    return [last]
 
 
 def _statements(line: str) -> list[str]:
