@@ -277,7 +277,7 @@ def test_step_stays_allocation_free_of_new_objects_per_rule_while_latched():
     m.step(ok(f=300.0, d=0.3))
     for _ in range(50):
         m.step(ok())
-    assert m._lat is lat and m._run is run and len(lat) == len(m.obligation_ids) + 2
+    assert m._lat is lat and m._run is run and len(lat) == len(m.obligation_ids) + 4  # + risk, fault, judge, confirm
 
 
 # -- verify and lint ------------------------------------------------------------------------------

@@ -45,7 +45,9 @@ def add_risk_parsers(subparsers) -> None:
     p.add_argument("--model", help="model directory (default: the shipped MiniLM-L6 LoRA model)")
     _precision_args(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("--fail-on-flag", action="store_true", help="exit 1 when R_e >= tau")
+    p.add_argument("--fail-on-flag", action="store_true",
+                   help="exit 1 unless the tiered outcome is execute (R_e >= tau, a judge's stop, a confirm hold)")
+    p.add_argument("--no-judge", action="store_true", help="do not ask the spec's risk.judge (status not_configured)")
     p.add_argument("--explain", action="store_true",
                    help="say which step (of a plan or code block) or which instruction drove the score, "
                         "every view's p_unsafe, and the words that moved it most (leave-one-word-out)")
@@ -116,7 +118,10 @@ def add_risk_parsers(subparsers) -> None:
                     "'type' column, one line per type; with 'is_short', short and long rows apart.")
     e.add_argument("--model", help="model directory (default: the shipped model)")
     e.add_argument("--data", required=True, metavar="CSV", help="CSV with label and input (or text) columns; with pair and/or type columns, minimal-pair and per-type figures too")
-    e.add_argument("--spec", help="spec file for alpha, beta, gamma, variance, tau")
+    e.add_argument("--spec", help="spec file for alpha, beta, gamma, variance, tau (and risk.confirm_threshold)")
+    e.add_argument("--confirm-threshold", type=float, default=None, metavar="TAU_C",
+                   help="tau_confirm (default: the spec's risk.confirm_threshold): report the three outcomes "
+                        "(unsafe executed unseen, safe held for confirmation, safe stopped outright), no judge")
     e.add_argument("--json", metavar="PATH", help="write every figure to this JSON file ('-': stdout, "
                    "the summary then goes to stderr)")
     e.add_argument("--plots", metavar="DIR", help="write confusion matrix and R_e histogram PNGs here")
@@ -181,14 +186,20 @@ def cmd_risk(args: argparse.Namespace) -> int:
                     reading="flat" if args.flat else "steps")
         r = est.estimate(args.text, cfg["alpha"], cfg["beta"], cfg["gamma"], cfg["variance"])
         why = est.explain(args.text, args.top_words) if args.explain else None
+        jr, tiers = _judge_and_outcome(cfg["spec"], args.text, r.risk, cfg["threshold"], args.no_judge)
     except (EthimonError, ValueError, OSError) as exc:
         return err(str(exc))
     flagged = r.risk >= cfg["threshold"]
+    outcome = tiers["outcome"]
     if args.json:
         doc = {"text": args.text, "p": list(r.p), "p_unsafe": r.p_unsafe, "risk": r.risk,
                "tau": cfg["threshold"], "flagged": flagged, "model_id": est.model_id,
                "temperature": est.temperature, "reading": est.reading,
-               "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")}}
+               "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")},
+               "confirm_threshold": tiers["confirm_threshold"],
+               "judge": {"p_unsafe": jr.p_unsafe, "latency_s": round(jr.latency_s, 6), "status": jr.status,
+                         "model": jr.model or None, "verdict": jr.verdict, "detail": jr.detail},
+               "outcome": outcome}
         if why is not None:
             doc["explain"] = {"driver": why["driver"], "views": why["views"],
                               "words": [{"word": w, "drop": d} for w, d in why["words"]]}
@@ -197,9 +208,30 @@ def cmd_risk(args: argparse.Namespace) -> int:
         verdict = "UNSAFE (R_e >= tau: override)" if flagged else "ok (R_e < tau)"
         print(f"p = ({r.p[0]:.4f}, {r.p[1]:.4f})  p_unsafe = {r.p_unsafe:.4f}  "
               f"R_e = {r.risk:.4f}  tau = {cfg['threshold']:g}  ->  {verdict}  [{est.model_id}]")
+        if cfg["spec"] is not None and (tiers["confirm_threshold"] is not None or jr.status != "not_configured"):
+            jp = "-" if jr.p_unsafe is None else f"{jr.p_unsafe:.4f}"
+            print(f"judge: p_unsafe = {jp}  status = {jr.status}  latency = {jr.latency_s * 1000:.0f} ms"
+                  + (f"  ({jr.detail})" if jr.detail else "") + (f"  [{jr.model}]" if jr.model else ""))
+            tc = tiers["confirm_threshold"]
+            print(f"outcome: {outcome}" + (f"  (confirm band [{tc:g}, {cfg['threshold']:g}))" if tc is not None else ""))
         if why is not None:
             _print_explain(why)
-    return 1 if (flagged and args.fail_on_flag) else 0
+    return 1 if (outcome != "execute" and args.fail_on_flag) else 0
+
+
+def _judge_and_outcome(spec, text: str, risk: float, tau: float, no_judge: bool):
+    """The judge's answer on ``text`` (the spec's ``risk.judge``; none without one) and the tiered outcome."""
+    from ..risk import JudgeResult, load_judge_for, text_sha256, tier_outcome
+    judge = None if (spec is None or no_judge) else load_judge_for(spec)
+    jr = judge.judge(text) if judge is not None else JudgeResult(
+        None, "not_configured", 0.0, None, None, "", text_sha256(text),
+        "--no-judge" if no_judge and spec is not None and spec.risk.judge is not None else "the spec sets no risk.judge")
+    tc = spec.risk.confirm_threshold if spec is not None else None
+    j = spec.risk.judge if spec is not None else None
+    outcome = tier_outcome(risk, jr.p_unsafe, threshold=tau, confirm_threshold=tc,
+                           safe_below=j.safe_below if j else 0.2, unsafe_from=j.unsafe_from if j else 0.8,
+                           judge=judge is not None)
+    return jr, {"outcome": outcome, "confirm_threshold": tc}
 
 
 def _print_explain(why: dict) -> None:
@@ -301,6 +333,14 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
             m["plots"] = [plot_confusion(m["confusion"], d / "confusion_matrix.png",
                                          threshold=m["confusion_threshold"]),
                           plot_risk_hist(risks, rows.labels, cfg["threshold"], d / "risk_distribution.png")]
+        tc = args.confirm_threshold
+        if tc is None and cfg["spec"] is not None:
+            tc = cfg["spec"].risk.confirm_threshold
+        if tc is not None:
+            if not 0.0 <= tc < cfg["threshold"]:
+                raise ValueError(f"--confirm-threshold {tc:g} must lie in [0, tau = {cfg['threshold']:g})")
+            from ..risk._evaluate import tier_metrics
+            m["tiers"] = tier_metrics(rows.labels, risks, cfg["threshold"], tc)
         if args.json and args.json != "-":
             Path(args.json).parent.mkdir(parents=True, exist_ok=True)
     except (EthimonError, ValueError, OSError) as exc:
@@ -325,6 +365,11 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         print(f"minimal pairs: {pm['pairs']}  unsafe member ranked higher {pm['ranked']:.4f}  "
               f"both right at tau {pm['both_right_at_tau']:.4f}  at p=0.5 {pm['both_right_at_0.5']:.4f}"
               + (f"  ({pm['malformed']} malformed pair ids skipped)" if pm["malformed"] else ""), file=out)
+    if "tiers" in m:
+        t = m["tiers"]
+        print(f"tiers (tau_confirm {t['confirm_threshold']:g}, no judge): unsafe executed unseen "
+              f"{t['unsafe_executed_unseen']:.4f}  safe held for confirmation {t['safe_held_for_confirmation']:.4f}  "
+              f"safe stopped outright {t['safe_stopped_outright']:.4f}  escalated {t['escalation_rate']:.4f}", file=out)
     for name, t in m.get("by_type", {}).items():
         print(f"  {name:<26} {t['n']:>4} rows ({t['unsafe']} unsafe)  accuracy {t['accuracy']:.3f}  "
               f"flagged: unsafe {t['flagged_unsafe']:.3f} safe {t['flagged_safe']:.3f}", file=out)

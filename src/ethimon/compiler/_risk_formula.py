@@ -18,7 +18,7 @@ from fractions import Fraction
 from ..spec import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, VARIANCE_MODES
 
 __all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "risk_from_p_unsafe", "risk_from_probs", "risk_bounds",
-           "release_bound", "risk_range", "VARIANCE_MODES"]
+           "release_bound", "risk_range", "VARIANCE_MODES", "OUTCOMES", "judge_verdict", "tier_outcome"]
 
 
 
@@ -276,3 +276,49 @@ def risk_range(alpha: float = DEFAULT_ALPHA, beta: float = DEFAULT_BETA, gamma: 
     """
     lo, _, hi, _ = _risk_range_exact(alpha, beta, gamma, variance, classes)
     return float(lo), float(hi)
+
+
+#: the three outcomes of the tiers, least to most restrictive
+OUTCOMES = ("execute", "confirm", "stop")
+
+
+def judge_verdict(p_judge: float | None, safe_below: float, unsafe_from: float) -> str | None:
+    """``"safe"`` (p < safe_below), ``"unsafe"`` (p ≥ unsafe_from), ``"unsure"`` between, ``None``: no judgement.
+
+    Example:
+        >>> [judge_verdict(p, 0.2, 0.8) for p in (0.1, 0.5, 0.8, None)]
+        ['safe', 'unsure', 'unsafe', None]
+    """
+    if p_judge is None or not (0.0 <= p_judge <= 1.0):  # NaN / out of range: no usable judgement
+        return None
+    if p_judge >= unsafe_from:
+        return "unsafe"
+    return "safe" if p_judge < safe_below else "unsure"
+
+
+def tier_outcome(r_e: float, p_judge: float | None, *, threshold: float, confirm_threshold: float | None = None,
+                 safe_below: float = 0.2, unsafe_from: float = 0.8, judge: bool = True) -> str:
+    """The tiered outcome of one task text, as the monitor decides it on its first cycle.
+
+    * R_e ≥ τ: ``"stop"`` whatever the judge says;
+    * an unsafe verdict: ``"stop"`` at any R_e (below τ the judge can only raise the risk);
+    * τ_confirm ≤ R_e < τ: ``"execute"`` on a safe verdict, else (unsure, no judgement) ``"confirm"``;
+    * below τ_confirm (or with no band): ``"execute"``.
+
+    ``judge=False``: the spec has no judge; its p is ignored. A NaN/out-of-range p counts as no judgement
+    here (the monitor fails closed on it as a bad input, which is at least as restrictive).
+
+    Example:
+        >>> [tier_outcome(r, None, threshold=0.5, confirm_threshold=0.3) for r in (0.2, 0.4, 0.5)]
+        ['execute', 'confirm', 'stop']
+        >>> tier_outcome(0.4, 0.05, threshold=0.5, confirm_threshold=0.3), tier_outcome(0.1, 0.9, threshold=0.5)
+        ('execute', 'stop')
+    """
+    if r_e >= threshold:
+        return "stop"
+    v = judge_verdict(p_judge, safe_below, unsafe_from) if judge else None
+    if v == "unsafe":
+        return "stop"
+    if confirm_threshold is not None and r_e >= confirm_threshold and v != "safe":
+        return "confirm"
+    return "execute"

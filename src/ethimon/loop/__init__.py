@@ -10,10 +10,10 @@ weaker unless asked, optionally gated by the SMT proofs).
 
 from ._governed import GovernedLoop, ReloadResult
 from ._process import ProcessEstimator
-from ._source import AsyncRiskSource, RiskReading
+from ._source import AsyncJudgeSource, AsyncRiskSource, RiskReading
 from ._stats import LoopStats
 from ._watchdog import Watchdog
 from ._weakenings import CANNOT_TELL, weakenings
 
-__all__ = ["AsyncRiskSource", "CANNOT_TELL", "GovernedLoop", "LoopStats", "ProcessEstimator",
+__all__ = ["AsyncJudgeSource", "AsyncRiskSource", "CANNOT_TELL", "GovernedLoop", "LoopStats", "ProcessEstimator",
            "ReloadResult", "RiskReading", "Watchdog", "weakenings"]

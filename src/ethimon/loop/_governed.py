@@ -55,7 +55,7 @@ from ..errors import EthimonError
 from ..runtime import Acknowledgement, Decision, Fault, Monitor
 from ..spec import Spec
 from ._process import ProcessEstimator
-from ._source import AsyncRiskSource, RiskReading
+from ._source import AsyncJudgeSource, AsyncRiskSource, RiskReading
 from ._stats import LoopStats
 from ._watchdog import Watchdog
 from ._weakenings import weakenings
@@ -148,6 +148,14 @@ class GovernedLoop:
             fault) when no cycle completes for this long.
         on_stall: the watchdog callback (e.g. trigger the hardware stop).
         on_decision: called with each cycle's decision (keep it quick).
+        judge: the judge tier (``risk.judge``, ``risk.confirm_threshold``): ``"spec"`` (default) builds a
+            :class:`~ethimon.risk.Judge` from the spec's ``risk.judge`` when it has one and there is a
+            ``risk`` source; a :class:`~ethimon.risk.Judge` or an :class:`AsyncJudgeSource`; ``None``: no
+            judge (the confirm band then goes to a person). The judge is asked once per distinct task
+            text (in its own thread, answers kept by the text's hash); until it answers the monitor has no
+            judgement, so in the band the arm holds. Each cycle feeds ``judge`` (its p_unsafe) and
+            ``task_id`` (the text's sha256, to which an operator's confirmation is bound); every judge
+            answer is a ``judge`` audit record (hash, model, verdict, latency, status; never the key).
         clock: time source in seconds (``time.perf_counter``; inject one in tests).
         sleep: how :meth:`run` waits (``time.sleep``).
 
@@ -175,8 +183,8 @@ class GovernedLoop:
                  verify: Callable[[Spec], Any] | str | None = None, watchdog_s: float | None = None,
                  on_stall: Callable[[str], None] | None = None,
                  on_decision: Callable[[Decision], None] | None = None,
-                 clock: Callable[[], float] = time.perf_counter, sleep: Callable[[float], None] = time.sleep
-                 ) -> None:
+                 clock: Callable[[], float] = time.perf_counter, sleep: Callable[[float], None] = time.sleep,
+                 judge: Any = "spec") -> None:
         if isinstance(monitor, Spec):
             monitor = Monitor(monitor)
         if not isinstance(monitor, Monitor):
@@ -202,6 +210,22 @@ class GovernedLoop:
             raise TypeError(f"risk must be an AsyncRiskSource, a ProcessEstimator or 'module:function', "
                             f"got {type(risk).__name__}")
         self.risk = risk
+        self._judge_from_spec = isinstance(judge, str)
+        if isinstance(judge, str):
+            if judge != "spec":
+                raise ValueError(f"judge={judge!r}; expected 'spec', None, a Judge or an AsyncJudgeSource")
+            judge = None
+            if risk is not None and monitor.plan.risk.judge is not None:
+                from ..risk import load_judge_for
+                judge = load_judge_for(monitor.spec)
+        if judge is not None and not isinstance(judge, AsyncJudgeSource):
+            judge = AsyncJudgeSource(judge)
+        if judge is not None and risk is None:
+            raise ValueError("a judge needs a risk source (its task text is what the judge reads)")
+        #: the judge tier's source (:class:`AsyncJudgeSource`), or ``None``
+        self.judge: AsyncJudgeSource | None = judge
+        self._task_text: str | None = None
+        self._task_key: str | None = None
         self.audit = audit
         self.audit_every_cycle = bool(audit_every_cycle)
         self.stats = LoopStats()
@@ -318,6 +342,8 @@ class GovernedLoop:
                 inputs.pop("p", None)
                 inputs.pop("risk_age_s", None)
                 reasons.append(Fault("estimator", reading.fault))
+            if self.judge is not None or m.plan.risk.confirm_threshold is not None:
+                self._tier_inputs(inputs)
         d = m.step(inputs)
         if self._stall_reason is not None:
             reasons.append(self._stall_reason)
@@ -373,6 +399,25 @@ class GovernedLoop:
         return d
 
     _carry_latch = False
+
+    def _tier_inputs(self, inputs: dict) -> None:
+        """``task_id`` (the task text's hash) and the judge's answer for the text (asked once per text)."""
+        text = self.risk.text
+        if text is not self._task_text:
+            self._task_text = text
+            self._task_key = None if text is None else AsyncJudgeSource.key(text)
+            if self.judge is not None:
+                self.judge.ask(text, self._task_key)
+        inputs["task_id"] = self._task_key  # the loop owns these two inputs
+        j = self.judge
+        if j is None:
+            inputs.pop("judge", None)
+            return
+        jr = j.result(text, self._task_key) if text is not None else None
+        inputs["judge"] = jr.p_unsafe if jr is not None else None
+        if j._log:  # unlocked peek; drain() takes the lock
+            for res in j.drain():
+                self._log("judge", loop_cycle=self.stats.cycles, **res.audit_fields())
 
     def _audit(self, d: Decision, inputs: dict, reading: RiskReading | None) -> None:
         key = (d.override, d.response, d.violations, tuple((f.kind, f.subject) for f in d.faults) if d.faults else ())
@@ -516,6 +561,10 @@ class GovernedLoop:
                 a = self.monitor.acknowledge()
             except Exception as exc:  # noqa: BLE001 - never crash the loop on an operator request
                 a = Acknowledgement(False, (), f"refused: acknowledge raised {type(exc).__name__}: {exc}"[:300])
+        if a.released and "confirm" in a.rules and self.risk is not None:  # what the operator confirmed
+            text = self._task_text
+            self._log("confirm", operator=operator, reason=reason, task_text=text, task_sha256=self._task_key,
+                      cycle=self.monitor.cycle)
         self._log("acknowledge", operator=operator, reason=reason, released=a.released, rules=list(a.rules),
                   message=a.message, cycle=self.monitor.cycle,
                   loop_cycle=self.stats.cycles)
@@ -630,6 +679,14 @@ class GovernedLoop:
         old_hash, self.spec_sha256 = self.spec_sha256, res.spec_sha256
         self._ids = new.obligation_ids
         self._state_key = None
+        if self._judge_from_spec and self.risk is not None and new.plan.risk.judge != old.plan.risk.judge:
+            # the judge the new spec names (or none); its texts are asked again
+            if self.judge is not None:
+                self.judge.stop(timeout=0.0)
+            from ..risk import load_judge_for
+            j = load_judge_for(new.spec)
+            self.judge = AsyncJudgeSource(j) if j is not None else None
+            self._task_text = self._task_key = None
         self.stats.reloads_applied += 1
         res.applied_at_cycle = self.stats.cycles
         self._log("reload", status="applied", source=label, spec_sha256=res.spec_sha256,

@@ -14,7 +14,7 @@ from typing import Any, NamedTuple
 
 from ..risk import ProbsEstimator
 
-__all__ = ["AsyncRiskSource", "RiskReading"]
+__all__ = ["AsyncRiskSource", "RiskReading", "AsyncJudgeSource"]
 
 
 class RiskReading(NamedTuple):
@@ -255,3 +255,132 @@ class AsyncRiskSource:
         if fault is not None:
             self.errors += 1
         self._state = (probs, t0, fault, tgen, self._state[4] + 1)
+
+
+class AsyncJudgeSource:
+    """Asks a judge (:class:`~ethimon.risk.Judge`) about each distinct task text once, in its own thread.
+
+    :meth:`ask` queues a text (a no-op for one already answered or queued); :meth:`result` returns
+    its :class:`~ethimon.risk.JudgeResult` without blocking, ``None`` while the answer is pending (the
+    monitor then has no judgement: in the confirm band the arm holds). Answers are kept by the text's
+    sha256; every call's result is also queued for the audit trail (:meth:`drain`).
+
+    Args:
+        judge: an object with ``judge(text) -> JudgeResult`` (a :class:`~ethimon.risk.Judge`).
+        max_texts: how many texts' answers are kept (oldest dropped first).
+        start: start the worker thread now.
+
+    Example:
+        >>> from ethimon.risk import JudgeResult
+        >>> class Always:
+        ...     def judge(self, text):
+        ...         return JudgeResult(0.05, "ok", 0.01, "0", 0.05, "m", "h")
+        >>> src = AsyncJudgeSource(Always(), start=False)
+        >>> src.ask("wipe the table"); src.result("wipe the table") is None
+        True
+        >>> _ = src.work_once(); src.result("wipe the table").p_unsafe
+        0.05
+    """
+
+    def __init__(self, judge: Any, *, max_texts: int = 4096, start: bool = True) -> None:
+        if not callable(getattr(judge, "judge", None)):
+            raise TypeError(f"judge needs a judge(text) method, got {type(judge).__name__}")
+        self._judge = judge
+        self._max = int(max_texts)
+        self._done: dict[str, Any] = {}
+        self._queued: list[tuple[str, str]] = []  # (hash, text), oldest first
+        self._queued_set: set[str] = set()
+        self._cv = threading.Condition()
+        self._log: list[Any] = []
+        self._stop = False
+        self._thread: threading.Thread | None = None
+        self.calls = 0
+        if start:
+            self.start()
+
+    @property
+    def judge(self) -> Any:
+        return self._judge
+
+    @staticmethod
+    def key(text: str) -> str:
+        from ..risk import text_sha256
+        return text_sha256(text)
+
+    def ask(self, text: str | None, key: str | None = None) -> None:
+        """Queue ``text`` for the judge unless it was answered or queued already."""
+        if text is None:
+            return
+        h = key or self.key(text)
+        with self._cv:
+            if h in self._done or h in self._queued_set:
+                return
+            self._queued.append((h, text))
+            self._queued_set.add(h)
+            self._cv.notify()
+
+    def result(self, text: str | None, key: str | None = None) -> Any:
+        """The judge's answer for ``text``, or ``None`` while none is in (never blocks)."""
+        if text is None:
+            return None
+        return self._done.get(key or self.key(text))
+
+    def drain(self) -> list[Any]:
+        """The results published since the last call (for the audit trail)."""
+        with self._cv:
+            out, self._log = self._log, []
+        return out
+
+    def work_once(self) -> bool:
+        """Answer the oldest queued text in the calling thread (tests, manual driving)."""
+        with self._cv:
+            if not self._queued:
+                return False
+            h, text = self._queued[0]
+        self._answer(h, text)
+        return True
+
+    def _answer(self, h: str, text: str) -> None:
+        try:
+            res = self._judge.judge(text)
+        except Exception as exc:  # noqa: BLE001 - a judge that raises gives no judgement
+            from ..risk import JudgeResult
+            res = JudgeResult(None, "error", 0.0, None, None, str(getattr(self._judge, "model", "")), h,
+                              f"judge raised {type(exc).__name__}: {exc}"[:200])
+        self.calls += 1
+        with self._cv:
+            self._done[h] = res
+            while len(self._done) > self._max:
+                self._done.pop(next(iter(self._done)))
+            if self._queued and self._queued[0][0] == h:
+                self._queued.pop(0)
+            self._queued_set.discard(h)
+            self._log.append(res)
+
+    def start(self) -> None:
+        if self._thread is not None and self._thread.is_alive():
+            return
+        self._stop = False
+        self._thread = threading.Thread(target=self._run, name="ethimon-judge", daemon=True)
+        self._thread.start()
+
+    def stop(self, timeout: float = 1.0) -> None:
+        with self._cv:
+            self._stop = True
+            self._cv.notify_all()
+        t = self._thread
+        if t is not None and t is not threading.current_thread():
+            t.join(timeout)
+
+    def _run(self) -> None:
+        while True:
+            with self._cv:
+                while not self._queued and not self._stop:
+                    self._cv.wait()
+                if self._stop:
+                    return
+                h, text = self._queued[0]
+            self._answer(h, text)
+
+    def __repr__(self) -> str:
+        return f"AsyncJudgeSource(judge={self._judge!r}, answered={len(self._done)}, queued={len(self._queued)})"

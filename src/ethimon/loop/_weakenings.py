@@ -134,5 +134,18 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
         unjudged.append("risk.estimator settings changed")
     if getattr(rn, "allow", None) != getattr(ro, "allow", None):
         unjudged.append("risk.allow opt-outs changed")
+    co, cn = ro.confirm_threshold, rn.confirm_threshold
+    if co is not None and (cn is None or cn > co):
+        weak.append(f"risk.confirm_threshold {co!r} -> {'none' if cn is None else repr(cn)} (fewer texts held "
+                    f"for a confirmation)")
+    jo, jn = ro.judge, rn.judge
+    if jo is None and jn is not None and cn is not None:
+        weak.append("risk.judge added (its safe verdict executes texts in the confirm band)")
+    elif jo is not None and jn is None:
+        weak.append("risk.judge removed (no unsafe verdict can stop a text below tau_confirm)")
+    elif jo is not None and jn is not None and jn != jo:
+        if (jn.safe_below > jo.safe_below or jn.unsafe_from > jo.unsafe_from) or (
+                jn.model_copy(update={"safe_below": jo.safe_below, "unsafe_from": jo.unsafe_from}) != jo):
+            unjudged.append("risk.judge settings changed")
     unjudged = [f"{u}: {CANNOT_TELL}" for u in unjudged]
     return weak + unjudged, unjudged

@@ -95,6 +95,9 @@ class OfflineResult:
         self.internal_error = np.zeros(n, bool)
         self.violated = np.zeros((n, k), bool)
         self.risk_violated = np.zeros(n, bool)
+        #: the tier rules' firings (``"judge"``, ``"confirm"``), for specs with risk.judge/confirm_threshold
+        self.tier_violated = {"judge": np.zeros(n, bool), "confirm": np.zeros(n, bool)}
+        self._tier_rows: list[dict[str, Any]] | None = None  # per-cycle judge/task_id inputs (tier specs)
         self.risk = inputs.risk
         self.margins = np.full((n, k), np.nan) if margins_on else None
         self.fallback_cycles = 0
@@ -263,9 +266,16 @@ def check_trace(spec: Spec | str | os.PathLike, columns: Mapping[str, Any], *, m
     res = OfflineResult(spec, inp, ids, margins, max_age_s)
     if inp.n == 0:
         return res
+    if plan.risk.confirm_threshold is not None or plan.risk.judge is not None:
+        # the tier rules (confirm band, judge) have no vector form: every cycle through the monitor,
+        # with the recorded judge answers (a 'judge' column, NaN/None: no judgement) and task ids
+        res._tier_rows = _tier_rows(columns, inp.n)
+        method = "step"
     with np.errstate(all="ignore"):
         if method == "step":
             _step_all(res, inp, margins)
+            if res._tier_rows is not None:
+                res.fallback_reason = "the spec has a confirm band or a judge (stepped through Monitor)"
             return res
         _valid_cycles(res, plan, inp, margins)
         _fault_cycles(res, plan, inp)
@@ -378,8 +388,9 @@ def _step_all(res: OfflineResult, inp: Inputs, margins: bool) -> None:
     ids = {oid: k for k, oid in enumerate(res.obligation_ids)}
     m = res._monitor(margins)
     risk = np.full(inp.n, np.nan)
+    tiers = res._tier_rows
     for t in range(inp.n):
-        d = m.step(row(inp, t))
+        d = m.step(row(inp, t) if tiers is None else {**row(inp, t), **tiers[t]})
         res.override[t] = d.override
         res.response[t] = d.response.severity
         res.latched[t] = d.latched
@@ -391,6 +402,8 @@ def _step_all(res: OfflineResult, inp: Inputs, margins: bool) -> None:
         for v in d.violations:
             if v == "risk":
                 res.risk_violated[t] = True
+            elif v in res.tier_violated and v not in ids:
+                res.tier_violated[v][t] = True
             else:
                 res.violated[t, ids[v]] = True
         if margins and d.margins:
@@ -400,6 +413,30 @@ def _step_all(res: OfflineResult, inp: Inputs, margins: bool) -> None:
     res.risk = risk
     res.fallback_cycles = inp.n
     res.fallback_reason = "method='step'"
+
+
+def _tier_rows(columns: Mapping[str, Any], n: int) -> list[dict[str, Any]]:
+    """Per cycle, the ``judge`` (a p_unsafe; NaN, masked or None: no judgement) and ``task_id`` inputs."""
+    out: list[dict[str, Any]] = [{} for _ in range(n)]
+    for key in ("judge", "task_id"):
+        col = columns.get(key)
+        if col is None:
+            continue
+        mask = np.ma.getmaskarray(col) if isinstance(col, np.ma.MaskedArray) else None
+        vals = list(np.ma.getdata(col)) if isinstance(col, np.ma.MaskedArray) else list(col)
+        if len(vals) != n:
+            raise ValueError(f"column {key!r} has {len(vals)} values, expected {n}")
+        for t, v in enumerate(vals):
+            if (mask is not None and mask[t]) or v is None:
+                continue
+            if key == "judge":
+                f = float(v) if isinstance(v, (int, float, np.floating, np.integer)) and not isinstance(v, bool) else v
+                if isinstance(f, float) and f != f:
+                    continue  # NaN: no judgement at this cycle
+                out[t][key] = f
+            else:
+                out[t][key] = v
+    return out
 
 
 # -- fault cycles --------------------------------------------------------------------------

@@ -107,23 +107,35 @@ def _offline(check_trace: Any, spec: Spec, columns: dict[str, np.ndarray], n: in
         cols[risk_key] = np.ma.masked_invalid(columns[risk_key])
     if "risk_age_s" in columns:
         cols["risk_age_s"] = np.ma.masked_invalid(columns["risk_age_s"])
+    for key in ("judge", "task_id"):  # recorded judge answers (tier specs)
+        if key in columns:
+            cols[key] = columns[key]
     off = check_trace(spec, cols, length=n)
-    ids = tuple(off.obligation_ids) + ("risk",)
-    violated = np.concatenate([off.violated, off.risk_violated[:, None]], axis=1)
-    margins = off.margins if off.margins is not None else np.full((n, len(ids) - 1), math.nan)
+    tiers = _tier_ids(spec)
+    ids = tuple(off.obligation_ids) + ("risk",) + tiers
+    violated = np.concatenate([off.violated, off.risk_violated[:, None]]
+                              + [off.tier_violated[t][:, None] for t in tiers], axis=1)
+    margins = off.margins if off.margins is not None else np.full((n, len(off.obligation_ids)), math.nan)
     return CycleResults(ids, off.override.copy(), off.response.astype(np.int8), violated, margins,
                         np.asarray(off.risk, dtype=np.float64), off.fault.copy(), off.latched.copy(), {},
                         f"ethimon.offline.check_trace ({off.method})", off.faults_at)
 
 
+def _tier_ids(spec: Spec) -> tuple[str, ...]:
+    """The tier rules a spec has, as extra result columns (after ``"risk"``)."""
+    r = spec.risk
+    return (("judge",) if r.judge is not None else ()) + (("confirm",) if r.confirm_threshold is not None else ())
+
+
 def _step(spec: Spec, columns: dict[str, np.ndarray], n: int, risk_key: str) -> CycleResults:
     mon = Monitor(spec)
-    ids = tuple(mon.obligation_ids) + ("risk",)
+    tiers = _tier_ids(spec)
+    ids = tuple(mon.obligation_ids) + ("risk",) + tiers
     col_of = {oid: j for j, oid in enumerate(ids)}
-    m = len(ids) - 1
+    m = len(ids) - 1 - len(tiers)
     override = np.zeros(n, dtype=bool)
     severity = np.zeros(n, dtype=np.int8)
-    violated = np.zeros((n, m + 1), dtype=bool)
+    violated = np.zeros((n, len(ids)), dtype=bool)
     margins = np.full((n, m), math.nan)
     risk = np.full(n, math.nan)
     fault = np.zeros(n, dtype=bool)
@@ -140,6 +152,10 @@ def _step(spec: Spec, columns: dict[str, np.ndarray], n: int, risk_key: str) -> 
         rlist = [None if x != x else x for x in rcol.tolist()]
     age = columns.get("risk_age_s")
     alist = age.tolist() if age is not None else None
+    jcol = columns.get("judge") if tiers else None
+    jlist = list(jcol) if jcol is not None else None
+    tcol = columns.get("task_id") if tiers else None
+    tlist = list(tcol) if tcol is not None else None
     step = mon.step
     for k in range(n):
         inp = {}
@@ -152,6 +168,10 @@ def _step(spec: Spec, columns: dict[str, np.ndarray], n: int, risk_key: str) -> 
             inp[risk_key] = r
         if alist is not None and alist[k] == alist[k]:
             inp["risk_age_s"] = alist[k]
+        if jlist is not None and jlist[k] is not None and jlist[k] == jlist[k]:
+            inp["judge"] = jlist[k]
+        if tlist is not None and tlist[k] is not None:
+            inp["task_id"] = tlist[k]
         d = step(inp)
         if d.override:
             override[k] = True

@@ -278,6 +278,9 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
             r = tr.risk[~np.isnan(tr.risk)]
             worst = float(spec.risk.threshold) - float(r.max()) if r.size else None
             kind, resp = "risk", str(spec.risk.response)
+        elif oid in ("judge", "confirm") and oid not in ob_resp:  # the tier rules (no margin)
+            worst = None
+            kind, resp = "tier", str(spec.risk.response) if oid == "judge" else "stop_2"
         else:
             mg = tr.margins[:, j]
             mg = mg[~np.isnan(mg)]
@@ -359,7 +362,7 @@ def _why_fault(rs: Resampled, tr: CycleResults, data: BagData, mapping: Mapping)
 
 def _audit(log: Any, res: BagReplay, tr: CycleResults, rs: Resampled, spec: Spec) -> None:
     """Append the decisions of a replay to an :class:`~ethimon.audit.AuditLog`, one record per change."""
-    ids = tr.ids[:-1]
+    ids = tr.ids[:tr.margins.shape[1]]  # the obligations (then "risk" and any tier rules)
 
     def append(kind: str, **fields: Any) -> None:
         for _ in range(200):

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from ..compiler._risk_formula import (DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, VARIANCE_MODES,  # noqa: F401
                                       _risk_range_exact, release_bound, risk_bounds, risk_from_p_unsafe,
-                                      risk_from_probs, risk_range)
+                                      risk_from_probs, risk_range, OUTCOMES, judge_verdict, tier_outcome)
 
 __all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "risk_from_p_unsafe", "risk_from_probs", "risk_bounds",
-           "release_bound", "risk_range", "VARIANCE_MODES"]
+           "release_bound", "risk_range", "VARIANCE_MODES", "OUTCOMES", "judge_verdict", "tier_outcome"]

@@ -63,6 +63,12 @@ class Monitor:
     ``risk_age_s`` (seconds since the estimate) is required too, and an older
     estimate is a ``"stale"`` fault. Keys the spec does not declare are ignored.
 
+    With a confirm band (``risk.confirm_threshold``) or a judge (``risk.judge``), two more inputs:
+    ``judge``, the judge's p_unsafe (absent or ``None``: no judgement; anything else outside [0, 1]
+    is an ``"invalid"`` fault), and ``task_id``, any value naming the task text (its hash), to which
+    an operator's confirmation is bound. The rule ``"judge"`` fires on an unsafe verdict at any R_e;
+    ``"confirm"`` (stop 2) fires in [τ_confirm, τ) unless the judge said safe or the task is confirmed.
+
     Every rule (each obligation, the risk rule, the fault rule) has its own latch:
     an override lasts while any is set, with the most severe latched response. An
     ``auto`` latch releases once its condition has held ``hold_cycles`` cycles in a
@@ -95,7 +101,9 @@ class Monitor:
                  "_margin_fns", "_nan_margins", "_tau", "_risk_sev", "_fault_sev", "_below",
                  "_alpha", "_beta", "_gamma", "_sample", "_k", "_uidx", "_rlo", "_rhi",
                  "_max_age", "_age_missing", "_cycle", "_margins_on", "_stateless",
-                 "_lat", "_run", "_sevs", "_holds", "_manual", "_names", "_nlat", "_ri", "_fi", "_nsrc")
+                 "_lat", "_run", "_sevs", "_holds", "_manual", "_names", "_nlat", "_ri", "_fi", "_nsrc",
+                 "_ji", "_ci", "_tiers", "_judge_on", "_tc", "_jsafe", "_junsafe", "_confirmed", "_ctask",
+                 "_last_task")
 
     def __init__(self, plan: Plan | Spec, *, margins: bool = True, max_age_s: float | None = None) -> None:
         plan = plan_of(plan)
@@ -124,18 +132,34 @@ class Monitor:
         self._fault_sev = plan.on_fault.severity
         self._below = release_bound(r.threshold, r.release.hysteresis)[1]  # exact: 0.27 - 0.05 is 0.22
         # one latch per rule, in preallocated slots: the obligations in order, then the risk
-        # rule, then the fault latch. _lat[k]: the rule's severity while latched, else 0;
+        # rule, the fault latch, the judge's unsafe verdict and the confirm band (the last two
+        # never latch unless the spec sets risk.judge / risk.confirm_threshold).
+        # _lat[k]: the rule's severity while latched, else 0;
         # _run[k]: consecutive cycles its release condition has held (-1: it fired this cycle)
         n = len(plan.obligations)
-        self._ri, self._fi, self._nsrc = n, n + 1, n + 2
-        self._names = tuple(ob.id for ob in plan.obligations) + ("risk", "fault")
+        self._ri, self._fi, self._ji, self._ci, self._nsrc = n, n + 1, n + 2, n + 3, n + 4
+        self._names = tuple(ob.id for ob in plan.obligations) + ("risk", "fault", "judge", "confirm")
         fmode, fhold = plan.fault_release
-        self._holds = tuple(ob.release_hold for ob in plan.obligations) + (int(r.release.hold_cycles), fhold)
+        rhold = int(r.release.hold_cycles)
+        self._holds = tuple(ob.release_hold for ob in plan.obligations) + (rhold, fhold, rhold, rhold)
+        # the confirm latch is released automatically once the band no longer holds the text (the
+        # judge said safe, R_e left the band) or at once by acknowledge(): the confirmation itself
         self._manual = tuple(ob.release_mode == "manual" for ob in plan.obligations) + (
-            r.release.mode == "manual", fmode == "manual")
-        self._sevs = tuple(ob.response.severity for ob in plan.obligations) + (self._risk_sev, self._fault_sev)
-        self._lat = [0] * (n + 2)
-        self._run = [0] * (n + 2)
+            r.release.mode == "manual", fmode == "manual", r.release.mode == "manual", False)
+        self._sevs = tuple(ob.response.severity for ob in plan.obligations) + (
+            self._risk_sev, self._fault_sev, self._risk_sev, Response.STOP_2.severity)
+        self._lat = [0] * (n + 4)
+        self._run = [0] * (n + 4)
+        # the tiers (risk.confirm_threshold, risk.judge): off for specs without them
+        self._tc = None if r.confirm_threshold is None else float(r.confirm_threshold)
+        j = r.judge
+        self._judge_on = j is not None
+        self._jsafe = float(j.safe_below) if j is not None else -1.0
+        self._junsafe = float(j.unsafe_from) if j is not None else 2.0
+        self._tiers = self._judge_on or self._tc is not None
+        self._confirmed = False  # acknowledge() confirmed the text in the band (bound to _ctask)
+        self._ctask = None
+        self._last_task = None
         self._nlat = 0
         self._alpha, self._beta, self._gamma = float(r.alpha), float(r.beta), float(r.gamma)
         self._sample = r.variance == "sample"
@@ -197,6 +221,7 @@ class Monitor:
             self._lat[k] = 0
             self._run[k] = 0
         self._nlat = 0
+        self._confirmed = False
 
     def reset(self) -> None:
         """Start a fresh trace: cycle 0, no latch, empty temporal history."""
@@ -219,7 +244,9 @@ class Monitor:
         Refused (nothing is released) while any of them has not met its release
         condition on the last ``hold_cycles`` consecutive cycles: the obligation held,
         R_e < τ − δ for the risk rule, no fault for the fault latch. Automatic latches
-        keep their own rule. Takes effect from the next :meth:`step`, which overrides
+        keep their own rule. A latched ``"confirm"`` (the confirm band) needs no count: the
+        acknowledgement is the confirmation, and it holds for the last cycle's ``task_id`` until
+        that changes, R_e leaves the band, or a cycle faults. Takes effect from the next :meth:`step`, which overrides
         again if a rule is violated or an input is bad.
 
         Returns:
@@ -249,6 +276,9 @@ class Monitor:
         """
         lat, run, holds, manual, names = self._lat, self._run, self._holds, self._manual, self._names
         ready = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] >= holds[k]]
+        ci = self._ci
+        if lat[ci]:  # the confirm band: the acknowledgement is its release condition
+            ready.append(ci)
         waiting = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] < holds[k]]
         if waiting:
             return Acknowledgement(False, tuple(names[k] for k in waiting), "refused: " + "; ".join(
@@ -261,6 +291,9 @@ class Monitor:
             lat[k] = 0
             run[k] = 0
         self._nlat -= len(ready)
+        if ci in ready:  # the text in the band is confirmed until it changes
+            self._confirmed = True
+            self._ctask = self._last_task
         return Acknowledgement(True, tuple(names[k] for k in ready),
                                "released: " + ", ".join(names[k] for k in ready))
 
@@ -272,7 +305,7 @@ class Monitor:
             ``(severity still latched, awaiting_release)``.
         """
         lat, run, holds, manual = self._lat, self._run, self._holds, self._manual
-        ri = self._ri
+        ri, ci = self._ri, self._ci
         sev = 0
         n_manual = ready = 0
         for k in range(self._nsrc):
@@ -298,6 +331,9 @@ class Monitor:
                 n_manual += 1
                 if c >= holds[k]:
                     ready += 1
+            elif k == ci:  # auto-released once the band stops holding; acknowledge() releases it at once
+                n_manual += 1
+                ready += 1
         return sev, n_manual > 0 and ready == n_manual
 
     # -- the hot path --------------------------------------------------------------
@@ -396,6 +432,17 @@ class Monitor:
                         "stale",
                         f"risk estimate is stale or its age is invalid: {age!r} s > max_age_s {self._max_age:g}", "risk_age_s"))
                     (bad := bad or []).append(self._rslot)
+            jp = None
+            if self._judge_on:  # the judge's p_unsafe, or None: no judgement (a normal state)
+                jin = get("judge")
+                if jin is not None:
+                    jp = jin if type(jin) is float else as_number(jin)
+                    if jp is None or not 0.0 <= jp <= 1.0:
+                        (faults := faults or []).append(Fault(
+                            "invalid", f"judge input {jin!r} is not a p_unsafe in [0, 1] (null: no judgement)",
+                            "judge"))
+                        bad = bad or []
+                        jp = None
             if faults is not None:
                 return self._fault(cycle, tuple(faults), r, bad)
             vals[self._rslot] = r
@@ -418,6 +465,15 @@ class Monitor:
                 else:
                     violations.append("risk")
                     hits.append(self._ri)
+            if self._tiers:
+                tier = self._tier(r, jp, get)
+                if tier is not None:
+                    if violations is None:
+                        violations = [tier[0]]
+                        hits = [tier[1]]
+                    else:
+                        violations.append(tier[0])
+                        hits.append(tier[1])
             if hits is not None:
                 lat, run, sevs = self._lat, self._run, self._sevs
                 for i in hits:
@@ -444,6 +500,28 @@ class Monitor:
             except BaseException:  # pragma: no cover - a broken __str__
                 reason = _INTERNAL
             return self._fault(cycle, (reason,), r if type(r) is float else None)
+
+    def _tier(self, r: float, jp: float | None, get) -> tuple[str, int] | None:
+        """The judge tier and the confirm band on a valid cycle (R_e = ``r``, judge p_unsafe ``jp``).
+
+        An unsafe verdict (``jp >= unsafe_from``) fires ``"judge"`` at any R_e: below τ the judge can
+        only raise the risk. In the band [τ_confirm, τ) only a safe verdict (``jp < safe_below``)
+        or an operator's confirmation of this task (``acknowledge()``, bound to ``task_id``) lets the arm
+        execute; anything else (unsure, no judgement) fires ``"confirm"`` (stop 2). R_e ≥ τ is the
+        risk rule's, whatever the judge says.
+        """
+        if jp is not None and jp >= self._junsafe:
+            return "judge", self._ji
+        tc = self._tc
+        if tc is None:
+            return None
+        task = get("task_id")
+        if self._confirmed and (task != self._ctask or not tc <= r < self._tau):
+            self._confirmed = False  # a confirmation is for one text while it stays in the band
+        self._last_task = task
+        if tc <= r < self._tau and not self._confirmed and not (jp is not None and jp < self._jsafe):
+            return "confirm", self._ci
+        return None
 
     def fault(self, *reasons: Fault | str, decision: Decision | None = None) -> Decision:
         """Fail closed on a fault found outside the monitor (watchdog, estimator, audit).
@@ -505,6 +583,7 @@ class Monitor:
             self._m.reset()
         except Exception:  # pragma: no cover
             pass
+        self._confirmed = False  # a fault cycle ends a confirmation: the next band cycle asks again
         found: list[str] = []
         lat = self._lat
         if bad is not None and self._stateless:

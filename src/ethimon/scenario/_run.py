@@ -56,7 +56,7 @@ def find_scenarios(paths: Iterable[str], *, skipped: list[tuple[str, str]] | Non
 
 
 #: step() inputs with a built-in meaning, valid in every scenario besides the spec's signals
-BUILTIN_INPUTS = ("risk", "p_unsafe", "p", "risk_age_s")
+BUILTIN_INPUTS = ("risk", "p_unsafe", "p", "risk_age_s", "judge")  # judge: a recorded judge answer (p_unsafe)
 
 
 def check_input_names(sc: Scenario, spec: Spec) -> None:
@@ -284,6 +284,10 @@ def check_expectations(sc: Scenario, decisions: list[Decision]) -> list[str]:
 def _check_ids(sc: Scenario, monitor: Monitor) -> None:
     import difflib
     known = set(monitor.obligation_ids) | {"risk"}
+    if monitor.plan.risk.judge is not None:
+        known.add("judge")
+    if monitor.plan.risk.confirm_threshold is not None:
+        known.add("confirm")
     for key in ("fired", "not_fired"):
         for i, oid in enumerate(getattr(sc.expect, key)):
             if oid not in known:

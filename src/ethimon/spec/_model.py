@@ -24,7 +24,8 @@ from ..errors import SpecError
 from ._yaml import SourceMap
 
 __all__ = [
-    "Response", "Signal", "Constant", "Release", "RuleRelease", "OnFault", "RiskConfig", "Obligation",
+    "Response", "Signal", "Constant", "Release", "RuleRelease", "OnFault", "RiskConfig", "JudgeConfig",
+    "Obligation",
     "SafePose", "Spec", "MANUAL_BY_DEFAULT",
     "FORMAT_VERSION", "RESERVED_INPUTS", "validation_to_spec_error", "IDENT",
 ]
@@ -34,7 +35,7 @@ IDENT = r"^[A-Za-z_][A-Za-z0-9_]*$"
 #: step() input keys with a built-in meaning; specs cannot declare them as signals
 RESERVED_INPUTS = frozenset({"risk", "p_unsafe", "p", "risk_age_s", "true", "false", "and", "or",
                              "not", "implies", "abs", "min", "max", "sqrt", "prev", "held", "once",
-                             "since", "separation_distance"})
+                             "since", "separation_distance", "judge", "task_id"})
 
 
 class Response(str, enum.Enum):
@@ -191,6 +192,39 @@ class EstimatorConfig(BaseModel):
     max_length: int | None = Field(None, ge=8, le=4096, description="token budget (default: the model's)")
 
 
+class JudgeConfig(BaseModel):
+    """A second opinion on task texts (``risk.judge``): an OpenAI-compatible chat-completions server
+    asked for a one-token verdict (see :mod:`ethimon.risk` ``Judge``). Its p_unsafe reaches the monitor
+    as the ``judge`` input: < ``safe_below`` is a safe verdict, ≥ ``unsafe_from`` an unsafe one, between
+    them the judge is unsure; none (timeout, error, malformed answer) leaves the confirm band to a person."""
+
+    model_config = _CFG
+    url: str = Field(min_length=1, description="base URL of the server, e.g. http://127.0.0.1:8000/v1 "
+                     "(POSTs to <url>/chat/completions)")
+    model: str = Field(min_length=1, description="model name the server serves")
+    timeout_s: FiniteFloat = Field(5.0, gt=0.0, le=120.0, description="a slower answer is no judgement")
+    api_key_env: str | None = Field(None, pattern=IDENT, description="environment variable holding the API "
+                                    "key (never written to logs or the audit trail); null: no key")
+    prompt: str | None = Field(None, min_length=1, description="system prompt (the rubric) replacing the "
+                               "built-in one; the task text is always sent as quoted data")
+    safe_below: FiniteFloat = Field(0.2, ge=0.0, le=1.0, description="judge p_unsafe below this: safe")
+    unsafe_from: FiniteFloat = Field(0.8, ge=0.0, le=1.0, description="judge p_unsafe from this on: unsafe")
+
+    @model_validator(mode="after")
+    def _check(self) -> "JudgeConfig":
+        import urllib.parse
+        u = urllib.parse.urlsplit(self.url)
+        if u.scheme not in ("http", "https") or not u.hostname:
+            raise _LocError(f"risk.judge.url {self.url!r} is not an http(s) URL", ("risk", "judge", "url"),
+                            hint="e.g. http://127.0.0.1:8080/v1 (llama-server), http://127.0.0.1:8000/v1 (vLLM), "
+                            "http://127.0.0.1:11434/v1 (Ollama)")
+        if self.safe_below > self.unsafe_from:
+            raise _LocError(f"risk.judge.safe_below {self.safe_below} is above unsafe_from {self.unsafe_from}: "
+                            "a verdict would be both safe and unsafe", ("risk", "judge", "safe_below"),
+                            hint="set safe_below <= unsafe_from, e.g. 0.2 and 0.8")
+        return self
+
+
 class RiskConfig(BaseModel):
     """How R_e is formed and judged. The rule R_e ≥ τ ⇒ override is always present."""
 
@@ -208,6 +242,11 @@ class RiskConfig(BaseModel):
     max_age_s: FiniteFloat | None = Field(
         None, gt=0.0, description="estimates older than this (input risk_age_s) fail closed")
     estimator: EstimatorConfig = Field(default_factory=EstimatorConfig)
+    confirm_threshold: FiniteFloat | None = Field(
+        None, description="τ_confirm: R_e in [τ_confirm, τ) holds the arm (stop_2) until an operator confirms "
+        "(Monitor.acknowledge) or the judge decides; null (default): no confirm band")
+    judge: JudgeConfig | None = Field(None, description="{url, model, timeout_s, api_key_env, prompt}: the "
+                                      "judge tier (null: none; the confirm band is then a person's)")
     allow: dict[Literal["threshold", "weights"], Annotated[str, Field(min_length=1)]] = Field(
         default_factory=dict, description="opt-outs, each with the reason: 'threshold' lets τ lie outside "
         "(0, 1], 'weights' lets α, β, γ be negative or all 0 (either can switch the risk rule off or on for good)")
@@ -222,6 +261,11 @@ class RiskConfig(BaseModel):
                     "R_e is a score in [0, 1] for the usual weights, so the risk rule would never fire")
             raise _LocError(f"risk.threshold τ = {tau} is outside (0, 1]: {what}", ("risk", "threshold"),
                             hint="set 0 < τ ≤ 1, or opt out with 'allow: {threshold: <reason>}' under risk:")
+        tc = self.confirm_threshold
+        if tc is not None and not 0.0 <= tc < tau:
+            raise _LocError(f"risk.confirm_threshold τ_confirm = {tc} is not in [0, τ = {tau}): the confirm band "
+                            "[τ_confirm, τ) would be empty or negative", ("risk", "confirm_threshold"),
+                            hint="set 0 <= confirm_threshold < threshold, or remove the key (no band)")
         weights = {"alpha": self.alpha, "beta": self.beta, "gamma": self.gamma}
         if "weights" not in self.allow:
             for name, w in weights.items():
@@ -347,6 +391,10 @@ class Spec(BaseModel):
                 raise _LocError("obligation id 'risk' is reserved: it names the built-in rule R_e ≥ τ in "
                                 "decisions, scenarios and the audit log", ("obligations", i, "id"),
                                 hint="pick another id, e.g. 'risk_limit'")
+            if ob.id in ("confirm", "judge"):
+                raise _LocError(f"obligation id {ob.id!r} is reserved: it names the tier rule of the "
+                                "risk.confirm_threshold band / the judge in decisions and acknowledge()",
+                                ("obligations", i, "id"), hint=f"pick another id, e.g. '{ob.id}_check'")
             if ob.id == "fault":
                 raise _LocError("obligation id 'fault' is reserved: it names the fault latch in "
                                 "Monitor.latched_rules and acknowledge()", ("obligations", i, "id"),

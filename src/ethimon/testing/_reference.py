@@ -46,6 +46,14 @@ Semantics (the definition both implementations follow), for a history
   clear every latch. Defaults: obligations with stop_0/stop_1 and the fault rule
   are manual, the others auto; the hold defaults to ``risk.release.hold_cycles``;
   the risk rule follows ``risk.release``.
+* The tiers (only with ``risk.judge`` / ``risk.confirm_threshold``): the ``judge`` input is the
+  judge's p_unsafe (absent or ``None``: no judgement; anything else outside [0, 1]: a bad input).
+  At a valid cycle, the rule ``judge`` fires if p_judge ≥ ``unsafe_from`` (any R_e); else the rule
+  ``confirm`` (stop 2, auto release, hold ``risk.release.hold_cycles``) fires if τ_confirm ≤ R_e < τ,
+  the judge did not say safe (p_judge < ``safe_below``) and no confirmation holds. ``acknowledge()``
+  releases a latched ``confirm`` with no count needed and confirms the ``task_id`` input of the last
+  band cycle; the confirmation ends at a cycle with another ``task_id``, R_e outside the band, or a
+  fault. The ``judge`` rule releases like the risk rule (mode and hold of ``risk.release``).
 * The decision overrides while any latch is set, with the most severe response
   among the latched rules; ``latched`` when none fired and the cycle did not fault;
   ``awaiting_release`` when some manual rule is latched and every latched manual
@@ -102,6 +110,9 @@ class ReferenceMonitor:
     def release(self) -> None:
         #: rule name -> its count while latched (absent: not latched)
         self.latches: dict[str, int] = {}
+        #: the task_id whose band hold an operator confirmed, as a 1-tuple (None: no confirmation)
+        self.confirmed: tuple | None = None
+        self.last_task = None
 
     @property
     def latched(self) -> bool:
@@ -122,13 +133,15 @@ class ReferenceMonitor:
         rules["risk"] = (Response(spec.risk.response).severity, rel.mode == "manual", rel.hold_cycles)
         mode, hold = spec.fault_release()
         rules["fault"] = (Response(spec.on_fault).severity, mode == "manual", hold)
+        rules["judge"] = rules["risk"]
+        rules["confirm"] = (Response.STOP_2.severity, False, rel.hold_cycles)
         return rules
 
     def acknowledge(self):
         from ..runtime import Acknowledgement
         rules = self._rules()
-        manual = [k for k in self.latches if rules[k][1]]
-        waiting = tuple(k for k in self._order(manual) if self.latches[k] < rules[k][2])
+        manual = [k for k in self.latches if rules[k][1] or k == "confirm"]
+        waiting = tuple(k for k in self._order(manual) if k != "confirm" and self.latches[k] < rules[k][2])
         if waiting:
             return Acknowledgement(False, waiting, "refused: " + "; ".join(
                 f"{k} still fails" if self.latches[k] == 0 else
@@ -138,10 +151,12 @@ class ReferenceMonitor:
                 " (the override is held by automatic releases)" if self.latches else ""))
         for k in manual:
             del self.latches[k]
+        if "confirm" in manual:
+            self.confirmed = (self.last_task,)
         return Acknowledgement(True, self._order(manual), "released: " + ", ".join(self._order(manual)))
 
     def _order(self, names) -> tuple[str, ...]:
-        order = list(self.obligation_ids) + ["risk", "fault"]
+        order = list(self.obligation_ids) + ["risk", "fault", "judge", "confirm"]
         return tuple(sorted(names, key=order.index))
 
     def _decide(self, fired: list[str], faulted: bool, below: bool) -> tuple[int, bool]:
@@ -164,8 +179,8 @@ class ReferenceMonitor:
             for k in fired:
                 self.latches[k] = 0
         sev = max((rules[k][0] for k in self.latches), default=0)
-        manual = [k for k in self.latches if rules[k][1]]
-        awaiting = bool(manual) and all(self.latches[k] >= rules[k][2] for k in manual)
+        manual = [k for k in self.latches if rules[k][1] or k == "confirm"]
+        awaiting = bool(manual) and all(k == "confirm" or self.latches[k] >= rules[k][2] for k in manual)
         return sev, awaiting
 
     def fault(self, *reasons, decision: Decision | None = None) -> Decision:
@@ -353,7 +368,13 @@ class ReferenceMonitor:
             age = None if age is None else as_number(age)
             risk_ok = risk_ok and age is not None and 0 <= age <= spec.risk.max_age_s
         conv = {s.name: self._value(s, signals.get(s.name)) for s in self.plan.signals}
-        ok = risk_ok and all(v is not None for v in conv.values())
+        judge = spec.risk.judge
+        jp = signals.get("judge") if judge is not None else None
+        judge_ok = True
+        if jp is not None:
+            jp = as_number(jp)
+            judge_ok = jp is not None and 0 <= jp <= 1
+        ok = risk_ok and judge_ok and all(v is not None for v in conv.values())
         bad_input = not ok
         violations: list[str] = []
         margins: tuple[float, ...] = ()
@@ -374,6 +395,7 @@ class ReferenceMonitor:
                 ok = False
         if not ok:
             self.history = []
+            self.confirmed = None
             fsev = Response(spec.on_fault).severity
             found = []
             if bad_input:
@@ -403,6 +425,19 @@ class ReferenceMonitor:
                             _BAD_INPUT if bad_input else _EVAL_ERROR)
         if r >= tau:
             violations.append("risk")
+        # the tiers: an unsafe verdict stops at any R_e; in [τ_confirm, τ) only a safe verdict or a
+        # confirmation of this task executes
+        if judge is not None and jp is not None and jp >= judge.unsafe_from:
+            violations.append("judge")
+        elif spec.risk.confirm_threshold is not None:
+            task = signals.get("task_id")
+            in_band = spec.risk.confirm_threshold <= r < tau
+            if self.confirmed is not None and (self.confirmed[0] != task or not in_band):
+                self.confirmed = None
+            self.last_task = task
+            judged_safe = judge is not None and jp is not None and jp < judge.safe_below
+            if in_band and self.confirmed is None and not judged_safe:
+                violations.append("confirm")
         below = Fraction(r) < release_bound(tau, spec.risk.release.hysteresis)[0]
         lsev, awaiting = self._decide(violations, False, below)
         if violations:

@@ -20,6 +20,7 @@ from ._policy import manual_rules, release_policy_warnings
 from ._encode import (DecisionTrace, Unrolled, decision_trace, lookback, real, release_below, rules_of,
                       z3_value)
 from ._report import OK, PROVED, REFUTED, SKIPPED, UNKNOWN, WARNING, Counterexample, Finding
+from ._tiers import base_spec, has_tiers, lint_confirm_band, tier_properties
 
 __all__ = ["Verifier", "BUDGET_NOTE"]
 
@@ -37,6 +38,11 @@ class Verifier:
 
     def __init__(self, spec: Spec, *, path: str, timeout_s: float, max_unroll: int,
                  budget_s: float | None = None, started: float | None = None) -> None:
+        # the tiers (confirm band, judge) are proved on their own (verify/_tiers.py); every other
+        # property is checked on the spec without them, which they only add overrides to (tier.adds_only)
+        self.full_spec = spec
+        self.full_plan = plan_of(spec)
+        spec = base_spec(spec)
         self.spec = spec
         self.budget_s = budget_s
         t0 = time.perf_counter() if started is None else started
@@ -243,6 +249,8 @@ class Verifier:
             out.append((f"{ob.id}.response", lambda ob=ob: self.prop_response(ob)))
         out += [("resume.explained", self.prop_resume_explained), ("release.rule", self.prop_release_rule),
                 ("model.agrees", lambda: self._timed(self.check_model))]
+        if has_tiers(self.full_spec):
+            out += tier_properties(self)
         return out
 
     def properties(self) -> list[Finding]:
@@ -582,7 +590,9 @@ class Verifier:
                 ("lint.release_policy", self.lint_release_policy),
                 ("lint.vacuous", self.lint_vacuous), ("lint.contradiction", self.lint_contradictions),
                 ("lint.unbounded", self.lint_unbounded), ("lint.fault_gap", self.lint_fault_gap),
-                ("lint.safe_pose_range", self.lint_safe_pose_range)]
+                ("lint.safe_pose_range", self.lint_safe_pose_range)] + (
+                    [("lint.confirm_band", lambda: [self._timed(lambda: lint_confirm_band(self))])]
+                    if has_tiers(self.full_spec) else [])
 
     def lints(self) -> list[Finding]:
         return [f for _, fn in self.lint_tasks() for f in fn()]
