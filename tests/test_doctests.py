@@ -18,7 +18,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src" / "ethimon"
-HEAVY = {"torch", "transformers", "pybullet", "pybullet_data", "ray", "gymnasium", "z3", "rosbags"}
+HEAVY = {"torch", "transformers", "pybullet", "pybullet_data", "ray", "gymnasium", "z3", "rosbags", "onnxruntime", "onnx"}
 
 
 def _name(path: Path) -> str:

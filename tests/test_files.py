@@ -88,10 +88,10 @@ def test_audit_verify_cli_does_not_stat_before_verify_log(tmp_path, monkeypatch,
 
 @needs_fifo
 def test_a_model_config_that_is_a_fifo_is_a_model_error_without_blocking(tmp_path, monkeypatch):
-    import ethimon.risk._backend as backend
+    import ethimon.risk._modeldir as modeldir  # the torch-free model-directory checks
     from ethimon.errors import ModelError
-    from ethimon.risk._backend import read_json_object
-    monkeypatch.setattr(backend, "MAX_JSON_BYTES", 1000)
+    from ethimon.risk._modeldir import read_json_object
+    monkeypatch.setattr(modeldir, "MAX_JSON_BYTES", 1000)
     fifo = tmp_path / "config.json"
     os.mkfifo(fifo)
     err = _no_block(lambda: read_json_object(fifo))["exc"]

@@ -207,13 +207,13 @@ def test_each_code_route_is_refused(tmp_path, says_yes, case):
 
 
 def test_a_huge_tree_is_not_walked(tmp_path, monkeypatch):
-    from ethimon.risk import _backend as B
+    from ethimon.risk import _modeldir as D
     d = _bert_dir(tmp_path / "m", transformers.BertForSequenceClassification, num_labels=2)
     for i in range(12):
         (d / f"f{i}").write_text("")
-    monkeypatch.setattr(B, "MAX_DIR_ENTRIES", 10)
+    monkeypatch.setattr(D, "MAX_DIR_ENTRIES", 10)  # the checks live in the torch-free _modeldir
     with pytest.raises(ModelError, match="more than 10 files"):
-        B.check_model_dir(d)
+        D.check_model_dir(d)
 
 
 def test_adapter_with_foreign_base_or_tokenizer_is_refused(tmp_path, base, says_yes):
@@ -244,8 +244,8 @@ def test_every_transformers_load_says_trust_remote_code_false(tmp_path, base, mo
             calls.append((_name, k.get("trust_remote_code", "absent")))
             return _orig(*a, **k)
         monkeypatch.setattr(cls, "from_pretrained", spy)
-    load_estimator(_adapter_dir(tmp_path / "a", base), jit=False)
-    load_estimator(_distilbert_clf(tmp_path / "clf"), max_length=32, jit=False)
+    load_estimator(_adapter_dir(tmp_path / "a", base), jit=False, backend="torch")
+    load_estimator(_distilbert_clf(tmp_path / "clf"), max_length=32, jit=False, backend="torch")
     names = {n for n, _ in calls}
     assert {"AutoTokenizer", "AutoModel", "AutoModelForSequenceClassification"} <= names
     assert all(v is False for _, v in calls), calls

@@ -46,6 +46,7 @@ MAPPING = """
 ethimon: 1
 rate_hz: 50
 max_age_s: 0.08
+samples: latest
 signals:
   joint_speed_max: {topic: /joint_states, field: velocity, reduce: max_abs}
   human_distance:  {topic: /human/distance_cm, field: data, scale: 0.01, max_age_s: 0.15}
@@ -87,7 +88,7 @@ def make_messages(seed: int = 0, n_js: int = 160, dropout: tuple[float, float] |
     return msgs
 
 
-def write_bag(path: Path, fmt: str, msgs, stamp_offset_ns=lambda t: 0) -> Path:
+def write_bag(path: Path, fmt: str, msgs, stamp_offset_ns=lambda t: 0, empty_topics=None) -> Path:
     """Write ``msgs`` as a ROS 2 sqlite3 / MCAP folder or a ROS 1 .bag file (header stamps: log time +
     ``stamp_offset_ns(t)``)."""
     ts = get_typestore(Stores.ROS1_NOETIC if fmt == "ros1" else Stores.ROS2_HUMBLE)
@@ -123,6 +124,8 @@ def write_bag(path: Path, fmt: str, msgs, stamp_offset_ns=lambda t: 0) -> Path:
         w = Writer(path, version=9, storage_plugin=StoragePlugin.SQLITE3 if fmt == "sqlite3" else StoragePlugin.MCAP)
     with w:
         conns = {}
+        for topic, kind in (empty_topics or {}).items():
+            conns[topic] = w.add_connection(topic, types[kind], typestore=ts)
         for t, topic, kind, v in msgs:
             if topic not in conns:
                 conns[topic] = w.add_connection(topic, types[kind], typestore=ts)
@@ -132,7 +135,9 @@ def write_bag(path: Path, fmt: str, msgs, stamp_offset_ns=lambda t: 0) -> Path:
 
 # ----------------------------------------------------------------------------- the reference, written here
 def reference(msgs, mapping_text: str, spec, score=_score):
-    """Zero-order hold + staleness by a plain loop, then Monitor.step per cycle."""
+    """Zero-order hold + staleness by a plain loop, then Monitor.step per cycle: the grid runs to the first
+    cycle at or after the last sample, and a fresh monitor starts at the first cycle where every input
+    has been seen (the cycles before fail closed)."""
     import yaml
     mp = yaml.safe_load(mapping_text)
     rate = float(mp["rate_hz"])
@@ -145,9 +150,9 @@ def reference(msgs, mapping_text: str, spec, score=_score):
     k = 0
     while True:
         t = t0 + int(np.rint(k * 1e9 / rate))
-        if t > t_end:
-            break
         grid.append(t)
+        if t >= t_end:
+            break
         k += 1
 
     def value(name, v):
@@ -165,7 +170,13 @@ def reference(msgs, mapping_text: str, spec, score=_score):
     texts = [(t, v) for t, topic, _, v in msgs if topic == task_topic]
     mon = ethimon.Monitor(spec)
     out = []
+    started = False
     for t in grid:
+        if not started and all(any(ts_ <= t for ts_, _ in samples) for samples in per.values()) and (
+                not task_topic or any(ts_ <= t for ts_, _ in texts)):
+            started = True
+            if out:
+                mon = ethimon.Monitor(spec)  # a fresh monitor once every input has been seen
         inp = {}
         for name, samples in per.items():
             last = None
@@ -346,15 +357,26 @@ def test_stale_signal_fails_closed_and_clears(tmp_path, spec):
     assert tr.severity[stale[0]] >= 3  # on_fault: stop_1
 
 
-def test_missing_topic_is_a_fault_on_every_cycle(tmp_path, spec):
+def test_missing_topic_is_an_error_with_did_you_mean(tmp_path, spec):
     msgs = make_messages(seed=6)
     bag = write_bag(tmp_path / "b", "sqlite3", msgs)
-    mapping = MAPPING.replace("/human/distance_cm", "/human/nowhere")
-    res = replay_bag(bag, spec, load_mapping_text(mapping), score=_score, keep_trace=True)
+    mapping = MAPPING.replace("/human/distance_cm", "/human/distance_mc")
+    with pytest.raises(BagError, match="human_distance: topic /human/distance_mc is not in this bag .did you mean "
+                                       "'/human/distance_cm'"):
+        replay_bag(bag, spec, load_mapping_text(mapping), score=_score)
+
+
+def test_topic_without_messages_is_a_fault_on_every_cycle(tmp_path, spec):
+    msgs = make_messages(seed=6)
+    bag = write_bag(tmp_path / "b", "mcap", [m for m in msgs if m[1] != "/human/distance_cm"],
+                    empty_topics={"/human/distance_cm": "f64"})
+    res = replay_bag(bag, spec, load_mapping_text(MAPPING), score=_score, keep_trace=True)
     assert res.check("inputs").cycles == res.cycles
     assert bool(res.trace.override.all())
-    assert "human_distance: topic /human/nowhere is not in this bag on 200 cycles" in res.check("inputs").detail
+    assert f"human_distance: topic /human/distance_cm has no message on {res.cycles} cycles" in res.check(
+        "inputs").detail
     assert res.signals["human_distance"]["missing_cycles"] == res.cycles
+    assert res.check("separation").status == "NOT EVALUATED" and not res.check("separation").passed
 
 
 def test_task_text_not_yet_seen_is_a_fault(tmp_path, spec):
@@ -419,7 +441,8 @@ def test_fixed_p_needs_no_task(tmp_path, spec):
     ("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.1\nsignals:\n  ee_speed: {topic: /t, reduce: maxabs}\n",
      5, 33, "reduce"),
     ("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.1\nsignals:\n  ee_speed:\n    topc: /t\n", 6, 5, "did you mean 'topic'"),
-    ("ethimon: 1\nrate_hz: -5\nmax_age_s: 0.1\nsignals: {ee_speed: {topic: /t}}\n", 2, 10, "greater than 0"),
+    ("ethimon: 1\nrate_hz: -5\nmax_age_s: 0.1\nsignals: {ee_speed: {topic: /t}}\n", 2, 10,
+     "greater than or equal to 0.1"),
     ("ethimon: 1\nrate_hz: 100\nsignals: {ee_speed: {topic: /t}}\n", 1, 1, "max_age_s"),
     ("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.1\nsignals:\n  ee_speed: {topic: /t, reduce: index}\n", 5, 13,
      "index"),
@@ -443,7 +466,7 @@ def test_mapping_must_fit_the_spec(tmp_path, spec):
     f.write_text(MAPPING.replace("  ee_speed:", "  ee_sped:"))
     with pytest.raises(SpecError) as ei:
         check_against_spec(load_mapping(f), spec)
-    assert ei.value.line == 8 and "did you mean 'ee_speed'" in str(ei.value)
+    assert ei.value.line == 9 and "did you mean 'ee_speed'" in str(ei.value)
     f.write_text(MAPPING.replace("  ee_speed:        {topic: /ee/twist, field: twist.linear, reduce: norm}\n", ""))
     with pytest.raises(SpecError, match="'ee_speed', which the mapping does not map"):
         check_against_spec(load_mapping(f), spec)
@@ -465,8 +488,9 @@ def test_corrupt_and_odd_bags_are_bag_errors(tmp_path, spec):
     write_bag(folder, "mcap", make_messages(seed=13))
     mcap = next(folder.glob("*.mcap"))
     mcap.write_bytes(mcap.read_bytes()[:3000])
+    (tmp_path / "plain").mkdir()
     cases = [(junk, "cannot"), (folder, "cannot"), (tmp_path / "nope", "no such file"),
-             (tmp_path, "no metadata.yaml"), (tmp_path / "x.txt", "unknown bag file type")]
+             (tmp_path / "plain", "no metadata.yaml"), (tmp_path / "x.txt", "unknown bag file type")]
     (tmp_path / "x.txt").write_text("x")
     if hasattr(__import__("os"), "mkfifo"):
         __import__("os").mkfifo(tmp_path / "fifo.bag")

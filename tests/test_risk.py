@@ -137,7 +137,7 @@ def test_truncation_head_and_head_tail(tiny):
 
 
 def test_nan_inference_fails_closed(tiny):
-    e = load_estimator(tiny[1], cache_size=8)
+    e = load_estimator(tiny[1], cache_size=8, backend="torch")
 
     class NaNHead(torch.nn.Module):
         def forward(self, ids, mask):
@@ -153,7 +153,7 @@ def test_nan_inference_fails_closed(tiny):
 
 
 def test_forward_exception_fails_closed(tiny):
-    e = load_estimator(tiny[1])
+    e = load_estimator(tiny[1], backend="torch")
 
     class Boom(torch.nn.Module):
         def forward(self, ids, mask):
@@ -247,9 +247,9 @@ def test_distilbert_is_first_class(tmp_path):
     """DistilBERT as in the paper: a fine-tuned classification dir loads; LoRA training on a base works."""
     from ethimon.risk._train import train_lora
     hf = _write_tiny_distilbert(tmp_path / "clf", transformers.DistilBertForSequenceClassification)
-    e = load_estimator(hf, max_length=32, cache_size=0, jit=True)
+    e = load_estimator(hf, max_length=32, cache_size=0, jit=True, backend="torch")
     assert e.jit is True and math.isclose(sum(e.probs(TEXTS[0])), 1.0, abs_tol=1e-6)
-    eager = load_estimator(hf, max_length=32, cache_size=0, jit=False)
+    eager = load_estimator(hf, max_length=32, cache_size=0, jit=False, backend="torch")
     assert e.probs(TEXTS[1]) == pytest.approx(eager.probs(TEXTS[1]), abs=1e-5)
     base = _write_tiny_distilbert(tmp_path / "base")
     ys = [1, 0, 1, 0, 1, 0]
@@ -335,11 +335,11 @@ def test_auxiliary_tasks_share_the_encoder_but_only_the_main_head_is_saved(tiny,
 
 def test_jit_matches_eager_and_falls_back(tiny, monkeypatch):
     from ethimon.risk import _backend as B
-    fast, slow = load_estimator(tiny[1], cache_size=0, jit=True), load_estimator(tiny[1], cache_size=0, jit=False)
+    fast, slow = load_estimator(tiny[1], cache_size=0, jit=True, backend="torch"), load_estimator(tiny[1], cache_size=0, jit=False, backend="torch")
     assert fast.jit is True and slow.jit is False
     for a, b in zip(fast.probs_batch(TEXTS), slow.probs_batch(TEXTS)):
         assert a == pytest.approx(b, abs=1e-5)
-    q, q_eager = load_estimator(tiny[1], quantize="int8", jit=True), load_estimator(tiny[1], quantize="int8", jit=False)
+    q, q_eager = load_estimator(tiny[1], quantize="int8", jit=True, backend="torch"), load_estimator(tiny[1], quantize="int8", jit=False, backend="torch")
     assert q.jit is True and q.probs(TEXTS[3]) == pytest.approx(q_eager.probs(TEXTS[3]), abs=1e-5)
 
     def boom(*a, **k):
@@ -347,7 +347,7 @@ def test_jit_matches_eager_and_falls_back(tiny, monkeypatch):
 
     monkeypatch.setattr(B, "trace_for_inference", boom)
     with pytest.warns(RuntimeWarning, match="no tracing here"):
-        e = load_estimator(tiny[1], cache_size=0, jit=True)
+        e = load_estimator(tiny[1], cache_size=0, jit=True, backend="torch")
     assert e.jit is False and e.probs(TEXTS[0]) == pytest.approx(slow.probs(TEXTS[0]), abs=1e-6)
     with pytest.warns(RuntimeWarning, match="no tracing here"):
         assert e.trace() is False      # an explicit retry fails the same way, and says so
@@ -361,8 +361,8 @@ def test_tracing_is_lazy_by_default(tiny, monkeypatch):
     real = B.trace_for_inference
     monkeypatch.setattr(B, "trace_for_inference", lambda *a, **k: calls.append(1) or real(*a, **k))
     monkeypatch.setattr(_estimator, "JIT_AFTER_ROWS", 7)
-    eager = load_estimator(tiny[1], cache_size=0, jit=False)
-    e = load_estimator(tiny[1], cache_size=0)
+    eager = load_estimator(tiny[1], cache_size=0, jit=False, backend="torch")
+    e = load_estimator(tiny[1], cache_size=0, backend="torch")
     assert e.jit is False and not calls
     first = e.probs(TEXTS[0])
     assert e.jit is False and not calls                  # one sentence: eager, no trace
@@ -374,10 +374,10 @@ def test_tracing_is_lazy_by_default(tiny, monkeypatch):
         assert a == pytest.approx(b, abs=1e-5)
     e.probs_batch(TEXTS * 3)
     assert len(calls) == 1 and first == pytest.approx(e.probs(TEXTS[0]), abs=1e-5)
-    big = load_estimator(tiny[1], cache_size=0)          # one call past the count: traced first
+    big = load_estimator(tiny[1], cache_size=0, backend="torch")          # one call past the count: traced first
     big.logits_batch(TEXTS * 2)
     assert big.jit is True and len(calls) == 2
-    never = load_estimator(tiny[1], cache_size=0, jit=False)
+    never = load_estimator(tiny[1], cache_size=0, jit=False, backend="torch")
     never.probs_batch(TEXTS * 3)
     assert never.jit is False and len(calls) == 2
 

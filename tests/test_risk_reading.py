@@ -152,7 +152,7 @@ def test_a_long_scene_never_lowers_the_risk(tiny):
 
 def test_the_instruction_survives_a_text_longer_than_the_window(tiny):
     from ethimon.risk import _backend as B
-    est = load_estimator(tiny[1], cache_size=0)
+    est = load_estimator(tiny[1], cache_size=0, backend="torch")
     m = est._m
     scene = SCENES[2]
     instr = "Pour the boiling water on the person."
@@ -161,6 +161,20 @@ def test_the_instruction_survives_a_text_longer_than_the_window(tiny):
     assert len(ids) == m.max_length and ids[-len(want) - 1:-1] == want
     flat = B.encode(m.tokenizer, [scene + " " + instr], 16, "head")[0]
     assert not set(want) - {m.tokenizer.convert_tokens_to_ids("the")} <= set(flat[1:-1])
+
+
+def test_both_backends_read_alike(tiny):
+    """ONNX Runtime (the default where installed) builds the same view ids and scores as torch."""
+    pytest.importorskip("onnxruntime")
+    from ethimon.risk import _backend as B
+    t = load_estimator(tiny[1], cache_size=0, backend="torch")
+    o = load_estimator(tiny[1], cache_size=0, backend="onnx")
+    assert o.backend == "onnx" and t.backend == "torch"
+    items = [(v.context, v.focus) for text in INSTRS + [SCENES[2] + " " + INSTRS[2]] for v in views(text)]
+    assert o._m.tokenizer.encode_views(items, 48, "head_tail") == B.encode_views(t._m.tokenizer, items, 48,
+                                                                                  "head_tail")
+    for text in INSTRS + [SCENES[1] + " " + INSTRS[-1]]:
+        assert o.probs(text) == pytest.approx(t.probs(text), abs=2e-3)
 
 
 def test_plan_risk_is_its_riskiest_view_and_batches_agree(tiny):
@@ -241,7 +255,7 @@ def test_full_finetuning_saves_an_exact_full_rank_adapter(tiny, tmp_path):
         moved += float((b @ a).abs().max()) > 0
     assert moved == len(man["lora"]["targets"])               # every matrix was trained
     # it loads like any adapter, and the saved weights are the trained ones (temperature fitted on them)
-    est = load_estimator(tmp_path / "full", cache_size=0, reading="flat")
+    est = load_estimator(tmp_path / "full", cache_size=0, reading="flat", backend="torch")
     enc = B.load_encoder(base)
     for t in man["lora"]["targets"]:
         got = est._m.module.encoder.get_submodule(t).weight

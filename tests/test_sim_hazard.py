@@ -20,7 +20,7 @@ def _run(name: str, monkeypatch=None, *, orient: bool = True, **kw):
     from ethimon.sim import SimBlock, run_sim
     import ethimon.sim._control as control
     if not orient:
-        monkeypatch.setattr(control.SafePoseController, "_orient_hazard", lambda self, sim: None)
+        monkeypatch.setattr(control.SafePoseController, "_orient_hazard", lambda self, sim, q_start=None: None)
     doc = yaml.safe_load((ROOT / "scenarios" / "sim" / f"{name}.yaml").read_text())
     block = SimBlock.model_validate(doc["sim"])
     res = run_sim(block, ethimon.Monitor(ethimon.load_spec(str(SPEC))),
@@ -82,7 +82,7 @@ def test_dropped_object_is_an_event_and_the_task_does_not_resume_without_it():
 def test_without_the_check_the_task_resumed_and_placed_nothing(monkeypatch):
     import ethimon.sim._control as control
     from ethimon.sim import check_sim_expectations
-    monkeypatch.setattr(control.TaskController, "missing_object", lambda self, sim: None)
+    monkeypatch.setattr(control.TaskController, "missing_object", lambda self, sim, q_start=None: None)
     block, res = _run("dropped_cup_not_resumed")
     assert res.task_completed and res.task_stopped is None   # "completed" with the cup on the floor
     assert res.object_end_z_m["cup"] < 0.05

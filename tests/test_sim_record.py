@@ -144,8 +144,16 @@ def test_plot_has_tau_limits_event_markers_and_a_controller_lane(root):
     events = trace_events(tr)
     fig, meta = build_figure(tr, spec=spec, events=events, title="t", dt=1 / 60)
     axes = fig.axes
-    assert meta["panels"] == ["risk", "human_distance", "speed", "contact_force", "hazard_distance",
-                              "controller"] and len(axes) == 6
+    assert meta["panels"] == ["risk", "human_distance", "ee_speed", "joint_speed", "joint_accel",
+                              "contact_force", "hazard_distance", "controller"] and len(axes) == 8
+    # one unit per axis; the acceleration panel carries the rated limit (issue 23)
+    assert [a.get_ylabel() for a in axes[2:5]] == ["ee speed (m/s)", "joint speed (rad/s)",
+                                                  "joint accel.\n(× rated)"]
+    rated = [ln for ln in axes[4].get_lines() if ln.get_gid() == "rated_accel"]
+    assert len(rated) == 1 and set(rated[0].get_ydata()) == {1.0}
+    for a in axes[:-1]:  # legends beside the panels, not over the data
+        leg = a.get_legend()
+        assert leg is None or leg.get_bbox_to_anchor().x0 > a.get_window_extent().x1 - 1
     tau = [ln for ln in axes[0].get_lines() if ln.get_gid() == "tau"]
     assert len(tau) == 1 and set(tau[0].get_ydata()) == {0.47} and meta["tau"] == 0.47
     times = sorted({e["t_s"] for e in events})
@@ -155,8 +163,8 @@ def test_plot_has_tau_limits_event_markers_and_a_controller_lane(root):
     gids = {ln.get_gid() for ax in axes for ln in ax.get_lines()}
     assert {"limit:slow_near_human:require:ee_speed", "limit:transient_contact:require:contact_force",
             "limit:separation:require:human_distance", "limit:slow_near_human:when:human_distance"} <= gids
-    lanes = {c.get_gid() for c in axes[5].collections}
-    assert {"lane:task", "lane:stop_2", "lane:stop_0"} <= lanes
+    lanes = {c.get_gid() for c in axes[7].collections}
+    assert {"lane:task", "lane:stop_2", "lane:stop_0", "rules:response"} <= lanes  # rules during a response marked
     assert fig._suptitle.get_text() == "t"
     assert {m["letter"] for m in meta["event_marks"]} == {"A", "B", "C", "D", "E"}
 

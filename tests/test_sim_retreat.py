@@ -136,3 +136,23 @@ def test_a_compliant_person_is_stopped_by_an_obstacle_and_pushes_with_max_push_n
         for _ in range(150):
             sim.step()
         assert sim.human_position("w")[0] == pytest.approx(1.5)
+
+
+def test_retreat_backs_out_the_way_it_came_in_from_under_a_shelf():
+    """Issue 23: direct, fold and lift all rise into the board; before, the arm held (a stop 2)."""
+    from ethimon.sim import check_sim_expectations
+    block, res = _scenario("back_out_under_shelf")
+    assert check_sim_expectations(block, res) == []
+    assert res.route == "back" and res.executed_response == "safe_pose"
+    assert res.max_contact_force_n == 0.0 and res.time_to_safe_pose_s is not None
+
+
+def test_the_task_knows_the_way_back():
+    from ethimon.sim._arm import Segment
+    from ethimon.sim._control import TaskController
+    q0 = np.zeros(7)
+    segs = [Segment(q=np.full(7, 0.1), duration_s=1.0), Segment(q=np.full(7, 0.3), duration_s=1.0)]
+    task = TaskController(segs, q0, 1.0)
+    assert [float(p[0]) for p in task.path_back()] == [0.0]
+    task.index, task._from = 1, np.full(7, 0.1)  # in the second motion
+    assert [round(float(p[0]), 3) for p in task.path_back()] == [0.1, 0.0]

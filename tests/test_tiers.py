@@ -84,14 +84,14 @@ def test_a_bad_judge_input_fails_closed(bad):
 
 def test_a_fault_ends_a_confirmation():
     m = _mon()
-    m.step({"d": 2.0, "risk": 0.35})
+    m.step({"d": 2.0, "risk": 0.35, "task_id": "t"})
     assert m.acknowledge()
-    assert not m.step({"d": 2.0, "risk": 0.35}).override
-    m.step({"risk": 0.35})  # d missing: fault (manual latch)
+    assert not m.step({"d": 2.0, "risk": 0.35, "task_id": "t"}).override
+    m.step({"risk": 0.35, "task_id": "t"})  # d missing: fault (manual latch)
     for _ in range(2):
         m.step({"d": 2.0, "risk": 0.2})
     assert m.acknowledge()  # the fault latch
-    assert m.step({"d": 2.0, "risk": 0.35}).violations == ("confirm",)
+    assert m.step({"d": 2.0, "risk": 0.35, "task_id": "t"}).violations == ("confirm",)
 
 
 def test_confirm_not_given_while_another_manual_latch_waits():

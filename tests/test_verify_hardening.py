@@ -95,13 +95,15 @@ def test_risk_range_paper_weights_and_errors():
             risk_range(**bad)
 
 
-def test_risk_range_is_cheap_for_many_classes():
-    import time
-    t0 = time.perf_counter()
+def test_risk_range_for_many_classes_is_a_sane_interval():
+    # (a timing assert lived here; timings belong in bench/, never in tests: it failed under load)
+    # (its exactness against brute force is test_risk_range_matches_brute_force, for small k)
     for k in range(2, 65):
         lo, hi = risk_range(0.6, 0.2, 0.2, "sample", k)
-        assert lo <= hi
-    assert time.perf_counter() - t0 < 2.0
+        assert 0.0 <= lo <= hi <= 1.0
+        # p one-hot on the unsafe class: R_e = alpha + gamma * Var(one-hot), the top of the range
+        var_one_hot = (1.0 / k) * (1.0 - 1.0 / k)
+        assert hi >= 0.6 + 0.2 * var_one_hot - 1e-12
 
 
 # -- everything below needs z3 -------------------------------------------------------------------
@@ -141,7 +143,7 @@ def test_release_bound_is_exact_in_the_decision_model():
     # would release as soon as it holds, whatever R_e)
     base = [*dt.init, *dt.start_with(["risk"]), *enc.constraints]
     released = z3.Or([z3.Not(o) for o in dt.override])
-    for pin in (real(0.22), z3.Q(11, 50)):  # the float 0.22 and the decimal 0.22
+    for pin in (real(0.22),):  # the float 0.22 reads as 0.22: not below 0.22 (R_e is always a float)
         s = z3.Solver()
         s.add(*base, *[r == pin for r in enc.R], *[enc.sig[t]["x"] == 0 for t in range(3)], released)
         assert s.check() == z3.unsat, pin
@@ -374,3 +376,80 @@ obligations:
                 assert st == "sat", (run, first, end, why)
                 checked += 1
     assert checked > 50
+
+
+def test_one_reading_of_numbers_for_the_release_bound():
+    """Issue 25 row 8: R_e = 0.42 under τ 0.47, δ 0.05 released (its binary value is below 0.42)
+    while R_e = 0.22 under τ 0.27 did not; both read as decimals now: neither releases, in the
+    monitor, the reference, the offline checker and the z3 model alike."""
+    from ethimon.offline import check_trace
+    from ethimon.testing import ReferenceMonitor
+    from ethimon.verify._checks import Verifier
+    from ethimon.verify._encode import Unrolled, decision_trace, real
+    import math
+    for tau, r_eq in ((0.47, 0.42), (0.27, 0.22), (0.3, 0.25), (0.51, 0.46)):
+        text = (RELEASE_027 % (1, "  - {id: small, require: x <= 0.5}")).replace("threshold: 0.27", f"threshold: {tau}")
+        spec = _spec(text)
+        just_below = math.nextafter(r_eq, 0.0)
+        trace = [{"x": 0.0, "risk": 0.9}] + [{"x": 0.0, "risk": r_eq}] * 3 + [{"x": 0.0, "risk": just_below}]
+        for impl in (ethimon.Monitor(spec), ReferenceMonitor(spec)):
+            got = [impl.step(f).override for f in trace]
+            assert got == [True, True, True, True, False], (tau, type(impl).__name__, got)
+        res = check_trace(spec, {"x": [f["x"] for f in trace], "risk": [f["risk"] for f in trace]})
+        assert [d.override for d in res.decisions()] == [True, True, True, True, False], tau
+        v = Verifier(spec, path="t", timeout_s=20, max_unroll=4)
+        enc = Unrolled(v.plan, 3)
+        dt = decision_trace(enc)
+        base = [*dt.init, *dt.start_with(["risk"]), *enc.constraints, *[enc.sig[t]["x"] == 0 for t in range(3)]]
+        released = z3.Or([z3.Not(o) for o in dt.override])
+        for pin, want in ((r_eq, z3.unsat), (just_below, z3.sat)):
+            s = z3.Solver()
+            s.add(*base, *[r == real(pin) for r in enc.R], released)
+            assert s.check() == want, (tau, pin)
+
+
+FLOATS = """
+ethimon: 1
+name: floats
+signals:
+  a: {range: [0, 1]}
+  b: {range: [0, 1]}
+  x: {range: [0, 10]}
+obligations:
+%s
+"""
+
+
+def test_defined_is_refuted_where_a_product_underflows_to_a_float_zero():
+    """Issue 25 row 5: ``1/(a*b)`` with a, b > 0 was "defined: proved" (a*b > 0 over the reals) yet
+    a = b = 1e-200 makes a*b == 0.0 and the monitor faults. The IEEE-754 model refutes it now,
+    with a counterexample the Monitor replays."""
+    spec = _spec(FLOATS % '  - {id: inv, when: "a > 0 and b > 0", require: "1 / (a * b) >= 0"}')
+    m = ethimon.Monitor(spec)
+    d = m.step({"a": 1e-200, "b": 1e-200, "x": 0.0, "risk": 0.0})
+    assert d.override and d.faults[0].kind == "internal"  # what the monitor does
+    f = verify_spec(spec).finding("inv.defined")
+    assert f.status == "refuted" and "floating point" in f.message, f.message
+    assert f.counterexample is not None and f.counterexample.confirmed
+
+
+def test_response_over_an_overflowing_term_is_proved_in_real_arithmetic_only():
+    """``x*1e308/1e308 >= 2`` was "response: proved", yet x = 1.9 does not override (x*1e308 is inf)."""
+    spec = _spec(FLOATS % '  - {id: big, require: "x * 1e308 / 1e308 >= 2"}')
+    assert not ethimon.Monitor(spec).step({"a": 0.0, "b": 0.0, "x": 1.9, "risk": 0.0}).override
+    rep = verify_spec(spec)
+    f = rep.finding("big.response")
+    assert f.status == "proved (real arithmetic)" and "x * 1e+308" in f.message and "overflow" in f.message
+    assert "x in [0, 10]" in f.message
+    assert rep.exit_code == 0 and rep.counts()["proved_real_arithmetic"] == 1
+
+
+def test_harmless_arithmetic_stays_proved_in_doubles():
+    """An underflow that no comparison can see (a*b <= 0.5) and a divisor bounded away from 0 are no
+    reason to weaken a proof; and they are decided without the (slow) IEEE-754 solver."""
+    spec = _spec(FLOATS % ('  - {id: prod, require: "a * b <= 0.5 + x"}\n'
+                           '  - {id: quot, require: "x / (1 + a) <= 10"}'))
+    rep = verify_spec(spec)
+    for name in ("prod.defined", "prod.response", "quot.defined", "quot.response"):
+        assert rep.finding(name).status == "proved", (name, rep.finding(name).message)
+    assert "in doubles too" in rep.finding("quot.defined").message

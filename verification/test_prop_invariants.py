@@ -120,7 +120,8 @@ def check_trace(spec, trace) -> None:
     m = ethimon.Monitor(spec)
     oracle = Oracle(spec)
     r = spec.risk
-    # τ − δ as the spec writes it (decimals), compared exactly: 0.27 − 0.05 is 0.22
+    # τ − δ as the spec writes it (decimals), compared exactly with R_e read as the decimal it prints
+    # as (one reading of numbers): 0.27 − 0.05 is 0.22, and neither 0.22 nor 0.42 (τ 0.47) is below it
     tau = r.threshold
     below = Fraction(repr(float(r.threshold))) - Fraction(repr(float(r.release.hysteresis)))
     risk_sev, fault_sev = Response(r.response).severity, Response(spec.on_fault).severity
@@ -194,7 +195,7 @@ def check_trace(spec, trace) -> None:
             if d.override and not d.violations:
                 assert d.latched and since_clear
             for k in fired_since:
-                held = k not in d.violations and (k != "risk" or Fraction(re) < below)
+                held = k not in d.violations and (k != "risk" or Fraction(repr(float(re))) < below)
                 streak[k] = streak[k] + 1 if held else 0
             for k in d.violations:
                 streak[k] = 0

@@ -76,7 +76,7 @@ class MonitorLife(RuleBasedStateMachine):
                 model[k] = 0
             return
         for k in list(model):
-            if k in d.violations or (k == "risk" and not Fraction(d.risk) < self.bound):
+            if k in d.violations or (k == "risk" and not Fraction(repr(d.risk)) < self.bound):
                 model[k] = 0
                 continue
             _, mode, hold = rules[k]

@@ -46,7 +46,7 @@ def main() -> None:
              "int8_eager": ("int8", False)}
     for name, (mode, jit) in modes.items():
         t0 = time.perf_counter()
-        est = load_estimator(a.model, quantize=mode, cache_size=0, jit=jit)
+        est = load_estimator(a.model, quantize=mode, cache_size=0, jit=jit, backend="torch")
         load_s = time.perf_counter() - t0
         for _ in range(20):
             est.probs(TEXT)
@@ -66,7 +66,7 @@ def main() -> None:
                      "mean_ms": 1e3 * statistics.mean(lat),
                      "batch32_ms": 1e3 * statistics.median(bt),
                      "batch32_throughput_per_s": 32 / statistics.median(bt), "model_id": est.model_id}
-    est = load_estimator(a.model, cache_size=4096)
+    est = load_estimator(a.model, cache_size=4096, backend="torch")
     est.probs(TEXT)
     n = 200_000
     t = time.perf_counter()

@@ -112,7 +112,9 @@ def trained_writers(model: str) -> list[str]:
 
 def load(model: str):
     from ethimon.risk import load_estimator
-    return load_estimator(None if model == "default" else model, cache_size=0, batch_size=32, jit=True)
+    # torch, as every figure of issue 19 was measured (ONNX Runtime agrees within 2e-3: test_risk_onnx)
+    return load_estimator(None if model == "default" else model, cache_size=0, batch_size=32, jit=True,
+                          backend="torch")
 
 
 def main() -> None:

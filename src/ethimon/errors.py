@@ -25,7 +25,7 @@ callers catch them by that built-in.
 from __future__ import annotations
 
 __all__ = ["AuditFormatError", "AuditTampered", "BagError", "DependencyNotInstalled", "EthimonError",
-           "ExprSyntaxError", "ModelError", "RiskInferenceError", "SimError", "SpecError"]
+           "ExprSyntaxError", "ModelError", "RiskInferenceError", "Ros2Error", "SimError", "SpecError"]
 
 
 class EthimonError(Exception):
@@ -131,3 +131,8 @@ class BagError(EthimonError):
 
     def __reduce__(self):  # picklable (Ray workers, multiprocessing)
         return (type(self), (self.message, self.path, self.hint))
+
+
+class Ros2Error(EthimonError):
+    """The live ROS 2 node cannot start or go on (a DDS entity that cannot be made, a type it cannot build,
+    DDS Security asked for but missing from this Cyclone DDS build)."""

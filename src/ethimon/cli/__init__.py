@@ -19,7 +19,7 @@ __all__ = ["main"]
 #: optional sub-command modules: (module, function that adds its parsers)
 _PLUGINS = (("_risk_cmds", "add_risk_parsers"), ("_sim_cmds", "add_sim_parsers"),
             ("_verify_cmds", "add_verify_parsers"), ("_audit_cmds", "add_audit_parsers"),
-            ("_replay_cmds", "add_replay_parsers"))
+            ("_replay_cmds", "add_replay_parsers"), ("_ros2_cmds", "add_ros2_parsers"))
 
 
 def _build_parser() -> argparse.ArgumentParser:
@@ -38,6 +38,8 @@ def _build_parser() -> argparse.ArgumentParser:
                                     "'ok' line per spec, or its errors as path:line:column: message (hint). "
                                     "No proofs ('ethimon verify' proves). Exit 0 all ok, 2 an error.")
     lp.add_argument("paths", nargs="+", metavar="SPEC", help="spec files or folders")
+    lp.add_argument("--map", dest="mapping", metavar="MAP", help="also lint a replay mapping against each spec "
+                    "(prev() of a zero-order-held input, unmapped signals)")
     lp.set_defaults(handler=_cmd_lint)
     for mod, fn in _PLUGINS:
         try:
@@ -90,6 +92,12 @@ def _cmd_lint(args: argparse.Namespace) -> int:
             from ..verify._policy import release_policy_warnings  # no z3
             for w in release_policy_warnings(spec):
                 print(f"{path}: warning: {w}")
+            if getattr(args, "mapping", None):
+                from ..replay import check_against_spec, lint_mapping, load_mapping
+                mapping = load_mapping(args.mapping)
+                check_against_spec(mapping, spec)
+                for w in lint_mapping(mapping, spec):
+                    print(f"{args.mapping}: warning: {w}")
         except Exception as exc:  # noqa: BLE001 - one bad file is one line; the others are still linted
             print(error_line(path, exc), file=sys.stderr)
             rc = 2

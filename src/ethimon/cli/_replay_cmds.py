@@ -2,10 +2,12 @@
 
 Prints one table row per obligation (and the risk rule, and the input faults) of
 each bag: cycles violated, the first violation's time, the worst margin and
-PASS/FAIL; a bag that cannot be read is one ERROR row and the others still run.
-``--json`` / ``--junit`` as ``ethimon check``; ``--audit`` writes a hash-chained
-audit log of the decisions. Exit 0 every check passed, 1 a violation or fault,
-2 bad input (a bag, spec or mapping that cannot be used).
+PASS / FAIL / NOT EVALUATED / NOT CHECKED; a bag that cannot be read is one ERROR
+row and the others still run. ``--json`` / ``--junit`` as ``ethimon check``;
+``--audit`` writes a hash-chained audit log of the decisions; ``--mcap OUT`` the
+verdicts as MCAP topics; ``ethimon replay BAG --topics`` lists a bag's topics.
+Exit 0 every check passed, 1 a violation or fault, 2 bad input (a bag, spec or
+mapping that cannot be used).
 """
 
 from __future__ import annotations
@@ -38,6 +40,10 @@ def add_replay_parsers(sub) -> None:
                    "(one record per change; 'ethimon audit verify FILE' checks it)")
     p.add_argument("--model", metavar="DIR", help="risk model that scores the task texts "
                    "(default: the spec's risk.estimator.model, else the shipped model)")
+    p.add_argument("--mcap", metavar="OUT", help="write each cycle's decision, margins, faults, R_e and inputs as "
+                   "MCAP topics on the bag's timeline (for Foxglove); with several bags OUT is a folder")
+    p.add_argument("--topics", action="store_true", help="list each BAG's topics (type, count, rate, log and header "
+                   "time spans, fields, joint names) and exit; needs no --spec or --map")
     p.add_argument("--schema", action="store_true", help="print the JSON Schema of mapping files and exit")
     p.add_argument("--quiet", "-q", action="store_true", help="print only problems and the summary")
     add_ray_options(p, "bags")
@@ -47,12 +53,14 @@ def add_replay_parsers(sub) -> None:
 def cmd_replay(args: argparse.Namespace) -> int:
     from .. import _api
     from ..errors import EthimonError, SpecError
-    from ..replay import TaskScorer, check_against_spec, load_mapping, mapping_json_schema
-    from ..replay._record import bag_record
+    from ..replay import TaskScorer, check_against_spec, lint_mapping, load_mapping, mapping_json_schema
+    from ..replay._record import ReplayReport, replay_paths
 
     if args.schema:
         emit_json("-", mapping_json_schema(), "JSON Schema")
         return 0
+    if args.topics:
+        return _cmd_topics(args)
     try:
         ray, file_timeout = ray_options(args, "bags")  # ray None: serial; else (address, workers)
     except EthimonError as exc:
@@ -62,8 +70,11 @@ def cmd_replay(args: argparse.Namespace) -> int:
     if ray is not None and args.audit:
         return err("ethimon replay: --audit cannot be used with --ray (the audit log is one hash chain, "
                    "written in bag order by one process); run without --ray to write it")
+    if ray is not None and args.mcap:
+        return err("ethimon replay: --mcap cannot be used with --ray; run without --ray to write it")
     if not args.spec or not args.mapping:
-        return err("ethimon replay: --spec SPEC and --map MAP are required")
+        return err("ethimon replay: --spec SPEC and --map MAP are required (ethimon replay BAG --topics lists "
+                   "a bag's topics to write the mapping from)")
     try:
         spec = _api.load_spec(args.spec)
         mapping = load_mapping(args.mapping)
@@ -84,42 +95,40 @@ def cmd_replay(args: argparse.Namespace) -> int:
             return err(f"{args.audit}: cannot write the audit log: {exc.strerror or exc}")
     json_to_stdout = args.json == "-"
     out = sys.stderr if json_to_stdout else sys.stdout  # stdout is the JSON's alone
-    results: list[dict] = []
     t0 = time.perf_counter()
     try:
-        with Progress("replay", enabled=not json_to_stdout) as progress:
+        with Progress("replay", enabled=not json_to_stdout) as progress, \
+                _MessageBar(enabled=not json_to_stdout) as bar:
             if ray is None:
                 scorer = TaskScorer(spec, model_dir=args.model)
-                for i, bag in enumerate(args.bags):
-                    progress(i, len(args.bags), bag)
-                    results.append(bag_record(bag, spec, mapping, score=scorer, audit=audit))
-                progress(len(args.bags), len(args.bags), "")
+                report = replay_paths(args.bags, spec, mapping, score=scorer, audit=audit, mcap=args.mcap,
+                                      on_bag=lambda i, n, b: (bar.new(b), progress(i, n, b)),
+                                      on_progress=bar)
             else:  # the same records, each bag on a Ray worker
                 from ..fleet import replay_records
-                results = replay_records(args.bags, spec=args.spec, mapping=args.mapping, model_dir=args.model,
-                                         on_bag=progress, address=ray[0], num_cpus=ray[1],
-                                         file_timeout=file_timeout)
+                report = ReplayReport(replay_records(
+                    args.bags, spec=args.spec, mapping=args.mapping, model_dir=args.model, on_bag=progress,
+                    address=ray[0], num_cpus=ray[1], file_timeout=file_timeout))
+    except OSError as exc:
+        return err(f"--mcap {args.mcap}: {exc.strerror or exc}")
     finally:
         if audit is not None:
             audit.close()
-    rows, problems = [], []
-    n_pass = n_fail = n_err = 0
+    results = report.results
+    rows, problems, notes = [], [], []
+    for w in lint_mapping(mapping, spec):
+        notes.append(f"{args.mapping}: lint: {w}")
     for bag, rec in zip(args.bags, results):
         if "error" in rec:
-            n_err += 1
             rows.append((bag, "-", "-", "-", "-", "ERROR"))
             problems.append(rec["error"])
             continue
-        if rec["passed"]:
-            n_pass += 1
-        else:
-            n_fail += 1
         for c in rec["checks"]:
             fv = c["first_violation"]
             first = "-" if fv is None else f"{fv['t_s']:.3f} s (cycle {fv['cycle']})"
-            rows.append((bag, c["id"], str(c["cycles_violated"]), first, _margin(c["worst_margin"]),
-                         "PASS" if c["passed"] else "FAIL"))
-            if not c["passed"]:
+            status = c.get("status") or ("PASS" if c["passed"] else "FAIL")
+            rows.append((bag, c["id"], str(c["cycles_violated"]), first, _margin(c["worst_margin"]), status))
+            if status == "FAIL":
                 what = "failed closed" if c["kind"] == "faults" else "violated"
                 line = (f"{bag}: {c['id']}: {what} on {c['cycles_violated']} of {rec['cycles']} cycles, first at "
                         f"t = {fv['t_s']:.3f} s (bag time {_stamp(fv['bag_time_ns'])}, cycle {fv['cycle']})")
@@ -128,11 +137,34 @@ def cmd_replay(args: argparse.Namespace) -> int:
                 if c["detail"]:
                     line += f": {c['detail']}"
                 problems.append(line)
+            elif status != "PASS":
+                notes.append(f"{bag}: {c['id']}: {status}: {c['detail']}")
+        for lt in rec.get("latches", [])[:5]:
+            end = "until the end of the bag" if lt["until_end"] else "then released"
+            problems.append(f"{bag}: latched: the override was held {lt['cycles']} cycles ({lt['seconds']:.3f} s) "
+                            f"from t = {lt['t_s']:.3f} s (cycle {lt['from_cycle']}) after {lt['after']}, {end}")
+        if rec.get("started", {}).get("note"):
+            notes.append(f"{bag}: {rec['started']['note']}")
+        for w in rec.get("warnings", []):
+            notes.append(f"{bag}: warning: {w}")
+        for name, sg in rec.get("signals", {}).items():
+            if "judged" in sg and sg.get("samples", sg["messages"]) != sg["judged"]:
+                notes.append(f"{bag}: {name} ({sg['topic']}): read {sg['messages']:,} messages, judged "
+                             f"{sg['judged']:,} of {sg.get('samples', sg['messages']):,} samples")
+        if "mcap" in rec:
+            notes.append(f"{bag}: wrote {rec['mcap']['messages']:,} MCAP messages to {rec['mcap']['path']}")
     elapsed = time.perf_counter() - t0
     if not args.quiet:
         _print_table(rows, out)
+        for rec in results:
+            if "error" not in rec and rec.get("signals"):
+                _print_inputs(rec, out)
     for msg in problems:
         print(msg, file=sys.stderr)
+    if not args.quiet:
+        for msg in notes:
+            print(msg, file=sys.stderr)
+    n_pass, n_fail, n_err = report.passed, report.failed, report.errors
     print(f"{n_pass} passed, {n_fail} failed, {n_err} errors in {elapsed:.2f}s "
           f"({len(args.bags)} bag{'s' if len(args.bags) != 1 else ''})", file=out)
     rc = 2 if n_err else (1 if n_fail else 0)
@@ -144,6 +176,115 @@ def cmd_replay(args: argparse.Namespace) -> int:
                                       dash_is_stdout=False):
         rc = 2
     return rc
+
+
+def _print_inputs(rec: dict, out) -> None:
+    """Per input: messages read and samples judged (a cycle held it), missing and stale cycles."""
+    print(f"inputs of {rec['path']} ({rec['cycles']:,} cycles at {rec['rate_hz']:g} Hz, "
+          f"{rec['duration_s']:.3f} s):", file=out)
+    for name, sg in rec["signals"].items():
+        judged = sg.get("judged")
+        extra = "" if judged is None else f", judged {judged:,} of {sg.get('samples', sg['messages']):,} samples"
+        print(f"  {name:<20} {sg['topic']:<28} read {sg['messages']:,}{extra}, missing {sg['missing_cycles']:,} / "
+              f"stale {sg.get('stale_cycles', 0):,} cycles", file=out)
+
+
+class _MessageBar:
+    """A message-count progress bar on stderr for long bags (TTY only, tqdm if installed)."""
+
+    def __init__(self, *, enabled: bool) -> None:
+        self.enabled = enabled and _tty()
+        self.bar = None
+        self.desc = ""
+
+    def __enter__(self) -> "_MessageBar":
+        return self
+
+    def new(self, bag: str) -> None:
+        self.close()
+        self.desc = bag[-30:]
+
+    def __call__(self, done: int, total: int) -> None:
+        if not self.enabled or total < 100_000:
+            return
+        if self.bar is None:
+            try:
+                from tqdm import tqdm
+            except ImportError:
+                self.enabled = False
+                return
+            self.bar = tqdm(total=total, desc=self.desc, unit="msg", unit_scale=True, file=sys.stderr, leave=False,
+                            dynamic_ncols=True)
+        self.bar.update(min(done, total) - self.bar.n)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+            self.bar = None
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def _tty() -> bool:
+    try:
+        return bool(sys.stdout.isatty() and sys.stderr.isatty())
+    except (AttributeError, ValueError):
+        return False
+
+
+def _cmd_topics(args: argparse.Namespace) -> int:
+    """``ethimon replay BAG... --topics``: what each bag holds, to write a mapping from."""
+    from ..errors import DependencyNotInstalled
+    from ..replay import BagError, list_topics
+    if not args.bags:
+        return err("ethimon replay --topics: give at least one BAG")
+    rc = 0
+    docs = []
+    for bag in args.bags:
+        try:
+            with _MessageBar(enabled=args.json != "-") as bar:
+                bar.new(bag)
+                storage, topics = list_topics(bag, on_progress=bar)
+        except (BagError, DependencyNotInstalled) as exc:
+            print(f"{bag}: {exc}" if isinstance(exc, DependencyNotInstalled) else str(exc), file=sys.stderr)
+            docs.append({"path": bag, "error": str(exc)})
+            rc = 2
+            continue
+        docs.append({"path": bag, "storage": storage, "topics": [t.as_dict() for t in topics]})
+        if args.json == "-":
+            continue
+        print(f"{bag} ({storage}, {len(topics)} topics)")
+        rows = [("topic", "type", "count", "rate", "log time (s)", "header time (s)")]
+        for t in topics:
+            rate = "-" if t.rate_hz is None else f"{t.rate_hz:.1f} Hz"
+            log = "-" if t.log_first is None else f"{_sec(t.log_first)} .. {_sec(t.log_last)}"
+            if t.header_first is not None:
+                hdr = f"{_sec(t.header_first)} .. {_sec(t.header_last)}"
+                if t.header_zero:
+                    hdr += f" ({t.header_zero:,} unset)"
+            else:
+                hdr = f"unset on all {t.header_zero:,}" if t.header_zero else "-"
+            rows.append((t.topic, t.type, f"{t.count:,}", rate, log, hdr))
+        widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
+        for r in rows:
+            print("  " + "  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())
+        for t in topics:
+            if t.error:
+                print(f"  {t.topic}: cannot deserialise: {t.error}")
+            elif t.fields:
+                line = f"  {t.topic} fields: {', '.join(t.fields)}"
+                if t.names:
+                    line += f"; names: {', '.join(t.names)} (select one: field: position[{t.names[0]}])"
+                print(line)
+    if args.json:
+        if not emit_json(args.json, {"bags": docs}):
+            rc = 2
+    return rc
+
+
+def _sec(t_ns: int | None) -> str:
+    return "-" if t_ns is None else f"{t_ns / 1e9:.3f}"
 
 
 def _margin(m: float | str | None) -> str:
@@ -189,8 +330,11 @@ def _junit_xml(results: list[dict], elapsed: float) -> str:
             cases.append((r["path"], "replay", "error", r["error"]))
             continue
         for c in r["checks"]:
-            if c["passed"]:
+            status = c.get("status") or ("PASS" if c["passed"] else "FAIL")
+            if status == "PASS":
                 cases.append((r["path"], c["id"], None, ""))
+            elif status in ("NOT EVALUATED", "NOT CHECKED"):
+                cases.append((r["path"], c["id"], "skipped", f"{status}: {c['detail']}"))
             else:
                 fv = c["first_violation"] or {}
                 msg = (f"{c['id']}: {c['cycles_violated']} cycles, first at t = {fv.get('t_s')} s "
@@ -199,6 +343,7 @@ def _junit_xml(results: list[dict], elapsed: float) -> str:
                 cases.append((r["path"], c["id"], "failure", msg))
     suite = ET.Element("testsuite", name="ethimon replay", tests=str(len(cases)),
                        failures=str(sum(1 for c in cases if c[2] == "failure")),
+                       skipped=str(sum(1 for c in cases if c[2] == "skipped")),
                        errors=str(sum(1 for c in cases if c[2] == "error")), time=f"{elapsed:.3f}")
     for path, name, kind, msg in cases:
         case = ET.SubElement(suite, "testcase", classname=str(path), name=str(name))

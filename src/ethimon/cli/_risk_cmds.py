@@ -1,4 +1,4 @@
-"""CLI sub-commands of the learned risk estimator: ``risk``, ``train``, ``average``, ``evaluate``.
+"""CLI sub-commands of the learned risk estimator: ``risk``, ``train``, ``average``, ``evaluate``, ``export``.
 
 Thin: every handler parses, calls the library and prints. Exit codes: 0 ok,
 1 ``risk --fail-on-flag`` and R_e ≥ τ, 2 bad input (one-line message, no traceback).
@@ -13,7 +13,7 @@ from pathlib import Path
 from ..errors import EthimonError, ModelError, SpecError
 from ._common import emit_json, err
 
-__all__ = ["add_risk_parsers", "cmd_risk", "cmd_train", "cmd_average", "cmd_evaluate"]
+__all__ = ["add_risk_parsers", "cmd_risk", "cmd_train", "cmd_average", "cmd_evaluate", "cmd_export"]
 
 def risk_config(spec_path: str | None) -> dict:
     """α, β, γ, variance, τ (and the ``spec`` itself) from a spec file.
@@ -55,6 +55,8 @@ def add_risk_parsers(subparsers) -> None:
     p.add_argument("--flat", action="store_true",
                    help="score the whole text only (the reading before issue 19: no steps, no instruction pair)")
     _threads_arg(p, "default 1: one sentence is too small to split")
+    _backend_arg(p, None, "default: the spec's risk.estimator.backend, else auto: ONNX Runtime (no torch) "
+                          "when installed and the model has an ONNX form")
     p.set_defaults(func=cmd_risk)
 
     from ..risk._recipe import Recipe as R  # no torch: the defaults of the training recipe
@@ -133,7 +135,19 @@ def add_risk_parsers(subparsers) -> None:
                    help="token budget per row, special tokens included (default: the model's own; "
                         "longer rows keep the model's truncation, head or head and tail)")
     _threads_arg(e, "default: 2, or 1 when the cores are busy")
+    _backend_arg(e, "torch", "default torch, as training evaluates its runs; onnx on a machine without torch")
     e.set_defaults(func=cmd_evaluate)
+
+    x = subparsers.add_parser(
+        "export", help="write MODEL_DIR/model.onnx for ONNX Runtime, pinned by sha256 (needs torch, once)",
+        description="Export a model directory's classifier with torch.onnx.export (standard operators only), "
+                    "check it against torch on probe texts (|dlogit| <= 1e-4, else nothing is written) and "
+                    "pin it in ethimon_onnx.json with the sha256 of the weights it was made from. Needed for "
+                    "families the ONNX backend does not build from the weights itself (MPNet, RoBERTa, ...); "
+                    "the shipped model and BERT/DistilBERT directories need no export.")
+    x.add_argument("model", metavar="MODEL_DIR", help="an ethimon adapter directory or a sequence-classification directory")
+    x.add_argument("--file", default="model.onnx", help="graph file name inside MODEL_DIR (default model.onnx)")
+    x.set_defaults(func=cmd_export)
 
 
 def _precision_args(parser) -> None:
@@ -144,9 +158,14 @@ def _precision_args(parser) -> None:
                    help="full precision even where the spec's risk.estimator says quantize: int8")
 
 
+def _backend_arg(parser, default: str | None, default_help: str) -> None:
+    parser.add_argument("--backend", choices=["auto", "onnx", "torch"], default=default,
+                        help=f"inference backend ({default_help})")
+
+
 def _threads_arg(parser, default_help: str) -> None:
     parser.add_argument("--threads", type=int, default=None, metavar="N",
-                        help=f"torch threads ({default_help})")
+                        help=f"inference threads ({default_help})")
 
 
 def _threads(args: argparse.Namespace, rows: int) -> int:
@@ -160,7 +179,7 @@ def _threads(args: argparse.Namespace, rows: int) -> int:
 
 
 def _load(model: str | None, precision: str | None, max_length: int | None = None, spec=None, *,
-          threads: int | None = None, reading: str = "steps"):
+          threads: int | None = None, backend: str | None = None, reading: str = "steps"):
     """The estimator: command-line options win over the spec's ``risk.estimator`` block.
 
     ``precision``: ``"int8"``, ``"fp32"`` or ``None`` (the spec's choice, fp32 without one).
@@ -171,8 +190,9 @@ def _load(model: str | None, precision: str | None, max_length: int | None = Non
         raise ModelError(f"model directory {model!r} does not exist")
     if spec is not None:  # precision None keeps the spec's choice; "fp32" overrides a spec's int8
         return load_estimator_for(spec, model_dir=model, quantize=precision, max_length=max_length,
-                                  num_threads=threads, reading=reading)
-    return load_estimator(model, quantize=precision, max_length=max_length, num_threads=threads, reading=reading)
+                                  num_threads=threads, backend=backend, reading=reading)
+    return load_estimator(model, quantize=precision, max_length=max_length, num_threads=threads,
+                          backend=backend or "auto", reading=reading)
 
 
 def cmd_risk(args: argparse.Namespace) -> int:
@@ -182,7 +202,7 @@ def cmd_risk(args: argparse.Namespace) -> int:
         cfg = risk_config(args.spec)
         if args.top_words < 0:
             raise ValueError(f"--top-words {args.top_words} must be >= 0")
-        est = _load(args.model, args.precision, spec=cfg["spec"], threads=_threads(args, 1),
+        est = _load(args.model, args.precision, spec=cfg["spec"], threads=_threads(args, 1), backend=args.backend,
                     reading="flat" if args.flat else "steps")
         r = est.estimate(args.text, cfg["alpha"], cfg["beta"], cfg["gamma"], cfg["variance"])
         why = est.explain(args.text, args.top_words) if args.explain else None
@@ -194,6 +214,7 @@ def cmd_risk(args: argparse.Namespace) -> int:
     if args.json:
         doc = {"text": args.text, "p": list(r.p), "p_unsafe": r.p_unsafe, "risk": r.risk,
                "tau": cfg["threshold"], "flagged": flagged, "model_id": est.model_id,
+               "backend": getattr(est, "backend", None),
                "temperature": est.temperature, "reading": est.reading,
                "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")},
                "confirm_threshold": tiers["confirm_threshold"],
@@ -299,7 +320,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
         rows = load_labelled_csv(args.data)
         cal = load_labelled_csv(args.calibrate_on) if args.calibrate_on else None
         est = _load(args.model, args.precision, args.max_length, spec=cfg["spec"],
-                    threads=_threads(args, len(rows)))
+                    threads=_threads(args, len(rows)), backend=args.backend)
         bar = _isatty(sys.stdout)
         logits = est.logits_batch(rows.texts, progress=bar, desc="evaluate")
         temperature = est.temperature
@@ -382,3 +403,17 @@ def _isatty(stream) -> bool:
         return bool(stream.isatty())
     except (AttributeError, ValueError):
         return False
+
+
+def cmd_export(args: argparse.Namespace) -> int:
+    try:
+        if not Path(args.model).is_dir():
+            raise ModelError(f"model directory {args.model!r} does not exist")
+        from ..risk._export import export_onnx
+        side = export_onnx(args.model, file=args.file)
+    except (EthimonError, ValueError, OSError) as exc:
+        return err(str(exc))
+    g = side["graphs"]["fp32"]
+    print(f"wrote {Path(args.model) / g['file']} (sha256 {g['sha256'][:12]}…, from weights "
+          f"{side['source_sha256'][:12]}…) and {Path(args.model) / 'ethimon_onnx.json'}")
+    return 0

@@ -77,9 +77,12 @@ def cmd_verify(args: argparse.Namespace) -> int:
     n_warn = sum(len(r.warnings) for r in reports)
     n_err = sum(r.error is not None for r in reports)
     n_prop = sum(1 for r in reports for f in r.findings if f.kind == "property" and f.status == "proved")
+    n_real = sum(1 for r in reports for f in r.findings if f.kind == "property"
+                 and f.status == "proved (real arithmetic)")
     n_unk = sum(1 for r in reports for f in r.findings if f.kind == "property" and f.status == "unknown")
     n_cut = sum(r.not_reached for r in reports)
-    print(f"{len(reports)} spec(s): {n_prop} properties proved, {n_ref} refuted, {n_unk} unknown, {n_warn} lint "
+    print(f"{len(reports)} spec(s): {n_prop} properties proved"
+          + (f" ({n_real} more in real arithmetic only)" if n_real else "") + f", {n_ref} refuted, {n_unk} unknown, {n_warn} lint "
           f"warnings, {n_err} unusable" + (f"; {n_cut} check(s) cut short or not reached by the budget "
                                           f"(--budget-s {budget:g} per spec)" if n_cut else ""), file=out)
     if args.json:

@@ -18,7 +18,8 @@ from fractions import Fraction
 from ..spec import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, VARIANCE_MODES
 
 __all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "risk_from_p_unsafe", "risk_from_probs", "risk_bounds",
-           "release_bound", "risk_range", "VARIANCE_MODES", "OUTCOMES", "judge_verdict", "tier_outcome"]
+           "release_bound", "decimal_reading", "risk_range", "VARIANCE_MODES", "OUTCOMES", "judge_verdict",
+           "tier_outcome"]
 
 
 
@@ -112,28 +113,52 @@ def risk_bounds(alpha: float = DEFAULT_ALPHA, beta: float = DEFAULT_BETA, gamma:
     return (min(vals), max(vals))
 
 
-def release_bound(threshold: float, hysteresis: float) -> tuple[Fraction, float]:
-    """The release bound ``τ − δ``, computed exactly as the spec writes it.
+def decimal_reading(x: float) -> Fraction:
+    """The number a float *reads as*: the exact value of the decimal its shortest ``repr`` prints
+    (``0.42`` for the float nearest 0.42, not its binary value 0.41999999999999998446...).
 
-    Float subtraction is not exact: ``0.27 - 0.05 == 0.22000000000000003``, so an
-    R_e of ``0.22`` would count as *below* the bound and release a latch that the
-    spec says must hold. Both numbers are taken as the decimals they print as
-    (the shortest repr, which is what a YAML spec says) and subtracted exactly.
+    This is the one reading of numbers in the release rule: the spec's τ and δ are decimals, and
+    R_e is compared with τ − δ as the decimal it prints as. For ``R_e ≥ τ`` the reading changes
+    nothing (``repr`` is strictly increasing on floats, so ``r ≥ τ`` exactly when
+    ``decimal_reading(r) ≥ decimal_reading(τ)``).
+
+    Example:
+        >>> decimal_reading(0.42), decimal_reading(0.1 + 0.2)
+        (Fraction(21, 50), Fraction(7500000000000001, 25000000000000000))
+    """
+    return Fraction(Decimal(repr(float(x))))
+
+
+def release_bound(threshold: float, hysteresis: float) -> tuple[Fraction, float]:
+    """The release bound ``τ − δ`` as the spec writes it, and the float test that reads R_e the same way.
+
+    One reading of numbers (see :func:`decimal_reading`): τ, δ *and* R_e are the decimals their
+    shortest repr prints, and the release condition is ``R_e < τ − δ`` on those decimals, exactly.
+    So with τ 0.27, δ 0.05 an R_e of ``0.22`` does not release (0.22 < 0.22 is false), and with
+    τ 0.47, δ 0.05 an R_e of ``0.42`` does not either, whichever side of the decimal the float
+    nearest it lies (float subtraction would give ``0.27 - 0.05 == 0.22000000000000003``, and the
+    binary value of ``0.42`` is below 0.42: each alone releases one of the two).
 
     Returns:
-        ``(exact, cut)``: the exact rational bound (for the z3 encoding) and a
-        float such that, for every float ``r``, ``r < cut`` holds exactly when
-        ``Fraction(r) < exact`` (what the monitor and the reference interpreter test).
+        ``(exact, cut)``: the exact rational bound and the smallest float whose decimal reading is
+        at least the bound, so that for every float ``r``: ``r < cut`` holds exactly when
+        ``decimal_reading(r) < exact`` (what the monitor, the reference interpreter, the offline
+        checker and the z3 encoding test).
 
     Example:
         >>> exact, cut = release_bound(0.27, 0.05)
         >>> exact, 0.22 < cut, 0.21999999999999997 < cut
         (Fraction(11, 50), False, True)
+        >>> 0.42 < release_bound(0.47, 0.05)[1]
+        False
     """
-    exact = Fraction(Decimal(repr(float(threshold)))) - Fraction(Decimal(repr(float(hysteresis))))
+    exact = decimal_reading(threshold) - decimal_reading(hysteresis)
     cut = float(exact)
-    if Fraction(cut) < exact:  # cut itself is below the bound: let r == cut pass too
+    # decimal_reading is strictly increasing, so the floats reading below the bound are those below cut
+    while decimal_reading(cut) < exact:
         cut = math.nextafter(cut, math.inf)
+    while decimal_reading(math.nextafter(cut, -math.inf)) >= exact:
+        cut = math.nextafter(cut, -math.inf)
     return exact, cut
 
 

@@ -11,12 +11,16 @@ reaches the environment)::
     obs, reward, terminated, truncated, info = env.step(action)
 
 So an override replaces the action of *this* step: the proposed action never
-reaches the environment. Signals therefore describe the current state plus
+reaches the environment. The proposed action is read once, into a copy of the
+action space's type (``_convert``); ``signals`` gets a copy of it and the env that
+very value, so the env never reads the caller's object a second time (an action
+that cannot be read is a fault: override). Signals therefore describe the current state plus
 what the proposed action would do (e.g. the commanded joint speed).
 """
 
 from __future__ import annotations
 
+import copy
 import inspect
 import os
 from collections.abc import Callable, Mapping
@@ -154,6 +158,37 @@ class MonitorWrapper(gymnasium.Wrapper):
         except Exception:
             return None
 
+    def _convert(self, action: Any) -> tuple[Any, str | None]:
+        """``action`` read exactly once into the copy the env will get: ``(copy, None)`` or ``(None, why)``.
+
+        A ``Box``/``MultiDiscrete``/``MultiBinary`` action becomes a fresh array of the space's dtype and
+        shape (bounds are not enforced: an env clips as it always did), a ``Discrete`` one a numpy integer,
+        anything else a deep copy. So an action object that reads differently the second time (a
+        lazy array, a view another thread writes, a ``__array__`` that changes) cannot show the
+        shield one action and the env another.
+        """
+        space = self.env.action_space
+        try:
+            if isinstance(space, (gymnasium.spaces.Box, gymnasium.spaces.MultiDiscrete,
+                                  gymnasium.spaces.MultiBinary)):
+                arr = np.array(action, dtype=space.dtype, copy=True)
+                if arr.shape != space.shape:
+                    arr = arr.reshape(space.shape)
+                return arr, None
+            if isinstance(space, gymnasium.spaces.Discrete):
+                a = np.asarray(action)
+                if a.shape != () or a.dtype.kind not in "iub" and not (a.dtype.kind == "f" and float(a) == int(a)):
+                    raise TypeError(f"expected one integer, got {a.dtype} of shape {a.shape}")
+                return space.dtype.type(int(a)), None
+            return copy.deepcopy(action), None
+        except Exception as exc:  # noqa: BLE001 - an action that cannot be read is a fault, never passed on
+            return None, f"action {type(action).__name__} cannot be read as an action of {space}: " \
+                         f"{type(exc).__name__}: {exc}"[:300]
+
+    @staticmethod
+    def _fresh(a: Any) -> Any:
+        return a.copy() if isinstance(a, np.ndarray) else a
+
     def _judge(self, action: Any) -> tuple[Decision, dict[str, Any]]:
         obs, info = self._obs, self._info
         try:
@@ -207,7 +242,11 @@ class MonitorWrapper(gymnasium.Wrapper):
     def step(self, action):
         if self._obs is None:
             raise gymnasium.error.ResetNeeded("call reset() before step()")
-        decision, sig = self._judge(action)
+        action, why = self._convert(action)  # read once; the shield and the env see this one value
+        if why is not None:
+            decision, sig = self.monitor.fault(Fault("external", why, "action")), dict(self.inputs)
+        else:
+            decision, sig = self._judge(self._fresh(action))  # a copy: signals() cannot edit what the env gets
         if not decision.override:
             obs, reward, terminated, truncated, info = self.env.step(action)
             self._obs, self._info = obs, info

@@ -58,7 +58,7 @@ from ._process import ProcessEstimator
 from ._source import AsyncJudgeSource, AsyncRiskSource, RiskReading
 from ._stats import LoopStats
 from ._watchdog import Watchdog
-from ._weakenings import weakenings
+from ._weakenings import unmapped_latches, weakenings
 
 __all__ = ["GovernedLoop", "ReloadResult"]
 
@@ -89,10 +89,22 @@ class ReloadResult:
     applied_at_cycle: int | None = None
     weakened: tuple[str, ...] = ()
     unjudged: tuple[str, ...] = ()
+    #: set once the loop has swapped it in or refused it at the swap (``ok`` turns ``False`` then)
+    settled: threading.Event = field(default_factory=threading.Event, repr=False)
 
     def wait_applied(self, timeout: float | None = None) -> bool:
-        """Block until the loop has swapped the new spec in (``False`` on timeout or rejection)."""
-        return self.ok and self.applied.wait(timeout)
+        """Block until the loop has swapped the new spec in (``False`` on timeout or rejection,
+        including a refusal at the swap: a latch that cannot be carried over)."""
+        if not self.ok:
+            return False
+        self.settled.wait(timeout)
+        return self.ok and self.applied.is_set()
+
+
+def _latch_refusal(cannot: list[str]) -> str:
+    return ("reload refused: a latched rule cannot be carried over to the new spec by identity (same id, "
+            "response and release): " + "; ".join(cannot) + ". The running spec stays; release the latch "
+            "first (acknowledge it, or let it release) or keep the rule as it is")
 
 
 def _verify_smt(spec: Spec) -> None:
@@ -105,16 +117,15 @@ def _verify_smt(spec: Spec) -> None:
         raise EthimonError("verification failed: " + ("; ".join(bad) if bad else str(rep.error)))
 
 
-_CARRIED = Fault("reload", "override latched before the spec reload is carried over")
-
-
 class GovernedLoop:
     """Steps a :class:`~ethimon.Monitor` at a fixed rate with async risk, a deadline and an audit trail.
 
     Args:
         monitor: a :class:`~ethimon.Monitor` (or a :class:`~ethimon.Spec` to build one).
         signals: called once per cycle for the spec's signals (a mapping); it may
-            also be passed to :meth:`cycle` directly. An exception from it is a fault.
+            also be passed to :meth:`cycle` directly. An exception from it is a fault, and
+            so is each entry of the mapping's ``faults`` attribute when it has one (a
+            source that judges its own inputs: ``ethimon.ros2`` reports stale topics there).
         risk: an :class:`AsyncRiskSource`; each cycle feeds its latest ``p`` and
             ``risk_age_s`` (and drops any ``risk``/``p_unsafe`` keys from the signals).
             A ``"module:function"`` string (or a :class:`ProcessEstimator`) builds one
@@ -324,6 +335,9 @@ class GovernedLoop:
                     raise EthimonError("no signals given and no signals source configured")
                 signals = self._signals()
             inputs = dict(signals)
+            extra = getattr(signals, "faults", None)  # a source's own verdicts (stale, a foreign publisher)
+            if extra:
+                reasons.extend(f if isinstance(f, Fault) else Fault("signals", str(f)[:300]) for f in extra)
         except Exception as exc:  # noqa: BLE001
             reasons.append(Fault("signals", f"signal source raised {type(exc).__name__}: {exc}"[:300]))
             inputs = {}
@@ -351,9 +365,6 @@ class GovernedLoop:
         if self._audit_failed:
             reasons.append(Fault("audit", f"audit log failed or its queue is full, or its writer is behind its "
                                  f"lag bounds ({self.stats.audit_drops} records refused)"))
-        if self._carry_latch:
-            reasons.append(_CARRIED)
-            self._carry_latch = False
         end = clock()
         late = end - sched
         if late > self.deadline_s:
@@ -397,8 +408,6 @@ class GovernedLoop:
             except Exception as exc:  # noqa: BLE001 - recorded, and the next cycle overrides
                 self._stall_reason = Fault("callback", f"on_decision callback raised {type(exc).__name__}: {exc}"[:300])
         return d
-
-    _carry_latch = False
 
     def _tier_inputs(self, inputs: dict) -> None:
         """``task_id`` (the task text's hash) and the judge's answer for the text (asked once per text)."""
@@ -610,6 +619,15 @@ class GovernedLoop:
         possible weakening: refused the same way, listed with
         "cannot tell whether this change weakens monitoring" (and in ``unjudged``).
 
+        Latches are carried by identity: every rule latched in the running monitor
+        when the swap happens is latched in the new one (a manual rule stays latched
+        until acknowledged there; every release count restarts). That needs the rule
+        in the new spec with the same id, response and release (mode, ``hold_cycles``;
+        for the risk rule its bound τ − δ too); a reload that cannot map a latched
+        rule is refused (also with ``allow_weaker=True``), here or, if the rule latched
+        meanwhile, at the swap (``ok`` turns ``False``; the audit log says why), and
+        the running spec stays.
+
         Args:
             source: a spec file path, or a loaded :class:`~ethimon.Spec`.
             allow_weaker: accept a spec that weakens monitoring (a deliberate,
@@ -632,6 +650,10 @@ class GovernedLoop:
             if weak and not allow_weaker:
                 raise EthimonError("reload refused: the new spec weakens monitoring: " + "; ".join(weak)
                                    + ". The running spec stays; pass allow_weaker=True to accept a weaker spec")
+            # checked again at the swap, against the latches held then (allow_weaker does not waive it)
+            cannot = unmapped_latches(self.monitor.spec, spec, self.monitor.latched_rules)
+            if cannot:
+                raise EthimonError(_latch_refusal(cannot))
             if self._verify is not None:
                 verdict = self._verify(spec)
                 if verdict is False:
@@ -649,6 +671,7 @@ class GovernedLoop:
             old = self._pending
             self._pending = (new, res, label)
         if old is not None:
+            old[1].settled.set()  # never applied: its wait_applied() returns False now
             self._log("reload", status="superseded", source=old[2], spec_sha256=old[1].spec_sha256)
         self._log("reload", status="accepted", source=label, spec_sha256=h, running_spec_sha256=self.spec_sha256,
                   allow_weaker=bool(allow_weaker), weakened=list(weak), unjudged=list(unjudged))
@@ -674,7 +697,22 @@ class GovernedLoop:
             return
         new, res, label = pending
         old = self.monitor
-        self._carry_latch = old.latched
+        latched = old.latched_rules
+        try:
+            cannot = unmapped_latches(old.spec, new.spec, latched)
+            if not cannot:
+                new.carry_latches(latched)  # same id, same response, same release: the latch goes on
+        except Exception as exc:  # noqa: BLE001 - a latch that cannot be carried keeps the old spec
+            cannot = [f"carrying the latches raised {type(exc).__name__}: {exc}"]
+        if cannot:
+            res.ok = False
+            res.error = _latch_refusal(cannot)[:4000]
+            self.stats.reloads_rejected += 1
+            self._log("reload", status="rejected", stage="swap", source=label, spec_sha256=res.spec_sha256,
+                      error=res.error, running_spec_sha256=self.spec_sha256, latched=list(latched),
+                      loop_cycle=self.stats.cycles)
+            res.settled.set()
+            return
         self.monitor = new
         old_hash, self.spec_sha256 = self.spec_sha256, res.spec_sha256
         self._ids = new.obligation_ids
@@ -690,8 +728,10 @@ class GovernedLoop:
         self.stats.reloads_applied += 1
         res.applied_at_cycle = self.stats.cycles
         self._log("reload", status="applied", source=label, spec_sha256=res.spec_sha256,
-                  previous_spec_sha256=old_hash, loop_cycle=self.stats.cycles, carried_latch=old.latched)
+                  previous_spec_sha256=old_hash, loop_cycle=self.stats.cycles, carried_latch=bool(latched),
+                  carried_rules=list(latched))
         res.applied.set()
+        res.settled.set()
 
     def __repr__(self) -> str:
         return (f"GovernedLoop(spec={self.spec.name!r}, period_s={self.period_s:g}, "

@@ -76,7 +76,8 @@ class Watchdog:
         return None
 
     def start(self) -> "Watchdog":
-        self.kick()
+        self._last = self._clock()  # the time before start() is not a stall (the loop was not running)
+        self._fired = False
         self._stop.clear()
         self._thread = threading.Thread(target=self._run, name="ethimon-watchdog", daemon=True)
         self._thread.start()

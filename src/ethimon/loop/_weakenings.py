@@ -4,10 +4,12 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..compiler._risk_formula import release_bound
+from ..compiler import plan_of
+from ..compiler._risk_formula import release_bound, risk_range
 from ..spec import Response, Spec
+from ..spec._expr import Name, walk
 
-__all__ = ["CANNOT_TELL", "weakenings"]
+__all__ = ["CANNOT_TELL", "weakenings", "unmapped_latches"]
 
 
 def _sev(response: Any) -> int:
@@ -25,6 +27,17 @@ def _same_text(a: str | None, b: str | None) -> bool:
     return " ".join(a.split()) == " ".join(b.split())
 
 
+def _meaning(m: tuple | None) -> str:
+    if m is None:
+        return "nothing"
+    if m[0] == "signal":
+        return f"a {m[1]} signal"
+    if m[0] == "constant":
+        return f"the constant {m[1]!r}"
+    return "R_e (" + ", ".join(f"{k}={v!r}" for k, v in zip(("alpha", "beta", "gamma", "variance", "classes",
+                                                             "unsafe_index"), m[1])) + ")"
+
+
 def _release_weaker(what: str, old: tuple[str, int], new: tuple[str, int]) -> list[str]:
     """A rule's release (mode, hold_cycles; defaults filled in) made easier."""
     if old[0] == "manual" and new[0] == "auto":
@@ -32,6 +45,41 @@ def _release_weaker(what: str, old: tuple[str, int], new: tuple[str, int]) -> li
     if new[1] < old[1]:
         return [f"{what}: release hold_cycles lowered {old[1]} -> {new[1]}"]
     return []
+
+
+def _risk_inputs(spec: Spec) -> tuple[float, float]:
+    """The interval of ``risk`` inputs the monitor accepts for ``spec`` (as ``Monitor`` computes it)."""
+    r = spec.risk
+    lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)
+    return min(0.0, lo), max(1.0, hi)
+
+
+def _formula(spec: Spec) -> tuple:
+    r = spec.risk
+    return (r.alpha, r.beta, r.gamma, r.variance, r.classes, r.unsafe_index % r.classes)
+
+
+def _meanings(spec: Spec) -> dict[str, dict[str, tuple]]:
+    """Per obligation id, what each name its ``when``/``require`` read stands for in ``spec``:
+    ``("signal", type)``, ``("constant", value)`` or ``("risk", formula)`` (names resolved, not text)."""
+    plan = plan_of(spec)
+    consts = {k: (c if isinstance(c, (int, float)) else c.value) for k, c in spec.constants.items()}
+    out: dict[str, dict[str, tuple]] = {}
+    for ob in plan.obligations:
+        names: dict[str, tuple] = {}
+        for root in (ob.when, ob.require):
+            if root is None:
+                continue
+            for n in walk(root):
+                if isinstance(n, Name) and n.id not in names:
+                    if n.id in spec.signals:
+                        names[n.id] = ("signal", spec.signals[n.id].type)
+                    elif n.id in consts:
+                        names[n.id] = ("constant", float(consts[n.id]))
+                    else:  # the built-in R_e
+                        names[n.id] = ("risk", _formula(spec))
+        out[ob.id] = names
+    return out
 
 
 def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> tuple[list[str], list[str]]:
@@ -46,13 +94,22 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     or the fault latch's, defaults filled in) or a rule's hold lowered; the release bound τ − δ raised
     (hysteresis shrunk relative to τ) or ``hold_cycles`` lowered; the effective
     estimate age limit removed or raised (``risk.max_age_s``, else the loop's
-    ``loop_max_age_s``); a signal's range widened or removed; the safe pose's
-    joint-speed limit or tolerance raised.
+    ``loop_max_age_s``); a signal's range widened or removed; a signal removed
+    (whether or not an obligation reads it: its missing/type/range check failed
+    closed) or replaced by a constant of the same name; the ``risk`` inputs the
+    monitor accepts widened below τ; the safe pose's joint-speed limit or
+    tolerance raised. Release parameters are compared for every rule in every
+    mode (a manual rule's ``hold_cycles`` and the risk rule's bound τ − δ are what
+    ``acknowledge()`` waits for).
+
+    Conditions are judged on meaning: an obligation whose text is unchanged still
+    counts as changed when a name in it resolves to something else (a signal now a
+    constant, a constant's value, R_e's formula for a condition reading ``risk``).
 
     Cannot be judged field by field, so counted as possible weakenings too (in the
     first list, each ending in :data:`CANNOT_TELL`; the second list repeats just
     these): the text of a ``require`` or ``when`` that changed (beyond
-    whitespace), a constant's value, a signal's type, the safe pose's joints, the
+    whitespace), what a name in an unchanged text stands for, a signal's type, the safe pose's joints, the
     estimator settings, the ``risk.allow`` opt-outs. ``require: 'true'`` or a
     constant ``min_d: -1`` would otherwise switch a check off unnoticed.
 
@@ -63,6 +120,11 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     unjudged: list[str] = []
     old_obs = {o.id: o for o in old.obligations}
     new_obs = {o.id: o for o in new.obligations}
+    try:
+        old_names, new_names = _meanings(old), _meanings(new)
+    except Exception as exc:  # noqa: BLE001 - a spec that does not compile cannot be judged
+        old_names, new_names = {}, {}
+        unjudged.append(f"names could not be resolved ({type(exc).__name__}: {exc})")
     for oid, o in old_obs.items():
         n = new_obs.get(oid)
         if n is None:
@@ -76,6 +138,15 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
             unjudged.append(f"obligation {oid}: when changed ({o.when!r} -> {n.when!r})")
         if not _same_text(o.require, n.require):
             unjudged.append(f"obligation {oid}: require changed ({o.require!r} -> {n.require!r})")
+        else:
+            on, nn = old_names.get(oid, {}), new_names.get(oid, {})
+            for name in sorted(set(on) | set(nn)):
+                a, b = on.get(name), nn.get(name)
+                if a != b and a is not None and b is not None and a[0] == b[0] == "constant":
+                    unjudged.append(f"obligation {oid}: constant {name} changed {a[1]!r} -> {b[1]!r}")
+                elif a != b:
+                    unjudged.append(f"obligation {oid}: {name} means {_meaning(a)} -> {_meaning(b)} "
+                                    "(same text, another meaning)")
         ow, nw = o.within_cycles or 0, n.within_cycles or 0
         if nw > ow:
             weak.append(f"obligation {oid}: within_cycles {ow} -> {nw} (more cycles to respond)")
@@ -98,14 +169,19 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     weak += _release_weaker("on_fault", old.fault_release(), new.fault_release())
     if ro.release.mode == "manual" and rn.release.mode == "auto":
         weak.append("release mode manual -> auto (a latched override now releases by itself)")
-    elif rn.release.mode == "auto":
-        bo = release_bound(ro.threshold, ro.release.hysteresis)[0]
-        bn = release_bound(rn.threshold, rn.release.hysteresis)[0]
-        if bn > bo:
-            weak.append(f"release bound τ − δ raised {float(bo):g} -> {float(bn):g} (hysteresis "
-                        f"{ro.release.hysteresis!r} -> {rn.release.hysteresis!r}: a latch releases at a higher R_e)")
-        if rn.release.hold_cycles < ro.release.hold_cycles:
-            weak.append(f"release hold_cycles lowered {ro.release.hold_cycles} -> {rn.release.hold_cycles}")
+    # in every mode: an automatic latch releases, a manual one may be acknowledged, once R_e < τ − δ
+    # has held hold_cycles cycles
+    bo = release_bound(ro.threshold, ro.release.hysteresis)[0]
+    bn = release_bound(rn.threshold, rn.release.hysteresis)[0]
+    if bn > bo:
+        weak.append(f"release bound τ − δ raised {float(bo):g} -> {float(bn):g} (hysteresis "
+                    f"{ro.release.hysteresis!r} -> {rn.release.hysteresis!r}: a latch releases at a higher R_e)")
+    if rn.release.hold_cycles < ro.release.hold_cycles:
+        weak.append(f"release hold_cycles lowered {ro.release.hold_cycles} -> {rn.release.hold_cycles}")
+    (olo, ohi), (nlo, nhi) = _risk_inputs(old), _risk_inputs(new)
+    if nlo < min(olo, rn.threshold) or (nhi > ohi and ohi < rn.threshold):
+        weak.append(f"accepted risk inputs widened [{olo:g}, {ohi:g}] -> [{nlo:g}, {nhi:g}] (an R_e that "
+                    "faulted is now accepted without an override)")
     ao = ro.max_age_s if ro.max_age_s is not None else loop_max_age_s
     an = rn.max_age_s if rn.max_age_s is not None else loop_max_age_s
     if ao is not None and (an is None or an > ao):
@@ -113,15 +189,19 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     for name, so in old.signals.items():
         sn = new.signals.get(name)
         if sn is None:
-            continue  # an obligation reading it changed or was removed, and is reported there
+            if name in new.constants:
+                weak.append(f"signal {name} replaced by a constant (it is no longer read, so its "
+                            "missing/type/range checks no longer fail closed)")
+            else:
+                weak.append(f"signal {name} removed (its missing/type/range checks failed closed, whether "
+                            "or not an obligation reads it)")
+            continue
         if sn.type != so.type:
             unjudged.append(f"signal {name}: type {so.type} -> {sn.type}")
         elif so.range is not None and (sn.range is None or sn.range[0] < so.range[0] or sn.range[1] > so.range[1]):
             weak.append(f"signal {name}: range {list(so.range)} -> {list(sn.range) if sn.range else 'none'} "
                         "(values that faulted are now accepted)")
-    for name, c in old.constants.items():
-        if new.constants.get(name) != c:
-            unjudged.append(f"constant {name} changed or removed")
+    # a constant matters only through the conditions that read it: judged above, by meaning
     po, pn = old.safe_pose, new.safe_pose
     if pn.max_joint_speed_rad_s > po.max_joint_speed_rad_s:
         weak.append(f"safe_pose.max_joint_speed_rad_s raised {po.max_joint_speed_rad_s!r} -> "
@@ -149,3 +229,54 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
             unjudged.append("risk.judge settings changed")
     unjudged = [f"{u}: {CANNOT_TELL}" for u in unjudged]
     return weak + unjudged, unjudged
+
+
+def _rule_identity(spec: Spec, name: str) -> tuple | None:
+    """What a latch of rule ``name`` means in ``spec``: its response and its release, defaults filled in
+    (``None``: no such rule)."""
+    if name == "risk":
+        r = spec.risk
+        return (Response(r.response).value, r.release.mode, int(r.release.hold_cycles),
+                release_bound(r.threshold, r.release.hysteresis)[0])
+    if name == "fault":
+        return (Response(spec.on_fault).value, *spec.fault_release())
+    if name == "judge":  # the judge's unsafe verdict: the risk rule's response and release
+        r = spec.risk
+        if r.judge is None:
+            return None
+        return (Response(r.response).value, r.release.mode, int(r.release.hold_cycles),
+                release_bound(r.threshold, r.release.hysteresis)[0], r.judge)
+    if name == "confirm":  # the confirm band [τ_confirm, τ): stop_2, released by a confirmation
+        r = spec.risk
+        if r.confirm_threshold is None:
+            return None
+        # released by a confirmation or by the judge's safe verdict: another judge is another release
+        return ("stop_2", "band", r.confirm_threshold, r.threshold, r.judge)
+    for ob in spec.obligations:
+        if ob.id == name:
+            return (Response(ob.response).value, *spec.obligation_release(ob))
+    return None
+
+
+def unmapped_latches(old: Spec, new: Spec, latched) -> list[str]:
+    """The latched rules of ``old`` (names as in ``Monitor.latched_rules``) that a reload to ``new``
+    cannot carry by identity: the same rule must exist with the same response and the same release
+    (mode, hold_cycles; for the risk rule also its bound τ − δ). Empty: every latch carries over."""
+    out = []
+    for name in latched:
+        a, b = _rule_identity(old, name), _rule_identity(new, name)
+        if b is None:
+            out.append(f"{name}: latched, and the new spec has no such rule")
+        elif a != b:
+            out.append(f"{name}: latched as (response, release) {_show(a)}, the new spec has {_show(b)}")
+    return out
+
+
+def _show(ident: tuple | None) -> str:
+    def one(x) -> str:
+        if isinstance(x, (str, int, float)) or x is None:
+            return str(x)
+        if hasattr(x, "numerator"):
+            return f"bound {float(x):g}"
+        return f"judge {getattr(x, 'url', x)}"
+    return "none" if ident is None else "(" + ", ".join(one(x) for x in ident) + ")"

@@ -80,7 +80,7 @@ def _as_array(col: Any) -> np.ndarray:
     """A sequence as a 1-d array, keeping the elements (``None``, strings, sequences) as objects if needed."""
     try:
         arr = np.asarray(col)
-    except (ValueError, TypeError):
+    except Exception:  # noqa: BLE001 - an element numpy cannot read (its __len__ raises, ...): kept as an object
         arr = None
     if arr is None or arr.dtype.kind not in _NUMERIC or arr.ndim != 1:
         items = list(col)

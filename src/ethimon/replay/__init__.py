@@ -13,20 +13,26 @@
 A mapping file says which topic and field gives which signal (with a reduction
 and unit scaling), the monitor's cycle rate (inputs are zero-order held), a
 staleness limit per signal (a stale or missing input fails closed), and which
-topic carries the task text that the risk estimator scores. Bags are read with
+topic carries the task text that the risk estimator scores (or ``risk: none``:
+the risk rule is then reported NOT CHECKED). :func:`list_topics` lists a bag's
+topics to write a mapping from; :func:`replay_paths` replays many bags as
+``ethimon replay`` does; :func:`write_mcap` writes the verdicts as MCAP topics. Bags are read with
 ``rosbags`` (``pip install 'ethimon[ros]'``), imported only when a bag is read:
 ``import ethimon`` and ``import ethimon.replay`` never import it.
 """
 
 from __future__ import annotations
 
-from ._bag import BagData, BagError, Series, read_bag
+from ._bag import BagData, BagError, Series, TopicInfo, list_topics, read_bag
 from ._check import CycleResults, check_columns
-from ._mapping import (Mapping, SignalMap, TaskMap, check_against_spec, load_mapping, load_mapping_text,
-                       mapping_json_schema)
+from ._mapping import (Mapping, SignalMap, TaskMap, check_against_spec, lint_mapping, load_mapping,
+                       load_mapping_text, mapping_json_schema)
+from ._mcap import write_mcap
+from ._record import ReplayReport, replay_paths
 from ._replay import BagReplay, CheckResult, TaskScorer, replay_bag, replay_data, resample
 from ._resample import cycle_grid, hold
 
-__all__ = ["BagData", "BagError", "BagReplay", "CheckResult", "CycleResults", "Mapping", "Series", "SignalMap",
-           "TaskMap", "TaskScorer", "check_against_spec", "check_columns", "cycle_grid", "hold", "load_mapping",
-           "load_mapping_text", "mapping_json_schema", "read_bag", "replay_bag", "replay_data", "resample"]
+__all__ = ["BagData", "BagError", "BagReplay", "CheckResult", "CycleResults", "Mapping", "ReplayReport", "Series",
+           "SignalMap", "TaskMap", "TaskScorer", "TopicInfo", "check_against_spec", "check_columns", "cycle_grid",
+           "hold", "lint_mapping", "list_topics", "load_mapping", "load_mapping_text", "mapping_json_schema",
+           "read_bag", "replay_bag", "replay_data", "replay_paths", "resample", "write_mcap"]

@@ -79,7 +79,8 @@ def check_columns(spec: Spec, columns: dict[str, np.ndarray], n: int, *,
             or ``"step"``.
 
     A NaN input is left out of that cycle's inputs, so the monitor fails closed on it
-    ("signal ... is missing") exactly as for an input that did not arrive.
+    ("signal ... is missing") exactly as for an input that did not arrive; ±inf is passed on, and the
+    monitor refuses it as an invalid value.
     """
     if engine not in ("auto", "offline", "step"):
         raise ValueError(f"engine must be 'auto', 'offline' or 'step', got {engine!r}")
@@ -101,12 +102,17 @@ def check_columns(spec: Spec, columns: dict[str, np.ndarray], n: int, *,
     return _step(spec, columns, n, risk_key)
 
 
+def _nan_masked(col: np.ndarray) -> np.ma.MaskedArray:
+    """NaN = no usable input (missing); ±inf stays a value, which the monitor refuses as what it is."""
+    return np.ma.masked_array(col, mask=np.isnan(col))
+
+
 def _offline(check_trace: Any, spec: Spec, columns: dict[str, np.ndarray], n: int, risk_key: str) -> CycleResults:
-    cols: dict[str, Any] = {name: np.ma.masked_invalid(columns[name]) for name in spec.signals}
+    cols: dict[str, Any] = {name: _nan_masked(columns[name]) for name in spec.signals}
     if risk_key in columns:
-        cols[risk_key] = np.ma.masked_invalid(columns[risk_key])
+        cols[risk_key] = _nan_masked(columns[risk_key])
     if "risk_age_s" in columns:
-        cols["risk_age_s"] = np.ma.masked_invalid(columns["risk_age_s"])
+        cols["risk_age_s"] = _nan_masked(columns["risk_age_s"])
     for key in ("judge", "task_id"):  # recorded judge answers (tier specs)
         if key in columns:
             cols[key] = columns[key]

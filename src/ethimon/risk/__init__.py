@@ -1,7 +1,8 @@
 """Ethical risk: the R_e formula (always available) and the learned estimator.
 
-The estimator needs the optional extra ``ethimon[risk]`` (torch, transformers);
-torch is imported only when a model is loaded, so ``import ethimon.risk`` stays light.
+Scoring needs the optional extra ``ethimon[risk]`` (ONNX Runtime, tokenizers: no torch);
+training and the torch backend need ``ethimon[train]`` (torch, transformers). Either is
+imported only when a model is loaded, so ``import ethimon.risk`` stays light.
 """
 
 from __future__ import annotations

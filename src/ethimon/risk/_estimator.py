@@ -37,6 +37,10 @@ class ProbsEstimator(Protocol):
     def probs(self, text: str) -> Sequence[float]: ...
 
 QUANTIZE_MODES = (None, "fp32", "int8")
+#: inference backends: ``onnx`` (ONNX Runtime + tokenizers, no torch in the process), ``torch``
+#: (torch + transformers, what training uses), ``auto`` (ONNX when onnxruntime is installed and the
+#: model has an ONNX form, else torch)
+BACKENDS = ("auto", "onnx", "torch")
 
 #: rows an estimator scores eagerly at most before it traces itself (``jit=None``). Tracing
 #: (TorchScript trace + freeze + a check against the eager model) costs about 0.5 s
@@ -171,7 +175,11 @@ class RiskEstimator:
         self.max_length = loaded.max_length
         self.truncation = loaded.truncation
         self.temperature = loaded.temperature
-        #: whether the model runs as a TorchScript-frozen copy (see :meth:`trace`)
+        #: ``"onnx"`` (ONNX Runtime, no torch) or ``"torch"``
+        self.backend = "onnx" if hasattr(loaded, "session") else "torch"
+        #: sha256 of the ONNX graph that runs (``None`` on torch), for audit logs
+        self.graph_sha256 = getattr(loaded, "graph_sha256", None)
+        #: whether the model runs as a TorchScript-frozen copy (see :meth:`trace`; never on ONNX)
         self.jit = False
         self._trace_after = trace_after
         self._rows = 0
@@ -255,8 +263,8 @@ class RiskEstimator:
         """
         with self._lock:
             self._trace_after = None
-            if self.jit:
-                return True
+            if self.jit or self.backend == "onnx":  # an ONNX graph is optimised when its session starts
+                return self.jit
             from . import _backend as B
             m = self._m
             try:
@@ -371,6 +379,8 @@ class RiskEstimator:
         return self._forward_views([View(k) for k in keys], raw, on_batch)
 
     def _forward_views(self, vs: list[View], raw: bool, on_batch: Any = None) -> list:
+        if self.backend == "onnx":
+            return self._forward_onnx(vs, raw, on_batch)
         from . import _backend as B
         torch = B.torch
         m = self._m
@@ -405,6 +415,42 @@ class RiskEstimator:
                             on_batch(len(idx))
             except RiskInferenceError:
                 raise
+            except Exception as exc:  # noqa: BLE001 - fail closed on anything
+                raise RiskInferenceError(f"risk inference failed: {type(exc).__name__}: {exc}") from exc
+        for r in results:
+            if not all(math.isfinite(v) for v in r):
+                raise RiskInferenceError("risk inference produced NaN/inf; treat the command as unsafe")
+        return [tuple(r) if not raw else r for r in results]
+
+    def _forward_onnx(self, vs: list[View], raw: bool, on_batch: Any = None) -> list:
+        """As :meth:`_forward_views`, through ONNX Runtime (numpy arrays, no torch)."""
+        import numpy as np
+        m = self._m
+        if not vs:
+            return []
+        try:
+            seqs = m.tokenizer.encode_views([(v.context, v.focus) for v in vs], m.max_length, m.truncation)
+        except Exception as exc:  # noqa: BLE001
+            raise RiskInferenceError(f"tokenisation failed: {exc}") from exc
+        order = sorted(range(len(seqs)), key=lambda i: len(seqs[i]))
+        results: list = [None] * len(seqs)
+        ui = m.unsafe_index
+        with self._lock:
+            self._rows += len(seqs)
+            try:
+                for idx in _batches(order, seqs, self._batch_size):
+                    logits = np.asarray(m.logits([seqs[i] for i in idx]), dtype=np.float64)
+                    if raw:
+                        rows = logits.tolist()
+                    else:
+                        z = logits / m.temperature
+                        e = np.exp(z - z.max(axis=1, keepdims=True))
+                        pu = e[:, ui] / e.sum(axis=1)
+                        rows = list(zip((1.0 - pu).tolist(), pu.tolist()))
+                    for i, r in zip(idx, rows):
+                        results[i] = r
+                    if on_batch is not None:
+                        on_batch(len(idx))
             except Exception as exc:  # noqa: BLE001 - fail closed on anything
                 raise RiskInferenceError(f"risk inference failed: {type(exc).__name__}: {exc}") from exc
         for r in results:
@@ -450,7 +496,7 @@ def _tempered(logits: Sequence[float], temperature: float, unsafe_index: int) ->
 def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None = None,
                    max_length: int | None = None, cache_size: int = 4096, batch_size: int = 32,
                    num_threads: int | None = None, temperature: float | None = None,
-                   jit: bool | None = None, reading: str = "steps") -> RiskEstimator:
+                   jit: bool | None = None, backend: str = "auto", reading: str = "steps") -> RiskEstimator:
     """Load a risk estimator from a local model directory (default: the shipped one).
 
     Args:
@@ -460,14 +506,23 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
         quantize: ``None`` or ``"fp32"`` (full precision) or ``"int8"`` (dynamic
             int8 Linear layers). ``"fp32"`` lets :func:`load_estimator_for`
             override a spec that asks for int8.
+        backend: ``"auto"`` (default): ONNX Runtime when onnxruntime and tokenizers
+            are installed and the model has an ONNX form (the shipped model and any
+            BERT/DistilBERT directory: built from its safetensors weights at load,
+            ~0.3 s; any other family: a ``model.onnx`` written by ``ethimon export``),
+            else torch. ``"onnx"``: ONNX Runtime or an error (no torch, no
+            transformers in the process). ``"torch"``: torch + transformers.
         max_length: token budget, special tokens included (default: the model's).
         cache_size: LRU entries keyed on normalised text; 0 disables the cache.
         batch_size: rows per forward pass in :meth:`RiskEstimator.probs_batch`.
-        num_threads: if given, ``torch.set_num_threads`` (process-wide).
+        num_threads: torch: if given, ``torch.set_num_threads`` (process-wide);
+            ONNX: the session's intra-op threads (default 1: one sentence is too
+            small to split).
         temperature: softmax temperature replacing the model's own, e.g. one
             fitted on validation rows of your deployment domain
             (``ethimon evaluate --calibrate-on``); must be finite and > 0.
-        jit: run a TorchScript-frozen copy of the model (checked against the
+        jit: torch only (an ONNX graph is optimised when its session starts);
+            run a TorchScript-frozen copy of the model (checked against the
             eager one; per sentence on 2 CPU cores fp32 8.7 → 7.2 ms, int8
             3.9 → 1.7 ms). ``True``: trace now, at load (a control loop or a
             service: no pause later; :class:`ethimon.loop.ProcessEstimator`
@@ -487,7 +542,8 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
         A :class:`RiskEstimator`.
 
     Raises:
-        DependencyNotInstalled: torch/transformers or the base weights are missing.
+        DependencyNotInstalled: the backend's packages (onnxruntime + tokenizers, or
+            torch + transformers) or the base weights are missing.
         ModelError: the directory is unusable (sha256 mismatch, pickle-only
             weights, missing tokenizer, ...) or not to be trusted: anything
             that would make transformers import code (``auto_map``, a
@@ -513,26 +569,61 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
     if temperature is not None and (isinstance(temperature, bool) or not (isinstance(temperature, (int, float))
                                         and math.isfinite(temperature) and temperature > 0)):
         raise ValueError(f"temperature={temperature!r}; expected a finite number > 0")
-    from . import _backend as B
-    if num_threads is not None:
-        B.torch.set_num_threads(int(num_threads))
+    if backend not in BACKENDS:
+        raise ValueError(f"backend={backend!r}; expected one of {BACKENDS}")
     if model_dir is None:
         model_dir = default_model_dir()
         check_default_manifest(Path(model_dir))
-    loaded = B.load_model(model_dir, max_length=max_length)
+    loaded = _load_onnx(model_dir, backend, quantize, max_length, num_threads) if backend != "torch" else None
+    if loaded is None:
+        loaded = _load_torch(model_dir, backend, quantize, max_length, num_threads)
     if temperature is not None:
         loaded.temperature = float(temperature)
+    est = RiskEstimator(loaded, cache_size=cache_size, batch_size=batch_size, quantized=quantize,
+                        trace_after=JIT_AFTER_ROWS if jit is None else None, reading=reading)
+    if jit:
+        est.trace()
+    return est
+
+
+def _load_onnx(model_dir, backend: str, quantize, max_length, num_threads) -> Any:
+    """The ONNX form of ``model_dir``, or ``None`` where ``auto`` should use torch."""
+    from ..errors import DependencyNotInstalled, ModelError
+    try:
+        from . import _onnx as O
+    except DependencyNotInstalled:
+        if backend == "onnx":
+            raise
+        return None
+    try:
+        return O.load_onnx_model(model_dir, max_length=max_length, quantize=quantize, num_threads=num_threads)
+    except O._NoGraph as exc:  # never a trust failure: those are ModelError and propagate
+        if backend == "onnx":
+            raise ModelError(f"{model_dir}: no ONNX form: {exc}; write one with `ethimon export {model_dir}` "
+                             "(needs torch once) or use backend torch") from None
+        return None
+
+
+def _load_torch(model_dir, backend: str, quantize, max_length, num_threads) -> Any:
+    from ..errors import DependencyNotInstalled
+    try:
+        from . import _backend as B
+    except DependencyNotInstalled as exc:
+        if backend == "auto":
+            raise DependencyNotInstalled(
+                f"{exc}; or, without torch, ONNX Runtime: pip install \"ethimon[risk]\" (the ONNX backend runs "
+                f"the shipped model and BERT/DistilBERT directories, others after `ethimon export`)") from exc
+        raise
+    if num_threads is not None:
+        B.torch.set_num_threads(int(num_threads))
+    loaded = B.load_model(model_dir, max_length=max_length)
     if quantize == "int8":
         import warnings
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             loaded.module = B.torch.ao.quantization.quantize_dynamic(
                 loaded.module, {B.nn.Linear}, dtype=B.torch.qint8)
-    est = RiskEstimator(loaded, cache_size=cache_size, batch_size=batch_size, quantized=quantize,
-                        trace_after=JIT_AFTER_ROWS if jit is None else None, reading=reading)
-    if jit:
-        est.trace()
-    return est
+    return loaded
 
 
 def estimator_kwargs(spec: Any) -> dict[str, Any]:
@@ -545,7 +636,7 @@ def estimator_kwargs(spec: Any) -> dict[str, Any]:
     if model is not None and not Path(model).is_absolute() and spec.path:
         model = str((Path(spec.path).resolve().parent / model).resolve())
     return {"model_dir": model, "quantize": cfg.quantize, "temperature": cfg.temperature,
-            "max_length": cfg.max_length}
+            "max_length": cfg.max_length, "backend": cfg.backend}
 
 
 def load_estimator_for(spec: Any, **overrides: Any) -> RiskEstimator:

@@ -32,7 +32,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-__all__ = ["View", "Reading", "read", "views", "READINGS", "MAX_STEPS"]
+__all__ = ["View", "Reading", "read", "views", "pair_ids", "READINGS", "MAX_STEPS"]
 
 #: ``"steps"`` (this module's reading, the default) or ``"flat"`` (the whole text only, as before issue 19)
 READINGS = ("steps", "flat")
@@ -315,3 +315,34 @@ def views(text: str, reading: str = "steps") -> list[View]:
             seen.add(v.key())
             uniq.append(v)
     return uniq
+
+
+def _cut(seq: list[int], n: int, truncation: str) -> list[int]:
+    """``seq`` cut to at most ``n`` tokens (head, or head and tail)."""
+    if len(seq) <= n:
+        return list(seq)
+    if n <= 0:
+        return []
+    if truncation == "head_tail":
+        h = n // 2
+        return list(seq[:h]) + list(seq[len(seq) - (n - h):])
+    return list(seq[:n])
+
+
+def pair_ids(prefix: list[int], suffix: list[int], context: list[int], focus: list[int], max_length: int,
+             truncation: str) -> list[int]:
+    """``prefix + context + suffix + focus + suffix`` in at most ``max_length`` tokens (both backends).
+
+    The focus is kept whole while it fits in three quarters of the budget; the
+    context gets what is left, its head and tail (the start of the scene and what
+    comes right before the focus), so a long text never loses its instruction.
+
+    >>> pair_ids([101], [102], list(range(1, 50)), [7, 8, 9], 16, "head_tail")
+    [101, 1, 2, 3, 4, 5, 45, 46, 47, 48, 49, 102, 7, 8, 9, 102]
+    """
+    budget = max_length - len(prefix) - 2 * len(suffix)
+    if budget < 4:
+        raise ValueError(f"max_length={max_length} leaves no room for a text pair")
+    f = _cut(focus, max(budget * 3 // 4, budget - len(context)), truncation)
+    c = _cut(context, budget - len(f), truncation)
+    return prefix + c + suffix + f + suffix if c else prefix + f + suffix

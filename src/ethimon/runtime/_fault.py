@@ -14,9 +14,11 @@ FAULT_KINDS: dict[str, str] = {
     "missing": "a required input is absent (a signal, the risk input, risk_age_s)",
     "invalid": "an input is not a usable value (wrong type, NaN/inf, malformed p, p_unsafe with K != 2)",
     "range": "a number lies outside its declared or reachable range",
-    "stale": "the risk estimate is older than the age limit, or its age is not a valid number",
+    "stale": "the risk estimate (or a live source's signal) is older than its age limit, or its age is not a "
+             "valid number",
     "estimator": "the risk estimator raised, hung, died, or has no estimate for the current task text",
-    "signals": "the signal source raised, or none was given",
+    "signals": "the signal source raised, none was given, or it reported a fault of its own (a foreign "
+               "publisher on a monitored topic)",
     "deadline": "the control cycle missed its deadline",
     "stall": "the control loop stalled between cycles (or the watchdog fired)",
     "audit": "the audit log is unusable, behind its lag bounds, or refused a record",

@@ -15,6 +15,9 @@ comparison of the monitor.
   always returns a built-in float) and must be finite. ``bool``, ``numpy.bool_``,
   strings, ``Decimal``, tensors and anything else are not numbers.
 * A bool is ``True``/``False``, a ``numpy.bool_``, or a number equal to 0 or 1.
+* A value whose conversion raises (any ``Exception`` from its ``__float__`` or,
+  for ``p``, its iterator) is not usable: an ``invalid`` fault of that input, the
+  same for the monitor and the offline checker, which share these functions.
 * ``p`` is an ordered, finite sequence of numbers (a list, tuple or 1-d array),
   read exactly once; a mapping, a set, a string or bytes is not.
 """
@@ -51,7 +54,7 @@ def as_number(v: Any) -> float | None:
         return None
     try:
         f = float(v)  # exactly once; float() always returns a built-in float
-    except (OverflowError, ValueError, TypeError):  # 10**400, Fraction(10**400): not a usable number
+    except Exception:  # noqa: BLE001 - 10**400, a __float__ that raises anything: not a usable number
         return None
     return f if _isfinite(f) else None
 
@@ -73,7 +76,7 @@ def as_bool(v: Any) -> bool | None:
     if issubclass(c, Real) and not issubclass(c, bool):
         try:
             f = float(v)
-        except (OverflowError, ValueError, TypeError):
+        except Exception:  # noqa: BLE001 - a __float__ that raises: not a usable truth value
             return None
         if f == 0.0:
             return False
@@ -109,7 +112,7 @@ def as_probs(p: Any, k: int) -> tuple[tuple[float, ...] | None, str | None]:
         return None, f"p must be an ordered sequence of probabilities, got {type(p).__name__}"
     try:
         items = list(islice(p, k + 1))  # read once; never more than k + 1 items
-    except TypeError:
+    except Exception:  # noqa: BLE001 - an iterator that raises: not a sequence of probabilities
         return None, f"p must be an ordered sequence of probabilities, got {type(p).__name__}"
     if len(items) != k:
         n = f"more than {k}" if len(items) > k else str(len(items))

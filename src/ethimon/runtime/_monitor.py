@@ -48,6 +48,11 @@ def _all_margins(fns: tuple) -> tuple[float, ...]:
     return tuple(out)
 
 
+#: why acknowledge() refuses a confirmation without a task_id (monitor and reference say the same)
+_UNBOUND_CONFIRM = ("refused: confirm needs the task_id input on the cycle it confirms (a confirmation "
+                    "names the text it confirms: pass the task text's hash as task_id)")
+
+
 class Monitor:
     """Runtime monitor compiled from a spec; call :meth:`step` once per control cycle.
 
@@ -216,6 +221,25 @@ class Monitor:
         """The rules whose latch holds the override now: obligation ids, ``"risk"``, ``"fault"``."""
         return tuple(name for name, s in zip(self._names, self._lat) if s)
 
+    def carry_latches(self, rules) -> None:
+        """Latch ``rules`` (names as in :attr:`latched_rules` of the monitor this one replaces) here,
+        each with this monitor's response and release for it, its release count at 0: the release
+        condition must hold its ``hold_cycles`` again, and a manual rule still needs :meth:`acknowledge`.
+
+        Raises:
+            ValueError: a name that is no rule of this monitor (nothing is latched then).
+        """
+        idx = {n: k for k, n in enumerate(self._names)}
+        missing = [n for n in rules if n not in idx]
+        if missing:
+            raise ValueError(f"no rule {', '.join(map(repr, missing))} in spec {self.spec.name!r}")
+        for n in rules:
+            k = idx[n]
+            if not self._lat[k]:
+                self._lat[k] = self._sevs[k]
+                self._nlat += 1
+            self._run[k] = 0
+
     def _clear(self) -> None:
         for k in range(self._nsrc):
             self._lat[k] = 0
@@ -246,7 +270,8 @@ class Monitor:
         R_e < τ − δ for the risk rule, no fault for the fault latch. Automatic latches
         keep their own rule. A latched ``"confirm"`` (the confirm band) needs no count: the
         acknowledgement is the confirmation, and it holds for the last cycle's ``task_id`` until
-        that changes, R_e leaves the band, or a cycle faults. Takes effect from the next :meth:`step`, which overrides
+        that changes or goes missing, R_e leaves the band, or a cycle faults; without a ``task_id``
+        on the last cycle it is refused (a confirmation must name the text it confirms). Takes effect from the next :meth:`step`, which overrides
         again if a rule is violated or an input is bad.
 
         Returns:
@@ -277,13 +302,19 @@ class Monitor:
         lat, run, holds, manual, names = self._lat, self._run, self._holds, self._manual, self._names
         ready = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] >= holds[k]]
         ci = self._ci
+        unbound = False
         if lat[ci]:  # the confirm band: the acknowledgement is its release condition
-            ready.append(ci)
+            if self._last_task is None:  # a confirmation must name the text it confirms
+                unbound = True
+            else:
+                ready.append(ci)
         waiting = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] < holds[k]]
         if waiting:
             return Acknowledgement(False, tuple(names[k] for k in waiting), "refused: " + "; ".join(
                 f"{names[k]} still fails" if run[k] <= 0 else
                 f"{names[k]} has held {run[k]} of {holds[k]} cycles" for k in waiting))
+        if unbound and not ready:
+            return Acknowledgement(False, ("confirm",), _UNBOUND_CONFIRM)
         if not ready:
             return Acknowledgement(False, (), "nothing awaits an acknowledgement" + (
                 " (the override is held by automatic releases)" if self._nlat else ""))
@@ -516,7 +547,7 @@ class Monitor:
         if tc is None:
             return None
         task = get("task_id")
-        if self._confirmed and (task != self._ctask or not tc <= r < self._tau):
+        if self._confirmed and (task is None or task != self._ctask or not tc <= r < self._tau):
             self._confirmed = False  # a confirmation is for one text while it stays in the band
         self._last_task = task
         if tc <= r < self._tau and not self._confirmed and not (jp is not None and jp < self._jsafe):

@@ -17,7 +17,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..errors import DependencyNotInstalled, EthimonError, SpecError
+from ..errors import DependencyNotInstalled, EthimonError, SimError, SpecError
 from ._model import Scenario
 from .._files import scan_yaml_files
 from ._run import RISK_KEYS, needs_text_risk, override_expectations
@@ -283,7 +283,13 @@ class ScenarioSession:
             raise DependencyNotInstalled(f"the simulator cannot be loaded: {exc}") from None
         from ..runtime import Monitor
         block = sc.sim if isinstance(sc.sim, SimBlock) else SimBlock.model_validate(sc.sim)
-        res = run_sim(block, Monitor(spec), record_dir=record_dir, gui=gui, **self.sim_inputs(sc, spec))
+        try:
+            res = run_sim(block, Monitor(spec), record_dir=record_dir, gui=gui, **self.sim_inputs(sc, spec))
+        except SimError as exc:  # a sim: block that cannot be simulated, located where it says
+            loc = getattr(exc, "loc", None)
+            if loc is None or sc._source is None:
+                raise
+            raise sc._source.error(str(exc), loc, key=True, hint=getattr(exc, "hint", None)) from None
         return block, res, check_sim_expectations(block, res)
 
     # -- one file ------------------------------------------------------------------------------------

@@ -18,7 +18,8 @@ import numpy as np
 
 from ..errors import DependencyNotInstalled
 from .._robot import PANDA_HOME_JOINTS_RAD
-from ._limits import (BRAKE_DECEL_RAD_S2, BRAKE_ENGAGE_S, BRAKE_TORQUE_N_M, RATED_DDDQ_MAX,
+from ._limits import (BRAKE_DECEL_RAD_S2, BRAKE_ENGAGE_S, BRAKE_TORQUE_N_M, LIMIT_MARGIN_RAD,
+                      RATED_DDDQ_MAX,
                       RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX, RATED_Q_MIN)
 from ._model import PHYSICS_HZ, Gripper, Human, SimBlock, SimObject
 
@@ -37,6 +38,8 @@ _RATED_DQ = np.array(RATED_DQ_MAX)
 _RATED_DDQ = np.array(RATED_DDQ_MAX)
 _RATED_DDDQ = np.array(RATED_DDDQ_MAX)
 _Q_MIN, _Q_MAX = np.array(RATED_Q_MIN), np.array(RATED_Q_MAX)
+#: the share of the rated acceleration the servo's limit guard plans with
+_LIMIT_SHARE = 0.8
 _BRAKE_DECEL = np.array(BRAKE_DECEL_RAD_S2)
 #: position feedback of the joint servo (1/s): velocity command = reference velocity
 #: + _K_POS × (reference position − measured position), then the rated limits
@@ -106,6 +109,39 @@ class _HumanBody:
         ts = self.times
         return np.array([np.interp(t, ts, self.xy[:, 0]), np.interp(t, ts, self.xy[:, 1])])
 
+    def _segment(self, t: float) -> int:
+        """Index ``k`` of the segment ``times[k] <= t < times[k+1]`` (-1 before, n-1 after)."""
+        return int(np.searchsorted(self.times, t, side="right")) - 1
+
+    def velocity_at(self, t: float) -> np.ndarray:
+        """The scripted horizontal velocity at ``t`` (0 standing, before and after the script)."""
+        k = self._segment(t)
+        if k < 0 or k >= len(self.times) - 1:
+            return np.zeros(2)
+        return (self.xy[k + 1] - self.xy[k]) / (self.times[k + 1] - self.times[k])
+
+    def speeds(self) -> np.ndarray:
+        """The scripted speed of every segment (m/s)."""
+        if len(self.times) < 2:
+            return np.zeros(0)
+        return (np.linalg.norm(np.diff(self.xy, axis=0), axis=1) / np.diff(self.times))
+
+    def walk_speed(self, t: float) -> float:
+        """How fast the person walks at ``t``: the current segment's scripted speed; standing,
+        the last segment walked (else the next one to walk): a person held up catches up at
+        the speed the script gives them, never faster."""
+        sp = self.speeds()
+        if sp.size == 0:
+            return 0.0
+        k = self._segment(t)
+        if 0 <= k < sp.size and sp[k] > 0:
+            return float(sp[k])
+        before = [v for v in sp[:max(k, 0)] if v > 0]
+        if before:
+            return float(before[-1])
+        after = [v for v in sp[max(k, 0):] if v > 0]
+        return float(after[0]) if after else 0.0
+
 
 class ArmSim:
     """A Panda arm on the floor at the origin, with humans and objects, at 240 Hz.
@@ -166,9 +202,12 @@ class ArmSim:
         self.speed_cap: np.ndarray | None = None
         self._hermite = False
         self.powered = True
+        self._brake_hold: np.ndarray | None = None
         self._off_substeps = 0
         self.max_joint_accel_substep = 0.0
         self.max_accel_ratio_substep = 0.0
+        #: the furthest any joint has been past its rated position limit (rad; every physics step)
+        self.max_past_limit_rad = 0.0
         self.link_speed_max = 0.0
         self.brakes = brakes
         self.gripper = gripper if gripper is not None else Gripper()
@@ -207,7 +246,40 @@ class ArmSim:
             sim._apply_command()
         if block.start_holding is not None:
             sim.hold_at_start(block.start_holding)
+        problem = sim.start_collision()
+        if problem is not None:
+            key = "start_xyz_m" if block.start_xyz_m is not None else (
+                "start_joints_rad" if block.start_joints_rad is not None else "objects")
+            sim.close()
+            from ..errors import SimError
+            err = SimError(f"sim.{key}: {problem}")
+            err.loc = ("sim", key)  # where the fix goes: the scenario turns it into file:line:col
+            err.hint = ("move the start pose (or the object) so that the arm starts clear: a pose "
+                        "inside a fixed object is a contact the scenario never meant")
+            raise err
         return sim
+
+    def start_collision(self) -> str | None:
+        """What the arm (or the object it holds) penetrates now, more than 5 mm: an object the
+        task does not pick (a fixed one, a shelf) or the floor; ``None`` when it starts clear."""
+        p, cid = self._p, self.cid
+        held = self.objects.get(self.held) if self.held else None
+        worst = None
+        for name, b in self.objects.items():
+            if name in self.graspable or b == held:
+                continue
+            for body, who in ((self.robot, "the arm"), (held, f"the held {self.held}")):
+                if body is None:
+                    continue
+                for pt in p.getClosestPoints(body, b, 0.0, physicsClientId=cid):
+                    if pt[8] < -0.005 and (worst is None or pt[8] < worst[0]):
+                        link = f" (link {pt[3]})" if body == self.robot else ""
+                        worst = (pt[8], f"{who}{link} starts {-pt[8] * 100:.1f} cm inside {name!r}")
+        for link in range(2, 12):
+            for pt in p.getClosestPoints(self.robot, self.plane, 0.0, linkIndexA=link, physicsClientId=cid):
+                if pt[8] < -0.005 and (worst is None or pt[8] < worst[0]):
+                    worst = (pt[8], f"the arm (link {link}) starts {-pt[8] * 100:.1f} cm below the floor")
+        return None if worst is None else worst[1]
 
     def hold_at_start(self, name: str) -> None:
         """Teleport object ``name`` into the closed gripper and attach it."""
@@ -264,11 +336,11 @@ class ArmSim:
         hb = _HumanBody(h, body, np.array([w.t_s for w in h.waypoints], dtype=float),
                         np.array([w.xy_m for w in h.waypoints], dtype=float))
         if h.compliant:
-            # no floor friction (the constraint does the walking); upright, held by the drive
-            p.changeDynamics(body, -1, lateralFriction=0.0, physicsClientId=cid)
-            hb.drive = p.createConstraint(body, -1, -1, -1, p.JOINT_FIXED, (0, 0, 0), (0, 0, 0),
-                                          (0, 0, h.height_m / 2), physicsClientId=cid)
-            p.changeConstraint(hb.drive, maxForce=h.max_push_n, physicsClientId=cid)
+            # no floor friction (the drive does the walking); upright: a rotational inertia no
+            # contact can tip, the orientation reset upright every cycle
+            p.changeDynamics(body, -1, lateralFriction=0.0, localInertiaDiagonal=(1e4, 1e4, 1e4),
+                             linearDamping=0.0, angularDamping=0.0, physicsClientId=cid)
+            hb.drive = 1
         self.humans[h.name] = hb
         self._place_human(hb, 0.0)
         return body
@@ -280,18 +352,46 @@ class ArmSim:
         self._p.resetBasePositionAndOrientation(hb.body, pos, (0, 0, 0, 1), physicsClientId=self.cid)
         if hb.drive is not None:
             self._p.resetBaseVelocity(hb.body, (0, 0, 0), (0, 0, 0), physicsClientId=self.cid)
-            self._p.changeConstraint(hb.drive, jointChildPivot=pos, maxForce=hb.spec.max_push_n,
-                                     physicsClientId=self.cid)
 
     def _move_human(self, hb: _HumanBody, t: float) -> None:
-        """Advance the person to time ``t``: a kinematic one is placed, a compliant one is
-        pulled towards its waypoint position (with at most ``max_push_n``)."""
+        """Advance a kinematic person to time ``t`` (placed where the waypoints say); a
+        compliant one is walked by :meth:`_drive_human` at every physics step instead."""
         if hb.drive is None:
             self._place_human(hb, t)
             return
-        x, y = hb.xy_at(t)
-        self._p.changeConstraint(hb.drive, jointChildPivot=(float(x), float(y), hb.spec.height_m / 2),
-                                 maxForce=hb.spec.max_push_n, physicsClientId=self.cid)
+        p, cid = self._p, self.cid
+        pos, _ = p.getBasePositionAndOrientation(hb.body, physicsClientId=cid)
+        v, _ = p.getBaseVelocity(hb.body, physicsClientId=cid)
+        p.resetBasePositionAndOrientation(hb.body, pos, (0, 0, 0, 1), physicsClientId=cid)
+        p.resetBaseVelocity(hb.body, v, (0, 0, 0), physicsClientId=cid)
+
+    def _drive_human(self, hb: _HumanBody, t: float) -> None:
+        """One physics step of a compliant person's walk: a horizontal force of at most
+        ``max_push_n`` toward the velocity the script asks for now.
+
+        The wanted velocity is the script's velocity plus a pull (2 s⁻¹) toward the scripted
+        position, never faster than the person walks (:meth:`_HumanBody.walk_speed`, the speed
+        of the current segment or, standing, of the last one walked) nor faster than lets
+        them stop at the scripted position with half their drive: so a person held up by
+        the arm catches up at walking speed, never runs, and stops at the last waypoint."""
+        p, cid = self._p, self.cid
+        pos, _ = p.getBasePositionAndOrientation(hb.body, physicsClientId=cid)
+        v, _ = p.getBaseVelocity(hb.body, physicsClientId=cid)
+        xy, vxy = np.array(pos[:2]), np.array(v[:2])
+        target = hb.xy_at(t)
+        want = hb.velocity_at(t) + 2.0 * (target - xy)
+        lim = hb.walk_speed(t)
+        a_stop = 0.5 * hb.spec.max_push_n / hb.spec.mass_kg
+        lim = min(lim, math.sqrt(2.0 * a_stop * float(np.linalg.norm(target - xy))))
+        n = float(np.linalg.norm(want))
+        if n > lim:
+            want = want * (lim / n) if n > 0 else want
+        f = hb.spec.mass_kg * (want - vxy) / 0.05  # 50 ms to reach the wanted velocity
+        fn = float(np.linalg.norm(f))
+        if fn > hb.spec.max_push_n:
+            f = f * (hb.spec.max_push_n / fn)
+        p.applyExternalForce(hb.body, -1, (float(f[0]), float(f[1]), 0.0), pos, p.WORLD_FRAME,
+                             physicsClientId=cid)
 
     def close(self) -> None:
         """Disconnect from PyBullet (idempotent)."""
@@ -351,6 +451,10 @@ class ArmSim:
         pos, _ = self._p.getBasePositionAndOrientation(self.humans[name].body,
                                                        physicsClientId=self.cid)
         return np.array(pos)
+
+    def human_xy(self) -> dict[str, np.ndarray]:
+        """Every person's horizontal position now (capsule centre)."""
+        return {n: self.human_position(n)[:2] for n in self.humans}
 
     # ------------------------------------------------------------ signals
 
@@ -495,7 +599,8 @@ class ArmSim:
             self._q_sub, self._v_out = self.joint_state()
             self._qd_sub = self._v_out.copy()
             self._a_out = np.zeros(7)
-        self.q_cmd = np.clip(np.asarray(q, dtype=float), _Q_MIN, _Q_MAX)
+        self.q_cmd = np.clip(np.asarray(q, dtype=float), _Q_MIN + LIMIT_MARGIN_RAD,
+                             _Q_MAX - LIMIT_MARGIN_RAD)
         self._hermite = qd is not None
         self.qd_cmd = np.zeros(7) if qd is None else np.asarray(qd, dtype=float)
         if gripper_m is not None:
@@ -518,6 +623,7 @@ class ArmSim:
         if self.powered:
             self.powered = False
             self._off_substeps = 0
+            self._brake_hold = None
             if self.held is not None and not self.gripper.self_locking:
                 self.drop("power_off")  # the unpowered fingers no longer press on the object
             if brakes_already_engaged:  # a stop 1 engaged them at standstill, motors holding
@@ -533,16 +639,34 @@ class ArmSim:
     def _apply_unpowered(self) -> None:
         p, cid = self._p, self.cid
         if self.brakes_engaged:
-            _, qd = self.joint_state()
+            q, qd = self.joint_state()
             step = _BRAKE_DECEL / PHYSICS_HZ
             target = np.sign(qd) * np.maximum(np.abs(qd) - step, 0.0)
-            forces = list(BRAKE_TORQUE_N_M)
+            # a brake that has stopped its joint holds it where it stopped (friction up to its
+            # torque), it does not creep: a velocity loop at 0 drifts under gravity (0.55 mrad/s
+            # at a stretched elbow), so a stopped joint is held at its latched position
+            if self._brake_hold is None:
+                self._brake_hold = np.full(7, np.nan)
+            stopped = np.abs(qd) < 0.01
+            newly = stopped & np.isnan(self._brake_hold)
+            self._brake_hold[newly] = q[newly]
+            self._brake_hold[~stopped & (np.abs(q - np.nan_to_num(self._brake_hold, nan=0.0)) > 0.02)] = np.nan
+            held = ~np.isnan(self._brake_hold)
+            for j in range(7):
+                if held[j]:
+                    p.setJointMotorControl2(self.robot, ARM_JOINTS[j], p.POSITION_CONTROL,
+                                            targetPosition=float(self._brake_hold[j]), targetVelocity=0.0,
+                                            force=BRAKE_TORQUE_N_M[j], positionGain=1.0,
+                                            velocityGain=1.0, physicsClientId=cid)
+                else:
+                    p.setJointMotorControl2(self.robot, ARM_JOINTS[j], p.VELOCITY_CONTROL,
+                                            targetVelocity=float(target[j]), force=BRAKE_TORQUE_N_M[j],
+                                            physicsClientId=cid)
         else:  # coasting: no motor torque, brakes not (yet) engaged
-            target = np.zeros(7)
-            forces = [0.0] * 7
-        p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
-                                    targetVelocities=target.tolist(), forces=forces,
-                                    physicsClientId=cid)
+            self._brake_hold = None
+            p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
+                                        targetVelocities=[0.0] * 7, forces=[0.0] * 7,
+                                        physicsClientId=cid)
         if not self.gripper.self_locking:  # unpowered fingers are free (no holding torque)
             p.setJointMotorControlArray(self.robot, FINGER_JOINTS, p.VELOCITY_CONTROL,
                                         targetVelocities=[0.0, 0.0], forces=[0.0, 0.0],
@@ -558,6 +682,11 @@ class ArmSim:
         if self.speed_cap is not None:
             cap = np.minimum(cap, self.speed_cap)
         v = np.clip(v, -cap, cap)
+        # never faster toward a rated position limit than the joint can shed before it (at
+        # the planning share of its rated acceleration): no controller carries it past
+        up = np.sqrt(2.0 * _LIMIT_SHARE * _RATED_DDQ * np.maximum(_Q_MAX - LIMIT_MARGIN_RAD - q_meas, 0.0))
+        dn = np.sqrt(2.0 * _LIMIT_SHARE * _RATED_DDQ * np.maximum(q_meas - _Q_MIN - LIMIT_MARGIN_RAD, 0.0))
+        v = np.clip(v, -dn, up)
         a = np.clip((v - self._v_out) / h, -_RATED_DDQ, _RATED_DDQ)
         a = np.clip(a, self._a_out - _RATED_DDDQ * h, self._a_out + _RATED_DDDQ * h)
         self._a_out = a
@@ -666,7 +795,10 @@ class ArmSim:
             v0 = v1
         h = 1.0 / PHYSICS_HZ
         _, qd_prev = self.joint_state()
+        compliant = [hb for hb in self.humans.values() if hb.drive is not None]
         for k in range(1, n + 1):
+            for hb in compliant:
+                self._drive_human(hb, self.time_s - self.dt + k * h)
             if self.powered:  # interpolate the reference at the physics rate
                 s = k / n
                 s2, s3 = s * s, s * s * s
@@ -683,6 +815,10 @@ class ArmSim:
             _, qd = self.joint_state()
             acc = np.abs(qd - qd_prev) / h
             qd_prev = qd
+            qm, _ = self.joint_state()
+            past = max(float(np.max(qm - _Q_MAX)), float(np.max(_Q_MIN - qm)))
+            if past > self.max_past_limit_rad:
+                self.max_past_limit_rad = past
             peak = max(peak, float(np.max(np.abs(qd))))
             peak_a = max(peak_a, float(np.max(acc)))
             ratio_a = max(ratio_a, float(np.max(acc / _RATED_DDQ)))
@@ -836,6 +972,10 @@ class ArmSim:
         q_now, qd_now = self.joint_state()
         held = self.objects.get(self.held) if self.held else None
         held_pose = p.getBasePositionAndOrientation(held, physicsClientId=cid) if held is not None else None
+        # resetting a body's pose zeroes its velocity: keep it, or the grasp constraint has to
+        # re-accelerate the held object from rest in one physics step (issue 23: a 3 kg pot
+        # yanked joint 5 at 16.9 x its rated acceleration at every re-plan)
+        held_vel = p.getBaseVelocity(held, physicsClientId=cid) if held is not None else None
         hazardous = held is not None and bool(self.object_specs[self.held].hazard)
         obstacles = [b for n, b in self.objects.items() if n not in self.graspable and b != held]
         out = []
@@ -873,6 +1013,7 @@ class ArmSim:
                 p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
             if held is not None:
                 p.resetBasePositionAndOrientation(held, held_pose[0], held_pose[1], physicsClientId=cid)
+                p.resetBaseVelocity(held, held_vel[0], held_vel[1], physicsClientId=cid)
         return out
 
     def link_points(self, q: Sequence[float]) -> np.ndarray:

@@ -30,9 +30,13 @@ from .._robot import (RATED_DDDQ_MAX, RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX, 
                       RATED_SOURCE, out_of_range, safe_pose_problem)
 
 __all__ = ["RATED_Q_MIN", "RATED_Q_MAX", "RATED_DQ_MAX", "RATED_DDQ_MAX", "RATED_DDDQ_MAX",
-           "RATED_SOURCE", "BRAKE_ENGAGE_S", "BRAKE_DECEL_RAD_S2", "BRAKE_TORQUE_N_M",
+           "RATED_SOURCE", "LIMIT_MARGIN_RAD", "BRAKE_ENGAGE_S", "BRAKE_DECEL_RAD_S2", "BRAKE_TORQUE_N_M",
            "out_of_range", "safe_pose_problem"]
 
+#: the servo keeps its reference this far inside every rated position limit (rad), and a
+#: stop plans each joint to rest inside it: the tracking error near a limit (0.015 mrad
+#: measured with the arm stretched against gravity) never carries a joint past its rating
+LIMIT_MARGIN_RAD = 0.001
 #: ASSUMED: time from power removal to brake engagement (s); the joints coast meanwhile
 BRAKE_ENGAGE_S = 0.03
 #: ASSUMED: deceleration of an engaged brake per joint (rad/s²): the rated acceleration limit

@@ -311,7 +311,7 @@ class SimExpect(_Model):
     min_hazard_distance_m: float | None = Field(
         None, ge=0.0, description="a hazard-tagged object never nearer a person than this "
         "(simulated hazard_distance) once the monitor has overridden")
-    route: Literal["direct", "fold", "lift", "away", "hold", "none"] | None = Field(
+    route: Literal["direct", "fold", "lift", "away", "back", "turn", "hold", "none"] | None = Field(
         None, description="the safe-pose route the planner took (hold: none was collision-free)")
     object_dropped: bool | None = Field(
         None, description="a held object left the gripper other than by the task's release "
@@ -320,6 +320,20 @@ class SimExpect(_Model):
         None, ge=0.0, le=180.0, description="at the end of the run, the angle between a held "
         "object's hazard_axis and the direction from it to the nearest person is at least this "
         "(over 90: pointed away)")
+    max_human_speed_ratio: float | None = Field(
+        None, gt=0.0, description="every person's measured horizontal speed at most this many "
+        "times the fastest speed its waypoints script")
+    max_human_overshoot_m: float | None = Field(
+        None, ge=0.0, description="no person ends up further than this past its last waypoint "
+        "(along the last segment walked)")
+    max_past_limit_mrad: float | None = Field(
+        None, ge=0.0, description="no joint ever further than this past its rated position "
+        "limit (mrad), over the whole run, power-off included")
+    acknowledgements: tuple[bool, ...] | None = Field(
+        None, description="per acknowledge_at_s, in order: accepted (true) or refused (false)")
+    min_response_s: float | None = Field(
+        None, ge=0.0, description="every response lasted at least this long before the task "
+        "resumed (no chatter)")
     task_stopped_object_missing: bool | None = Field(
         None, description="the task found the object it should carry not in the gripper (dropped) "
         "and stopped: the arm held in a stop 2, the task not resumed")
@@ -355,8 +369,14 @@ class SimBlock(_Model):
     stuck_at: tuple[StuckAt, ...] = ()
     inputs_at: tuple[InputChange, ...] = ()
     acknowledge_at_s: tuple[float, ...] = Field(
-        (), description="an operator acknowledges (Monitor.acknowledge) at these simulated "
-        "times: manual latches whose release condition has held are released, others refused")
+        (), description="an operator acknowledges (GovernedArm.acknowledge) at these simulated "
+        "times: refused while a rule fires, a fault is reported or a person is within the "
+        "protective distance; otherwise Monitor.acknowledge releases the manual latches whose "
+        "condition has held. A refused acknowledgement is not remembered")
+    release_dwell_s: float = Field(
+        1.0, ge=0.0, le=60.0, description="after an automatic release the task resumes only once "
+        "the monitor has stayed released this long (the response carries on meanwhile), so task "
+        "and response cannot chatter; an accepted acknowledgement resumes at once")
     record_at_s: tuple[float, ...] = Field(
         (), description="extra PNG frames at these simulated times (with --record); start, "
         "override, safe pose reached, release and end are always recorded")

@@ -26,12 +26,15 @@ __all__ = ["Limit", "spec_limits", "build_figure", "plot_trace", "PANELS", "EVEN
 PANELS: dict[str, tuple[str, ...]] = {
     "risk": ("risk",),
     "human_distance": ("human_distance",),
-    "speed": ("ee_speed", "joint_speed_max"),
+    "ee_speed": ("ee_speed",),
+    "joint_speed": ("joint_speed_max",),
+    "joint_accel": (),
     "contact_force": ("contact_force",),
     "hazard_distance": ("hazard_distance",),
     "controller": (),
 }
-_YLABEL = {"risk": "risk R_e", "human_distance": "human dist. (m)", "speed": "speed",
+_YLABEL = {"risk": "risk R_e", "human_distance": "human dist. (m)", "ee_speed": "ee speed (m/s)",
+           "joint_speed": "joint speed (rad/s)", "joint_accel": "joint accel.\n(× rated)",
            "contact_force": "contact force (N)", "hazard_distance": "hazard–person (m)",
            "controller": "controller"}
 #: event name -> how captions, frames and the plot call it
@@ -256,7 +259,7 @@ def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Map
     limits, skipped = spec_limits(spec)
     panels = list(PANELS)
     heights = [1.0] * (len(panels) - 1) + [0.9]
-    fig = Figure(figsize=(10, 13))
+    fig = Figure(figsize=(12, 17))
     axes = fig.subplots(len(panels), 1, sharex=True, gridspec_kw={"height_ratios": heights})
     ax = dict(zip(panels, axes))
     meta: dict[str, Any] = {"panels": panels, "tau": None, "limits": [], "limits_skipped": skipped,
@@ -279,9 +282,14 @@ def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Map
     a = ax["human_distance"]
     a.plot(t, cols["human_distance"], label="monitor input")
     a.plot(t, [r.human_distance_true_m for r in trace], "--", alpha=0.6, label="simulated")
-    a = ax["speed"]
-    a.plot(t, cols["ee_speed"], label="ee speed (m/s)")
-    a.plot(t, [r.joint_speed_max_rad_s for r in trace], label="max joint speed (rad/s)")
+    # one unit per axis: the end effector in m/s, the joints in rad/s, accelerations × rated
+    ax["ee_speed"].plot(t, cols["ee_speed"], label="ee speed (monitor input)")
+    ax["joint_speed"].plot(t, [r.joint_speed_max_rad_s for r in trace], color="tab:orange",
+                           label="max |q̇| (physics steps)")
+    a = ax["joint_accel"]
+    a.plot(t, [getattr(r, "accel_ratio", math.nan) for r in trace], color="tab:olive",
+           label="max |q̈_j| / rated q̈_max,j")
+    a.axhline(1.0, color="tab:red", ls="--", lw=1.2, label="rated (FCI limits)", gid="rated_accel")
     ax["contact_force"].plot(t, cols["contact_force"], color="tab:brown", label="monitor input")
     ax["hazard_distance"].plot(t, cols["hazard_distance"], color="tab:red", label="monitor input")
     for p, attr in (("contact_force", "contact_force_true_n"), ("hazard_distance", "hazard_distance_true_m")):
@@ -316,15 +324,18 @@ def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Map
         meta["limits"].append({**lim.as_dict(), "panel": p})
     for p, a in ax.items():
         if p != "controller":
-            a.set_ylabel(_YLABEL[p])
-            if a.get_legend_handles_labels()[0]:
-                a.legend(loc="upper right", fontsize=7)
+            a.set_ylabel(_YLABEL[p], fontsize=9)
+            handles, labels = a.get_legend_handles_labels()
+            if handles:  # beside the panel, never over the data; long labels wrapped to fit
+                import textwrap
+                a.legend(handles, ["\n".join(textwrap.wrap(lb, 34)) for lb in labels], loc="upper left",
+                         bbox_to_anchor=(1.005, 1.0), fontsize=7, borderaxespad=0.0)
 
     # controller lane: which controller commanded the arm when; override and faults beneath
     a = ax["controller"]
     ctrl = [r.controller for r in trace]
     rows = list(_LANE) + [c for c in dict.fromkeys(ctrl) if c not in _LANE]
-    names = ["fault", "override", *rows]
+    names = ["rule fires", "fault", "override", *rows]
     ypos = {name: i for i, name in enumerate(names)}
     for c, x0, w in _segments(t, dt, ctrl):
         a.broken_barh([(x0, w)], (ypos[c] - 0.35, 0.7), facecolors=_LANE_COLOR.get(c, "tab:gray"),
@@ -335,6 +346,14 @@ def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Map
     for v, x0, w in _segments(t, dt, [bool(r.faults) for r in trace]):
         if v:
             a.broken_barh([(x0, w)], (ypos["fault"] - 0.35, 0.7), facecolors="tab:orange", alpha=0.7)
+    # every cycle a rule fires: grey while the task runs, red during a response (a rule firing
+    # while the arm already responds is what a reviewer looks for)
+    for (fires, resp), x0, w in _segments(t, dt, [(bool(r.violations), r.controller != "task")
+                                                  for r in trace]):
+        if fires:
+            a.broken_barh([(x0, w)], (ypos["rule fires"] - 0.35, 0.7),
+                          facecolors="tab:red" if resp else "0.6",
+                          gid="rules:response" if resp else "rules:task")
     a.set_yticks(range(len(names)))
     a.set_yticklabels(names, fontsize=7)
     a.set_ylim(-0.6, len(names) - 0.4)
@@ -358,12 +377,15 @@ def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Map
         meta["event_marks"].append({"letter": letter, "t_s": te, "events": [e["event"] for e in evs]})
     if n:
         axes[-1].set_xlim(float(t[0]), float(t[-1] + dt))
-    if title:
-        fig.suptitle(title, fontsize=11)
+    if title:  # wrapped to the figure's width: never cut off at its edges
+        import textwrap
+        fig.suptitle("\n".join(textwrap.wrap(title, 110)), fontsize=10)
     foot = 0.012 + 0.0125 * len(lines)
     if lines:
         fig.text(0.01, 0.005, "\n".join(lines), fontsize=7, va="bottom", ha="left", family="monospace")
-    fig.tight_layout(rect=(0, foot, 1, 0.97 if title else 1))
+    top = 1.0 - (0.012 * (1 + len(title) // 110) if title else 0.0)
+    fig.tight_layout(rect=(0, foot, 1, top))
+    fig.subplots_adjust(right=min(fig.subplotpars.right, 0.76))  # room for the legends
     return fig, meta
 
 

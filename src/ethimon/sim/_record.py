@@ -321,11 +321,31 @@ class Recorder:
             f"contact force: {_num(sig.get('contact_force', math.nan)):.1f} N   "
             f"ee speed: {_num(sig.get('ee_speed', math.nan)):.3f} m/s",
         ]
+        if sim.humans:  # each person's speed now (a walking person is the reason to re-plan)
+            lines.append(("people: " + ", ".join(f"{n} {self._person_speed(n, rec.t_s):.2f} m/s"
+                                                 for n in sim.humans))[:90])
+        angles = sim.hazard_axis_angles_deg() if hasattr(sim, "hazard_axis_angles_deg") else None
+        if angles:
+            lines.append(f"{sim.held} {sim.object_specs[sim.held].hazard or 'hazard'} axis: "
+                         f"{angles[0]:.0f} deg from the nearest person"
+                         + ("  (pointed away)" if angles[0] >= 90 else "  (TOWARD them)"))
         if rec.faults:
             lines.append(f"fault: {rec.faults[0]}"[:90])
         if rec.risk is not None:
             lines[2] += f"   R_e {rec.risk:.3f}"
         return lines
+
+    def _person_speed(self, name: str, t_s: float) -> float:
+        """Horizontal speed (m/s) of a person at the frame's time ``t_s``: a compliant body's
+        velocity, a scripted one's scripted velocity (kinematic bodies are placed, they carry
+        none)."""
+        sim = self.sim
+        hb = sim.humans[name]
+        if getattr(hb, "drive", None) is not None:
+            v, _ = sim._p.getBaseVelocity(hb.body, physicsClientId=sim.cid)
+            return float(math.hypot(v[0], v[1]))
+        vel = hb.velocity_at(t_s) if hasattr(hb, "velocity_at") else (0.0, 0.0)
+        return float(math.hypot(vel[0], vel[1]))
 
     def _nearest_person(self) -> str:
         """The name of the person nearest the arm (or what it holds) in the scene as drawn."""

@@ -22,6 +22,7 @@ from ._control import SEVERITY, SafePoseController, StopController, TaskControll
 from ._limits import out_of_range, safe_pose_problem
 from ._model import SimBlock
 from ._rules import near_human_speed_rule
+from ..runtime import Acknowledgement
 
 __all__ = ["GovernedArm", "CycleRecord", "SimResult", "run_sim", "check_sim_expectations"]
 
@@ -82,6 +83,8 @@ class CycleRecord:
     hazard_distance_true_m: float = 10.0
     dropped: tuple[str, ...] = ()
     task_stopped: str = ""
+    retreat_rate: float | None = None
+    replanned: str = ""
 
 
 @dataclass
@@ -108,8 +111,9 @@ class SimResult:
         sim_time_s, wall_time_s, realtime_factor: simulated time; wall-clock time of the run
             (setup, loop and recorded frames); simulated over wall-clock time of the loop alone.
         files: every path written to ``record_dir`` (frames, traces, ``summary.json``, ``plot.png``).
-        stop_speed_gain: peak joint speed while a stop controller ran over the largest joint
-            speed at its command (``None``: no stop, or the arm was at rest).
+        stop_speed_gain: peak joint speed while a stop controller ran, or the safe pose
+            decelerated from the task's speed, over the largest joint speed at its command
+            (``None``: no stop, or the arm was at rest).
         max_accel_ratio: peak |q̈_j| / rated q̈_max,j while a response controller drove the
             arm, contact cycles left out (``None``: no response).
         time_to_standstill_s: from the first stop command to every joint below 0.01 rad/s.
@@ -127,6 +131,17 @@ class SimResult:
         object_end_z_m: height of every object's centre at the end of the run.
         hazard_axis_angle_end_deg: at the end, the angle between the held object's declared
             ``hazard_axis`` and the direction to the nearest person (``None``: none held/declared).
+        max_human_speed_ratio: the largest measured horizontal speed of a person (from its true
+            position, cycle to cycle) over the fastest speed its waypoints script (``None``: no
+            moving person).
+        human_overshoot_m: the furthest a person went past its last waypoint, along the last
+            segment it walked, from the time it should have arrived (``None``: no moving person).
+        max_past_limit_mrad: the furthest any joint went past its rated position limit (mrad,
+            every physics step of the run; 0 = never outside).
+        acknowledgements: ``(t_s, accepted, message)`` for every operator acknowledgement.
+        task_resumes: how often the task resumed after a response.
+        min_response_s: the shortest time a response drove the arm before the task resumed
+            (``None``: the task never resumed).
         task_stopped: why the task stopped for good (the object it should carry was not in the
             gripper; the arm held in a stop 2), ``None`` when it did not.
         wrist_turn_rad: how far the retreat turned joint 7 from the spec's safe pose to point
@@ -163,6 +178,12 @@ class SimResult:
     wrist_turn_rad: float | None = None
     task_stopped: str | None = None
     object_end_z_m: dict[str, float] = field(default_factory=dict)
+    max_human_speed_ratio: float | None = None
+    human_overshoot_m: float | None = None
+    acknowledgements: tuple[tuple[float, bool, str], ...] = ()
+    max_past_limit_mrad: float = 0.0
+    task_resumes: int = 0
+    min_response_s: float | None = None
 
     @property
     def override(self) -> bool:
@@ -218,7 +239,8 @@ class GovernedArm:
                  safe_pose: Any = None, inputs: Mapping[str, Any] | None = None,
                  signal_filter=None, task_joint_speed_rad_s: float = 0.8,
                  stop_ramp_s: float = 0.25, standstill_tolerance_rad: float = 0.02,
-                 near_human: Any = "spec") -> None:
+                 near_human: Any = "spec", release_dwell_s: float = 1.0,
+                 acknowledge_clear_m: Any = "spec") -> None:
         self.sim = sim
         self.monitor = monitor
         sp = safe_pose if safe_pose is not None else getattr(getattr(monitor, "spec", None),
@@ -250,6 +272,15 @@ class GovernedArm:
             spec = getattr(monitor, "spec", None)
             near_human = near_human_speed_rule(spec) if spec is not None else None
         self.near_human = near_human
+        #: an acknowledgement is refused while the monitor's human_distance is below this (m);
+        #: default the spec's near-human zone (none without such a rule: then only "no rule
+        #: fires", which includes a separation rule)
+        self.acknowledge_clear_m = (near_human[0] if near_human else None) \
+            if acknowledge_clear_m == "spec" else acknowledge_clear_m
+        self.release_dwell_s = float(release_dwell_s)
+        self._clear_since: float | None = None   # monitor released (no override) since
+        self._acked = False                      # an accepted acknowledgement since the override
+        self._fed: dict[str, Any] = {}
         self.standstill_tolerance_rad = standstill_tolerance_rad
         self.inputs = dict(inputs or {})
         self.signal_filter = signal_filter
@@ -279,17 +310,25 @@ class GovernedArm:
             fed = self.signal_filter(t, fed)
         d = self.monitor.step(fed)
         self.last_decision = d
+        self._fed = fed
         resp = _response_name(d.response)
         if d.override:
+            self._clear_since = None
             if resp == "none":
                 resp = "safe_pose"
             if SEVERITY[resp] > SEVERITY[self.active]:
                 self._switch(resp)
         elif self.active != "none" and not self._must_finish():
-            q, _ = sim.joint_state()
-            self.task.resume(q)
-            self.controller = self.task
-            self.active = "none"
+            if self._clear_since is None:
+                self._clear_since = t
+            # an automatic release resumes the task only after the minimum dwell (the response
+            # carries on meanwhile); an operator's accepted acknowledgement resumes at once
+            if self._acked or t - self._clear_since >= self.release_dwell_s - 1e-9:
+                q, _ = sim.joint_state()
+                self.task.resume(q)
+                self.controller = self.task
+                self.active = "none"
+                self._acked = False
         stopped_now = ""
         if self.controller is self.task and self.task_stopped is None:
             missing = self.task.missing_object(sim)
@@ -299,17 +338,19 @@ class GovernedArm:
                 self.task_stopped = stopped_now = (f"{missing} not in the gripper at step "
                                                    f"{self.task.label} ({why}): stop 2, task not resumed")
                 self._switch("stop_2")
+        sp = self.controller if isinstance(self.controller, SafePoseController) else None
+        n_replans = len(sp.replans) if sp is not None else 0
         self.controller.command(sim)        # same cycle as the decision
         label = self.controller.name if self.controller is not self.task else "task"
         if label in SEVERITY and SEVERITY[label] > SEVERITY[self.active]:
             self.active = label  # a stop 2 escalated (standstill lost), a retreat that holds
-        decel = (isinstance(self.controller, SafePoseController) and self.controller.decelerating)
+        decel = sp is not None and sp.decelerating
         task_step = self.task.label
         sim.step()
         q, _ = sim.joint_state()
         # the retreat's own target: the spec's safe pose, the wrist turned for a held hazard
         target = (self.controller.q_safe if isinstance(self.controller, SafePoseController)
-                  else self.safe_joints)
+                  and self.controller.route != "turn" else self.safe_joints)
         return CycleRecord(
             cycle=cycle, monitor_cycle=int(d.cycle), t_s=t,
             signals={k: _num(v) for k, v in fed.items() if not isinstance(v, (list, tuple))},
@@ -323,7 +364,43 @@ class GovernedArm:
             contact_force_true_n=true_force, powered=bool(sim.powered),
             retreat_decelerating=decel, hazard_distance_true_m=true_hazard,
             dropped=tuple(f"{n} ({w})" for n, _, w in sim.dropped[n_dropped:]),
-            task_stopped=stopped_now)
+            task_stopped=stopped_now,
+            retreat_rate=(round(sp.rate, 4) if sp is not None and sp.holding is None
+                          and not decel else None),
+            replanned="; ".join(w for _, w in sp.replans[n_replans:]) if sp is not None else "")
+
+    def acknowledge(self) -> Acknowledgement:
+        """An operator's acknowledgement (a manual reset), checked before the monitor sees it.
+
+        Refused, and not remembered, while the last cycle's decision had a rule firing or a
+        fault, or while the monitor's ``human_distance`` reading is missing or below
+        ``acknowledge_clear_m`` (a person inside the protective zone; the spec's near-human
+        zone by default). Otherwise :meth:`Monitor.acknowledge` decides (it releases the
+        manual latches whose condition has held). ISO 13849-1:2015 5.2.2 (manual reset: the
+        stop condition is kept until safe conditions for restarting exist).
+        """
+        d = self.last_decision
+        why = ""
+        if d is None:
+            why = "no cycle judged yet"
+        elif d.violations:
+            why = "rules still fire: " + ", ".join(d.violations)
+        elif d.faults:
+            why = f"a fault is reported: {d.faults[0]}"
+        elif self.acknowledge_clear_m is not None:
+            v = _num(self._fed.get("human_distance", math.nan))
+            if math.isnan(v):
+                why = "no human_distance reading"
+            elif v < self.acknowledge_clear_m:
+                why = (f"a person is {v:.2f} m away, inside the {self.acknowledge_clear_m:g} m "
+                       "protective zone")
+        if why:
+            return Acknowledgement(False, (), "refused: " + why)
+        a = self.monitor.acknowledge() if hasattr(self.monitor, "acknowledge") else \
+            Acknowledgement(False, (), "the monitor takes no acknowledgement")
+        if a.released:
+            self._acked = True
+        return a
 
     def _must_finish(self) -> bool:
         if self.task_stopped is not None:
@@ -338,7 +415,8 @@ class GovernedArm:
         q, qd = self.sim.joint_state()
         if resp == "safe_pose":
             self.controller = SafePoseController(q, self.safe_joints, self.safe_speed,
-                                                 near_human=self.near_human)
+                                                 near_human=self.near_human,
+                                                 path_back=self.task.path_back())
         else:
             self.controller = StopController(int(resp[-1]), q, qd, self.stop_ramp_s,
                                              standstill_tol_rad=self.standstill_tolerance_rad)
@@ -364,6 +442,40 @@ def _collect(res: SimResult, rec: CycleRecord, near_m: float, dt: float) -> None
         if not rec.retreat_decelerating and d < near_m:
             res.retreat_max_link_speed_near_human_m_s = max(
                 res.retreat_max_link_speed_near_human_m_s or 0.0, rec.link_speed_max_m_s)
+
+
+class _PeopleWatch:
+    """How honestly the people followed their scripts: measured speed (true positions, cycle
+    to cycle) over the script's fastest, and overshoot past the last waypoint."""
+
+    def __init__(self, sim: ArmSim) -> None:
+        self.sim = sim
+        self.last = sim.human_xy()
+        self.ratio: float | None = None
+        self.over: float | None = None
+        self.moving = {n: float(np.max(hb.speeds())) for n, hb in sim.humans.items()
+                       if hb.speeds().size and float(np.max(hb.speeds())) > 0}
+
+    def observe(self) -> None:
+        sim = self.sim
+        now = sim.human_xy()
+        for n, vmax in self.moving.items():
+            v = float(np.linalg.norm(now[n] - self.last[n])) / sim.dt
+            self.ratio = max(self.ratio or 0.0, v / vmax)
+            hb = sim.humans[n]
+            sp = hb.speeds()
+            k = int(np.flatnonzero(sp > 0)[-1])
+            u = hb.xy[k + 1] - hb.xy[k]
+            u = u / float(np.linalg.norm(u))
+            if sim.time_s >= hb.times[k + 1] - 1e-9:
+                self.over = max(self.over or 0.0, float(np.dot(now[n] - hb.xy[k + 1], u)))
+            elif self.over is None:
+                self.over = 0.0
+        self.last = now
+
+    def result(self) -> tuple[float | None, float | None]:
+        return (None if self.ratio is None else round(self.ratio, 4),
+                None if self.over is None else round(self.over, 4))
 
 
 def _num(v: Any) -> float:
@@ -473,7 +585,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
                           signal_filter=_signal_filter(block),
                           task_joint_speed_rad_s=block.task_joint_speed_rad_s,
                           stop_ramp_s=block.stop_ramp_s,
-                          standstill_tolerance_rad=block.standstill_tolerance_rad)
+                          standstill_tolerance_rad=block.standstill_tolerance_rad,
+                          release_dwell_s=block.release_dwell_s)
         if record_dir is not None:
             from ._record import Recorder
             recorder = Recorder(record_dir, sim, spec=getattr(monitor, "spec", None), block=block,
@@ -491,19 +604,38 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         loop0 = time.perf_counter()
         rec_s0 = recorder.seconds if recorder else 0.0
         stop_v0: float | None = None
+        sp_v0: float | None = None
         t_stop: float | None = None
         near = block.expect.near_human_m
         acks = sorted(block.acknowledge_at_s)
+        people = _PeopleWatch(sim)
+        ack_log: list[tuple[float, bool, str]] = []
+        resp_since: float | None = None
         for _ in range(n_cycles):
             while acks and sim.time_s >= acks[0] - 1e-9:  # the operator's acknowledgement
                 acks.pop(0)
-                if hasattr(monitor, "acknowledge"):
-                    monitor.acknowledge()
+                a = arm.acknowledge()
+                ack_log.append((round(sim.time_s, 6), bool(a.released), a.message))
+            prev_ctrl = res.trace[-1].controller if res.trace else "task"
             rec = arm.step()
+            if rec.controller != "task" and prev_ctrl == "task":
+                resp_since = rec.t_s
+            elif rec.controller == "task" and prev_ctrl != "task" and resp_since is not None:
+                res.task_resumes += 1
+                dur = round(rec.t_s - resp_since, 6)
+                res.min_response_s = dur if res.min_response_s is None else min(res.min_response_s, dur)
+            people.observe()
             res.trace.append(rec)
             if recorder:
                 recorder.observe(rec)  # events and their frames (time excluded from the loop)
             _collect(res, rec, near, sim.dt)
+            if rec.controller == "safe_pose" and rec.retreat_decelerating:
+                # the safe pose's deceleration is a controlled stop too: the speed never rises
+                if sp_v0 is None:
+                    sp_v0 = rec.joint_speed_start_rad_s
+                if sp_v0 > 0.05:
+                    res.stop_speed_gain = max(res.stop_speed_gain or 0.0,
+                                              rec.joint_speed_max_rad_s / sp_v0)
             if rec.controller.startswith("stop_"):
                 if t_stop is None:
                     t_stop, stop_v0 = rec.t_s, rec.joint_speed_start_rad_s
@@ -564,6 +696,9 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         res.hazard_axis_angle_end_deg = round(ang[0], 2) if ang else None
         res.wrist_turn_rad = round(sp.wrist_turn_rad, 4) if sp is not None else None
         res.object_end_z_m = {n: round(z, 4) for n, z in sim.object_z().items()}
+        res.max_human_speed_ratio, res.human_overshoot_m = people.result()
+        res.acknowledgements = tuple(ack_log)
+        res.max_past_limit_mrad = round(1000.0 * sim.max_past_limit_rad, 4)
         res.fired = tuple(fired)
         res.sim_time_s = round(sim.time_s, 6)
         res.realtime_factor = res.sim_time_s / loop_wall if loop_wall > 0 else math.inf
@@ -661,6 +796,28 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
             out.append(f"sim: at the end the held object's hazard axis is {a:.1f} deg from the "
                        f"direction to the nearest person, expected at least "
                        f"{ex.min_hazard_axis_angle_deg:g} deg (pointed away)")
+    if ex.max_human_speed_ratio is not None and r.max_human_speed_ratio is not None \
+            and r.max_human_speed_ratio > ex.max_human_speed_ratio + 1e-9:
+        out.append(f"sim: a person moved at {r.max_human_speed_ratio:.2f} x the fastest speed its "
+                   f"waypoints script, expected at most {ex.max_human_speed_ratio:g} x")
+    if ex.max_human_overshoot_m is not None and r.human_overshoot_m is not None \
+            and r.human_overshoot_m > ex.max_human_overshoot_m + 1e-9:
+        out.append(f"sim: a person went {r.human_overshoot_m:.3f} m past its last waypoint, expected "
+                   f"at most {ex.max_human_overshoot_m:g} m")
+    if ex.max_past_limit_mrad is not None and r.max_past_limit_mrad > ex.max_past_limit_mrad + 1e-9:
+        out.append(f"sim: a joint went {r.max_past_limit_mrad:.2f} mrad past its rated position limit, "
+                   f"expected at most {ex.max_past_limit_mrad:g} mrad")
+    if ex.acknowledgements is not None:
+        got = tuple(a for _, a, _ in r.acknowledgements)
+        if got != tuple(ex.acknowledgements):
+            said = "; ".join(f"{t:g} s {'accepted' if a else 'refused'} ({m})"
+                             for t, a, m in r.acknowledgements) or "none"
+            out.append(f"sim: acknowledgements {[str(a).lower() for a in got]} ({said}), expected "
+                       f"{[str(a).lower() for a in ex.acknowledgements]}")
+    if ex.min_response_s is not None and r.min_response_s is not None \
+            and r.min_response_s < ex.min_response_s - 1e-9:
+        out.append(f"sim: a response lasted only {r.min_response_s:.3f} s before the task resumed "
+                   f"({r.task_resumes} resumptions), expected at least {ex.min_response_s:g} s")
     if ex.task_stopped_object_missing is not None and \
             (r.task_stopped is not None) != ex.task_stopped_object_missing:
         out.append(f"sim: task stopped for a missing object: {r.task_stopped or 'no'}; expected "

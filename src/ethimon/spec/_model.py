@@ -190,6 +190,9 @@ class EstimatorConfig(BaseModel):
         None, gt=0.0, le=100.0, description="softmax temperature replacing the model's own, e.g. fitted on "
         "your domain's validation rows with `ethimon evaluate --calibrate-on`")
     max_length: int | None = Field(None, ge=8, le=4096, description="token budget (default: the model's)")
+    backend: Literal["auto", "onnx", "torch"] = Field(
+        "auto", description="auto: ONNX Runtime when installed and the model has an ONNX form, else torch; "
+        "onnx: ONNX Runtime only (no torch in the process); torch: torch + transformers")
 
 
 class JudgeConfig(BaseModel):

@@ -79,7 +79,7 @@ from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TE
                           Name, Node, Num, Unary, comparison_margin, connective_margin, separation_distance,
                           walk)
 from ..spec import SEVERITY_ORDER, Response, Spec
-from ..compiler._risk_formula import release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
+from ..compiler._risk_formula import decimal_reading, release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
 from ..runtime import Decision, Fault
 # the monitor's own input rules (what counts as a number, a flag, a probability vector): the
 # reference must read inputs exactly as the monitor does, so it uses the same private helpers
@@ -146,6 +146,12 @@ class ReferenceMonitor:
             return Acknowledgement(False, waiting, "refused: " + "; ".join(
                 f"{k} still fails" if self.latches[k] == 0 else
                 f"{k} has held {self.latches[k]} of {rules[k][2]} cycles" for k in waiting))
+        if "confirm" in manual and self.last_task is None:  # a confirmation must name its text
+            manual.remove("confirm")
+            if not manual:
+                return Acknowledgement(False, ("confirm",), "refused: confirm needs the task_id input on the "
+                                       "cycle it confirms (a confirmation names the text it confirms: pass "
+                                       "the task text's hash as task_id)")
         if not manual:
             return Acknowledgement(False, (), "nothing awaits an acknowledgement" + (
                 " (the override is held by automatic releases)" if self.latches else ""))
@@ -432,13 +438,14 @@ class ReferenceMonitor:
         elif spec.risk.confirm_threshold is not None:
             task = signals.get("task_id")
             in_band = spec.risk.confirm_threshold <= r < tau
-            if self.confirmed is not None and (self.confirmed[0] != task or not in_band):
+            if self.confirmed is not None and (task is None or self.confirmed[0] != task or not in_band):
                 self.confirmed = None
             self.last_task = task
             judged_safe = judge is not None and jp is not None and jp < judge.safe_below
             if in_band and self.confirmed is None and not judged_safe:
                 violations.append("confirm")
-        below = Fraction(r) < release_bound(tau, spec.risk.release.hysteresis)[0]
+        # one reading of numbers: R_e as the decimal it prints as, against the exact τ − δ
+        below = decimal_reading(r) < release_bound(tau, spec.risk.release.hysteresis)[0]
         lsev, awaiting = self._decide(violations, False, below)
         if violations:
             return Decision(True, _BY_SEV[lsev], tuple(violations), margins, r, cycle, False, (), awaiting)

@@ -17,9 +17,9 @@ from ..spec._expr import Name, walk
 from ..spec import Response, Spec
 from .._robot import out_of_range, safe_pose_problem
 from ._policy import manual_rules, release_policy_warnings
-from ._encode import (DecisionTrace, Unrolled, decision_trace, lookback, real, release_below, rules_of,
-                      z3_value)
-from ._report import OK, PROVED, REFUTED, SKIPPED, UNKNOWN, WARNING, Counterexample, Finding
+from ._encode import (DecisionTrace, FloatUnrolled, Unrolled, decision_trace, lookback, real, release_below,
+                      rules_of, z3_value)
+from ._report import OK, PROVED, PROVED_REAL, REFUTED, SKIPPED, UNKNOWN, WARNING, Counterexample, Finding
 from ._tiers import base_spec, has_tiers, lint_confirm_band, tier_properties
 
 __all__ = ["Verifier", "BUDGET_NOTE"]
@@ -72,6 +72,7 @@ class Verifier:
         self._dt: DecisionTrace | None = None
         self._ds: z3.Solver | None = None
         self._ds_n = 0
+        self._hazard: dict[str, str] = {}
 
     # -- solver helpers ----------------------------------------------------------------
     def solve(self, *constraints, enc: Unrolled | None = None) -> tuple[str, z3.ModelRef | None, str]:
@@ -92,6 +93,19 @@ class Verifier:
             s.add(c)
         if enc is not None:
             s.add(*enc.constraints)
+        return self._outcome(s)
+
+    def solve_fp(self, *constraints, enc: Unrolled) -> tuple[str, z3.ModelRef | None, str]:
+        """:meth:`solve` for IEEE-754 (``FloatUnrolled``) problems: z3's QF_FP solver (bit-blasting),
+        which decides these in a second where the incremental core used for the reals gives up."""
+        ms = self.check_ms()
+        if ms <= 0:
+            return "unknown", None, "the run's budget is spent"
+        s = z3.SolverFor("QF_FP")
+        s.set("timeout", ms)
+        for c in constraints:
+            s.add(c)
+        s.add(*enc.constraints)
         return self._outcome(s)
 
     def _outcome(self, s: z3.Solver) -> tuple[str, z3.ModelRef | None, str]:
@@ -512,10 +526,66 @@ class Verifier:
                                    f"input at cycle {t}: the monitor stops the arm with a fault", counterexample=cex)
                 if st == "unknown":
                     return Finding("property", name, UNKNOWN, f"z3: {why}")
-            return Finding("property", name, PROVED,
-                           "no division by zero, sqrt of a negative or negative separation_distance() "
-                           "argument for any in-range input")
+            return self._defined_in_floats(ob, k)
         return self._timed(run)
+
+    def _arith(self, ob) -> bool:
+        """Whether ``ob`` computes anything (arithmetic or a function): else floats are the reals."""
+        from ..spec._expr import Binary, Call, Unary
+        return any((isinstance(n, Binary) and n.op in ("+", "-", "*", "/")) or
+                   (isinstance(n, Unary) and n.op == "-") or
+                   (isinstance(n, Call) and n.func in ("sqrt", "abs", "min", "max", "separation_distance"))
+                   for root in (ob.when, ob.require) if root is not None for n in walk(root))
+
+    def _defined_in_floats(self, ob, k: int) -> Finding:
+        """The real arithmetic found no raise: check again in the monitor's doubles (IEEE-754), where
+        ``a * b`` of in-range non-zero inputs can be 0 and ``x / (a * b)`` raise."""
+        name = f"{ob.id}.defined"
+        what = "no division by zero, sqrt of a negative or negative separation_distance() argument for any in-range input"
+        from ..spec._expr import Binary, Call
+        if not any((isinstance(n, Binary) and n.op == "/") or (isinstance(n, Call) and n.func in (
+                "sqrt", "separation_distance")) for root in (ob.when, ob.require) if root is not None
+                for n in walk(root)):
+            return Finding("property", name, PROVED, what + " (nothing that can raise: no /, sqrt or "
+                           "separation_distance)")
+        from ._floats import defined_in_doubles
+        if defined_in_doubles(self.plan, ob):
+            return Finding("property", name, PROVED, what + " (in doubles too: every divisor's real value stays "
+                           "farther from 0 than rounding can move it, every sqrt/separation_distance argument "
+                           "is >= 0 without subtraction, nothing overflows)")
+        fenc = FloatUnrolled(self.plan, k, prefix=f"{ob.id}.f.")
+        for t in range(k):
+            st, model, why = self.solve_fp(z3.Not(fenc.obligation_defined(ob, t)),
+                                           *[fenc.obligation_defined(ob, j) for j in range(t)], enc=fenc)
+            if st == "sat":
+                cex = self.counterexample(name, model, fenc, t, {"fault": False},
+                                          lambda d: any(f.kind == "internal" for f in d.faults))
+                if cex.confirmed:
+                    return Finding("property", name, REFUTED,
+                                   f"evaluation fails in floating point on in-range input at cycle {t} (a "
+                                   f"float division by zero, e.g. a product that underflows to 0; in real "
+                                   f"arithmetic it would not): the monitor stops the arm with a fault",
+                                   counterexample=cex)
+                return Finding("property", name, PROVED_REAL,
+                               what + " in real arithmetic; the IEEE-754 model finds a raise that the replay "
+                               "did not confirm", counterexample=cex)
+            if st == "unknown":
+                return Finding("property", name, PROVED_REAL,
+                               what + f" in real arithmetic; the IEEE-754 check was not decided (z3: {why})")
+        return Finding("property", name, PROVED, what + " (in IEEE-754 doubles, as the monitor computes)")
+
+    def float_hazard(self, ob) -> str:
+        """Where the monitor's doubles can leave the reals on ``ob`` ('' if nowhere): an overflow to
+        ±inf, or an underflow that a comparison or product can see (:func:`._floats.float_hazards`),
+        for inputs in their declared ranges."""
+        got = self._hazard.get(ob.id)
+        if got is None:
+            from ._floats import float_hazards
+            hz = float_hazards(self.plan, ob)
+            ranges = ", ".join(f"{s.name} in [{s.lo:g}, {s.hi:g}]" for s in self.plan.signals if s.kind == "number")
+            got = self._hazard[ob.id] = (f"floats can differ from the reals: {'; '.join(hz)} (inputs {ranges})"
+                                         if hz else "")
+        return got
 
     def prop_response(self, ob) -> Finding:
         n = ob.within_cycles or 0
@@ -536,11 +606,19 @@ class Verifier:
             return z3.And(cond, z3.Not(z3.And(dt.override[t], dt.response[t] >= sev, dt.violated[t][i])))
         what = "when & not require" if ob.when is not None else "not require"
         bound = f" for {n + 1} cycles" if n else ""
-        return self._timed(lambda: self._decision_check(
+
+        def in_floats(f: Finding) -> Finding:
+            # the premise is the condition as written (real numbers); the monitor judges it in doubles
+            if f.status == PROVED:
+                hazard = self.float_hazard(ob)
+                if hazard:
+                    f.status, f.message = PROVED_REAL, f"{f.message}; {hazard}"
+            return f
+        return self._timed(lambda: in_floats(self._decision_check(
             name, bad, lambda t: {"final_override": True, "fired": [ob.id]},
             lambda d, t: not (d.override and d.response.severity >= sev and ob.id in d.violations),
             f"{what}{bound} => violation and override ({ob.response.value} or more)"
-            + (f" by {n} cycles after the trigger" if n else " in the same cycle"), only=i))
+            + (f" by {n} cycles after the trigger" if n else " in the same cycle"), only=i)))
 
     def prop_resume_explained(self) -> Finding:
         def bad(dt, t):

@@ -26,14 +26,16 @@ types that ``ethimon.compiler._closures.build_machine`` compiles:
   cycle is a fresh unconstrained value (any history), and an unbounded
   ``since`` carries an unknown bit in. Such a trace over-approximates every
   run, so "no such window" is a proof about all runs of any length;
-* the release bound ``τ − δ`` is the exact rational of the spec's decimals
-  (:func:`release_below`), not the float ``0.27 - 0.05 == 0.22000000000000003``;
+* the release bound ``τ − δ`` is the exact rational of the spec's decimals and R_e
+  is read as the decimal it prints as (:func:`release_below`: ``R < cut``), not the
+  float ``0.27 - 0.05 == 0.22000000000000003`` nor R_e's binary value;
 * :func:`decision_trace` encodes the decision logic of ``Monitor.step``
   (severity, latch, hysteresis release) from a symbolic initial latch state.
 """
 
 from __future__ import annotations
 
+import struct
 from dataclasses import dataclass, field
 from fractions import Fraction
 
@@ -44,7 +46,7 @@ from ..compiler._risk_formula import release_bound, risk_range
 from ..spec._expr import BINARY_OPS, Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance, walk
 from ..spec import Response
 
-__all__ = ["Unrolled", "DecisionTrace", "RuleInfo", "decision_trace", "rules_of", "lookback", "real", "release_below",
+__all__ = ["Unrolled", "FloatUnrolled", "float_value", "DecisionTrace", "RuleInfo", "decision_trace", "rules_of", "lookback", "real", "release_below",
            "risk_input_range", "z3_value"]
 
 
@@ -55,13 +57,17 @@ def real(x: float) -> z3.ArithRef:
 
 
 def release_below(spec) -> z3.ArithRef:
-    """The release bound ``τ − δ`` of ``spec`` as an exact z3 rational (0.27 − 0.05 is 11/50)."""
-    exact, _ = release_bound(spec.risk.threshold, spec.risk.release.hysteresis)
-    return z3.Q(exact.numerator, exact.denominator)
+    """The release test ``R_e < τ − δ`` as the monitor makes it: ``R < cut``, the float of
+    :func:`~ethimon.compiler._risk_formula.release_bound` (R_e read as the decimal it prints as,
+    against the exact τ − δ of the spec's decimals; for every float R_e the two tests agree)."""
+    _, cut = release_bound(spec.risk.threshold, spec.risk.release.hysteresis)
+    return real(cut)
 
 
 def z3_value(model: z3.ModelRef, expr) -> float | bool:
     """A concrete Python value of ``expr`` under ``model`` (reals become floats)."""
+    if z3.is_fp(expr):
+        return float_value(model, expr)
     v = model.eval(expr, model_completion=True)
     if z3.is_bool(v):
         return bool(z3.is_true(v))
@@ -252,17 +258,30 @@ class Unrolled:
             if op == "or":
                 return z3.And(da, z3.Implies(z3.Not(self.ev(node.left, t)), db))
             if op == "/":
-                return z3.And(da, db, self.ev(node.right, t) != 0)
+                return z3.And(da, db, self._nonzero(self.ev(node.right, t)))
             return z3.And(da, db)
         if isinstance(node, Call):
             if node.func in ("prev", "held", "once", "since"):
                 return z3.BoolVal(True)
             ds = [self.defined(a, t) for a in node.args]
             if node.func == "sqrt":
-                ds.append(self.ev(node.args[0], t) >= 0)
+                ds.append(self._sqrt_ok(self.ev(node.args[0], t)))
             elif node.func == "separation_distance":  # a negative argument raises
-                ds += [self.ev(a, t) >= 0 for a in node.args]
+                ds += [self._nonneg(self.ev(a, t)) for a in node.args]
             return z3.And(ds)
+
+    # what raises, in this encoding's arithmetic (reals here; IEEE doubles in FloatUnrolled)
+    @staticmethod
+    def _nonzero(v):
+        return v != 0
+
+    @staticmethod
+    def _nonneg(v):
+        return v >= 0
+
+    @staticmethod
+    def _sqrt_ok(v):
+        return v >= 0
         raise TypeError(f"cannot encode {node!r}")  # pragma: no cover
 
     def temporal_nodes(self, root: Node) -> list[Call]:
@@ -333,6 +352,130 @@ class Unrolled:
         for j in range(0, t - n + 1):
             terms.append(z3.And([when(j)] + [z3.Not(self.ev(ob.require, m)) for m in range(j, t + 1)]))
         return z3.Or(terms) if terms else z3.BoolVal(False)
+
+
+F64 = z3.Float64()
+_RNE = z3.RNE()
+
+
+def float_value(model: z3.ModelRef, expr) -> float:
+    """The Python float an IEEE-754 double term ``expr`` has under ``model`` (bit for bit)."""
+    bits = model.eval(z3.fpToIEEEBV(expr), model_completion=True).as_long()
+    return struct.unpack("<d", struct.pack("<Q", bits))[0]
+
+
+def _fpv(x: float) -> z3.FPRef:
+    return z3.FPVal(float(x), F64)
+
+
+class _F:
+    """A double term with the arithmetic of Python floats (round to nearest even), for formulas
+    written with ``+`` and ``*`` (``separation_distance``)."""
+
+    __slots__ = ("e",)
+
+    def __init__(self, e) -> None:
+        self.e = e
+
+    def __add__(self, o: "_F") -> "_F":
+        return _F(z3.fpAdd(_RNE, self.e, o.e))
+
+    def __mul__(self, o: "_F") -> "_F":
+        return _F(z3.fpMul(_RNE, self.e, o.e))
+
+
+class FloatUnrolled(Unrolled):
+    """:class:`Unrolled` in the monitor's own arithmetic: every number an IEEE-754 double
+    (z3 ``Float64``, round to nearest even, as Python floats compute), so that division by a
+    float zero (``1/(a*b)`` with ``a = b = 1e-200``: the product underflows to 0), overflow to
+    infinity and NaN are modelled. Signals are finite doubles in their declared range, R_e a
+    finite double in the range the monitor accepts. Used for what the reals cannot show: whether
+    evaluation raises (:meth:`obligation_defined`); ``free_history`` is not supported.
+    """
+
+    def __init__(self, plan: Plan, k: int, prefix: str = "") -> None:
+        self.plan = plan
+        self.k = k
+        self.prefix = prefix
+        self.free_history = False
+        self._lb: dict[int, int] = {}
+        self.sig: list[dict[str, z3.ExprRef]] = []
+        self.R: list = []
+        self.domain: list[z3.BoolRef] = []
+        self._ev: dict[tuple[int, int], z3.ExprRef] = {}
+        self._df: dict[tuple[int, int], z3.BoolRef] = {}
+        self._obdf: dict[tuple[int, int], z3.BoolRef] = {}
+        self._alldf: list[z3.BoolRef] = []
+        self._aux: list[z3.BoolRef] = []
+        rlo, rhi = risk_input_range(plan)
+
+        def bounded(v, lo, hi):
+            c = [z3.Not(z3.fpIsNaN(v)), z3.Not(z3.fpIsInf(v))]
+            if lo > -1.8e308:
+                c.append(z3.fpGEQ(v, _fpv(lo)))
+            if hi < 1.8e308:
+                c.append(z3.fpLEQ(v, _fpv(hi)))
+            return c
+        for t in range(k):
+            row: dict[str, z3.ExprRef] = {}
+            for sg in plan.signals:
+                name = f"{prefix}{sg.name}@{t}"
+                if sg.kind == "bool":
+                    row[sg.name] = z3.Bool(name)
+                else:
+                    v = z3.FP(name, F64)
+                    row[sg.name] = v
+                    self.domain += bounded(v, sg.lo, sg.hi)
+            self.sig.append(row)
+            r = z3.FP(f"{prefix}R_e@{t}", F64)
+            self.R.append(r)
+            self.domain += bounded(r, rlo, rhi)
+
+    def _ev_new(self, node: Node, t: int) -> z3.ExprRef:
+        plan = self.plan
+        if isinstance(node, Num):
+            return _fpv(node.value)
+        if isinstance(node, Name) and node.id in plan.constants:
+            return _fpv(plan.constants[node.id])
+        if isinstance(node, Unary) and node.op != "not":
+            return z3.fpNeg(self.ev(node.operand, t))
+        if isinstance(node, Binary) and node.op not in ("and", "or", "implies"):
+            a, b = self.ev(node.left, t), self.ev(node.right, t)
+            op = node.op
+            if op == "+":
+                return z3.fpAdd(_RNE, a, b)
+            if op == "-":
+                return z3.fpSub(_RNE, a, b)
+            if op == "*":
+                return z3.fpMul(_RNE, a, b)
+            if op == "/":
+                return z3.fpDiv(_RNE, a, b)
+            if op == "==":
+                return z3.fpEQ(a, b)  # IEEE: -0.0 == 0.0, NaN == NaN is false (z3's = is not)
+            if op == "!=":
+                return z3.Not(z3.fpEQ(a, b))
+            return BINARY_OPS[op][1](a, b)  # <, <=, >, >=: z3's fp.lt & co., false on NaN as in Python
+        if isinstance(node, Call):
+            f, args = node.func, node.args
+            if f == "abs":
+                return z3.fpAbs(self.ev(args[0], t))
+            if f == "sqrt":
+                return z3.fpSqrt(_RNE, self.ev(args[0], t))
+            if f == "separation_distance":
+                return separation_distance(*(_F(self.ev(a, t)) for a in args)).e
+        return super()._ev_new(node, t)
+
+    @staticmethod
+    def _nonzero(v):
+        return z3.Not(z3.fpIsZero(v))  # x / -0.0 raises ZeroDivisionError too
+
+    @staticmethod
+    def _nonneg(v):
+        return z3.fpGEQ(v, _fpv(0.0))  # false on NaN: a NaN argument is an evaluation error too
+
+    @staticmethod
+    def _sqrt_ok(v):
+        return z3.Not(z3.fpLT(v, _fpv(0.0)))  # math.sqrt(nan) is nan, math.sqrt(-1e-300) raises
 
 
 @dataclass

@@ -8,9 +8,12 @@ from dataclasses import dataclass, field
 from typing import Any
 
 __all__ = ["Counterexample", "Finding", "SpecReport", "format_table", "reports_to_json", "exit_code",
-           "PROVED", "REFUTED", "UNKNOWN", "WARNING", "OK", "SKIPPED"]
+           "PROVED", "PROVED_REAL", "REFUTED", "UNKNOWN", "WARNING", "OK", "SKIPPED"]
 
 PROVED, REFUTED, UNKNOWN = "proved", "refuted", "unknown"
+#: proved over the reals, but the monitor's doubles can leave the reals on this spec's in-range inputs
+#: (an overflow to inf, an underflow to 0 or a subnormal): the message names the term and an input
+PROVED_REAL = "proved (real arithmetic)"
 WARNING, OK, SKIPPED = "warning", "ok", "skipped"
 
 
@@ -49,7 +52,8 @@ class Finding:
     Attributes:
         kind: ``"property"`` or ``"lint"``.
         name: e.g. ``risk.override``, ``separation.response``, ``lint.vacuous``.
-        status: ``proved``, ``refuted``, ``unknown``, ``skipped`` (properties) or ``ok``, ``warning`` (lints).
+        status: ``proved``, ``proved (real arithmetic)``, ``refuted``, ``unknown``, ``skipped`` (properties)
+            or ``ok``, ``warning`` (lints).
         message: one line saying what was shown.
         seconds: solver wall time.
         counterexample: for a refuted property, the replayed counterexample.
@@ -110,7 +114,9 @@ class SpecReport:
     def counts(self) -> dict[str, int]:
         """How many properties were proved, refuted, left unknown; lint warnings; checks the budget cut."""
         props = [f for f in self.findings if f.kind == "property"]
-        return {"proved": sum(f.status == PROVED for f in props), "refuted": sum(f.status == REFUTED for f in props),
+        return {"proved": sum(f.status == PROVED for f in props),
+                "proved_real_arithmetic": sum(f.status == PROVED_REAL for f in props),
+                "refuted": sum(f.status == REFUTED for f in props),
                 "unknown": sum(f.status == UNKNOWN for f in props),
                 "lint_warnings": sum(f.status == WARNING for f in self.findings),
                 "lint_unknown": sum(f.kind == "lint" and f.status == UNKNOWN for f in self.findings),
