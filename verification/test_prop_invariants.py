@@ -131,6 +131,9 @@ def check_trace(spec, trace) -> None:
     rules = {ob.id: spec.obligation_release(ob) for ob in spec.obligations}
     rules["risk"] = (r.release.mode, r.release.hold_cycles)
     rules["fault"] = spec.fault_release()
+    # the confirm band's hold: no count; it lasts while R_e stays in [τ_confirm, τ) (or until a
+    # confirmation that names the task), so it ends by itself when R_e leaves the band
+    rules["confirm"] = ("auto", 0)
     fired_since: set[str] = set()  # rules fired since the override last ended (or was cleared)
     streak: dict[str, int] = {}  # per fired rule: consecutive cycles its release condition held
     prev_override = False

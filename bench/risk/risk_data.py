@@ -15,13 +15,16 @@
 from __future__ import annotations
 
 import json
+import os
 import re
 import zlib
+from pathlib import Path
 
 from bench import ROOT
 from ethimon.risk._data import LabelledRows, concat_rows, load_labelled_csv, stratified_split
 
-SHARED = ROOT.parent / "shared" / "data"
+#: ETHICS + SafeAgentBench; ``ETHIMON_SHARED_DATA`` overrides (a git worktree is not beside ``shared/``)
+SHARED = Path(os.environ.get("ETHIMON_SHARED_DATA") or ROOT.parent / "shared" / "data")
 CM = SHARED / "ethics" / "commonsense" / "cm_test.csv"
 SAB = SHARED / "safeagentbench"
 PAIRS = ROOT / "bench" / "risk" / "data" / "robot_pairs.csv"
@@ -143,3 +146,29 @@ def pair_index(rows: LabelledRows, offset: int = 0) -> list[tuple[int, int]]:
         if pid:
             by.setdefault(pid, {})[y] = i + offset
     return [(d[1], d[0]) for d in by.values() if len(d) == 2]
+
+
+# ---------------------------------------------------------------- independent writers (issue 19)
+WRITERS = ROOT / "data" / "writers"
+
+
+def writer_ids() -> list[str]:
+    """Writers whose files are complete (test.csv, its sha256 and train.csv), in order."""
+    return sorted(d.name for d in WRITERS.glob("w[0-9][0-9]")
+                  if all((d / f).is_file() for f in ("test.csv", "test.csv.sha256", "train.csv")))
+
+
+def writers_train(ids: list[str]) -> LabelledRows:
+    """The ``train.csv`` rows of these writers (training, or validation for a run not trained on them)."""
+    return concat_rows([load_labelled_csv(WRITERS / w / "train.csv") for w in ids])
+
+
+def writer_test(w: str) -> LabelledRows:
+    """A writer's frozen test slice, refused unless its sha256 matches: only ever reported on."""
+    import hashlib
+    p = WRITERS / w / "test.csv"
+    want = (WRITERS / w / "test.csv.sha256").read_text(encoding="utf-8").split()[0]
+    got = hashlib.sha256(p.read_bytes()).hexdigest()
+    if got != want:
+        raise SystemExit(f"{p}: sha256 {got} does not match the frozen {want}")
+    return load_labelled_csv(p)

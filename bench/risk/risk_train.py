@@ -48,6 +48,11 @@ def main() -> None:
     ap.add_argument("--pair-weight", type=float, default=0.0, help="weight of the minimal-pair margin loss")
     ap.add_argument("--pair-margin", type=float, default=1.0)
     ap.add_argument("--pairs-per-step", type=int, default=8)
+    ap.add_argument("--full", action="store_true", help="full fine-tuning (every weight matrix of the layers) at --lr")
+    ap.add_argument("--writers", default="", help="comma list of writer ids (data/writers/wNN) whose train.csv "
+                    "rows are added to training (their test.csv never)")
+    ap.add_argument("--val-writers", default="", help="comma list of writers NOT trained on whose train.csv rows "
+                    "are the validation rows (early stopping, temperature) instead of the corpus split")
     a = ap.parse_args()
     import torch
     torch.set_num_threads(2)
@@ -73,6 +78,16 @@ def main() -> None:
         n_tr, n_va = D.natural_train_splits()
         pairs = D.pair_index(n_tr, offset=sum(len(p) for p in parts_tr))
         parts_tr.append(n_tr); parts_va.append(n_va); w += [a.natural_weight] * len(n_tr)
+    wids = [w.strip() for w in a.writers.split(",") if w.strip()]
+    vids = [w.strip() for w in a.val_writers.split(",") if w.strip()]
+    if set(wids) & set(vids):
+        raise SystemExit(f"--writers and --val-writers overlap: {sorted(set(wids) & set(vids))}")
+    if wids:
+        wr = D.writers_train(wids)
+        pairs += D.pair_index(wr, offset=sum(len(p) for p in parts_tr))
+        parts_tr.append(wr); w += [a.natural_weight] * len(wr)
+    if vids:
+        parts_va = [D.writers_train(vids)]
     tr, va = D.concat(*parts_tr), D.concat(*parts_va)
     if a.limit:
         tr, va, w = tr.subset(list(range(a.limit))), va.subset(list(range(a.limit))), w[:a.limit]
@@ -91,8 +106,8 @@ def main() -> None:
                    num_threads=2, progress=False,
                    log=lambda m: print(m, flush=True), aux_tasks=aux, aux_weight=a.aux_weight,
                    init_from=a.init_from, pairs=pairs, pair_weight=a.pair_weight, pair_margin=a.pair_margin,
-                   pairs_per_step=a.pairs_per_step,
-                   extra_meta={"ethics_only": a.ethics_only, "robot_only": a.robot_only,
+                   pairs_per_step=a.pairs_per_step, full=a.full,
+                   extra_meta={"writers": wids, "val_writers": vids, "ethics_only": a.ethics_only, "robot_only": a.robot_only,
                                "robot_weight": a.robot_weight, "aux": a.aux, "aux_n": a.aux_n,
                                "natural": a.natural, "natural_weight": a.natural_weight, "ethics_n": a.ethics_n,
                                "no_templated": a.no_templated})

@@ -48,6 +48,12 @@ def add_risk_parsers(subparsers) -> None:
     p.add_argument("--fail-on-flag", action="store_true",
                    help="exit 1 unless the tiered outcome is execute (R_e >= tau, a judge's stop, a confirm hold)")
     p.add_argument("--no-judge", action="store_true", help="do not ask the spec's risk.judge (status not_configured)")
+    p.add_argument("--explain", action="store_true",
+                   help="say which step (of a plan or code block) or which instruction drove the score, "
+                        "every view's p_unsafe, and the words that moved it most (leave-one-word-out)")
+    p.add_argument("--top-words", type=int, default=5, metavar="N", help="words --explain lists (default 5)")
+    p.add_argument("--flat", action="store_true",
+                   help="score the whole text only (the reading before issue 19: no steps, no instruction pair)")
     _threads_arg(p, "default 1: one sentence is too small to split")
     _backend_arg(p, None, "default: the spec's risk.estimator.backend, else auto: ONNX Runtime (no torch) "
                           "when installed and the model has an ONNX form")
@@ -82,6 +88,10 @@ def add_risk_parsers(subparsers) -> None:
     t.add_argument("--init-seed", type=int, default=None,
                    help="seed of the starting LoRA factors and heads only; runs sharing it can be "
                         "averaged with 'ethimon average'")
+    t.add_argument("--full", action="store_true",
+                   help="full fine-tuning: train every weight matrix of the encoder's layers (at --lr x "
+                        "0.06) instead of LoRA factors; saved in the same adapter format, full rank "
+                        "(MiniLM-L6: about 32 MB instead of 1.3 MB)")
     _threads_arg(t, "default: 2, or 1 when the cores are busy")
     t.set_defaults(func=cmd_train)
 
@@ -169,7 +179,7 @@ def _threads(args: argparse.Namespace, rows: int) -> int:
 
 
 def _load(model: str | None, precision: str | None, max_length: int | None = None, spec=None, *,
-          threads: int | None = None, backend: str | None = None):
+          threads: int | None = None, backend: str | None = None, reading: str = "steps"):
     """The estimator: command-line options win over the spec's ``risk.estimator`` block.
 
     ``precision``: ``"int8"``, ``"fp32"`` or ``None`` (the spec's choice, fp32 without one).
@@ -180,9 +190,9 @@ def _load(model: str | None, precision: str | None, max_length: int | None = Non
         raise ModelError(f"model directory {model!r} does not exist")
     if spec is not None:  # precision None keeps the spec's choice; "fp32" overrides a spec's int8
         return load_estimator_for(spec, model_dir=model, quantize=precision, max_length=max_length,
-                                  num_threads=threads, backend=backend)
+                                  num_threads=threads, backend=backend, reading=reading)
     return load_estimator(model, quantize=precision, max_length=max_length, num_threads=threads,
-                          backend=backend or "auto")
+                          backend=backend or "auto", reading=reading)
 
 
 def cmd_risk(args: argparse.Namespace) -> int:
@@ -190,23 +200,31 @@ def cmd_risk(args: argparse.Namespace) -> int:
         return err("empty text")
     try:
         cfg = risk_config(args.spec)
-        est = _load(args.model, args.precision, spec=cfg["spec"], threads=_threads(args, 1), backend=args.backend)
+        if args.top_words < 0:
+            raise ValueError(f"--top-words {args.top_words} must be >= 0")
+        est = _load(args.model, args.precision, spec=cfg["spec"], threads=_threads(args, 1), backend=args.backend,
+                    reading="flat" if args.flat else "steps")
         r = est.estimate(args.text, cfg["alpha"], cfg["beta"], cfg["gamma"], cfg["variance"])
+        why = est.explain(args.text, args.top_words) if args.explain else None
         jr, tiers = _judge_and_outcome(cfg["spec"], args.text, r.risk, cfg["threshold"], args.no_judge)
     except (EthimonError, ValueError, OSError) as exc:
         return err(str(exc))
     flagged = r.risk >= cfg["threshold"]
     outcome = tiers["outcome"]
     if args.json:
-        emit_json("-", {"text": args.text, "p": list(r.p), "p_unsafe": r.p_unsafe, "risk": r.risk,
-                        "tau": cfg["threshold"], "flagged": flagged, "model_id": est.model_id,
-                        "backend": getattr(est, "backend", None),
-                        "temperature": est.temperature,
-                        "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")},
-                        "confirm_threshold": tiers["confirm_threshold"],
-                        "judge": {"p_unsafe": jr.p_unsafe, "latency_s": round(jr.latency_s, 6), "status": jr.status,
-                                  "model": jr.model or None, "verdict": jr.verdict, "detail": jr.detail},
-                        "outcome": outcome})
+        doc = {"text": args.text, "p": list(r.p), "p_unsafe": r.p_unsafe, "risk": r.risk,
+               "tau": cfg["threshold"], "flagged": flagged, "model_id": est.model_id,
+               "backend": getattr(est, "backend", None),
+               "temperature": est.temperature, "reading": est.reading,
+               "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")},
+               "confirm_threshold": tiers["confirm_threshold"],
+               "judge": {"p_unsafe": jr.p_unsafe, "latency_s": round(jr.latency_s, 6), "status": jr.status,
+                         "model": jr.model or None, "verdict": jr.verdict, "detail": jr.detail},
+               "outcome": outcome}
+        if why is not None:
+            doc["explain"] = {"driver": why["driver"], "views": why["views"],
+                              "words": [{"word": w, "drop": d} for w, d in why["words"]]}
+        emit_json("-", doc)
     else:
         verdict = "UNSAFE (R_e >= tau: override)" if flagged else "ok (R_e < tau)"
         print(f"p = ({r.p[0]:.4f}, {r.p[1]:.4f})  p_unsafe = {r.p_unsafe:.4f}  "
@@ -217,6 +235,8 @@ def cmd_risk(args: argparse.Namespace) -> int:
                   + (f"  ({jr.detail})" if jr.detail else "") + (f"  [{jr.model}]" if jr.model else ""))
             tc = tiers["confirm_threshold"]
             print(f"outcome: {outcome}" + (f"  (confirm band [{tc:g}, {cfg['threshold']:g}))" if tc is not None else ""))
+        if why is not None:
+            _print_explain(why)
     return 1 if (outcome != "execute" and args.fail_on_flag) else 0
 
 
@@ -235,6 +255,23 @@ def _judge_and_outcome(spec, text: str, risk: float, tau: float, no_judge: bool)
     return jr, {"outcome": outcome, "confirm_threshold": tc}
 
 
+def _print_explain(why: dict) -> None:
+    """The views, the one that drove the score (marked ``>``), and its words."""
+    d = why["driver"]
+    name = {"text": "the whole text", "instruction": "the instruction",
+            "step": f"step {d['index'] + 1}"}[d["kind"]]
+    print(f"driven by {name}: {d['focus']!r}" + (" (read after its context)" if d["context"] else ""))
+    for v in why["views"]:
+        mark = ">" if (v["focus"], v["context"]) == (d["focus"], d["context"]) else " "
+        label = {"text": "text", "instruction": "instruction", "step": f"step {v['index'] + 1}"}[v["kind"]]
+        ctx = " | in context" if v["context"] else ""
+        focus = v["focus"] if len(v["focus"]) <= 70 else v["focus"][:69] + "…"
+        print(f" {mark} p_unsafe {v['p_unsafe']:.4f}  {label}{ctx}: {focus}")
+    if why["words"]:
+        print("words (p_unsafe drop when left out): "
+              + ", ".join(f"{w!r} {dr:+.3f}" for w, dr in why["words"]))
+
+
 def cmd_train(args: argparse.Namespace) -> int:
     try:
         from ..risk._recipe import Recipe, train_recipe
@@ -242,7 +279,7 @@ def cmd_train(args: argparse.Namespace) -> int:
                         aux_rows=args.aux_rows, base=args.base, epochs=args.epochs, lr=args.lr,
                         batch_size=args.batch_size, lora_r=args.lora_r, max_length=args.max_length,
                         truncation=args.truncation, val_frac=args.val_frac, patience=args.patience,
-                        seed=args.seed, init_seed=args.init_seed)
+                        seed=args.seed, init_seed=args.init_seed, full_finetune=args.full)
         recipe.check()
         s = train_recipe(recipe, args.out, num_threads=_threads(args, args.batch_size),
                          progress=_isatty(sys.stdout))

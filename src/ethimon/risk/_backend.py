@@ -211,6 +211,37 @@ def encode(tokenizer, texts: list[str], max_length: int, truncation: str = "head
     return out
 
 
+def encode_views(tokenizer, views: list[tuple[str, str]], max_length: int,
+                 truncation: str = "head_tail") -> list[list[int]]:
+    """Token ids of ``(context, focus)`` views: ``[CLS] focus [SEP]`` without a context, else
+    ``[CLS] context [SEP] focus [SEP]``, at most ``max_length`` long.
+
+    The focus (a plan's step, the instruction after a scene) is kept whole
+    while it fits in three quarters of the budget; the context gets what is
+    left, its head and tail (the start of the scene and what comes right
+    before the focus). So a text longer than the window never loses its
+    instruction. A view without a context is encoded exactly as :func:`encode`.
+    """
+    plain = [i for i, (c, _f) in enumerate(views) if not c]
+    out: list = [None] * len(views)
+    if plain:
+        for i, seq in zip(plain, encode(tokenizer, [views[i][1] for i in plain], max_length, truncation)):
+            out[i] = seq
+    paired = [i for i, (c, _f) in enumerate(views) if c]
+    if paired:
+        from ._reading import pair_ids
+        prefix, suffix = _special_wrap(tokenizer)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ctx = tokenizer([views[i][0] for i in paired], add_special_tokens=False, truncation=False,
+                            verbose=False)["input_ids"]
+            foc = tokenizer([views[i][1] for i in paired], add_special_tokens=False, truncation=False,
+                            verbose=False)["input_ids"]
+        for i, c, f in zip(paired, ctx, foc):
+            out[i] = pair_ids(prefix, suffix, c, f, max_length, truncation)
+    return out
+
+
 _WRAP: dict[int, tuple[list[int], list[int]]] = {}
 
 

@@ -22,6 +22,7 @@ from typing import Any, Protocol, runtime_checkable
 
 from ..errors import RiskInferenceError
 from ._formula import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, VARIANCE_MODES, risk_from_probs
+from ._reading import READINGS, View, views
 
 __all__ = ["DEFAULT_TAU", "ProbsEstimator", "RiskEstimate", "RiskEstimator", "RiskInferenceError", "load_estimator",
            "default_model_dir", "default_threads", "normalize_text"]
@@ -134,10 +135,17 @@ def check_default_manifest(d: Path) -> None:
 
 
 def normalize_text(text: str) -> str:
-    """Cache key of a task text: NFKC, surrounding/duplicate whitespace removed."""
+    r"""Cache key of a task text: NFKC, surrounding/duplicate whitespace removed; line breaks
+    (one per non-empty line) kept, since a plan's or a code block's lines are its steps.
+
+    >>> normalize_text("  1.  pick(x)\n\n  2. place(y) ")
+    '1. pick(x)\n2. place(y)'
+    """
     if not text.isascii():
         text = unicodedata.normalize("NFKC", text)
-    return " ".join(text.split())
+    if "\n" not in text and "\r" not in text:
+        return " ".join(text.split())
+    return "\n".join(" ".join(ln.split()) for ln in text.splitlines() if ln.strip())
 
 
 class RiskEstimator:
@@ -148,7 +156,13 @@ class RiskEstimator:
     """
 
     def __init__(self, loaded: Any, *, cache_size: int = 4096, batch_size: int = 32,
-                 quantized: str | None = None, trace_after: int | None = None) -> None:
+                 quantized: str | None = None, trace_after: int | None = None,
+                 reading: str = "steps") -> None:
+        if reading not in READINGS:
+            raise ValueError(f"reading={reading!r}; expected one of {READINGS}")
+        #: how a text is read (``ethimon.risk._reading``): ``"steps"`` scores every step of a plan
+        #: in context and the instruction after a scene, and takes the riskiest; ``"flat"`` the text only
+        self.reading = reading
         self._m = loaded
         self._cache: OrderedDict[str, tuple[float, float]] = OrderedDict()
         self._cache_size = int(cache_size)
@@ -278,14 +292,48 @@ class RiskEstimator:
             except ImportError:  # pragma: no cover - tqdm ships with the risk extra
                 bar = None
         try:
-            return self._forward(keys, raw=True, on_batch=None if bar is None else bar.update)
+            return [r for r, _v, _p in self._score(keys, raw=True,
+                                                 on_batch=None if bar is None else bar.update)]
         finally:
             if bar is not None:
                 bar.close()
 
+    def read(self, text: str) -> list[tuple[View, tuple[float, float]]]:
+        """Every view of ``text`` this estimator scores (see ``ethimon.risk._reading``) with its
+        ``(p_safe, p_unsafe)``, uncached; the riskiest one gives :meth:`probs`."""
+        vs = views(normalize_text(text), self.reading)
+        return list(zip(vs, self._forward_views(vs, raw=False)))
+
+    def explain(self, text: str, top_words: int = 5) -> dict[str, Any]:
+        """Which view (step, instruction) drove the score of ``text``, and which of its words.
+
+        The words: leave-one-word-out occlusion on the driving view's focus (its
+        context kept): the drop in p_unsafe when the word is removed, one
+        batched forward pass for all words. Returns ``{"p", "p_unsafe",
+        "driver": {kind, index, focus, context, p_unsafe}, "views": [...],
+        "words": [(word, drop), ...]}``, words sorted by drop, largest first.
+        """
+        scored = self.read(text)
+        best = max(range(len(scored)), key=lambda i: scored[i][1][1])
+        v, p = scored[best]
+        words = v.focus.split()
+        occl = [View(" ".join(words[:j] + words[j + 1:]), v.context, v.kind, v.index)
+                for j in range(len(words))] if len(words) > 1 else []
+        drops = []
+        if occl:
+            for j, q in enumerate(self._forward_views(occl, raw=False)):
+                drops.append((words[j], p[1] - q[1]))
+            drops.sort(key=lambda wd: -wd[1])
+
+        def row(vv: View, pp: tuple[float, float]) -> dict[str, Any]:
+            return {"kind": vv.kind, "index": vv.index, "focus": vv.focus, "context": vv.context,
+                    "p_unsafe": pp[1]}
+        return {"p": p, "p_unsafe": p[1], "driver": row(v, p), "views": [row(a, b) for a, b in scored],
+                "words": drops[:max(0, int(top_words))], "reading": self.reading}
+
     # -------------------------------------------------------------- internals
     def _infer(self, keys: list[str]) -> list[tuple[float, float]]:
-        probs = self._forward(keys, raw=False)
+        probs = [p for p, _v, _q in self._score(keys, raw=False)]
         with self._lock:
             self._misses += len(keys)
             if self._cache_size > 0:
@@ -296,14 +344,50 @@ class RiskEstimator:
                     self._cache.popitem(last=False)
         return probs
 
+    def _score(self, keys: list[str], raw: bool, on_batch: Any = None) -> list[tuple[Any, View, tuple]]:
+        """Per text: (its result, the view that gave it, that view's probabilities).
+
+        Every view of every text runs in one set of length-sorted batches; a
+        text's result is that of its riskiest view (highest p_unsafe at the
+        model's temperature). ``raw``: the result is that view's raw logits.
+        """
+        flat: list[View] = []
+        owner: list[list[int]] = []
+        for k in keys:  # views() has no duplicates within a text; texts are not merged (rows = what was asked)
+            vs = views(k, self.reading)
+            owner.append(list(range(len(flat), len(flat) + len(vs))))
+            flat += vs
+        share = len(keys) / max(1, len(flat))   # a progress bar counts texts, not views
+
+        def progress(n: int) -> None:
+            on_batch(n * share)
+        logits = self._forward_views(flat, raw=True, on_batch=progress if on_batch is not None else None)
+        T = self._m.temperature
+        ui = self._m.unsafe_index
+        out = []
+        for ids in owner:
+            best, best_p = ids[0], None
+            for j in ids:
+                p = _tempered(logits[j], T, ui)
+                if best_p is None or p[1] > best_p[1]:
+                    best, best_p = j, p
+            out.append((logits[best] if raw else best_p, flat[best], best_p))
+        return out
+
     def _forward(self, keys: list[str], raw: bool, on_batch: Any = None) -> list:
+        """The whole texts ``keys`` through the model (no reading into views)."""
+        return self._forward_views([View(k) for k in keys], raw, on_batch)
+
+    def _forward_views(self, vs: list[View], raw: bool, on_batch: Any = None) -> list:
         if self.backend == "onnx":
-            return self._forward_onnx(keys, raw, on_batch)
+            return self._forward_onnx(vs, raw, on_batch)
         from . import _backend as B
         torch = B.torch
         m = self._m
+        if not vs:
+            return []
         try:
-            seqs = B.encode(m.tokenizer, keys, m.max_length, m.truncation)
+            seqs = B.encode_views(m.tokenizer, [(v.context, v.focus) for v in vs], m.max_length, m.truncation)
         except Exception as exc:  # noqa: BLE001
             raise RiskInferenceError(f"tokenisation failed: {exc}") from exc
         order = sorted(range(len(seqs)), key=lambda i: len(seqs[i]))
@@ -316,8 +400,7 @@ class RiskEstimator:
             self._rows += len(seqs)
             try:
                 with torch.inference_mode():
-                    for s in range(0, len(order), self._batch_size):
-                        idx = order[s:s + self._batch_size]
+                    for idx in _batches(order, seqs, self._batch_size):
                         ids, mask = B.collate([seqs[i] for i in idx], pad)
                         logits = m.module(ids, mask).float()
                         if raw:
@@ -339,12 +422,14 @@ class RiskEstimator:
                 raise RiskInferenceError("risk inference produced NaN/inf; treat the command as unsafe")
         return [tuple(r) if not raw else r for r in results]
 
-    def _forward_onnx(self, keys: list[str], raw: bool, on_batch: Any = None) -> list:
-        """As :meth:`_forward`, through ONNX Runtime (numpy arrays, no torch)."""
+    def _forward_onnx(self, vs: list[View], raw: bool, on_batch: Any = None) -> list:
+        """As :meth:`_forward_views`, through ONNX Runtime (numpy arrays, no torch)."""
         import numpy as np
         m = self._m
+        if not vs:
+            return []
         try:
-            seqs = m.tokenizer.encode(keys, m.max_length, m.truncation)
+            seqs = m.tokenizer.encode_views([(v.context, v.focus) for v in vs], m.max_length, m.truncation)
         except Exception as exc:  # noqa: BLE001
             raise RiskInferenceError(f"tokenisation failed: {exc}") from exc
         order = sorted(range(len(seqs)), key=lambda i: len(seqs[i]))
@@ -353,8 +438,7 @@ class RiskEstimator:
         with self._lock:
             self._rows += len(seqs)
             try:
-                for s in range(0, len(order), self._batch_size):
-                    idx = order[s:s + self._batch_size]
+                for idx in _batches(order, seqs, self._batch_size):
                     logits = np.asarray(m.logits([seqs[i] for i in idx]), dtype=np.float64)
                     if raw:
                         rows = logits.tolist()
@@ -375,10 +459,44 @@ class RiskEstimator:
         return [tuple(r) if not raw else r for r in results]
 
 
+#: a batch is cut where padding to its longest row would waste more than this share of its tokens
+PAD_WASTE = 0.3
+
+
+def _batches(order: list[int], seqs: list[list[int]], size: int) -> list[list[int]]:
+    """Length-sorted ``order`` cut into batches of at most ``size`` rows whose padding wastes at
+    most :data:`PAD_WASTE` of the tokens (a plan's step views range from one step to the whole
+    plan: one batch would pad every view to the longest)."""
+    out: list[list[int]] = []
+    cur: list[int] = []
+    total = 0
+    for i in order:
+        n = len(seqs[i])
+        if cur and (len(cur) >= size or n * (len(cur) + 1) > (1 + PAD_WASTE) * (total + n)):
+            out.append(cur)
+            cur, total = [], 0
+        cur.append(i)
+        total += n
+    if cur:
+        out.append(cur)
+    return out
+
+
+def _tempered(logits: Sequence[float], temperature: float, unsafe_index: int) -> tuple[float, float]:
+    """``(1 - p_unsafe, p_unsafe)`` of one row of raw logits at ``temperature`` (a stable softmax)."""
+    z = [x / temperature for x in logits]
+    top = max(z)
+    e = [math.exp(x - top) for x in z]
+    pu = e[unsafe_index] / sum(e)
+    if not math.isfinite(pu):
+        raise RiskInferenceError("risk inference produced NaN/inf; treat the command as unsafe")
+    return (1.0 - pu, pu)
+
+
 def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None = None,
                    max_length: int | None = None, cache_size: int = 4096, batch_size: int = 32,
                    num_threads: int | None = None, temperature: float | None = None,
-                   jit: bool | None = None, backend: str = "auto") -> RiskEstimator:
+                   jit: bool | None = None, backend: str = "auto", reading: str = "steps") -> RiskEstimator:
     """Load a risk estimator from a local model directory (default: the shipped one).
 
     Args:
@@ -414,6 +532,11 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
             a few texts never pays the ~0.5 s); ``False``: never.
             If tracing fails or disagrees, the eager model is used and
             ``RiskEstimator.jit`` is ``False``.
+        reading: ``"steps"`` (default): a numbered or code-call plan is scored step
+            by step in context (the scene, the earlier steps), a scene + instruction
+            as a text pair and the instruction alone, and the riskiest view counts
+            (``ethimon.risk._reading``; a one-line command is read as before);
+            ``"flat"``: the whole text only (the reading before issue 19).
 
     Returns:
         A :class:`RiskEstimator`.
@@ -439,6 +562,8 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
         quantize = None
     if max_length is not None and (not isinstance(max_length, int) or max_length < 8):
         raise ValueError(f"max_length={max_length!r}; expected an int >= 8")
+    if reading not in READINGS:
+        raise ValueError(f"reading={reading!r}; expected one of {READINGS}")
     if cache_size < 0 or batch_size < 1:
         raise ValueError(f"cache_size={cache_size!r}, batch_size={batch_size!r} out of range")
     if temperature is not None and (isinstance(temperature, bool) or not (isinstance(temperature, (int, float))
@@ -455,7 +580,7 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
     if temperature is not None:
         loaded.temperature = float(temperature)
     est = RiskEstimator(loaded, cache_size=cache_size, batch_size=batch_size, quantized=quantize,
-                        trace_after=JIT_AFTER_ROWS if jit is None else None)
+                        trace_after=JIT_AFTER_ROWS if jit is None else None, reading=reading)
     if jit:
         est.trace()
     return est

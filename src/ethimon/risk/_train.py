@@ -99,6 +99,41 @@ def _warm_start(encoder, model, d: Path, base_dir: Path, r: int, alpha: float, t
         raise B.ModelError(f"{adapter}: tensor missing or of the wrong shape for a warm start: {exc}") from None
 
 
+def _identity_factors(delta, r: int):
+    """LoRA factors ``(A, B)`` with ``B @ A == delta`` exactly: one of them the r×r identity (fp16).
+
+    ``delta`` is out × in; one of its sides must be ``r`` (the hidden size: every
+    matrix of a BERT-family layer maps from or to it).
+    """
+    out_f, in_f = delta.shape
+    eye = torch.eye(r, dtype=torch.float16)
+    if in_f == r:
+        return eye.contiguous(), delta.contiguous()          # A = I (r×in), B = ΔW (out×r)
+    if out_f == r:
+        return delta.contiguous(), eye.contiguous()          # A = ΔW (r×in), B = I (out×r)
+    raise B.ModelError(f"full fine-tuning: a {out_f}x{in_f} matrix has no side of the hidden size {r}")
+
+
+def _warm_start_merged(encoder, model, d: Path, base_dir: Path) -> None:
+    """Full fine-tuning from an ethimon LoRA model: its update merged into the weights, its head copied."""
+    manifest = B.read_manifest(d)
+    if manifest is None:
+        raise B.ModelError(f"{d}: --init-from needs an ethimon LoRA model directory (no {B.MANIFEST})")
+    if manifest.get("base_sha256") != B.sha256_file(base_dir / "model.safetensors"):
+        raise B.ModelError(f"{d}: trained on another base model (base_sha256 differs)")
+    adapter, _ = B.checked_adapter(d, manifest)
+    state = B.load_adapter_tensors(adapter)
+    lo = manifest.get("lora") or {}
+    try:
+        if lo:
+            B.merge_lora(encoder, state, float(lo["alpha"]) / float(lo["r"]))
+        with torch.no_grad():
+            model.head.weight.copy_(state["head.weight"].float())
+            model.head.bias.copy_(state["head.bias"].float())
+    except (KeyError, RuntimeError) as exc:
+        raise B.ModelError(f"{adapter}: tensor missing or of the wrong shape for a warm start: {exc}") from None
+
+
 def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[str],
                val_labels: list[int], *, base_dir: str | Path, out_dir: str | Path,
                base_ref: dict | None = None, train_weights: list[float] | None = None,
@@ -112,7 +147,8 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
                aux_tasks: list[tuple[str, list[str], list[int]]] | None = None,
                aux_weight: float = 1.0, init_seed: int | None = None,
                init_from: str | Path | None = None, pairs: list[tuple[int, int]] | None = None,
-               pair_weight: float = 0.0, pair_margin: float = 1.0, pairs_per_step: int = 8) -> dict:
+               pair_weight: float = 0.0, pair_margin: float = 1.0, pairs_per_step: int = 8,
+               full: bool = False) -> dict:
     """Train a LoRA adapter + head; write an ethimon model directory to ``out_dir``.
 
     ``aux_tasks`` (multi-task learning): ``(name, texts, labels)`` binary tasks
@@ -136,6 +172,15 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     unsafe-minus-safe logit: the unsafe member must outscore its safe twin by a margin, so
     the detail that flips the verdict has to move the score.
 
+    ``full`` (full fine-tuning, issue 19 item 4): instead of LoRA factors, every weight
+    matrix of the transformer layers (the ``nn.Linear`` layers LoRA would adapt) is trained
+    at ``lr``; embeddings, biases and LayerNorms stay frozen, so the update is exactly
+    a weight difference ΔW per matrix. It is saved in the same ``ethimon-lora/1`` format
+    as an exact full-rank "LoRA" (r = hidden size, α = r, one factor the identity, the
+    other ΔW in fp16), so every loader (and the ONNX graph builder) reads it unchanged;
+    the temperature is fitted on the weights as saved. ``r``/``alpha`` are then ignored;
+    ``init_from`` may be any ethimon LoRA model on the same base (merged as the start).
+
     Returns:
         The run summary (also written to ``out_dir/metrics.json``).
     """
@@ -151,11 +196,20 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     encoder = B.load_encoder(base_dir)
     for p in encoder.parameters():
         p.requires_grad_(False)
-    targets = B.inject_lora(encoder, r, alpha, lora_dropout)
+    if full:
+        targets = B.lora_target_names(encoder)
+        r = alpha = int(encoder.config.hidden_size)
+        for name in targets:
+            encoder.get_submodule(name).weight.requires_grad_(True)
+        base_w0 = {name: encoder.get_submodule(name).weight.detach().clone() for name in targets}
+    else:
+        targets = B.inject_lora(encoder, r, alpha, lora_dropout)
     model = B.PooledClassifier(encoder, 2, pooling)
     aux_tasks = list(aux_tasks or [])
     heads = nn.ModuleList([model.head] + [nn.Linear(encoder.config.hidden_size, 2) for _ in aux_tasks])
-    if init_from is not None:
+    if init_from is not None and full:
+        _warm_start_merged(encoder, model, Path(init_from), base_dir)
+    elif init_from is not None:
         _warm_start(encoder, model, Path(init_from), base_dir, r, alpha, targets)
     if init_seed is not None:
         torch.manual_seed(seed)  # the rest (dropout) follows the run's own seed
@@ -174,7 +228,8 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     ytr = torch.tensor(labels, dtype=torch.long)
     wtr = torch.tensor(weights)
     ttr = torch.tensor(task, dtype=torch.long)
-    lora_params = [p for n, p in model.named_parameters() if "lora_" in n]
+    lora_params = ([encoder.get_submodule(n).weight for n in targets] if full
+                   else [p for n, p in model.named_parameters() if "lora_" in n])
     head_params = list(heads.parameters())
     opt = torch.optim.AdamW([{"params": lora_params, "lr": lr},
                              {"params": head_params, "lr": head_lr}], weight_decay=weight_decay)
@@ -240,7 +295,9 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
         history.append(rec)
         log(json.dumps(rec))
         if vloss < best[0] - 1e-4 or best[1] is None:
-            best = (vloss, {**B.lora_state(encoder), "head.weight": model.head.weight.detach().clone(),
+            weights_now = ({f"full.{n}": encoder.get_submodule(n).weight.detach().clone() for n in targets}
+                           if full else B.lora_state(encoder))
+            best = (vloss, {**weights_now, "head.weight": model.head.weight.detach().clone(),
                             "head.bias": model.head.bias.detach().clone()}, ep + 1)
             bad = 0
         else:
@@ -253,6 +310,15 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     # restore best state, fit temperature on the validation logits
     state = best[1]
     with torch.no_grad():
+        if full:
+            # ΔW as saved (fp16), exactly as the loader will merge it, before the temperature is fitted
+            factors = {}
+            for n_ in targets:
+                delta = (state.pop(f"full.{n_}") - base_w0[n_]).half()
+                a, b = _identity_factors(delta, r)
+                factors[f"lora.{n_}.A"], factors[f"lora.{n_}.B"] = a, b
+                encoder.get_submodule(n_).weight.copy_(base_w0[n_] + delta.float())
+            state = {**factors, **state}
         for n_, mod in encoder.named_modules():
             if isinstance(mod, B.LoRALinear):
                 mod.lora_A.copy_(state[f"lora.{n_}.A"])
@@ -270,7 +336,7 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     base_w = base_dir / "model.safetensors"
     manifest = {
         "format": B.ADAPTER_FORMAT,
-        "name": name,
+        "name": name + ("-full" if full and not name.endswith("-full") else ""),
         "base": base_ref or {"path": str(base_dir.resolve())},
         "base_sha256": B.sha256_file(base_w),
         "adapter_file": "adapter.safetensors",
@@ -291,7 +357,7 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
                    "aux_tasks": {n: len(t) for n, t, _ in aux_tasks}, "aux_weight": aux_weight,
                    "init_from": str(init_from) if init_from is not None else None,
                    "pairs": len(pairs or []), "pair_weight": pair_weight, "pair_margin": pair_margin,
-                   "pairs_per_step": pairs_per_step,
+                   "pairs_per_step": pairs_per_step, "full": full,
                    "base_dir": str(base_dir), **(extra_meta or {})},
         "history": history, "best_epoch": best[2], "best_val_loss": best[0],
         "temperature": temperature, "train_loss_curve": train_curve,
