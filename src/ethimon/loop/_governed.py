@@ -202,7 +202,7 @@ class GovernedLoop:
                  on_stall: Callable[[str], None] | None = None,
                  on_decision: Callable[[Decision], None] | None = None,
                  clock: Callable[[], float] = time.perf_counter, sleep: Callable[[float], None] = time.sleep,
-                 judge: Any = "spec") -> None:
+                 judge: Any = "spec", acknowledge_clear: tuple[str, float] | None = None) -> None:
         if isinstance(monitor, Spec):
             monitor = Monitor(monitor)
         if not isinstance(monitor, Monitor):
@@ -248,6 +248,17 @@ class GovernedLoop:
         self.audit_every_cycle = bool(audit_every_cycle)
         self.stats = LoopStats()
         self.last_decision: Decision | None = None
+        self._last_inputs: Mapping[str, Any] = {}
+        if acknowledge_clear is not None:
+            ok = (isinstance(acknowledge_clear, tuple) and len(acknowledge_clear) == 2
+                  and isinstance(acknowledge_clear[0], str) and acknowledge_clear[0] in monitor.spec.signals
+                  and isinstance(acknowledge_clear[1], (int, float)) and not isinstance(acknowledge_clear[1], bool)
+                  and math.isfinite(acknowledge_clear[1]) and acknowledge_clear[1] >= 0)
+            if not ok:
+                raise ValueError(f"acknowledge_clear={acknowledge_clear!r}; expected (signal of the spec, minimum "
+                                 f">= 0), e.g. ('human_distance', 1.5): the protective distance a manual reset needs")
+        #: (signal, minimum): a manual reset is refused while that reading is missing or below it
+        self.acknowledge_clear = acknowledge_clear
         self._signals = signals
         if verify == "smt":
             verify = _verify_smt
@@ -373,6 +384,7 @@ class GovernedLoop:
             if self.judge is not None or m.plan.risk.confirm_threshold is not None:
                 self._tier_inputs(inputs, text)
         d = m.step(inputs)
+        self._last_inputs = inputs
         if self._stall_reason is not None:
             reasons.append(self._stall_reason)
             self._stall_reason = None
@@ -574,6 +586,30 @@ class GovernedLoop:
         self._ack_now(req)
         return req[3]
 
+    def _restart_refusal(self) -> str:
+        """Why a manual reset must be refused now ('' if it may go to the monitor): ISO 13849-1:2015
+        5.2.2, the stop condition is kept until safe conditions for restarting exist. Refused while the
+        last cycle had a rule firing (the confirm band's hold excepted: acknowledging confirms it) or a
+        fault, or, with ``acknowledge_clear``, while that reading was missing or below its minimum (a
+        person inside the protective distance). A refusal is not remembered."""
+        d = self.last_decision
+        if d is None:
+            return ""  # nothing judged yet: the monitor itself has nothing to release
+        firing = [v for v in d.violations if v != "confirm"]
+        if firing:
+            return "rules still fire on the last cycle: " + ", ".join(firing)
+        if d.faults:
+            return f"a fault on the last cycle: {d.faults[0].kind} ({d.faults[0].subject or d.faults[0].message})"
+        if self.acknowledge_clear is not None:
+            name, least = self.acknowledge_clear
+            v = self._last_inputs.get(name)
+            x = v if type(v) is float else (float(v) if isinstance(v, int) and not isinstance(v, bool) else None)
+            if x is None or not math.isfinite(x):
+                return f"no usable {name} reading on the last cycle (acknowledge_clear needs it)"
+            if x < least:
+                return f"{name} {x:g} is inside the protective distance {least:g} (acknowledge_clear)"
+        return ""
+
     def _apply_acks(self) -> None:
         with self._acks_lock:
             todo, self._acks = self._acks, []
@@ -583,9 +619,12 @@ class GovernedLoop:
     def _ack_now(self, req: list[Any]) -> None:
         operator, reason, done, _, task = req
         afault = self._audit_health()
+        why = self._restart_refusal()
         if self.audit is not None and (self._audit_failed or afault):
             a = Acknowledgement(False, (), "refused: the audit log cannot record it "
                                 f"({afault or 'a record was refused'})")
+        elif why:
+            a = Acknowledgement(False, (), "refused: " + why)
         else:
             try:
                 a = self.monitor.acknowledge() if task is None else self.monitor.acknowledge(task_id=task)
