@@ -109,7 +109,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         parser = _build_parser()
         args = parser.parse_args(argv)
-        handler = getattr(args, "handler", None) or getattr(args, "func", None)
+        handler = getattr(args, "handler", None)
         if handler is None:
             parser.print_help(sys.stderr)
             return 2
