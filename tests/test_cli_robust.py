@@ -146,7 +146,7 @@ def test_a_bad_spec_shared_by_scenarios_is_read_once(tmp_path, monkeypatch, caps
 def test_a_cached_spec_failure_is_raised_fresh_for_each_scenario(tmp_path, monkeypatch, exc):
     import ethimon._api as api
     from ethimon.scenario import ScenarioSession, load_scenario
-    from ethimon.scenario._check import _SpecLoadError
+    from ethimon.scenario._session import _SpecLoadError
 
     def load_spec(path):
         raise exc

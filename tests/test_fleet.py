@@ -175,7 +175,7 @@ def test_replay_on_ray_is_the_serial_run(ray_local, tmp_path, capsys, monkeypatc
             _bag(tmp_path / "c", "mcap", 9)]
     bags[2].write_bytes(b"not a bag at all")
     doc = _same_runs(capsys, monkeypatch, tmp_path, "replay", *map(str, bags), "--spec", str(tmp_path / "spec.yaml"),
-                     "--map", str(tmp_path / "map.yaml"), ray_args=("--ray", "--file-timeout", "300"))
+                     "--map", str(tmp_path / "map.yaml"), ray_args=("--ray", "--file-timeout-s", "300"))
     assert [r["path"] for r in doc["results"]] == [str(b) for b in bags]
     assert doc["errors"] == 1 and doc["results"][2]["error"].startswith(f"{bags[2]}: cannot open the bag")
     slow = [next(c for c in r["checks"] if c["id"] == "slow_near") for r in doc["results"] if "checks" in r]
@@ -268,7 +268,7 @@ def test_check_file_timeout_is_one_error_row(ray_local, tmp_path, capsys, monkey
     monkeypatch.setattr(_run, "check_unit", _hang_on_s1)
     d = _scenarios(tmp_path / "sc")
     rc_serial, _, _ = _main(capsys, "check", str(d), "--json", str(tmp_path / "serial.json"))
-    rc, _, err = _main(capsys, "check", str(d), "--json", str(tmp_path / "ray.json"), "--ray", "--file-timeout", "8")
+    rc, _, err = _main(capsys, "check", str(d), "--json", str(tmp_path / "ray.json"), "--ray", "--file-timeout-s", "8")
     serial, on_ray = (json.loads((tmp_path / f"{t}.json").read_text()) for t in ("serial", "ray"))
     line = f"{d / 's1.yaml'}: timed out after 8 s; its Ray task was cancelled (this file could not be checked; " \
            "the other files were)"
@@ -282,11 +282,11 @@ def test_check_file_timeout_is_one_error_row(ray_local, tmp_path, capsys, monkey
 
 def test_file_timeout_needs_ray_and_seconds_above_0(capsys):
     for cmd in (["check", str(ROOT / "scenarios")], ["replay", "x.bag", "--spec", "s", "--map", "m"]):
-        rc, _, err = _main(capsys, *cmd, "--file-timeout", "5")
-        assert rc == 2 and "--file-timeout needs --ray" in err
+        rc, _, err = _main(capsys, *cmd, "--file-timeout-s", "5")
+        assert rc == 2 and "--file-timeout-s needs --ray" in err
         for bad in ("0", "-1", "nan", "inf"):
-            rc, _, err = _main(capsys, *cmd, "--ray", "--file-timeout", bad)
-            assert rc == 2 and "--file-timeout must be a number of seconds above 0" in err, (cmd, bad, err)
+            rc, _, err = _main(capsys, *cmd, "--ray", "--file-timeout-s", bad)
+            assert rc == 2 and "--file-timeout-s must be a number of seconds above 0" in err, (cmd, bad, err)
 
 
 def test_failed_units_are_error_rows_in_place(tmp_path, monkeypatch):

@@ -449,7 +449,7 @@ def _cli(argv):
     ap = argparse.ArgumentParser(prog="ethimon")
     add_risk_parsers(ap.add_subparsers(dest="cmd", required=True))
     args = ap.parse_args(argv)
-    return args.func(args)
+    return args.handler(args)
 
 
 def test_cli_risk_json(tiny, capsys):

@@ -359,7 +359,7 @@ def test_standin_robot_governed_live_by_ethimon_ros2(tmp_path):
     map_p.write_text(MAPPING)
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"), CYCLONEDDS_URI=LOOPBACK)
     proc = subprocess.Popen([sys.executable, "-m", "ethimon.cli", "ros2", "--spec", str(spec_p), "--map",
-                             str(map_p), "--domain", str(DOMAIN), "--duration", "8", "--json", "-",
+                             str(map_p), "--domain", str(DOMAIN), "--duration-s", "8", "--json", "-",
                              "--interface", "lo", "--peer", "127.0.0.1"],
                             env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     peer = Peer()

@@ -31,7 +31,7 @@ def test_cli_without_cyclonedds_names_the_extra(tmp_path):
                   "  v: {topic: /v, type: std_msgs/msg/Float64}\n  p_unsafe: {topic: /p, type: std_msgs/msg/Float64}\n")
     code = ("import sys; sys.modules['cyclonedds'] = None\n"
             "from ethimon.cli import main\n"
-            f"sys.exit(main(['ros2', '--spec', {str(spec)!r}, '--map', {str(mp)!r}, '--duration', '1']))\n")
+            f"sys.exit(main(['ros2', '--spec', {str(spec)!r}, '--map', {str(mp)!r}, '--duration-s', '1']))\n")
     out = _run(code)
     assert out.returncode == 2, out.stderr
     assert "pip install 'ethimon[ros2]'" in out.stderr and "Traceback" not in out.stderr

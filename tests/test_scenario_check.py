@@ -53,7 +53,7 @@ def captured_sim(monkeypatch):
     (f"inputs: {{p_unsafe: 0.03, {SIGNALS}}}\n", {"p_unsafe": 0.03}),
     # risk only in the timeline: 'check --sim' used to feed nothing, 'simulate' the first value
     (f"inputs: {{{SIGNALS}}}\ntimeline:\n  - {{at: 3, set: {{risk: 0.2}}}}\n", {"risk": 0.2}),
-    (f"task: Wipe the table.\ninputs: {{{SIGNALS}}}\n", {"probs": (0.9, 0.1)}),
+    (f"task: Wipe the table.\ninputs: {{{SIGNALS}}}\n", {"p": (0.9, 0.1)}),
 ])
 def test_simulate_and_check_sim_feed_a_scenario_the_same_risk(tmp_path, captured_sim, capsys, body, expected):
     sc = sim_scenario(tmp_path, "feed", body)
@@ -72,7 +72,7 @@ def test_the_one_rule_in_order():
                            est) == {"risk": 0.4}
     assert sim_risk_inputs(sc("timeline:\n  - {at: 1, set: {p_unsafe: 0.7}}\n  - {at: 2, set: {risk: 0.9}}\n"),
                            est) == {"p_unsafe": 0.7}
-    assert sim_risk_inputs(sc("task: Hand over the knife.\n"), lambda: est) == {"probs": (0.9, 0.1)}
+    assert sim_risk_inputs(sc("task: Hand over the knife.\n"), lambda: est) == {"p": (0.9, 0.1)}
     assert est.texts == ["Hand over the knife."]
     from ethimon.errors import SpecError
     with pytest.raises(SpecError, match="no risk input and no task text"):

@@ -100,7 +100,7 @@ def main() -> int:
     load0 = loadavg()
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"), CYCLONEDDS_URI=cfg)
     node = subprocess.Popen([sys.executable, "-m", "ethimon.cli", "ros2", "--spec", str(tmp / "spec.yaml"),
-                             "--map", str(tmp / "map.yaml"), "--domain", str(domain), "--duration",
+                             "--map", str(tmp / "map.yaml"), "--domain", str(domain), "--duration-s",
                              f"{duration:.1f}", "--interface", "lo", "--peer", "127.0.0.1", "--json",
                              str(tmp / "node.json"), "-q"], env=env)
     T = MessageTypes()

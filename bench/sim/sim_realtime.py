@@ -42,7 +42,7 @@ def machine() -> dict:
 
 
 def risk_kwargs(path: Path, spec) -> dict:
-    """The run's constant risk input (``risk``, ``p_unsafe`` or ``probs``), as ``simulate`` feeds it."""
+    """The run's constant risk input (``risk``, ``p_unsafe`` or ``p``), as ``simulate`` feeds it."""
     return SESSION.sim_inputs(load_scenario(path), spec)
 
 

@@ -24,7 +24,7 @@ _PLUGINS = (("_risk_cmds", "add_risk_parsers"), ("_sim_cmds", "add_sim_parsers")
 
 def _build_parser() -> argparse.ArgumentParser:
     from .. import __version__
-    from ._check import add_check_parser
+    from ._check_cmds import add_check_parser
 
     p = argparse.ArgumentParser(prog="ethimon", description="Formal-spec-checked runtime safety monitor.")
     p.add_argument("--version", action="version", version=f"ethimon {__version__}")
@@ -109,7 +109,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         parser = _build_parser()
         args = parser.parse_args(argv)
-        handler = getattr(args, "handler", None) or getattr(args, "func", None)
+        handler = getattr(args, "handler", None)
         if handler is None:
             parser.print_help(sys.stderr)
             return 2

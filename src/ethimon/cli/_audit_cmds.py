@@ -17,7 +17,7 @@ __all__ = ["add_audit_parsers", "cmd_audit_verify", "main"]
 def add_audit_parsers(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
     """Add ``audit`` (with ``verify``) to an argparse subparsers object.
 
-    Each leaf parser sets ``func``: call ``args.func(args)`` and exit with its return value.
+    Each leaf parser sets ``handler``: call ``args.handler(args)`` and exit with its return value.
     """
     audit = subparsers.add_parser("audit", help="audit-trail tools",
                                   description="Tools for ethimon audit logs (hash-chained JSONL).")
@@ -32,7 +32,7 @@ def add_audit_parsers(subparsers: argparse._SubParsersAction) -> argparse.Argume
     v.add_argument("--expect-head", metavar="HASH",
                    help="hash of the last record kept elsewhere; the log must end exactly there")
     v.add_argument("--key-file", metavar="FILE", help="HMAC key file, for logs written with a key")
-    v.set_defaults(func=cmd_audit_verify)
+    v.set_defaults(handler=cmd_audit_verify)
     return audit
 
 
@@ -80,7 +80,7 @@ def main(argv: list[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:
         return int(exc.code or 0) if exc.code in (0, None) else 2
-    return int(args.func(args))
+    return int(args.handler(args))
 
 
 if __name__ == "__main__":  # pragma: no cover

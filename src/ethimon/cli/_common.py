@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import json
 import sys
 from typing import Any
@@ -9,10 +10,31 @@ from typing import Any
 from ..errors import SpecError
 
 __all__ = ["err", "ERROR_PREFIX", "write_report", "emit_report", "emit_json", "Progress", "add_ray_options",
-           "ray_options", "ray_target"]
+           "ray_options", "ray_target", "add_deprecated_alias", "DEPRECATED_FLAGS"]
 
 #: the one prefix of a CLI error that is not located in a file (located ones read ``path:line:col: ...``)
 ERROR_PREFIX = "ethimon: error: "
+
+
+#: old flag spelling -> the one it was renamed to (a unit in every flag that carries a quantity); the old
+#: spelling still works, is hidden from --help and warns on stderr
+DEPRECATED_FLAGS: dict[str, str] = {}
+
+
+class _DeprecatedFlag(argparse.Action):
+    """The old spelling of a renamed flag: stores into the new flag's dest and warns once on stderr."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        new = DEPRECATED_FLAGS.get(option_string or "", "")
+        print(f"ethimon: warning: {option_string} is deprecated; use {new}", file=sys.stderr)
+        setattr(namespace, self.dest, values)
+
+
+def add_deprecated_alias(p: argparse.ArgumentParser, old: str, new: str, **kwargs: Any) -> None:
+    """Add ``old`` as a hidden, deprecated spelling of the flag ``new`` (same dest and type)."""
+    DEPRECATED_FLAGS[old] = new
+    p.add_argument(old, dest=new.lstrip("-").replace("-", "_"), action=_DeprecatedFlag,
+                   help=argparse.SUPPRESS, default=argparse.SUPPRESS, **kwargs)
 
 
 def err(msg: str) -> int:
@@ -106,7 +128,7 @@ def _short(path: str, width: int = 40) -> str:
 
 
 def add_ray_options(p, what: str) -> None:
-    """``--ray [ADDRESS]``, ``--ray-workers N`` and ``--file-timeout S`` of a command that works
+    """``--ray [ADDRESS]``, ``--ray-workers N`` and ``--file-timeout-s S`` of a command that works
     through many files (read back with :func:`ray_options`)."""
     p.add_argument("--ray", nargs="?", const="local", default=None, metavar="ADDRESS",
                    help=f"spread the {what} over a Ray cluster (needs ethimon[fleet]); no ADDRESS: a local "
@@ -114,21 +136,22 @@ def add_ray_options(p, what: str) -> None:
                         "remote one. The results are the serial run's, in the same order")
     p.add_argument("--ray-workers", type=int, metavar="N", default=None,
                    help="CPUs (parallel workers) of the local Ray instance (default: up to 4)")
-    p.add_argument("--file-timeout", type=float, metavar="S", default=None,
+    p.add_argument("--file-timeout-s", type=float, metavar="S", default=None,
                    help="with --ray: a file whose task has not finished after S seconds is an ERROR row and its "
                         "task is cancelled (default: no limit)")
+    add_deprecated_alias(p, "--file-timeout", "--file-timeout-s", type=float, metavar="S")
 
 
 def ray_options(args, paths_attr: str) -> tuple[tuple[str | None, int | None] | None, float | None]:
     """``(ray_target(args, paths_attr), file timeout)`` from the options of :func:`add_ray_options`.
 
     Raises:
-        EthimonError: a bad ``--ray``/``--ray-workers`` value, or ``--file-timeout`` that is not a
+        EthimonError: a bad ``--ray``/``--ray-workers`` value, or ``--file-timeout-s`` that is not a
             positive finite number or is given without ``--ray``.
     """
     from ..fleet import check_file_timeout
     ray = ray_target(args, paths_attr)
-    return ray, check_file_timeout(args.file_timeout, on_ray=ray is not None)
+    return ray, check_file_timeout(args.file_timeout_s, on_ray=ray is not None)
 
 
 def ray_target(args, paths_attr: str) -> tuple[str | None, int | None] | None:

@@ -57,7 +57,7 @@ def add_risk_parsers(subparsers) -> None:
     _threads_arg(p, "default 1: one sentence is too small to split")
     _backend_arg(p, None, "default: the spec's risk.estimator.backend, else auto: ONNX Runtime (no torch) "
                           "when installed and the model has an ONNX form")
-    p.set_defaults(func=cmd_risk)
+    p.set_defaults(handler=cmd_risk)
 
     from ..risk._recipe import Recipe as R  # no torch: the defaults of the training recipe
 
@@ -93,7 +93,7 @@ def add_risk_parsers(subparsers) -> None:
                         "0.06) instead of LoRA factors; saved in the same adapter format, full rank "
                         "(MiniLM-L6: about 32 MB instead of 1.3 MB)")
     _threads_arg(t, "default: 2, or 1 when the cores are busy")
-    t.set_defaults(func=cmd_train)
+    t.set_defaults(handler=cmd_train)
 
     a = subparsers.add_parser("average", help="average trained LoRA runs into one model (same cost as one)",
                               description="Weight-average runs of one recipe (e.g. several seeds): "
@@ -109,7 +109,7 @@ def add_risk_parsers(subparsers) -> None:
                    help="token budget of the average (needed when the runs differ)")
     a.add_argument("--rank", type=int, default=None,
                    help="compress the averaged update to this LoRA rank (truncated SVD; default: exact)")
-    a.set_defaults(func=cmd_average)
+    a.set_defaults(handler=cmd_average)
 
     e = subparsers.add_parser(
         "evaluate", help="evaluate a risk classifier on a labelled CSV (label + input or text; optional pair, type)",
@@ -136,7 +136,7 @@ def add_risk_parsers(subparsers) -> None:
                         "longer rows keep the model's truncation, head or head and tail)")
     _threads_arg(e, "default: 2, or 1 when the cores are busy")
     _backend_arg(e, "torch", "default torch, as training evaluates its runs; onnx on a machine without torch")
-    e.set_defaults(func=cmd_evaluate)
+    e.set_defaults(handler=cmd_evaluate)
 
     x = subparsers.add_parser(
         "export", help="write MODEL_DIR/model.onnx for ONNX Runtime, pinned by sha256 (needs torch, once)",
@@ -147,7 +147,7 @@ def add_risk_parsers(subparsers) -> None:
                     "the shipped model and BERT/DistilBERT directories need no export.")
     x.add_argument("model", metavar="MODEL_DIR", help="an ethimon adapter directory or a sequence-classification directory")
     x.add_argument("--file", default="model.onnx", help="graph file name inside MODEL_DIR (default model.onnx)")
-    x.set_defaults(func=cmd_export)
+    x.set_defaults(handler=cmd_export)
 
 
 def _precision_args(parser) -> None:

@@ -2,7 +2,7 @@
 
 Subscribes to the mapping's topics, steps the monitor at its ``rate_hz`` and
 publishes ``/ethimon/override`` and ``/ethimon/decision`` every cycle, until
-``--duration`` has passed or Ctrl-C. Prints the loop's statistics at the end
+``--duration-s`` has passed or Ctrl-C. Prints the loop's statistics at the end
 (``--json`` for a machine-readable summary). Exit 0 it ran, 2 bad input (a spec
 or mapping that cannot be used, a DDS domain that cannot be joined), 3 internal error.
 """
@@ -14,7 +14,7 @@ import signal
 import sys
 import threading
 
-from ._common import emit_json, err
+from ._common import add_deprecated_alias, emit_json, err
 
 __all__ = ["add_ros2_parsers", "cmd_ros2"]
 
@@ -30,8 +30,9 @@ def add_ros2_parsers(sub) -> None:
     p.add_argument("--map", dest="mapping", metavar="MAP", required=True, help="the mapping file (topics → signals)")
     p.add_argument("--domain", type=int, default=None, metavar="N",
                    help="ROS 2 domain id (default: $ROS_DOMAIN_ID, else 0)")
-    p.add_argument("--duration", type=float, default=None, metavar="S", help="stop after S seconds (default: "
+    p.add_argument("--duration-s", type=float, default=None, metavar="S", help="stop after S seconds (default: "
                    "run until Ctrl-C / SIGTERM)")
+    add_deprecated_alias(p, "--duration", "--duration-s", type=float, metavar="S")
     p.add_argument("--interface", metavar="NAME|ADDR", help="network interface for DDS (e.g. eth0, lo, or its "
                    "address); default: Cyclone's configuration (CYCLONEDDS_URI)")
     p.add_argument("--peer", action="append", default=[], metavar="ADDR",
@@ -63,8 +64,8 @@ def cmd_ros2(args: argparse.Namespace) -> int:
             return err(f"ROS_DOMAIN_ID={env!r} is not a number; pass --domain N")
     if not 0 <= domain <= 232:
         return err(f"--domain {domain}: a ROS 2 domain id is 0..232")
-    if args.duration is not None and not args.duration > 0:
-        return err(f"--duration {args.duration:g}: expected a positive number of seconds")
+    if args.duration_s is not None and not args.duration_s > 0:
+        return err(f"--duration-s {args.duration_s:g}: expected a positive number of seconds")
     try:
         spec = _api.load_spec(args.spec)
         mapping = load_mapping(args.mapping)
@@ -102,7 +103,7 @@ def cmd_ros2(args: argparse.Namespace) -> int:
             print(f"ethimon ros2: spec {spec.name!r} on domain {domain} at {float(mapping.rate_hz):g} Hz; "
                   f"publishing /ethimon/override and /ethimon/decision", file=sys.stderr, flush=True)
         try:
-            stats = node.run(args.duration)
+            stats = node.run(args.duration_s)
         except KeyboardInterrupt:
             node.close()
             stats = node.stats

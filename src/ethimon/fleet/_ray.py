@@ -50,7 +50,7 @@ def check_address(address: str | None) -> str | None:
 
 
 def check_file_timeout(seconds: float | None, on_ray: bool = True) -> float | None:
-    """The ``--file-timeout`` of a run: ``None`` (no timeout) or a finite number of seconds above 0.
+    """The ``--file-timeout-s`` of a run: ``None`` (no timeout) or a finite number of seconds above 0.
 
     Raises:
         EthimonError: a value that is not above 0 or not finite, or a timeout for a run without Ray
@@ -60,11 +60,11 @@ def check_file_timeout(seconds: float | None, on_ray: bool = True) -> float | No
     if seconds is None:
         return None
     if not on_ray:
-        raise EthimonError("--file-timeout needs --ray (a serial run checks the files in this process, where a "
+        raise EthimonError("--file-timeout-s needs --ray (a serial run checks the files in this process, where a "
                            "hung file cannot be stopped; add --ray to run each file as a Ray task)")
     if not isinstance(seconds, (int, float)) or isinstance(seconds, bool) or not math.isfinite(seconds) \
             or seconds <= 0:
-        raise EthimonError(f"--file-timeout must be a number of seconds above 0, got {seconds!r}")
+        raise EthimonError(f"--file-timeout-s must be a number of seconds above 0, got {seconds!r}")
     return float(seconds)
 
 

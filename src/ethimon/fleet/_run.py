@@ -36,7 +36,7 @@ def check_paths(paths: Iterable[str], *, sim: bool = False, model_dir: str | Non
     """
     from .._files import scan_yaml_files
     from ..scenario import CheckOutcome, CheckReport
-    from ..scenario._check import _skipped
+    from ..scenario._session import _skipped
 
     files = scan_yaml_files(paths, what="scenario", command="ethimon check")
     todo = [path for path, reason in files if reason is None]

@@ -10,6 +10,6 @@ traces (``verification/test_prop_offline.py``).
 Not imported by ``import ethimon``; it needs only numpy (a core dependency).
 """
 
-from ._check import OfflineResult, check_trace, iter_rows
+from ._trace import OfflineResult, check_trace, iter_rows
 
 __all__ = ["OfflineResult", "check_trace", "iter_rows"]

@@ -24,7 +24,7 @@ topics to write a mapping from; :func:`replay_paths` replays many bags as
 from __future__ import annotations
 
 from ._bag import BagData, BagError, Series, TopicInfo, list_topics, read_bag
-from ._check import CycleResults, check_columns
+from ._verdicts import CycleResults, check_columns
 from ._mapping import (Mapping, SignalMap, TaskMap, check_against_spec, lint_mapping, load_mapping,
                        load_mapping_text, mapping_json_schema)
 from ._mcap import write_mcap

@@ -132,7 +132,7 @@ class Monitor:
     """
 
     __slots__ = ("spec", "plan", "obligation_ids", "_m", "_sig", "_vals", "_rslot", "_updates", "_obs",
-                 "_margin_fns", "_nan_margins", "_tau", "_risk_sev", "_fault_sev", "_below",
+                 "_margin_fns", "_nan_margins", "_tau", "_risk_sev", "_fault_sev", "_release_cut",
                  "_alpha", "_beta", "_gamma", "_sample", "_k", "_uidx", "_rlo", "_rhi",
                  "_max_age", "_age_missing", "_cycle", "_margins_on", "_stateless",
                  "_lat", "_run", "_sevs", "_holds", "_manual", "_names", "_nlat", "_ri", "_fi", "_nsrc",
@@ -175,7 +175,7 @@ class Monitor:
         self._tau = float(r.threshold)
         self._risk_sev = Response(r.response).severity
         self._fault_sev = plan.on_fault.severity
-        self._below = release_bound(r.threshold, r.release.hysteresis)[1]  # exact: 0.27 - 0.05 is 0.22
+        self._release_cut = release_bound(r.threshold, r.release.hysteresis)[1]  # exact: 0.27 - 0.05 is 0.22
         # one latch per rule, in preallocated slots: the obligations in order, then the risk
         # rule, the fault latch, the judge's unsafe verdict and the confirm band (the last two
         # never latch unless the spec sets risk.judge / risk.confirm_threshold).
@@ -570,7 +570,7 @@ class Monitor:
                 margins = self._mcall()  # a margin that cannot be computed is NaN
             if not self._nlat:
                 return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
-            sev, awaiting = self._release_pass(r < self._below)
+            sev, awaiting = self._release_pass(r < self._release_cut)
             if violations is not None:
                 return Decision(True, _RESPONSES[sev], tuple(violations), margins, r, cycle, False, _EMPTY,
                                 awaiting)

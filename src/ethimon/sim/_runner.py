@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 import zlib
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field
@@ -539,24 +540,25 @@ def _signal_filter(block: SimBlock):
 
 
 def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
-            probs: Sequence[float] | None = None, risk: float | None = None,
-            p_unsafe: float | None = None, p: Sequence[float] | None = None,
-            inputs: Mapping[str, Any] | None = None,
-            record_dir: str | None = None, gui: bool = False) -> SimResult:
+            p: Sequence[float] | None = None, risk: float | None = None,
+            p_unsafe: float | None = None, inputs: Mapping[str, Any] | None = None,
+            record_dir: str | None = None, gui: bool = False,
+            probs: Sequence[float] | None = None) -> SimResult:
     """Run a scenario's ``sim:`` block with ``monitor`` in the loop.
 
     Args:
         sim_block: a :class:`SimBlock` (or a dict that validates as one).
         monitor: an ``ethimon.Monitor``; it is ``reset()`` first.
-        probs: the risk estimator's class probabilities for the task text (fed as ``p``).
+        p: the risk estimator's class probabilities for the task text (fed as ``p``; every risk
+            keyword is named as the monitor's input it feeds).
         risk: R_e itself (fed as ``risk``).
         p_unsafe: the unsafe-class probability (fed as ``p_unsafe``).
-        p: same as ``probs`` (the monitor's input name).
         inputs: other constant inputs for every cycle; the simulated signals
             (human_distance, ee_speed, contact_force, joint_speed_max) always
             replace inputs of the same name.
         record_dir: write PNG frames, ``trace.jsonl``/``trace.csv`` and ``plot.png`` there.
         gui: show the PyBullet GUI (needs a display) and run in real time.
+        probs: deprecated spelling of ``p`` (still works, warns ``DeprecationWarning``).
 
     Returns:
         A :class:`SimResult`.
@@ -567,10 +569,14 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
     block = sim_block if isinstance(sim_block, SimBlock) else SimBlock.model_validate(sim_block)
     wall0 = time.perf_counter()
     fixed: dict[str, Any] = dict(inputs or {})
-    if probs is None and p is not None:
-        probs = p
     if probs is not None:
-        fixed["p"] = tuple(float(x) for x in probs)
+        if p is not None:
+            raise TypeError("run_sim: give the class probabilities once, as p= (probs= is its deprecated spelling)")
+        warnings.warn("run_sim(probs=...) is deprecated; use p=... (the monitor's input name)",
+                      DeprecationWarning, stacklevel=2)
+        p = probs
+    if p is not None:
+        fixed["p"] = tuple(float(x) for x in p)
     if p_unsafe is not None:
         fixed["p_unsafe"] = float(p_unsafe)
     if risk is not None:

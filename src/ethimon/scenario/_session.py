@@ -186,7 +186,7 @@ def sim_risk_inputs(sc: Scenario, estimator: Callable[[], Any] | Any) -> dict[st
 
     The first of ``risk``, ``p_unsafe``, ``p`` in ``inputs``; else the first value of one of them in
     the timeline; else the task text scored by ``estimator`` (an object with ``probs(text)`` or a
-    zero-argument factory of one), fed as ``probs``.
+    zero-argument factory of one), fed as ``p``.
 
     Raises:
         SpecError: no risk input and no task text (located at the scenario).
@@ -205,7 +205,7 @@ def sim_risk_inputs(sc: Scenario, estimator: Callable[[], Any] | Any) -> dict[st
         msg = "scenario gives no risk input and no task text"
         raise sc._source.error(msg, (), hint=hint) if sc._source is not None else SpecError(msg, hint=hint)
     est = estimator() if callable(estimator) and not hasattr(estimator, "probs") else estimator
-    return {"probs": tuple(float(x) for x in est.probs(sc.task))}
+    return {"p": tuple(float(x) for x in est.probs(sc.task))}
 
 
 class ScenarioSession:

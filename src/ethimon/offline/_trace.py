@@ -502,8 +502,8 @@ def _latch(res: OfflineResult, plan, inp: Inputs) -> None:
         col = res.violated[:, k]
         fired_valid |= col
         rules.append((col, ob.response.severity, mode == "manual", int(hold), None))
-    cut = _release_cut(float(r.threshold), float(r.release.hysteresis))
-    below = ~fault & inp.risk_ok & (np.where(inp.risk_ok, inp.risk, np.inf) < cut)
+    release_cut = _release_cut(float(r.threshold), float(r.release.hysteresis))
+    below = ~fault & inp.risk_ok & (np.where(inp.risk_ok, inp.risk, np.inf) < release_cut)
     fired_valid |= res.risk_violated
     rules.append((res.risk_violated, Response(r.response).severity, r.release.mode == "manual",
                   int(r.release.hold_cycles), ~below))
