@@ -14,7 +14,8 @@ from collections import OrderedDict
 
 from ..spec._expr import TEMPORAL, Call, Name, walk
 from ..spec import Spec
-from ._check import Plan, compile_plan
+from ._plan import Plan
+from ._typecheck import compile_plan
 
 __all__ = ["plan_of", "stateless_slots"]
 

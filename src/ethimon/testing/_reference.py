@@ -73,7 +73,7 @@ import math
 from fractions import Fraction
 from typing import Any
 
-from ..compiler._check import RISK_NAME, Plan
+from ..compiler._plan import RISK_NAME, Plan
 from ..compiler import plan_of
 from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call,
                           Name, Node, Num, Unary, comparison_margin, connective_margin, separation_distance,

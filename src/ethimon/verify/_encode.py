@@ -41,7 +41,7 @@ from fractions import Fraction
 
 import z3
 
-from ..compiler._check import RISK_NAME, Plan
+from ..compiler._plan import RISK_NAME, Plan
 from ..compiler._risk_formula import release_bound, risk_range
 from ..spec._expr import BINARY_OPS, Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance, walk
 from ..spec import Response
