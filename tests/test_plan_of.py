@@ -42,3 +42,31 @@ def test_slot_map_is_built_once_at_compile_time():
     assert stateless_slots(plan, slow) is None  # temporal: keeps state
     assert stateless_slots(plan, fast) == frozenset({1, 2})
     assert plan.risk is plan.spec.risk and plan.on_fault is ethimon.Response.SAFE_POSE
+
+
+def test_a_loaded_spec_carries_its_plan_none_recompiled(monkeypatch):
+    """No hidden cache by the spec's address: 100 live specs each carry their plan (issue 24)."""
+    from ethimon.compiler import _plans
+
+    specs = [ethimon.load_spec_text(SPEC) for _ in range(100)]
+    plans = [plan_of(s) for s in specs]
+    calls = []
+    real = _plans.compile_plan
+    monkeypatch.setattr(_plans, "compile_plan", lambda spec: calls.append(spec) or real(spec))
+    for spec, plan in zip(specs, plans):
+        assert ethimon.Monitor(spec).plan is plan and plan_of(spec) is plan and plan.spec is spec
+    assert calls == []  # none recompiled, however many specs are alive
+
+
+def test_the_carried_plan_is_no_part_of_the_specs_value():
+    import copy
+    import pickle
+
+    a, b = ethimon.load_spec_text(SPEC), ethimon.load_spec_text(SPEC)
+    assert a == b and plan_of(a) is not plan_of(b)
+    c = a.model_copy()  # a copy is another spec: it gets its own plan, the original keeps its own
+    assert plan_of(c).spec is c and plan_of(a).spec is a
+    d = copy.deepcopy(a)
+    assert d == a and plan_of(d).spec is d
+    e = pickle.loads(pickle.dumps(a))  # the plan does not travel in a pickle; it is compiled again
+    assert e == a and plan_of(e).spec is e

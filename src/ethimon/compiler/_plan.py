@@ -85,8 +85,8 @@ class Plan:
         on_fault: the response to a fault.
         fault_release: ``(mode, hold_cycles)`` of the fault latch (defaults filled in).
 
-    The plan points at its spec (``spec``, where it came from); the spec never
-    points at its plan: :func:`~ethimon.compiler.plan_of` finds or compiles it.
+    The plan points at its spec (``spec``, where it came from); the spec carries its plan in a
+    private holder that is no part of its value, set once by :func:`~ethimon.compiler.plan_of`.
     """
 
     spec: Spec

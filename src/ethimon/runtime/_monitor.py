@@ -87,7 +87,7 @@ class Monitor:
 
     Args:
         plan: a compiled :class:`~ethimon.compiler.Plan`, or a :class:`~ethimon.Spec` from
-            :func:`ethimon.load_spec` (its plan is found with :func:`ethimon.compiler.plan_of`).
+            :func:`ethimon.load_spec` (which carries its plan: :func:`ethimon.compiler.plan_of` reads it).
         margins: compute per-obligation robustness margins each cycle (a little slower).
 
     Each cycle pass a mapping with the spec's signals and one risk input:
