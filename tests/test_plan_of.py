@@ -70,3 +70,40 @@ def test_the_carried_plan_is_no_part_of_the_specs_value():
     assert d == a and plan_of(d).spec is d
     e = pickle.loads(pickle.dumps(a))  # the plan does not travel in a pickle; it is compiled again
     assert e == a and plan_of(e).spec is e
+
+
+def test_every_consumer_reads_the_releases_resolved_in_the_plan():
+    """Holds, manual flags, τ and the release cut are resolved once in the plan: a plan whose risk
+    rule holds 2 cycles (the spec says 10) is followed by the monitor, the reference and offline."""
+    import dataclasses
+
+    import numpy as np
+
+    from ethimon.offline import check_trace
+    from ethimon.testing import ReferenceMonitor
+
+    assert [r.name for r in plan_of(ethimon.load_spec_text(SPEC)).rules()] == [
+        "near", "slow", "fast", "risk", "fault", "judge", "confirm"]
+    spec = ethimon.load_spec_text(SPEC.replace('held(v <= 1, 3)', 'v <= 1'))  # no start-up window
+    plan = plan_of(spec)
+    assert plan.risk_rule.hold == 10 and not plan.risk_rule.manual and plan.fault_rule.manual
+    assert (plan.threshold, plan.release_cut) == (spec.risk.threshold, float(plan.release_exact))
+    short = dataclasses.replace(plan, risk_rule=dataclasses.replace(plan.risk_rule, hold=2))
+    qs = [0.99] + [0.0] * 12
+    frames = [{"d": 1.0, "v": 0.1, "p_unsafe": q} for q in qs]
+    for make in (ethimon.Monitor, ReferenceMonitor):
+        for p, hold in ((plan, 10), (short, 2)):  # fired at 0, released on the hold-th good cycle
+            m = make(p)
+            held = [m.step(f).override for f in frames]
+            assert held == [True] * hold + [False] * (len(qs) - hold), (make, p.risk_rule)
+    cols = {"d": np.ones(len(qs)), "v": np.full(len(qs), 0.1), "p_unsafe": np.array(qs)}
+    for p, hold in ((plan, 10), (short, 2)):
+        for method in ("vector", "step"):
+            res = check_trace(p, cols, method=method)
+            assert list(res.override) == [True] * hold + [False] * (len(qs) - hold), (method, hold)
+    try:
+        dataclasses.replace(plan, threshold=None)
+    except TypeError as exc:
+        assert "compile_plan" in str(exc)
+    else:
+        raise AssertionError("a plan without its resolved rules was accepted")

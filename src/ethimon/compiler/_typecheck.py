@@ -12,7 +12,8 @@ from ..errors import SpecError
 from ..spec._expr import (FUNCTIONS, SEPARATION_PARAMS, TEMPORAL, Binary, BoolLit, Call, ExprSyntaxError, Name,
                           Node, Num, Unary, parse_expr, separation_distance)
 from ..spec import Constant, Response, Spec
-from ._plan import BOOL, MAX_WINDOW, RISK_NAME, ObligationPlan, Plan, SignalSlot, Ty
+from ._plan import BOOL, MAX_WINDOW, RISK_NAME, ObligationPlan, Plan, RuleRelease, SignalSlot, Ty
+from ._risk_formula import release_bound
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit
 
 __all__ = ["compile_plan"]
@@ -366,7 +367,7 @@ def compile_plan(spec: Spec) -> Plan:
         ck.check_bool(require, f"'require' of obligation {ob.id!r}")
         mode, hold = spec.obligation_release(ob)
         obligations.append(ObligationPlan(i, ob.id, ob.description, when, require, ob.within_cycles,
-                                          Response(ob.response), ob.when, ob.require, mode, hold))
+                                          Response(ob.response), ob.when, ob.require, mode, int(hold)))
     signals = []
     big = 1.7976931348623157e308
     for slot, (name, sig) in enumerate(spec.signals.items()):
@@ -375,7 +376,15 @@ def compile_plan(spec: Spec) -> Plan:
         signals.append(SignalSlot(name, slot, sig.type, float(lo), float(hi), ty.unit))
     slots = {s.name: s.slot for s in signals}
     slots[RISK_NAME] = len(signals)
+    # every rule's release resolved here, once: consumers read the plan, never the spec again
+    r = spec.risk
+    exact, cut = release_bound(r.threshold, r.release.hysteresis)
+    fmode, fhold = spec.fault_release()
     return Plan(spec=spec, signals=tuple(signals), risk_slot=len(signals), constants=dict(ck.consts),
                 obligations=tuple(obligations), temporal=tuple(ck.temporal), types=ck.types,
-                windows=ck.windows, slots=slots, risk=spec.risk, on_fault=Response(spec.on_fault),
-                fault_release=spec.fault_release())
+                windows=ck.windows, slots=slots, risk=r, on_fault=Response(spec.on_fault),
+                fault_release=(fmode, int(fhold)), threshold=float(r.threshold), release_exact=exact,
+                release_cut=cut,
+                risk_rule=RuleRelease("risk", Response(r.response), r.release.mode == "manual",
+                                      int(r.release.hold_cycles)),
+                fault_rule=RuleRelease("fault", Response(spec.on_fault), fmode == "manual", int(fhold)))
