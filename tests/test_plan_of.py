@@ -107,3 +107,26 @@ def test_every_consumer_reads_the_releases_resolved_in_the_plan():
         assert "compile_plan" in str(exc)
     else:
         raise AssertionError("a plan without its resolved rules was accepted")
+
+
+def test_the_hot_path_copy_of_r_e_equals_the_one_definition():
+    """Monitor.step inlines the two-class R_e (hot path): bit for bit the value of two_class_risk,
+    which the slow path, offline (numpy), risk_from_p_unsafe and verify (z3) all call."""
+    import numpy as np
+
+    from ethimon.compiler._risk_formula import risk_from_p_unsafe, two_class_risk
+    from ethimon.offline import check_trace
+
+    qs = sorted({i / 200 for i in range(201)} | {0.5 - 1e-12, 0.5 + 1e-12, 1e-300, 1.0 - 1e-16, 0.3, 0.7})
+    for alpha, beta, gamma in ((0.6, 0.2, 0.2), (0.9, 0.05, 0.05), (0.3, 0.5, 0.4), (1.0, 0.0, 0.0)):
+        for variance in ("sample", "population"):
+            spec = ethimon.load_spec_text(
+                "ethimon: 1\nname: r\nrisk: {threshold: 1.0, alpha: %r, beta: %r, gamma: %r, variance: %s}\n"
+                % (alpha, beta, gamma, variance))
+            m = ethimon.Monitor(spec)
+            want = [two_class_risk(q, alpha, beta, gamma, variance) for q in qs]
+            hot = [m.step({"p_unsafe": q}).risk for q in qs]  # built-in floats: the inlined copy
+            slow = [m.step({"p_unsafe": np.float64(q)}).risk for q in qs]  # not a float: _risk_p
+            vec = check_trace(spec, {"p_unsafe": np.array(qs)}).risk.tolist()
+            assert hot == want and slow == want and vec == want, (alpha, beta, gamma, variance)
+            assert [risk_from_p_unsafe(q, alpha, beta, gamma, variance) for q in qs] == want

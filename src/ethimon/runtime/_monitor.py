@@ -17,7 +17,7 @@ from typing import Any
 from ..compiler import Plan, plan_of, stateless_slots
 from ..compiler._closures import build_machine  # the compiler's closures: runtime is their one caller
 from ..spec import SEVERITY_ORDER, Response, Spec
-from ..compiler._risk_formula import risk_from_probs, risk_range
+from ..compiler._risk_formula import risk_from_probs, risk_range, two_class_risk
 from ._decision import Acknowledgement, Decision
 from ._fault import Fault
 from ._inputs import as_bool, as_number, as_probs
@@ -445,10 +445,8 @@ class Monitor:
             if f is None or not 0.0 <= f <= 1.0:
                 return None, Fault("invalid" if f is None or not _isfinite(f) else "range",
                                    f"p_unsafe={q!r} is NaN, not a number or outside [0, 1]", "p_unsafe")
-            d = f - 0.5
-            var = 2.0 * d * d if self._sample else d * d
-            top = f if f >= 0.5 else 1.0 - f
-            return self._alpha * f + self._beta * (1.0 - top) + self._gamma * var, None
+            return two_class_risk(f, self._alpha, self._beta, self._gamma,
+                                  "sample" if self._sample else "population"), None
         p = get("p")
         if p is None:
             return None, _NO_RISK
@@ -493,6 +491,8 @@ class Monitor:
             else:
                 q = get("p_unsafe")
                 if type(q) is float and self._p2 and 0.0 <= q <= 1.0:  # the common case, as _risk_p
+                    # compiler._risk_formula.two_class_risk inlined (hot path; tests/test_plan_of.py
+                    # checks this copy equals the one definition on a grid of inputs and weights)
                     d = q - 0.5
                     var = 2.0 * d * d if self._sample else d * d
                     top = q if q >= 0.5 else 1.0 - q

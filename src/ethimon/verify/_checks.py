@@ -11,7 +11,7 @@ import z3
 
 from ..compiler import Plan
 from ..compiler import plan_of
-from ..compiler._risk_formula import risk_bounds, risk_from_p_unsafe, risk_range
+from ..compiler._risk_formula import risk_bounds, risk_from_p_unsafe, risk_range, two_class_risk
 from ..runtime import Monitor
 from ..spec._expr import Name, walk
 from ..spec import Response, Spec
@@ -374,10 +374,8 @@ class Verifier:
                                f"by the exact candidate search of risk_range")
             lo, hi = risk_bounds(r.alpha, r.beta, r.gamma, r.variance)
             q = z3.Real("q")
-            d = q - z3.RealVal("1/2")
-            var = (2 if r.variance == "sample" else 1) * d * d
-            top = z3.If(q >= z3.RealVal("1/2"), q, 1 - q)
-            R = real(r.alpha) * q + real(r.beta) * (1 - top) + real(r.gamma) * var
+            R = two_class_risk(q, real(r.alpha), real(r.beta), real(r.gamma), r.variance, where=z3.If,
+                               half=z3.RealVal("1/2"))
             eps = 1e-9 * max(1.0, abs(lo), abs(hi))
             st, model, why = self.solve(q >= 0, q <= 1, z3.Or(R < real(lo - eps), R > real(hi + eps)))
             if st == "unsat":
@@ -703,9 +701,8 @@ class Verifier:
         q1, q2 = z3.Real("q1"), z3.Real("q2")
 
         def R(q):
-            d = q - z3.RealVal("1/2")
-            top = z3.If(q >= z3.RealVal("1/2"), q, 1 - q)
-            return real(r.alpha) * q + real(r.beta) * (1 - top) + real(r.gamma) * (2 if r.variance == "sample" else 1) * d * d
+            return two_class_risk(q, real(r.alpha), real(r.beta), real(r.gamma), r.variance, where=z3.If,
+                                  half=z3.RealVal("1/2"))
         st, model, why = self.solve(q1 >= 0, q2 <= 1, q1 < q2, R(q1) > R(q2))
         if st == "sat":
             a, b = z3_value(model, q1), z3_value(model, q2)
