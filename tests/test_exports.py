@@ -117,7 +117,7 @@ INTERNAL_REACHES: dict[str, tuple[set[str], str]] = {
     "spec._yaml": ({"replay", "scenario"}, "the located YAML reader, for their own file formats"),
     "spec._model": ({"replay", "scenario", "verify"}, "field types and defaults (FiniteFloat, ACTIVE_RESPONSES, "
                                                       "MANUAL_BY_DEFAULT, the located-error helper)"),
-    "compiler._check": ({"testing", "verify"}, "RISK_NAME, the name R_e has in a plan"),
+    "compiler._plan": ({"testing", "verify"}, "RISK_NAME, the name R_e has in a plan"),
     "compiler._closures": ({"runtime"}, "the closures the monitor runs"),
     "compiler._risk_formula": ({"ethimon", "loop", "offline", "risk", "runtime", "testing", "verify"},
                                "the R_e formula, spec semantics on the compiler floor"),

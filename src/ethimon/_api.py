@@ -18,7 +18,8 @@ def load_spec(path: str | os.PathLike) -> Spec:
         path: a YAML spec file.
 
     Returns:
-        The :class:`Spec`, already compiled (so ``Monitor(spec)`` cannot fail on it).
+        The :class:`Spec`, carrying its compiled plan (so ``Monitor(spec)`` neither fails on it nor
+        compiles it again).
 
     Raises:
         SpecError: any problem with the file, with ``path:line:column`` and a hint.
@@ -29,7 +30,7 @@ def load_spec(path: str | os.PathLike) -> Spec:
         0.5
     """
     spec = parse_spec_file(path)
-    plan_of(spec)  # compile now (errors surface here); Monitor(spec) finds this plan
+    plan_of(spec)  # compile now (errors surface here); the spec carries the plan, Monitor(spec) reads it
     return spec
 
 

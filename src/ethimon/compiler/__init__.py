@@ -1,6 +1,7 @@
 """Stage 2 of 3: check a spec (names, types, units, windows) and compile it."""
 
-from ._check import ObligationPlan, Plan, SignalSlot, compile_plan
+from ._plan import ObligationPlan, Plan, SignalSlot
+from ._typecheck import compile_plan
 from ._plans import plan_of, stateless_slots
 
 # the closures (compiler._closures: build_machine, Machine) are the runtime's to call, not a public API

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, COMPARISONS, CONNECTIVE_MARGINS, Binary, BoolLit, Call,
                           Name, Node, Num, Unary, separation_distance, walk)
-from ._check import Plan
+from ._plan import Plan
 
 __all__ = ["Machine", "build_machine"]
 

@@ -1,29 +1,20 @@
 """Compile-time helpers around a :class:`Plan`: find a spec's plan, and what an obligation reads.
 
-A :class:`~ethimon.Spec` is plain data and never points at its plan. The plan
-of a spec is found through :func:`plan_of`: the most recent plans, kept by the spec's identity
-(a plan holds its spec, so a cached spec's address is never recycled; a hit is
-checked with ``plan.spec is spec`` all the same), or compiled now. ``load_spec`` compiles through
-it, so ``Monitor(load_spec(path))`` compiles once.
+No hidden cache: a spec carries its own compiled plan. :func:`plan_of` compiles a
+:class:`~ethimon.Spec` once and sets the plan on it (a private holder that is no part of the
+spec's value: ``==``, copies and pickles ignore it); ``load_spec`` compiles through it, so
+``Monitor(load_spec(path))`` never compiles again, however many specs are alive. A copy of a
+spec (``model_copy``, ``deepcopy``, a pickle) is another spec and compiles its own plan.
 """
 
 from __future__ import annotations
 
-import threading
-from collections import OrderedDict
-
 from ..spec._expr import TEMPORAL, Call, Name, walk
 from ..spec import Spec
-from ._check import Plan, compile_plan
+from ._plan import Plan
+from ._typecheck import compile_plan
 
 __all__ = ["plan_of", "stateless_slots"]
-
-#: how many recently compiled plans are kept (each holds its spec: a bounded memory cost)
-CACHE_SIZE = 32
-
-_cache: OrderedDict[int, Plan] = OrderedDict()
-_lock = threading.Lock()
-
 
 def plan_of(spec: Spec | Plan) -> Plan:
     """The compiled :class:`Plan` of a spec (a plan is returned as is).
@@ -37,18 +28,12 @@ def plan_of(spec: Spec | Plan) -> Plan:
     if not isinstance(spec, Spec):
         raise TypeError(f"Monitor needs a Spec from ethimon.load_spec() or a compiled Plan, "
                         f"got {type(spec).__name__}")
-    key = id(spec)
-    with _lock:
-        hit = _cache.get(key)
-        if hit is not None and hit.spec is spec:
-            _cache.move_to_end(key)
-            return hit
+    carried = spec._compiled.plan
+    if carried is not None and carried.spec is spec:  # a model_copy shares its original's holder
+        return carried
     plan = compile_plan(spec)
-    with _lock:
-        _cache[key] = plan
-        _cache.move_to_end(key)
-        while len(_cache) > CACHE_SIZE:
-            _cache.popitem(last=False)
+    # a new holder (never mutate a shared one); two threads racing here both compile the same plan
+    spec._compiled = type(spec._compiled)(plan)
     return plan
 
 

@@ -17,10 +17,32 @@ from fractions import Fraction
 
 from ..spec import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, VARIANCE_MODES
 
-__all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "risk_from_p_unsafe", "risk_from_probs", "risk_bounds",
+__all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "two_class_risk", "risk_from_p_unsafe", "risk_from_probs", "risk_bounds",
            "release_bound", "decimal_reading", "risk_range", "VARIANCE_MODES", "OUTCOMES", "judge_verdict",
            "tier_outcome"]
 
+def two_class_risk(q, alpha, beta, gamma, variance: str = "sample", *, where=None, half=0.5):
+    """The two-class R_e, written once for every back-end's arithmetic.
+
+    ``R_e = α·q + β·(1 − max(q, 1 − q)) + γ·c·(q − ½)²`` with ``c = 2`` for the sample
+    variance (n − 1 = 1) and ``c = 1`` for the population variance. The back-end supplies its
+    numbers and its ``if``: plain floats (``where=None``: a Python conditional), numpy arrays
+    (``where=np.where``), z3 terms (``where=z3.If``, ``half=z3.RealVal("1/2")``, weights as z3
+    reals). The float form is the one the monitor's hot path inlines (a test checks it equals
+    this on a grid); the operations and their order are the same for every back-end, so the
+    floats, the arrays and the exact reals agree.
+
+    Example:
+        >>> two_class_risk(1.0, 0.6, 0.2, 0.2), two_class_risk(0.0, 0.6, 0.2, 0.2, "population")
+        (0.7, 0.05)
+    """
+    d = q - half
+    var = 2.0 * d * d if variance == "sample" else d * d
+    if where is None:
+        top = q if q >= half else 1.0 - q
+    else:
+        top = where(q >= half, q, 1.0 - q)
+    return alpha * q + beta * (1.0 - top) + gamma * var
 
 
 def risk_from_p_unsafe(p_unsafe: float, alpha: float = DEFAULT_ALPHA, beta: float = DEFAULT_BETA,
@@ -45,10 +67,7 @@ def risk_from_p_unsafe(p_unsafe: float, alpha: float = DEFAULT_ALPHA, beta: floa
         >>> round(risk_from_p_unsafe(0.5), 6)
         0.4
     """
-    q = p_unsafe
-    d = q - 0.5
-    var = 2.0 * d * d if variance == "sample" else d * d
-    return alpha * q + beta * (1.0 - (q if q >= 0.5 else 1.0 - q)) + gamma * var
+    return two_class_risk(p_unsafe, alpha, beta, gamma, variance)
 
 
 def risk_from_probs(p: Sequence[float], alpha: float = DEFAULT_ALPHA, beta: float = DEFAULT_BETA,

@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from ..compiler._risk_formula import risk_from_probs, risk_range
+from ..compiler._risk_formula import risk_from_probs, risk_range, two_class_risk
 from ..runtime._inputs import as_bool, as_number, as_probs
 
 __all__ = ["Inputs", "read_inputs", "row", "RISK_KEYS"]
@@ -223,10 +223,7 @@ def _risk(inp: Inputs, cols, r) -> None:
         if k == 2 and use.any():
             q, good = _numbers(data, use, 0.0, 1.0)
             with np.errstate(all="ignore"):
-                d = q - 0.5
-                var = 2.0 * d * d if sample else d * d
-                top = np.where(q >= 0.5, q, 1.0 - q)
-                re = alpha * q + beta * (1.0 - top) + gamma * var
+                re = two_class_risk(q, alpha, beta, gamma, "sample" if sample else "population", where=np.where)
             value = np.where(good, re, value)
             ok |= good
         taken |= use

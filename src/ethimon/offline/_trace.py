@@ -27,7 +27,6 @@ worded exactly as the monitor words them.
 
 from __future__ import annotations
 
-import functools
 import os
 from collections.abc import Iterator, Mapping
 from typing import Any
@@ -37,8 +36,7 @@ import numpy as np
 from ..runtime import Decision
 from ..runtime import Monitor
 from ..spec import SEVERITY_ORDER, Response, Spec
-from ..compiler import stateless_slots
-from ..compiler._risk_formula import release_bound
+from ..compiler import Plan, stateless_slots
 from ._columns import Inputs, read_inputs, row
 from ._eval import Evaluator, last_index
 
@@ -109,9 +107,11 @@ class OfflineResult:
         self._scratch: Monitor | None = None  # steps input-fault cycles for their reasons
         self._replayer: Monitor | None = None  # replays a segment up to an internal fault
         self._last_fault: np.ndarray | None = None
+        self._plan: Plan | None = None  # the plan checked (set by check_trace)
 
     def _monitor(self, margins: bool = False) -> Monitor:
-        return Monitor(self.spec, margins=margins, max_age_s=self._max_age_s)
+        return Monitor(self._plan if self._plan is not None else self.spec, margins=margins,
+                       max_age_s=self._max_age_s)
 
     # -- per cycle, as the monitor reports it ------------------------------------
     def response_at(self, t: int) -> Response:
@@ -213,13 +213,14 @@ def iter_rows(spec: Spec | str | os.PathLike, columns: Mapping[str, Any], *,
         yield row(inp, t)
 
 
-def check_trace(spec: Spec | str | os.PathLike, columns: Mapping[str, Any], *, margins: bool = True,
+def check_trace(spec: Spec | Plan | str | os.PathLike, columns: Mapping[str, Any], *, margins: bool = True,
                 length: int | None = None, method: str = "vector",
                 max_age_s: float | None = None) -> OfflineResult:
     """Check a whole recorded trace, equal cycle by cycle to ``Monitor.step`` over it.
 
     Args:
-        spec: a :class:`~ethimon.Spec` (or the path of a spec file).
+        spec: a :class:`~ethimon.Spec`, its compiled :class:`~ethimon.compiler.Plan` (whose resolved
+            releases are what is checked) or the path of a spec file.
         columns: column name → one value per cycle: the spec's signals, one risk input
             (``risk``, ``p_unsafe``, or ``p`` as a 2-d array of class probabilities), and
             ``risk_age_s`` if the spec sets ``risk.max_age_s``. A missing column, a masked
@@ -254,16 +255,20 @@ def check_trace(spec: Spec | str | os.PathLike, columns: Mapping[str, Any], *, m
         >>> res.summary()["slow"]["first_violation"]
         1
     """
-    if not isinstance(spec, Spec):
-        from .._api import load_spec
-        spec = load_spec(spec)
+    if isinstance(spec, Plan):
+        plan, spec = spec, spec.spec
+    else:
+        if not isinstance(spec, Spec):
+            from .._api import load_spec
+            spec = load_spec(spec)
+        plan = _plan(spec)
     if method not in ("vector", "step"):
         raise ValueError(f"method must be 'vector' or 'step', got {method!r}")
-    plan = _plan(spec)
-    Monitor(spec, margins=False, max_age_s=max_age_s)  # the same argument checks as the monitor's
+    Monitor(plan, margins=False, max_age_s=max_age_s)  # the same argument checks as the monitor's
     inp = read_inputs(plan, columns, length, max_age_s=max_age_s)
     ids = tuple(ob.id for ob in plan.obligations)
     res = OfflineResult(spec, inp, ids, margins, max_age_s)
+    res._plan = plan
     if inp.n == 0:
         return res
     if plan.risk.confirm_threshold is not None or plan.risk.judge is not None:
@@ -471,11 +476,6 @@ def _fault_cycles(res: OfflineResult, plan, inp: Inputs) -> None:
         res.violated[cycles, k] = hit
 
 
-@functools.lru_cache(maxsize=64)
-def _release_cut(threshold: float, hysteresis: float) -> float:
-    return release_bound(threshold, hysteresis)[1]
-
-
 # -- the latch -----------------------------------------------------------------------------
 
 def _latch(res: OfflineResult, plan, inp: Inputs) -> None:
@@ -488,27 +488,22 @@ def _latch(res: OfflineResult, plan, inp: Inputs) -> None:
     ``hold_cycles``; a ``manual`` rule stays latched (``acknowledge()`` is an operator's, not
     the trace's). Everything is a running maximum or a cumulative sum over the trace.
     """
-    spec = res.spec
-    r = spec.risk
     n = inp.n
     idx = np.arange(n, dtype=np.int32 if n < 2 ** 31 - 1 else np.int64)
-    tau = float(r.threshold)
+    tau = plan.threshold
     fault = res.fault
     res.risk_violated = inp.risk_ok & (np.where(inp.risk_ok, inp.risk, -np.inf) >= tau)
     fired_valid = np.zeros(n, bool)  # Decision.violations is not empty on a valid cycle
     rules = []  # (fires, severity, manual, hold, extra reset or None)
-    for k, ob in enumerate(plan.obligations):
-        mode, hold = spec.obligation_release(spec.obligations[k])
+    for k, ob in enumerate(plan.obligations):  # releases, holds and severities: resolved in the plan
         col = res.violated[:, k]
         fired_valid |= col
-        rules.append((col, ob.response.severity, mode == "manual", int(hold), None))
-    release_cut = _release_cut(float(r.threshold), float(r.release.hysteresis))
-    below = ~fault & inp.risk_ok & (np.where(inp.risk_ok, inp.risk, np.inf) < release_cut)
+        rules.append((col, ob.response.severity, ob.manual, ob.release_hold, None))
+    below = ~fault & inp.risk_ok & (np.where(inp.risk_ok, inp.risk, np.inf) < plan.release_cut)
     fired_valid |= res.risk_violated
-    rules.append((res.risk_violated, Response(r.response).severity, r.release.mode == "manual",
-                  int(r.release.hold_cycles), ~below))
-    fmode, fhold = spec.fault_release()
-    rules.append((fault, Response(spec.on_fault).severity, fmode == "manual", int(fhold), None))
+    rr, fr = plan.risk_rule, plan.fault_rule
+    rules.append((res.risk_violated, rr.severity, rr.manual, rr.hold, ~below))
+    rules.append((fault, fr.severity, fr.manual, fr.hold, None))
     fired_valid &= ~fault
     level = np.zeros(n, np.int8)
     manual_active = np.zeros(n, bool)

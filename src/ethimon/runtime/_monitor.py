@@ -17,7 +17,7 @@ from typing import Any
 from ..compiler import Plan, plan_of, stateless_slots
 from ..compiler._closures import build_machine  # the compiler's closures: runtime is their one caller
 from ..spec import SEVERITY_ORDER, Response, Spec
-from ..compiler._risk_formula import release_bound, risk_from_probs, risk_range
+from ..compiler._risk_formula import risk_from_probs, risk_range, two_class_risk
 from ._decision import Acknowledgement, Decision
 from ._fault import Fault
 from ._inputs import as_bool, as_number, as_probs
@@ -87,7 +87,7 @@ class Monitor:
 
     Args:
         plan: a compiled :class:`~ethimon.compiler.Plan`, or a :class:`~ethimon.Spec` from
-            :func:`ethimon.load_spec` (its plan is found with :func:`ethimon.compiler.plan_of`).
+            :func:`ethimon.load_spec` (which carries its plan: :func:`ethimon.compiler.plan_of` reads it).
         margins: compute per-obligation robustness margins each cycle (a little slower).
 
     Each cycle pass a mapping with the spec's signals and one risk input:
@@ -172,10 +172,11 @@ class Monitor:
             lambda fns=m.margins: _all_margins(fns))
         self._nan_margins = tuple(math.nan for _ in plan.obligations)
         r = plan.risk
-        self._tau = float(r.threshold)
-        self._risk_sev = Response(r.response).severity
-        self._fault_sev = plan.on_fault.severity
-        self._release_cut = release_bound(r.threshold, r.release.hysteresis)[1]  # exact: 0.27 - 0.05 is 0.22
+        # τ, the release cut and every rule's release: resolved once in the plan
+        self._tau = plan.threshold
+        self._risk_sev = plan.risk_rule.severity
+        self._fault_sev = plan.fault_rule.severity
+        self._release_cut = plan.release_cut  # exact: 0.27 - 0.05 is 0.22
         # one latch per rule, in preallocated slots: the obligations in order, then the risk
         # rule, the fault latch, the judge's unsafe verdict and the confirm band (the last two
         # never latch unless the spec sets risk.judge / risk.confirm_threshold).
@@ -184,15 +185,12 @@ class Monitor:
         n = len(plan.obligations)
         self._ri, self._fi, self._ji, self._ci, self._nsrc = n, n + 1, n + 2, n + 3, n + 4
         self._names = tuple(ob.id for ob in plan.obligations) + ("risk", "fault", "judge", "confirm")
-        fmode, fhold = plan.fault_release
-        rhold = int(r.release.hold_cycles)
-        self._holds = tuple(ob.release_hold for ob in plan.obligations) + (rhold, fhold, rhold, rhold)
         # the confirm latch is released automatically once the band no longer holds the text (the
         # judge said safe, R_e left the band) or at once by acknowledge(): the confirmation itself
-        self._manual = tuple(ob.release_mode == "manual" for ob in plan.obligations) + (
-            r.release.mode == "manual", fmode == "manual", r.release.mode == "manual", False)
-        self._sevs = tuple(ob.response.severity for ob in plan.obligations) + (
-            self._risk_sev, self._fault_sev, self._risk_sev, Response.STOP_2.severity)
+        rules = plan.rules()  # obligations, risk, fault, judge, confirm: the order above
+        self._holds = tuple(rule.hold for rule in rules)
+        self._manual = tuple(rule.manual for rule in rules)
+        self._sevs = tuple(rule.severity for rule in rules)
         self._lat = [0] * (n + 4)
         self._run = [0] * (n + 4)
         # the tiers (risk.confirm_threshold, risk.judge): off for specs without them
@@ -447,10 +445,8 @@ class Monitor:
             if f is None or not 0.0 <= f <= 1.0:
                 return None, Fault("invalid" if f is None or not _isfinite(f) else "range",
                                    f"p_unsafe={q!r} is NaN, not a number or outside [0, 1]", "p_unsafe")
-            d = f - 0.5
-            var = 2.0 * d * d if self._sample else d * d
-            top = f if f >= 0.5 else 1.0 - f
-            return self._alpha * f + self._beta * (1.0 - top) + self._gamma * var, None
+            return two_class_risk(f, self._alpha, self._beta, self._gamma,
+                                  "sample" if self._sample else "population"), None
         p = get("p")
         if p is None:
             return None, _NO_RISK
@@ -495,6 +491,8 @@ class Monitor:
             else:
                 q = get("p_unsafe")
                 if type(q) is float and self._p2 and 0.0 <= q <= 1.0:  # the common case, as _risk_p
+                    # compiler._risk_formula.two_class_risk inlined (hot path; tests/test_plan_of.py
+                    # checks this copy equals the one definition on a grid of inputs and weights)
                     d = q - 0.5
                     var = 2.0 * d * d if self._sample else d * d
                     top = q if q >= 0.5 else 1.0 - q

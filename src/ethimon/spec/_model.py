@@ -339,6 +339,35 @@ class SafePose(BaseModel):
         return v
 
 
+class _Carried:
+    """What the compiler made of a spec (its plan), carried by the spec object itself.
+
+    No part of the spec's value: equal to any other ``_Carried`` (so ``==`` on specs compares only
+    what the file says), not copied by ``copy``/``deepcopy`` and not pickled (a copy is another
+    spec: it gets its own plan). Set once by the compiler (``compiler.plan_of``), which also
+    checks ``plan.spec is spec`` (a ``model_copy`` shares the holder of its original).
+    """
+
+    __slots__ = ("plan",)
+
+    def __init__(self, plan: Any = None) -> None:
+        self.plan = plan
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, _Carried)
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __copy__(self) -> "_Carried":
+        return _Carried()
+
+    def __deepcopy__(self, memo: dict) -> "_Carried":
+        return _Carried()
+
+    def __reduce__(self):
+        return (_Carried, ())
+
+
 class Spec(BaseModel):
     """A validated spec (format version 1). Build it with :func:`ethimon.load_spec`."""
 
@@ -357,6 +386,8 @@ class Spec(BaseModel):
     safe_pose: SafePose = Field(default_factory=SafePose)
 
     _source: SourceMap | None = PrivateAttr(default=None)
+    #: the compiled plan, set by the compiler (see :class:`_Carried`); not part of the spec's value
+    _compiled: _Carried = PrivateAttr(default_factory=_Carried)
 
     @field_validator("fault_policy", mode="before", json_schema_input_type=ACTIVE_RESPONSES | OnFault)
     @classmethod

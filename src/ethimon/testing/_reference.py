@@ -73,13 +73,13 @@ import math
 from fractions import Fraction
 from typing import Any
 
-from ..compiler._check import RISK_NAME, Plan
+from ..compiler._plan import RISK_NAME, Plan
 from ..compiler import plan_of
 from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call,
                           Name, Node, Num, Unary, comparison_margin, connective_margin, separation_distance,
                           walk)
 from ..spec import SEVERITY_ORDER, Response, Spec
-from ..compiler._risk_formula import decimal_reading, release_bound, risk_from_p_unsafe, risk_from_probs, risk_range
+from ..compiler._risk_formula import decimal_reading, risk_from_p_unsafe, risk_from_probs, risk_range
 from ..runtime import Decision, Fault
 # the monitor's own input rules (what counts as a number, a flag, a probability vector): the
 # reference must read inputs exactly as the monitor does, so it uses the same private helpers
@@ -124,19 +124,8 @@ class ReferenceMonitor:
         return self._order(self.latches)
 
     def _rules(self) -> dict[str, tuple[int, bool, int]]:
-        """Every rule: name -> (severity, manual, hold_cycles), from the spec with its defaults."""
-        spec = self.spec
-        rules = {}
-        for ob in spec.obligations:
-            mode, hold = spec.obligation_release(ob)
-            rules[ob.id] = (Response(ob.response).severity, mode == "manual", hold)
-        rel = spec.risk.release
-        rules["risk"] = (Response(spec.risk.response).severity, rel.mode == "manual", rel.hold_cycles)
-        mode, hold = spec.fault_release()
-        rules["fault"] = (Response(spec.on_fault).severity, mode == "manual", hold)
-        rules["judge"] = rules["risk"]
-        rules["confirm"] = (Response.STOP_2.severity, False, rel.hold_cycles)
-        return rules
+        """Every rule: name -> (severity, manual, hold_cycles), as the plan resolved them."""
+        return {r.name: (r.severity, r.manual, r.hold) for r in self.plan.rules()}
 
     def acknowledge(self, task_id=_NO_TASK):
         from ..runtime import Acknowledgement
@@ -367,7 +356,7 @@ class ReferenceMonitor:
         cycle = self.cycle
         self.cycle += 1
         spec = self.spec
-        tau = spec.risk.threshold
+        tau = self.plan.threshold
         r, why = self._risk(signals)
         risk_ok = why is None
         if spec.risk.max_age_s is not None:
@@ -403,7 +392,7 @@ class ReferenceMonitor:
         if not ok:
             self.history = []
             self.confirmed = None
-            fsev = Response(spec.on_fault).severity
+            fsev = self.plan.fault_rule.severity
             found = []
             if bad_input:
                 # stateless obligations whose inputs are all valid are still judged
@@ -425,7 +414,7 @@ class ReferenceMonitor:
                         fsev = max(fsev, ob.response.severity)
             if r is not None and r >= tau:
                 found.append("risk")
-                fsev = max(fsev, Response(spec.risk.response).severity)
+                fsev = max(fsev, self.plan.risk_rule.severity)
             v: tuple[str, ...] = tuple(found)
             lsev, _ = self._decide(found, True, False)
             return Decision(True, _BY_SEV[lsev], v, (), r, cycle, False,
@@ -447,7 +436,7 @@ class ReferenceMonitor:
             if in_band and self.confirmed is None and not judged_safe:
                 violations.append("confirm")
         # one reading of numbers: R_e as the decimal it prints as, against the exact τ − δ
-        below = decimal_reading(r) < release_bound(tau, spec.risk.release.hysteresis)[0]
+        below = decimal_reading(r) < self.plan.release_exact
         lsev, awaiting = self._decide(violations, False, below)
         if violations:
             return Decision(True, _BY_SEV[lsev], tuple(violations), margins, r, cycle, False, (), awaiting)

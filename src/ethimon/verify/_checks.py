@@ -11,7 +11,7 @@ import z3
 
 from ..compiler import Plan
 from ..compiler import plan_of
-from ..compiler._risk_formula import release_bound, risk_bounds, risk_from_p_unsafe, risk_range
+from ..compiler._risk_formula import risk_bounds, risk_from_p_unsafe, risk_range, two_class_risk
 from ..runtime import Monitor
 from ..spec._expr import Name, walk
 from ..spec import Response, Spec
@@ -59,15 +59,16 @@ class Verifier:
         self.k = min(want, self.max_unroll)
         self.truncated = want > self.max_unroll
         r = spec.risk
-        self.tau = float(r.threshold)
+        plan = self.plan  # τ, the release bound and the rules' releases: resolved once, in the plan
+        self.tau = plan.threshold
         # the release bound tau - delta, exactly (0.27 - 0.05 is 0.22, not 0.22000000000000003)
-        exact, cut = release_bound(r.threshold, r.release.hysteresis)
-        self.below = float(exact)  # for messages
-        self.below_z3 = release_below(spec)
+        cut = plan.release_cut
+        self.below = float(plan.release_exact)  # for messages
+        self.below_z3 = release_below(plan)
         self.below_cut = cut  # a float R_e is below the bound exactly when R_e < cut
         self.below_float = math.nextafter(cut, -math.inf)  # the largest float below the bound
-        self.risk_sev = Response(r.response).severity
-        self.fault_sev = Response(spec.on_fault).severity
+        self.risk_sev = plan.risk_rule.severity
+        self.fault_sev = plan.fault_rule.severity
         self._enc: Unrolled | None = None
         self._dt: DecisionTrace | None = None
         self._ds: z3.Solver | None = None
@@ -373,10 +374,8 @@ class Verifier:
                                f"by the exact candidate search of risk_range")
             lo, hi = risk_bounds(r.alpha, r.beta, r.gamma, r.variance)
             q = z3.Real("q")
-            d = q - z3.RealVal("1/2")
-            var = (2 if r.variance == "sample" else 1) * d * d
-            top = z3.If(q >= z3.RealVal("1/2"), q, 1 - q)
-            R = real(r.alpha) * q + real(r.beta) * (1 - top) + real(r.gamma) * var
+            R = two_class_risk(q, real(r.alpha), real(r.beta), real(r.gamma), r.variance, where=z3.If,
+                               half=z3.RealVal("1/2"))
             eps = 1e-9 * max(1.0, abs(lo), abs(hi))
             st, model, why = self.solve(q >= 0, q <= 1, z3.Or(R < real(lo - eps), R > real(hi + eps)))
             if st == "unsat":
@@ -702,9 +701,8 @@ class Verifier:
         q1, q2 = z3.Real("q1"), z3.Real("q2")
 
         def R(q):
-            d = q - z3.RealVal("1/2")
-            top = z3.If(q >= z3.RealVal("1/2"), q, 1 - q)
-            return real(r.alpha) * q + real(r.beta) * (1 - top) + real(r.gamma) * (2 if r.variance == "sample" else 1) * d * d
+            return two_class_risk(q, real(r.alpha), real(r.beta), real(r.gamma), r.variance, where=z3.If,
+                                  half=z3.RealVal("1/2"))
         st, model, why = self.solve(q1 >= 0, q2 <= 1, q1 < q2, R(q1) > R(q2))
         if st == "sat":
             a, b = z3_value(model, q1), z3_value(model, q2)
@@ -789,9 +787,9 @@ class Verifier:
         Only a run replayed in the real Monitor makes it "reachable"; "never" is a proof over runs
         of any length (:meth:`window_search`); anything else is ``unknown``.
         """
-        rel = self.spec.risk.release
+        rel = self.plan.risk_rule
         name = "lint.release"
-        if rel.mode == "manual":
+        if rel.manual:
             return Finding("lint", name, WARNING, "risk.release.mode is manual: the risk rule's latch never "
                                                   "releases by itself (only Monitor.acknowledge(), release() "
                                                   "or reset())")
@@ -801,7 +799,7 @@ class Verifier:
             return Finding("lint", name, WARNING,
                            f"release needs {bound}, but the smallest reachable R_e is {_fmt(lo)}: a latched "
                            f"override never auto-releases")
-        hold = int(rel.hold_cycles)
+        hold = rel.hold
         ids = [ob.id for ob in self.plan.obligations]
         below = real(self.below_float)  # R_e arrives as a float: below the exact bound <=> at most this float
 
@@ -854,8 +852,8 @@ class Verifier:
         as information, which rules wait for an operator (the integration must offer
         ``Monitor.acknowledge()``)."""
         name = "lint.release_policy"
-        out = [Finding("lint", name, WARNING, w) for w in release_policy_warnings(self.spec)]
-        manual = manual_rules(self.spec)
+        out = [Finding("lint", name, WARNING, w) for w in release_policy_warnings(self.plan)]
+        manual = manual_rules(self.plan)
         if not out:
             out.append(Finding("lint", name, OK, (
                 f"manual release for {', '.join(manual)}: the integration must offer an operator "
@@ -1023,7 +1021,7 @@ class Verifier:
         """The fault latch's hold must cover every obligation's window: a fault clears the
         history, so a shorter hold lets the arm resume (by itself, or on an acknowledgement
         that is accepted) before a windowed obligation can see its violation again."""
-        mode, hold = self.spec.fault_release()
+        mode, hold = self.plan.fault_rule.mode, self.plan.fault_rule.hold
         how = "resume by itself" if mode == "auto" else "be acknowledged and resume"
         out = []
         for ob in self.plan.obligations:

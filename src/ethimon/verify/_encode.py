@@ -41,10 +41,10 @@ from fractions import Fraction
 
 import z3
 
-from ..compiler._check import RISK_NAME, Plan
-from ..compiler._risk_formula import release_bound, risk_range
+from ..compiler import plan_of
+from ..compiler._plan import RISK_NAME, Plan
+from ..compiler._risk_formula import risk_range
 from ..spec._expr import BINARY_OPS, Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance, walk
-from ..spec import Response
 
 __all__ = ["Unrolled", "FloatUnrolled", "float_value", "DecisionTrace", "RuleInfo", "decision_trace", "rules_of", "lookback", "real", "release_below",
            "risk_input_range", "z3_value"]
@@ -57,11 +57,10 @@ def real(x: float) -> z3.ArithRef:
 
 
 def release_below(spec) -> z3.ArithRef:
-    """The release test ``R_e < τ − δ`` as the monitor makes it: ``R < cut``, the float of
-    :func:`~ethimon.compiler._risk_formula.release_bound` (R_e read as the decimal it prints as,
-    against the exact τ − δ of the spec's decimals; for every float R_e the two tests agree)."""
-    _, cut = release_bound(spec.risk.threshold, spec.risk.release.hysteresis)
-    return real(cut)
+    """The release test ``R_e < τ − δ`` as the monitor makes it: ``R < cut``, the plan's
+    ``release_cut`` (R_e read as the decimal it prints as, against the exact τ − δ of the spec's
+    decimals; for every float R_e the two tests agree). ``spec``: a Spec or its Plan."""
+    return real(plan_of(spec).release_cut)
 
 
 def z3_value(model: z3.ModelRef, expr) -> float | bool:
@@ -528,16 +527,9 @@ class RuleInfo:
 
 
 def rules_of(plan) -> list[RuleInfo]:
-    """Every latching rule of a plan, in the monitor's order, with the defaults filled in."""
-    spec = plan.spec
-    rel = spec.risk.release
-    out = [RuleInfo(ob.id, ob.response.severity, ob.release_mode == "manual", int(ob.release_hold))
-           for ob in plan.obligations]
-    out.append(RuleInfo("risk", Response(spec.risk.response).severity, rel.mode == "manual",
-                        int(rel.hold_cycles)))
-    fmode, fhold = plan.fault_release
-    out.append(RuleInfo("fault", plan.on_fault.severity, fmode == "manual", int(fhold)))
-    return out
+    """Every latching rule of a plan, in the monitor's order, as the plan resolved them."""
+    return [RuleInfo(ob.id, ob.response.severity, ob.manual, ob.release_hold) for ob in plan.obligations] + [
+        RuleInfo(r.name, r.severity, r.manual, r.hold) for r in (plan.risk_rule, plan.fault_rule)]
 
 
 def _max(a, b):
@@ -567,9 +559,8 @@ def decision_trace(enc: Unrolled, *, fresh: bool = False, prefix: str = "",
     ``acknowledge()``). Override: some rule latched; response: the most severe one.
     """
     plan = enc.plan
-    spec = plan.spec
-    tau = real(spec.risk.threshold)
-    below = release_below(spec)
+    tau = real(plan.threshold)
+    below = release_below(plan)
     rules = rules_of(plan)
     n = len(plan.obligations)
     ri, fi = n, n + 1

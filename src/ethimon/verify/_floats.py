@@ -18,7 +18,7 @@ import math
 import sys
 from fractions import Fraction
 
-from ..compiler._check import RISK_NAME
+from ..compiler._plan import RISK_NAME
 from ..spec._expr import Binary, Call, Name, Num, Unary, separation_distance, to_source, walk
 
 __all__ = ["float_hazards", "defined_in_doubles"]

@@ -1,115 +1,22 @@
-"""Compile stage 1: resolve names, check types and units, and build a :class:`Plan`.
+"""The type checker: resolve names, check types, units and windows, and build the :class:`Plan`.
 
-A plan is the checked, resolved form of a spec that every later consumer
-shares: the runtime monitor builds its closures from it, the reference
-interpreter walks it, and ``ethimon verify`` translates it to SMT.
+The plan's data types live in ``compiler/_plan.py``; this module is the checker that fills them.
 """
 
 from __future__ import annotations
 
 import difflib
 import math
-from dataclasses import dataclass, field
 
 from ..errors import SpecError
 from ..spec._expr import (FUNCTIONS, SEPARATION_PARAMS, TEMPORAL, Binary, BoolLit, Call, ExprSyntaxError, Name,
                           Node, Num, Unary, parse_expr, separation_distance)
-from ..spec import Constant, Response, RiskConfig, Spec
+from ..spec import Constant, Response, Spec
+from ._plan import BOOL, MAX_WINDOW, RISK_NAME, ObligationPlan, Plan, RuleRelease, SignalSlot, Ty
+from ._risk_formula import release_bound
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit
 
-__all__ = ["Plan", "ObligationPlan", "SignalSlot", "Ty", "compile_plan", "RISK_NAME", "MAX_WINDOW"]
-
-RISK_NAME = "risk"
-MAX_WINDOW = 1_000_000
-
-
-@dataclass(frozen=True)
-class Ty:
-    """Type of an expression: ``bool`` or ``num`` with a unit (``None`` = unknown)."""
-
-    kind: str  # "bool" | "num"
-    unit: Unit | None = None
-
-    def show(self) -> str:
-        return "a boolean" if self.kind == "bool" else f"a number [{format_unit(self.unit)}]"
-
-
-BOOL = Ty("bool")
-
-
-@dataclass(frozen=True)
-class SignalSlot:
-    """A declared signal resolved to an input slot."""
-
-    name: str
-    slot: int
-    kind: str  # "number" | "bool"
-    lo: float
-    hi: float
-    unit: Unit | None
-
-
-@dataclass(frozen=True)
-class ObligationPlan:
-    """A checked obligation: ``when ⇒ require`` with optional bounded response."""
-
-    index: int
-    id: str
-    description: str
-    when: Node | None
-    require: Node
-    within_cycles: int | None
-    response: Response
-    when_text: str | None
-    require_text: str
-    #: ``"auto"`` or ``"manual"``: how this rule's latch is released (defaults filled in)
-    release_mode: str = "auto"
-    #: N: the obligation must hold N consecutive valid cycles before its latch releases
-    release_hold: int = 10
-
-
-@dataclass
-class Plan:
-    """The compiled, checked form of a spec.
-
-    Attributes:
-        spec: the spec it came from.
-        signals: declared signals in slot order; slot ``len(signals)`` holds R_e.
-        risk_slot: the slot index of R_e (``risk`` in expressions).
-        constants: constant values by name.
-        obligations: checked obligations in spec order.
-        temporal: every temporal call node, children before parents.
-        types: type of every expression node, keyed by ``id(node)``.
-        windows: the integer bound of each temporal node (``id(node)`` → n or None).
-        slots: input slot of every name an expression can read (signals and ``risk``),
-            built once here for every consumer (code generation, fault-path evaluation).
-        risk: the spec's risk settings (τ, weights, classes, release, max age).
-        on_fault: the response to a fault.
-        fault_release: ``(mode, hold_cycles)`` of the fault latch (defaults filled in).
-
-    The plan points at its spec (``spec``, where it came from); the spec never
-    points at its plan: :func:`~ethimon.compiler.plan_of` finds or compiles it.
-    """
-
-    spec: Spec
-    signals: tuple[SignalSlot, ...]
-    risk_slot: int
-    constants: dict[str, float]
-    obligations: tuple[ObligationPlan, ...]
-    temporal: tuple[Call, ...]
-    types: dict[int, Ty] = field(default_factory=dict)
-    windows: dict[int, int | None] = field(default_factory=dict)
-    slots: dict[str, int] = field(default_factory=dict)
-    risk: RiskConfig = field(default_factory=RiskConfig)
-    on_fault: Response = Response.SAFE_POSE
-    fault_release: tuple[str, int] = ("manual", 10)
-
-    @property
-    def n_slots(self) -> int:
-        return len(self.signals) + 1
-
-    def type_of(self, node: Node) -> Ty:
-        return self.types[id(node)]
+__all__ = ["compile_plan"]
 
 
 class _Checker:
@@ -460,7 +367,7 @@ def compile_plan(spec: Spec) -> Plan:
         ck.check_bool(require, f"'require' of obligation {ob.id!r}")
         mode, hold = spec.obligation_release(ob)
         obligations.append(ObligationPlan(i, ob.id, ob.description, when, require, ob.within_cycles,
-                                          Response(ob.response), ob.when, ob.require, mode, hold))
+                                          Response(ob.response), ob.when, ob.require, mode, int(hold)))
     signals = []
     big = 1.7976931348623157e308
     for slot, (name, sig) in enumerate(spec.signals.items()):
@@ -469,7 +376,15 @@ def compile_plan(spec: Spec) -> Plan:
         signals.append(SignalSlot(name, slot, sig.type, float(lo), float(hi), ty.unit))
     slots = {s.name: s.slot for s in signals}
     slots[RISK_NAME] = len(signals)
+    # every rule's release resolved here, once: consumers read the plan, never the spec again
+    r = spec.risk
+    exact, cut = release_bound(r.threshold, r.release.hysteresis)
+    fmode, fhold = spec.fault_release()
     return Plan(spec=spec, signals=tuple(signals), risk_slot=len(signals), constants=dict(ck.consts),
                 obligations=tuple(obligations), temporal=tuple(ck.temporal), types=ck.types,
-                windows=ck.windows, slots=slots, risk=spec.risk, on_fault=Response(spec.on_fault),
-                fault_release=spec.fault_release())
+                windows=ck.windows, slots=slots, risk=r, on_fault=Response(spec.on_fault),
+                fault_release=(fmode, int(fhold)), threshold=float(r.threshold), release_exact=exact,
+                release_cut=cut,
+                risk_rule=RuleRelease("risk", Response(r.response), r.release.mode == "manual",
+                                      int(r.release.hold_cycles)),
+                fault_rule=RuleRelease("fault", Response(spec.on_fault), fmode == "manual", int(fhold)))

@@ -1,0 +1,181 @@
+"""The Plan: the checked, resolved form of a spec that every later consumer reads.
+
+The runtime monitor builds its closures from it, the reference interpreter walks it, the offline
+checker vectorises it and ``ethimon verify`` translates it to SMT. Every rule's release (mode, hold),
+severity and the risk rule's τ and exact release cut are resolved here once, by
+:func:`~ethimon.compiler.compile_plan` (``compiler/_typecheck.py``), so no consumer re-reads them
+from the :class:`~ethimon.Spec`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+from ..spec._expr import Call, Node
+from ..spec import Response, RiskConfig, Spec
+from ._units import Unit, format_unit
+
+__all__ = ["Plan", "ObligationPlan", "SignalSlot", "RuleRelease", "Ty", "BOOL", "RISK_NAME", "MAX_WINDOW"]
+
+RISK_NAME = "risk"
+MAX_WINDOW = 1_000_000
+
+
+@dataclass(frozen=True)
+class Ty:
+    """Type of an expression: ``bool`` or ``num`` with a unit (``None`` = unknown)."""
+
+    kind: str  # "bool" | "num"
+    unit: Unit | None = None
+
+    def show(self) -> str:
+        return "a boolean" if self.kind == "bool" else f"a number [{format_unit(self.unit)}]"
+
+
+BOOL = Ty("bool")
+
+
+@dataclass(frozen=True)
+class SignalSlot:
+    """A declared signal resolved to an input slot."""
+
+    name: str
+    slot: int
+    kind: str  # "number" | "bool"
+    lo: float
+    hi: float
+    unit: Unit | None
+
+
+@dataclass(frozen=True)
+class RuleRelease:
+    """One rule's latch, resolved once (defaults filled in): what it does and how it releases.
+
+    Attributes:
+        name: the rule: an obligation id, ``"risk"``, ``"fault"``, ``"judge"`` or ``"confirm"``.
+        response: its response while latched.
+        manual: released only by ``Monitor.acknowledge()`` (else after ``hold`` good cycles).
+        hold: N, the consecutive cycles its release condition must hold.
+    """
+
+    name: str
+    response: Response
+    manual: bool
+    hold: int
+
+    @property
+    def severity(self) -> int:
+        return self.response.severity
+
+    @property
+    def mode(self) -> str:
+        """``"manual"`` or ``"auto"``, as the spec writes it."""
+        return "manual" if self.manual else "auto"
+
+
+@dataclass(frozen=True)
+class ObligationPlan:
+    """A checked obligation: ``when ⇒ require`` with optional bounded response."""
+
+    index: int
+    id: str
+    description: str
+    when: Node | None
+    require: Node
+    within_cycles: int | None
+    response: Response
+    when_text: str | None
+    require_text: str
+    #: ``"auto"`` or ``"manual"``: how this rule's latch is released (defaults filled in)
+    release_mode: str = "auto"
+    #: N: the obligation must hold N consecutive valid cycles before its latch releases
+    release_hold: int = 10
+
+    @property
+    def manual(self) -> bool:
+        return self.release_mode == "manual"
+
+    @property
+    def rule(self) -> RuleRelease:
+        """This obligation's latch as a :class:`RuleRelease`."""
+        return RuleRelease(self.id, self.response, self.manual, self.release_hold)
+
+
+@dataclass
+class Plan:
+    """The compiled, checked form of a spec.
+
+    Attributes:
+        spec: the spec it came from.
+        signals: declared signals in slot order; slot ``len(signals)`` holds R_e.
+        risk_slot: the slot index of R_e (``risk`` in expressions).
+        constants: constant values by name.
+        obligations: checked obligations in spec order.
+        temporal: every temporal call node, children before parents.
+        types: type of every expression node, keyed by ``id(node)``.
+        windows: the integer bound of each temporal node (``id(node)`` → n or None).
+        slots: input slot of every name an expression can read (signals and ``risk``),
+            built once here for every consumer (code generation, fault-path evaluation).
+        risk: the spec's risk settings (τ, weights, classes, release, max age).
+        on_fault: the response to a fault.
+        fault_release: ``(mode, hold_cycles)`` of the fault latch (defaults filled in).
+        threshold: τ, the risk rule fires at ``R_e >= threshold``.
+        release_exact: the exact release bound τ − δ (the spec's decimals, as a fraction).
+        release_cut: the float test of it: a float R_e is below τ − δ exactly when ``R_e < release_cut``.
+        risk_rule, fault_rule: the risk rule's and the fault latch's :class:`RuleRelease`.
+
+    Every consumer (monitor, reference, offline, z3, lints) reads releases, holds, severities,
+    τ and the cut from here (:meth:`rules`), never again from the spec.
+
+    The plan points at its spec (``spec``, where it came from); the spec carries its plan in a
+    private holder that is no part of its value, set once by :func:`~ethimon.compiler.plan_of`.
+    """
+
+    spec: Spec
+    signals: tuple[SignalSlot, ...]
+    risk_slot: int
+    constants: dict[str, float]
+    obligations: tuple[ObligationPlan, ...]
+    temporal: tuple[Call, ...]
+    types: dict[int, Ty] = field(default_factory=dict)
+    windows: dict[int, int | None] = field(default_factory=dict)
+    slots: dict[str, int] = field(default_factory=dict)
+    risk: RiskConfig = field(default_factory=RiskConfig)
+    on_fault: Response = Response.SAFE_POSE
+    fault_release: tuple[str, int] = ("manual", 10)
+    # resolved by compile_plan (no second set of defaults here: a plan built without them is refused)
+    threshold: float = None  # type: ignore[assignment]
+    release_exact: Fraction = None  # type: ignore[assignment]
+    release_cut: float = None  # type: ignore[assignment]
+    risk_rule: RuleRelease = None  # type: ignore[assignment]
+    fault_rule: RuleRelease = None  # type: ignore[assignment]
+
+    def __post_init__(self) -> None:
+        missing = [k for k in ("threshold", "release_exact", "release_cut", "risk_rule", "fault_rule")
+                   if getattr(self, k) is None]
+        if missing:
+            raise TypeError(f"a Plan is built by compile_plan(spec); missing: {', '.join(missing)}")
+
+    def rules(self) -> tuple[RuleRelease, ...]:
+        """Every latch in the monitor's order: the obligations, ``risk``, ``fault``, ``judge``
+        (the judge's unsafe verdict: the risk rule's response and release) and ``confirm`` (the
+        confirm band: stop 2, released automatically, the risk rule's hold). The names are unique
+        (the spec reserves the last four as obligation ids)."""
+        r = self.risk_rule
+        return tuple(ob.rule for ob in self.obligations) + (
+            r, self.fault_rule, RuleRelease("judge", r.response, r.manual, r.hold),
+            RuleRelease("confirm", Response.STOP_2, False, r.hold))
+
+    @property
+    def manual_rules(self) -> tuple[str, ...]:
+        """The rules whose latch waits for ``Monitor.acknowledge()`` (obligation ids, ``risk``, ``fault``)."""
+        return tuple([ob.id for ob in self.obligations if ob.manual]
+                     + [r.name for r in (self.risk_rule, self.fault_rule) if r.manual])
+
+    @property
+    def n_slots(self) -> int:
+        return len(self.signals) + 1
+
+    def type_of(self, node: Node) -> Ty:
+        return self.types[id(node)]
