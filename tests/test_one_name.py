@@ -239,11 +239,11 @@ def test_the_two_defaults_of_tau_are_two_named_facts():
 
 def test_tau_and_the_release_cut_have_one_name_in_the_monitor_and_offline():
     """τ is ``tau`` (``Monitor._tau``), the float cut of the release bound τ − δ is ``release_cut``
-    (``Monitor._release_cut``, ``offline``'s ``_release_cut``): the same number under one name."""
+    (``Plan.release_cut``, which the monitor and offline read, ``Monitor._release_cut``): the same number
+    under one name."""
     from ethimon.compiler._risk_formula import release_bound
-    from ethimon.offline import _trace
     spec = ethimon.load_spec_text(SPEC.replace("hysteresis: 0.05", "hysteresis: 0.07"))
     mon = ethimon.Monitor(spec)
     cut = release_bound(spec.risk.threshold, spec.risk.release.hysteresis)[1]
-    assert mon._tau == spec.risk.threshold and mon._release_cut == cut == _trace._release_cut(0.5, 0.07)
+    assert mon._tau == spec.risk.threshold and mon._release_cut == cut == mon.plan.release_cut
     assert not hasattr(mon, "_below")
