@@ -15,6 +15,7 @@ own modules are always allowed):
     fleet                   many scenario files / bags on Ray (ray imported lazily)
     gym                     Gymnasium: the monitor as a shield, the sim cell as an env
     loop                    GovernedLoop: runtime + audit + risk + verify (SMT gate on reload)
+    _lint                   ethimon lint as a library: load, compile, release policies, a mapping
     ethimon (root)          the public names
     cli                     the command line, on top
 
@@ -53,10 +54,11 @@ ALLOWED: dict[str, set[str]] = {
     "fleet": _BESIDE | {"audit", "risk", "sim", "scenario", "replay", "offline"},
     "gym": _BESIDE | {"sim", "risk", "audit"},
     "loop": _BESIDE | {"audit", "risk", "verify"},
+    "_lint": _BESIDE | {"verify", "scenario", "replay"},
     "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop"},
     "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop"},
     "cli": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop",
-                      "fleet", "ros2", "ethimon"},
+                      "fleet", "ros2", "ethimon", "_lint"},
 }
 
 

@@ -72,7 +72,7 @@ def test_human_follows_waypoints():
 
 @pytest.mark.sim
 def test_safe_pose_controller_respects_limit_and_arrives(sim):
-    from ethimon.sim._control import SafePoseController
+    from ethimon.sim._safe_pose import SafePoseController
     start = np.array([0.6, -0.2, 0.3, -1.8, 0.2, 1.9, 0.4])
     sim.reset_joints(start)
     sp = SafePoseController(start, SAFE, 1.0)

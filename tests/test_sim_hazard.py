@@ -18,9 +18,9 @@ SPEC = ROOT / "specs" / "cobot_cell.yaml"
 def _run(name: str, monkeypatch=None, *, orient: bool = True, **kw):
     pytest.importorskip("pybullet")
     from ethimon.sim import SimBlock, run_sim
-    import ethimon.sim._control as control
+    import ethimon.sim._safe_pose as safe_pose
     if not orient:
-        monkeypatch.setattr(control.SafePoseController, "_orient_hazard", lambda self, sim, q_start=None: None)
+        monkeypatch.setattr(safe_pose.SafePoseController, "_orient_hazard", lambda self, sim, q_start=None: None)
     doc = yaml.safe_load((ROOT / "scenarios" / "sim" / f"{name}.yaml").read_text())
     block = SimBlock.model_validate(doc["sim"])
     res = run_sim(block, ethimon.Monitor(ethimon.load_spec(str(SPEC))),

@@ -94,7 +94,7 @@ def test_a_route_never_sweeps_a_held_blade_further_toward_a_person():
     way sweeps it through her (0.3 deg on the way) and is refused, the other way turns it away
     (32 -> 126 deg) and passes."""
     from ethimon.sim import ArmSim, Human, SimObject
-    from ethimon.sim._control import SafePoseController
+    from ethimon.sim._safe_pose import SafePoseController
     knife = SimObject(name="knife", shape="box", xyz_m=(0.55, 0.25, 0.32), half_extents_m=(0.1, 0.012, 0.004),
                       hazard="sharp", hazard_axis=(1, 0, 0), mass_kg=0.15)
     child = Human(name="child", radius_m=0.14, height_m=1.1, waypoints=[{"t_s": 0, "xy_m": (1.6, 0.9)}])

@@ -72,7 +72,7 @@ def test_lint_cli_reports_it_as_an_error(tmp_path, capsys):
 def test_verify_does_not_import_sim():
     import subprocess
     import sys
-    code = ("import sys, ethimon.verify._checks; "
+    code = ("import sys, ethimon.verify._verifier; "
             "print(any(m == 'ethimon.sim' or m.startswith('ethimon.sim.') for m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"

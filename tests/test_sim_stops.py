@@ -127,7 +127,7 @@ def test_stop_0_brake_delay_and_deceleration(sim):
 def test_safe_pose_switch_respects_the_current_velocity(sim):
     """The switch from a fast task motion to the safe pose keeps the rated acceleration
     (was 45..74 rad/s² at the switch)."""
-    from ethimon.sim._control import SafePoseController
+    from ethimon.sim._safe_pose import SafePoseController
     q, qd = _fast_motion(sim, v_task=1.5, cycles=90)
     assert float(np.max(np.abs(qd))) > 1.0
     sp = SafePoseController(q, SAFE, 1.0)

@@ -218,7 +218,7 @@ obligations:
 
 def test_a_wrong_model_is_caught_by_the_replay(monkeypatch):
     """If the z3 model of the decision logic were wrong, its counterexample would not replay."""
-    from ethimon.verify import _checks, _encode
+    from ethimon.verify import _checks, _encode, _properties
 
     real_trace = _encode.decision_trace
 
@@ -228,6 +228,7 @@ def test_a_wrong_model_is_caught_by_the_replay(monkeypatch):
         return dt
     import z3
     monkeypatch.setattr(_checks, "decision_trace", broken)
+    monkeypatch.setattr(_properties, "decision_trace", broken)
     rep = verify_spec(os.path.join(SPECS, "governor.yaml"))
     f = rep.finding("risk.override")
     assert f.status == "refuted"

@@ -133,7 +133,7 @@ obligations:
 
 def test_release_bound_is_exact_in_the_decision_model():
     """R_e pinned to 0.22 with τ = 0.27, δ = 0.05: the latch never releases (0.22 is not below 0.22)."""
-    from ethimon.verify._checks import Verifier
+    from ethimon.verify._verifier import Verifier
     from ethimon.verify._encode import Unrolled, decision_trace, real
     spec = _spec(RELEASE_027 % (1, "  - {id: small, require: x <= 0.5}"))
     v = Verifier(spec, path="t", timeout_s=20, max_unroll=4)
@@ -251,14 +251,14 @@ def _many(n: int) -> str:
 
 
 def test_budget_cuts_the_run_and_reports_what_it_did_not_reach(monkeypatch):
-    from ethimon.verify import _checks
-    real_resume = _checks.Verifier.prop_resume_explained
+    from ethimon.verify import _checks, _verifier
+    real_resume = _verifier.Verifier.prop_resume_explained
 
     def resume_then_spend(self):  # the budget runs out while this check runs
         f = real_resume(self)
         self.deadline = _checks.time.perf_counter() - 1.0
         return f
-    monkeypatch.setattr(_checks.Verifier, "prop_resume_explained", resume_then_spend)
+    monkeypatch.setattr(_verifier.Verifier, "prop_resume_explained", resume_then_spend)
     rep = verify_spec(_spec(_many(6)), budget_s=60)
     assert rep.finding("o5.response").status == "proved"
     assert rep.finding("resume.explained").status == "proved"
@@ -320,7 +320,7 @@ obligations:
 
 def test_response_proof_by_one_obligation_still_refutes_a_wrong_model(monkeypatch):
     """The per-obligation proof over-approximates; when it cannot prove, the whole trace decides."""
-    from ethimon.verify import _checks, _encode
+    from ethimon.verify import _checks, _encode, _properties
     real_trace = _encode.decision_trace
 
     def forgets_obligations(enc, **kw):  # a model whose override ignores every violation
@@ -329,6 +329,7 @@ def test_response_proof_by_one_obligation_still_refutes_a_wrong_model(monkeypatc
                        for o, f, v in zip(dt.override, dt.risk_fires, dt.violated)]
         return dt
     monkeypatch.setattr(_checks, "decision_trace", forgets_obligations)
+    monkeypatch.setattr(_properties, "decision_trace", forgets_obligations)
     rep = verify_spec(_spec(_many(3)))
     f = rep.finding("o0.response")
     assert f.status == "refuted" and not f.counterexample.confirmed, format_table(rep)
@@ -338,7 +339,7 @@ def test_free_history_window_admits_every_clean_window_of_real_runs():
     """The 'never' side of the windowed lints rests on this: every window that is clean in a real
     Monitor run, however long, is a solution of the free-history encoding of its last P + s cycles."""
     from ethimon.runtime import Monitor
-    from ethimon.verify._checks import Verifier
+    from ethimon.verify._verifier import Verifier
     from ethimon.verify._encode import Unrolled, real
     spec = _spec("""
 ethimon: 1
@@ -384,7 +385,7 @@ def test_one_reading_of_numbers_for_the_release_bound():
     monitor, the reference, the offline checker and the z3 model alike."""
     from ethimon.offline import check_trace
     from ethimon.testing import ReferenceMonitor
-    from ethimon.verify._checks import Verifier
+    from ethimon.verify._verifier import Verifier
     from ethimon.verify._encode import Unrolled, decision_trace, real
     import math
     for tau, r_eq in ((0.47, 0.42), (0.27, 0.22), (0.3, 0.25), (0.51, 0.46)):

@@ -27,7 +27,8 @@ from bench.sim.sim_responses import SAFE, _dist, _random_q
 def run(rng, response: str) -> dict:
     from ethimon.sim import ArmSim
     from ethimon.sim._arm import Segment
-    from ethimon.sim._control import SafePoseController, StopController, TaskController, _timed
+    from ethimon.sim._control import StopController, TaskController, _timed
+    from ethimon.sim._safe_pose import SafePoseController
     from ethimon.sim._limits import RATED_Q_MAX, RATED_Q_MIN
     sim = ArmSim(control_hz=60)
     try:

@@ -146,7 +146,7 @@ def _walk_from_now(sim) -> None:
 
 
 def safe_pose_run(rng, human: bool, moving: bool = False) -> dict:
-    from ethimon.sim._control import SafePoseController
+    from ethimon.sim._safe_pose import SafePoseController
     sim, q0, q1 = _setup(rng, human, moving)
     human = human or moving
     try:

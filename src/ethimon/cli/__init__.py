@@ -64,43 +64,15 @@ def _cmd_schema(args: argparse.Namespace) -> int:
     return 0
 
 
-def _lint_safe_pose(spec) -> None:
-    """A 7-joint safe pose outside the Franka Panda's rated range (the simulated arm) is a
-    lint error naming each joint, as it is a SpecError for ``check --sim``."""
-    from ..sim._limits import out_of_range, safe_pose_problem
-    joints = tuple(spec.safe_pose.joints_rad)
-    problem = safe_pose_problem(joints)
-    if problem is not None:
-        raise spec.source.error(problem, ("safe_pose", "joints_rad", out_of_range(joints)[0][0] - 1),
-                                hint="keep every joint inside the Panda's rated range "
-                                     "(FCI 'Limits for Panda', see src/ethimon/sim/README.md)")
-
-
 def _cmd_lint(args: argparse.Namespace) -> int:
-    from .. import _api
-    from .._files import scan_yaml_files
-    from ..scenario import error_line
+    from .._lint import iter_lint
     rc = 0
-    for path, skipped in scan_yaml_files(args.paths, what="spec", command="ethimon lint"):
-        if skipped is not None:  # a FIFO, socket or device in a folder: never opened
-            print(f"{path}: skipped: {skipped}")
-            continue
-        try:
-            spec = _api.load_spec(path)
-            _lint_safe_pose(spec)
-            print(f"{path}: ok ({spec.name}, {len(spec.obligations)} obligations)")
-            from ..verify._policy import release_policy_warnings  # no z3
-            for w in release_policy_warnings(spec):
-                print(f"{path}: warning: {w}")
-            if getattr(args, "mapping", None):
-                from ..replay import check_against_spec, lint_mapping, load_mapping
-                mapping = load_mapping(args.mapping)
-                check_against_spec(mapping, spec)
-                for w in lint_mapping(mapping, spec):
-                    print(f"{args.mapping}: warning: {w}")
-        except Exception as exc:  # noqa: BLE001 - one bad file is one line; the others are still linted
-            print(error_line(path, exc), file=sys.stderr)
+    for line in iter_lint(args.paths, mapping=getattr(args, "mapping", None)):
+        if line.kind == "error":
+            print(line.text, file=sys.stderr)
             rc = 2
+        else:
+            print(line.text)
     return rc
 
 

@@ -225,6 +225,57 @@ def _letters(i: int) -> str:
     return s
 
 
+def _draw_controller_lane(a: Any, t: np.ndarray, dt: float, trace: Sequence[Any]) -> None:
+    """The bottom panel: which controller commanded the arm when; override, faults and rules beneath."""
+    # controller lane: which controller commanded the arm when; override and faults beneath
+    ctrl = [r.controller for r in trace]
+    rows = list(_LANE) + [c for c in dict.fromkeys(ctrl) if c not in _LANE]
+    names = ["rule fires", "fault", "override", *rows]
+    ypos = {name: i for i, name in enumerate(names)}
+    for c, x0, w in _segments(t, dt, ctrl):
+        a.broken_barh([(x0, w)], (ypos[c] - 0.35, 0.7), facecolors=_LANE_COLOR.get(c, "tab:gray"),
+                      gid=f"lane:{c}")
+    for v, x0, w in _segments(t, dt, [bool(r.override) for r in trace]):
+        if v:
+            a.broken_barh([(x0, w)], (ypos["override"] - 0.35, 0.7), facecolors="tab:red", alpha=0.5)
+    for v, x0, w in _segments(t, dt, [bool(r.faults) for r in trace]):
+        if v:
+            a.broken_barh([(x0, w)], (ypos["fault"] - 0.35, 0.7), facecolors="tab:orange", alpha=0.7)
+    # every cycle a rule fires: grey while the task runs, red during a response (a rule firing
+    # while the arm already responds is what a reviewer looks for)
+    for (fires, resp), x0, w in _segments(t, dt, [(bool(r.violations), r.controller != "task")
+                                                  for r in trace]):
+        if fires:
+            a.broken_barh([(x0, w)], (ypos["rule fires"] - 0.35, 0.7),
+                          facecolors="tab:red" if resp else "0.6",
+                          gid="rules:response" if resp else "rules:task")
+    a.set_yticks(range(len(names)))
+    a.set_yticklabels(names, fontsize=7)
+    a.set_ylim(-0.6, len(names) - 0.4)
+    a.set_xlabel("simulated time (s)")
+
+
+def _draw_events(ax: Mapping[str, Any], events: Sequence[Mapping[str, Any]], meta: dict[str, Any]) -> list[str]:
+    """The events on every panel (lettered above the top one); returns the legend lines under the plot."""
+    # events: one dashed line per distinct time on every panel, lettered above the top panel
+    by_time: dict[float, list[Mapping[str, Any]]] = {}
+    for ev in events:
+        by_time.setdefault(round(float(ev["t_s"]), 9), []).append(ev)
+    lines = []
+    for i, (te, evs) in enumerate(sorted(by_time.items())):
+        letter = _letters(i)
+        for p, a in ax.items():
+            a.axvline(te, color="k", ls="--", lw=0.8, alpha=0.55, gid=f"event:{letter}")
+        ax["risk"].annotate(letter, (te, 1.0), xycoords=("data", "axes fraction"), xytext=(0, 3),
+                            textcoords="offset points", ha="center", va="bottom", fontsize=8,
+                            fontweight="bold")
+        what = ", ".join(EVENT_LABELS.get(e["event"], e["event"])
+                         + (f" ({e['detail']})" if e.get("detail") else "") for e in evs)
+        lines.append(f"{letter}  {te:.3f} s: {what}")
+        meta["event_marks"].append({"letter": letter, "t_s": te, "events": [e["event"] for e in evs]})
+    return lines
+
+
 def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Mapping[str, Any]] = (),
                  title: str | None = None, dt: float | None = None):
     """The recording's figure and what was drawn on it.
@@ -331,50 +382,9 @@ def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Map
                 a.legend(handles, ["\n".join(textwrap.wrap(lb, 34)) for lb in labels], loc="upper left",
                          bbox_to_anchor=(1.005, 1.0), fontsize=7, borderaxespad=0.0)
 
-    # controller lane: which controller commanded the arm when; override and faults beneath
-    a = ax["controller"]
-    ctrl = [r.controller for r in trace]
-    rows = list(_LANE) + [c for c in dict.fromkeys(ctrl) if c not in _LANE]
-    names = ["rule fires", "fault", "override", *rows]
-    ypos = {name: i for i, name in enumerate(names)}
-    for c, x0, w in _segments(t, dt, ctrl):
-        a.broken_barh([(x0, w)], (ypos[c] - 0.35, 0.7), facecolors=_LANE_COLOR.get(c, "tab:gray"),
-                      gid=f"lane:{c}")
-    for v, x0, w in _segments(t, dt, [bool(r.override) for r in trace]):
-        if v:
-            a.broken_barh([(x0, w)], (ypos["override"] - 0.35, 0.7), facecolors="tab:red", alpha=0.5)
-    for v, x0, w in _segments(t, dt, [bool(r.faults) for r in trace]):
-        if v:
-            a.broken_barh([(x0, w)], (ypos["fault"] - 0.35, 0.7), facecolors="tab:orange", alpha=0.7)
-    # every cycle a rule fires: grey while the task runs, red during a response (a rule firing
-    # while the arm already responds is what a reviewer looks for)
-    for (fires, resp), x0, w in _segments(t, dt, [(bool(r.violations), r.controller != "task")
-                                                  for r in trace]):
-        if fires:
-            a.broken_barh([(x0, w)], (ypos["rule fires"] - 0.35, 0.7),
-                          facecolors="tab:red" if resp else "0.6",
-                          gid="rules:response" if resp else "rules:task")
-    a.set_yticks(range(len(names)))
-    a.set_yticklabels(names, fontsize=7)
-    a.set_ylim(-0.6, len(names) - 0.4)
-    a.set_xlabel("simulated time (s)")
+    _draw_controller_lane(ax["controller"], t, dt, trace)
 
-    # events: one dashed line per distinct time on every panel, lettered above the top panel
-    by_time: dict[float, list[Mapping[str, Any]]] = {}
-    for ev in events:
-        by_time.setdefault(round(float(ev["t_s"]), 9), []).append(ev)
-    lines = []
-    for i, (te, evs) in enumerate(sorted(by_time.items())):
-        letter = _letters(i)
-        for p, a in ax.items():
-            a.axvline(te, color="k", ls="--", lw=0.8, alpha=0.55, gid=f"event:{letter}")
-        ax["risk"].annotate(letter, (te, 1.0), xycoords=("data", "axes fraction"), xytext=(0, 3),
-                            textcoords="offset points", ha="center", va="bottom", fontsize=8,
-                            fontweight="bold")
-        what = ", ".join(EVENT_LABELS.get(e["event"], e["event"])
-                         + (f" ({e['detail']})" if e.get("detail") else "") for e in evs)
-        lines.append(f"{letter}  {te:.3f} s: {what}")
-        meta["event_marks"].append({"letter": letter, "t_s": te, "events": [e["event"] for e in evs]})
+    lines = _draw_events(ax, events, meta)
     if n:
         axes[-1].set_xlim(float(t[0]), float(t[-1] + dt))
     if title:  # wrapped to the figure's width: never cut off at its edges

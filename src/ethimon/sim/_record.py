@@ -40,6 +40,7 @@ import numpy as np
 
 from ._control import SEVERITY
 from ._plot import EVENT_LABELS, plot_trace
+from ._result import check_sim_expectations
 
 __all__ = ["Recorder", "plot_trace", "trace_events", "EVENT_LABELS", "STANDSTILL_RAD_S"]
 
@@ -399,7 +400,6 @@ class Recorder:
         spec_name = getattr(self.spec, "name", None) or "?"
         verdict = ""
         if self.block is not None:
-            from ._runner import check_sim_expectations
             problems = check_sim_expectations(self.block, result)
             verdict = "PASS" if not problems else f"FAIL ({len(problems)} sim expectation(s) not met)"
         ov = ("no override" if result.first_override_cycle is None

@@ -86,7 +86,7 @@ def verify_spec(spec: str | os.PathLike | Spec, *, timeout_s: float = DEFAULT_TI
         'proved'
     """
     require_z3()
-    from ._checks import Verifier  # imports z3
+    from ._verifier import Verifier  # imports z3
 
     t0 = time.perf_counter()
     if isinstance(spec, Spec):

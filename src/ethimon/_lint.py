@@ -1,0 +1,105 @@
+"""``ethimon lint`` as a library: load and compile spec files, report errors and warnings (no z3,
+no proofs: ``ethimon verify`` proves). The CLI only prints the lines of :func:`lint_paths`."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+
+from . import _api
+from ._files import scan_yaml_files
+from ._robot import out_of_range, safe_pose_problem
+from .scenario import error_line
+from .spec import Spec
+from .verify._policy import release_policy_warnings  # no z3
+
+__all__ = ["LintLine", "LintReport", "iter_lint", "lint_paths", "lint_safe_pose"]
+
+#: the kinds of :class:`LintLine`; an ``"error"`` line makes the exit code 2
+LINE_KINDS = ("ok", "skipped", "warning", "error")
+
+
+@dataclass(frozen=True)
+class LintLine:
+    """One line of ``ethimon lint``.
+
+    Attributes:
+        path: the file it is about (the spec; the mapping for a mapping's warnings).
+        kind: one of :data:`LINE_KINDS`.
+        text: the line as printed (``path: ok (...)``, ``path:line:col: message (hint)``, ...).
+    """
+
+    path: str
+    kind: str
+    text: str
+
+
+@dataclass
+class LintReport:
+    """Every line of one lint run, in order; :attr:`exit_code` 0 if no error, else 2."""
+
+    lines: list[LintLine] = field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        return not any(ln.kind == "error" for ln in self.lines)
+
+    @property
+    def exit_code(self) -> int:
+        return 0 if self.ok else 2
+
+
+def lint_safe_pose(spec: Spec) -> None:
+    """A 7-joint safe pose outside the Franka Panda's rated range (the simulated arm) is a
+    lint error naming each joint, as it is a SpecError for ``check --sim``."""
+    joints = tuple(spec.safe_pose.joints_rad)
+    problem = safe_pose_problem(joints)
+    if problem is not None:
+        raise spec.source.error(problem, ("safe_pose", "joints_rad", out_of_range(joints)[0][0] - 1),
+                                hint="keep every joint inside the Panda's rated range "
+                                     "(FCI 'Limits for Panda', see src/ethimon/sim/README.md)")
+
+
+def iter_lint(paths: Iterable[str | os.PathLike], *, mapping: str | None = None) -> Iterator[LintLine]:
+    """The lines of :func:`lint_paths`, one spec at a time (a CLI prints each as it comes).
+
+    Raises:
+        SpecError: a path that does not exist or is not a regular file or folder, or a folder
+            with no spec files (before any line); a problem with one spec file is an
+            ``"error"`` line, and the others are still linted.
+    """
+    for path, skipped in scan_yaml_files([os.fspath(p) for p in paths], what="spec", command="ethimon lint"):
+        if skipped is not None:  # a FIFO, socket or device in a folder: never opened
+            yield LintLine(path, "skipped", f"{path}: skipped: {skipped}")
+            continue
+        try:
+            spec = _api.load_spec(path)
+            lint_safe_pose(spec)
+            yield LintLine(path, "ok", f"{path}: ok ({spec.name}, {len(spec.obligations)} obligations)")
+            for w in release_policy_warnings(spec):
+                yield LintLine(path, "warning", f"{path}: warning: {w}")
+            if mapping:
+                from .replay import check_against_spec, lint_mapping, load_mapping
+                m = load_mapping(mapping)
+                check_against_spec(m, spec)
+                for w in lint_mapping(m, spec):
+                    yield LintLine(mapping, "warning", f"{mapping}: warning: {w}")
+        except Exception as exc:  # noqa: BLE001 - one bad file is one line; the others are still linted
+            yield LintLine(path, "error", error_line(path, exc))
+
+
+def lint_paths(paths: Iterable[str | os.PathLike], *, mapping: str | None = None) -> LintReport:
+    """Load and compile every spec file (files or folders of ``*.yaml``/``*.yml``).
+
+    Args:
+        paths: spec files or folders.
+        mapping: also lint this replay mapping against each spec (``prev()`` of a
+            zero-order-held input, unmapped signals).
+
+    Returns:
+        One ``ok`` line per spec, its release-policy warnings, the mapping's warnings, or
+        the spec's error as ``path:line:column: message (hint)``; passed-over files
+        (FIFOs, sockets, devices in a folder) as ``skipped``.
+    """
+    return LintReport(list(iter_lint(paths, mapping=mapping)))

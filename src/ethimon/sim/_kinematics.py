@@ -1,0 +1,214 @@
+"""The kinematics of :class:`~._arm.ArmSim` and the probes the controllers plan with: IK/FK, the
+hazard axis, a route's clearances, link points, a step away from the people."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from ._cell import (ARM_JOINTS, EE_LINK, HAND_LINK, HOME_JOINTS_RAD, _DOWN_RPY, _NO_HUMAN_M)
+
+__all__ = ["_Kinematics"]
+
+
+class _Kinematics:
+    """IK/FK and route probing (a part of :class:`~._arm.ArmSim`)."""
+
+    # ------------------------------------------------------------ kinematics
+
+    def solve_ik(self, xyz: Sequence[float], rpy: Sequence[float] | None = None,
+                 seed: Sequence[float] | None = None, iterations: int = 6) -> np.ndarray:
+        """Joint angles that put the grasp target at ``xyz`` with orientation ``rpy``.
+
+        Deterministic: seeds from ``seed`` (default the current pose), refines a
+        few times, and restores the arm's state afterwards.
+        """
+        p, cid = self._p, self.cid
+        q_now, qd_now = self.joint_state()
+        seed_q = np.asarray(seed if seed is not None else q_now, dtype=float)
+        orn = p.getQuaternionFromEuler(tuple(rpy) if rpy is not None else _DOWN_RPY)
+        ranges = (self.upper - self.lower).tolist()
+        q = seed_q.copy()
+        for _ in range(iterations):
+            for j, v in zip(ARM_JOINTS, q):
+                p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+            sol = p.calculateInverseKinematics(
+                self.robot, EE_LINK, list(xyz), orn,
+                lowerLimits=self.lower.tolist() + [0.0, 0.0],
+                upperLimits=self.upper.tolist() + [0.04, 0.04],
+                jointRanges=ranges + [0.04, 0.04],
+                restPoses=list(HOME_JOINTS_RAD) + [0.04, 0.04],
+                maxNumIterations=200, residualThreshold=1e-5, physicsClientId=cid)
+            q = np.clip(np.array(sol[:7]), self.lower, self.upper)
+        for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
+            p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+        return q
+
+    def fk(self, q: Sequence[float]) -> np.ndarray:
+        """Grasp-target position for joint angles ``q`` (state restored afterwards)."""
+        p, cid = self._p, self.cid
+        q_now, qd_now = self.joint_state()
+        for j, v in zip(ARM_JOINTS, q):
+            p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+        pos, _ = self.ee_pose()
+        for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
+            p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+        return pos
+
+    # ------------------------------------------------------------ planning probes
+
+    def rebase_reference(self) -> None:
+        """Restart the joint servo's reference from the measured state (position and velocity).
+
+        Response controllers call it when they take over, so the previous controller's
+        reference (which may lead the arm) cannot pull it on."""
+        q, qd = self.joint_state()
+        self._q_sub, self._qd_sub = q, qd
+        self.q_cmd, self.qd_cmd = q.copy(), qd.copy()
+        self._v_out = qd.copy()
+        self._a_out = np.zeros(7)
+
+    def _held_pose_for_hand(self) -> tuple | None:
+        if self.held is None or getattr(self, "_held_rel", None) is None:
+            return None
+        p, cid = self._p, self.cid
+        hs = p.getLinkState(self.robot, HAND_LINK, computeForwardKinematics=1, physicsClientId=cid)
+        return p.multiplyTransforms(hs[0], hs[1], *self._held_rel)
+
+    def hazard_axis_angles_deg(self, qs: Sequence[Sequence[float]] | None = None) -> list[float] | None:
+        """Angle (deg) between the held object's declared ``hazard_axis`` and the direction from
+        the object's centre to the nearest person (the nearest point of their capsule axis), at
+        each configuration in ``qs`` (default: now; state restored afterwards). 180 = pointed
+        straight away. ``None`` when no object with a ``hazard_axis`` is held or there is nobody.
+        """
+        if self.held is None or not self.humans:
+            return None
+        axis = self.object_specs[self.held].hazard_axis
+        if axis is None or getattr(self, "_held_rel", None) is None:
+            return None
+        p, cid = self._p, self.cid
+        a_obj = np.asarray(axis, dtype=float) / float(np.linalg.norm(axis))
+        people = []
+        for hb in self.humans.values():
+            c = self.human_position(hb.spec.name)
+            r, h = hb.spec.radius_m, hb.spec.height_m
+            people.append((c, max(h / 2 - r, 0.0)))
+
+        def angle() -> float:
+            pos, orn = self._held_pose_for_hand()
+            pos = np.asarray(pos)
+            rot = np.asarray(p.getMatrixFromQuaternion(orn)).reshape(3, 3)
+            a = rot @ a_obj
+            best, to = math.inf, None
+            for c, half in people:
+                z = min(max(pos[2], c[2] - half), c[2] + half)
+                v = np.array([c[0], c[1], z]) - pos
+                d = float(np.linalg.norm(v))
+                if d < best:
+                    best, to = d, v
+            if to is None or best < 1e-9:
+                return 0.0
+            cos = float(np.dot(a, to) / best)
+            return math.degrees(math.acos(min(1.0, max(-1.0, cos))))
+
+        if qs is None:
+            return [angle()]
+        q_now, qd_now = self.joint_state()
+        out = []
+        try:
+            for q in qs:
+                for j, v in zip(ARM_JOINTS, q):
+                    p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+                out.append(angle())
+        finally:
+            for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
+                p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+        return out
+
+    def probe(self, qs: Sequence[Sequence[float]]) -> list[dict[str, float]]:
+        """Clearances of the arm at each joint configuration in ``qs`` (state restored after).
+
+        Each result: ``human`` (m, arm or held object to the nearest person), ``obstacle``
+        (m, arm or held object to any object the task does not pick, and arm links 3..8 to
+        the floor) and ``hazard`` (m, a held hazard-tagged object to the nearest person;
+        10 when none). People stand where they are now.
+        """
+        p, cid = self._p, self.cid
+        q_now, qd_now = self.joint_state()
+        held = self.objects.get(self.held) if self.held else None
+        held_pose = p.getBasePositionAndOrientation(held, physicsClientId=cid) if held is not None else None
+        # resetting a body's pose zeroes its velocity: keep it, or the grasp constraint has to
+        # re-accelerate the held object from rest in one physics step (issue 23: a 3 kg pot
+        # yanked joint 5 at 16.9 x its rated acceleration at every re-plan)
+        held_vel = p.getBaseVelocity(held, physicsClientId=cid) if held is not None else None
+        hazardous = held is not None and bool(self.object_specs[self.held].hazard)
+        obstacles = [b for n, b in self.objects.items() if n not in self.graspable and b != held]
+        out = []
+        try:
+            for q in qs:
+                for j, v in zip(ARM_JOINTS, q):
+                    p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+                if held is not None:
+                    pose = self._held_pose_for_hand()
+                    if pose is not None:
+                        p.resetBasePositionAndOrientation(held, pose[0], pose[1], physicsClientId=cid)
+                bodies = [self.robot] + ([held] if held is not None else [])
+                h = hz = _NO_HUMAN_M
+                for hb in self.humans.values():
+                    for b in bodies:
+                        h = min(h, self.distance(b, hb.body, h))
+                    if hazardous:
+                        hz = min(hz, self.distance(held, hb.body, hz))
+                ob = 1.0
+                for o in obstacles:
+                    for b in bodies:
+                        ob = min(ob, self.distance(b, o, ob))
+                for link in range(2, 12):
+                    pts = p.getClosestPoints(self.robot, self.plane, ob, linkIndexA=link,
+                                             physicsClientId=cid)
+                    if pts:
+                        ob = min(ob, max(0.0, min(pt[8] for pt in pts)))
+                if held is not None:
+                    pts = p.getClosestPoints(held, self.plane, ob, physicsClientId=cid)
+                    if pts:
+                        ob = min(ob, max(0.0, min(pt[8] for pt in pts)))
+                out.append({"human": float(h), "obstacle": float(ob), "hazard": float(hz)})
+        finally:
+            for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
+                p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+            if held is not None:
+                p.resetBasePositionAndOrientation(held, held_pose[0], held_pose[1], physicsClientId=cid)
+                p.resetBaseVelocity(held, held_vel[0], held_vel[1], physicsClientId=cid)
+        return out
+
+    def link_points(self, q: Sequence[float]) -> np.ndarray:
+        """World positions of the link frames (links 1..7, hand, fingers, grasp frame) at ``q``
+        (state restored afterwards); with a held object, its position too."""
+        p, cid = self._p, self.cid
+        q_now, qd_now = self.joint_state()
+        for j, v in zip(ARM_JOINTS, q):
+            p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+        states = p.getLinkStates(self.robot, list(range(12)), computeForwardKinematics=1,
+                                 physicsClientId=cid)
+        pts = [st[4] for st in states]
+        pose = self._held_pose_for_hand()
+        if pose is not None:
+            pts.append(pose[0])
+        for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
+            p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+        return np.array(pts, dtype=float)
+
+    def away_from_humans(self, xyz: Sequence[float], step_m: float) -> np.ndarray | None:
+        """``xyz`` moved ``step_m`` horizontally away from the nearest person and 0.1 m up
+        (``None`` with nobody in the scene)."""
+        if not self.humans:
+            return None
+        x = np.asarray(xyz, dtype=float)
+        best = min(self.humans.values(), key=lambda hb: float(np.linalg.norm(hb.xy_at(self.time_s) - x[:2])))
+        d = x[:2] - best.xy_at(self.time_s)
+        n = float(np.linalg.norm(d))
+        if n < 1e-6:
+            return None
+        return np.array([x[0] + step_m * d[0] / n, x[1] + step_m * d[1] / n, x[2] + 0.1])
