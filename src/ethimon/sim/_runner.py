@@ -374,6 +374,17 @@ def _signal_filter(block: SimBlock):
     return apply
 
 
+def _p_or_probs(p: Sequence[float] | None, probs: Sequence[float] | None) -> Sequence[float] | None:
+    """``run_sim``'s class probabilities: ``p``, or the deprecated spelling ``probs`` (warns)."""
+    if probs is None:
+        return p
+    if p is not None:
+        raise TypeError("run_sim: give the class probabilities once, as p= (probs= is its deprecated spelling)")
+    warnings.warn("run_sim(probs=...) is deprecated; use p=... (the monitor's input name)",
+                  DeprecationWarning, stacklevel=3)
+    return probs
+
+
 def _fixed_inputs(inputs: Mapping[str, Any] | None, *, p: Sequence[float] | None, p_unsafe: float | None,
                   risk: float | None) -> dict[str, Any]:
     """The inputs given to the monitor every cycle besides the simulated signals."""
@@ -442,13 +453,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
     """
     block = sim_block if isinstance(sim_block, SimBlock) else SimBlock.model_validate(sim_block)
     wall0 = time.perf_counter()
-    if probs is not None:
-        if p is not None:
-            raise TypeError("run_sim: give the class probabilities once, as p= (probs= is its deprecated spelling)")
-        warnings.warn("run_sim(probs=...) is deprecated; use p=... (the monitor's input name)",
-                      DeprecationWarning, stacklevel=2)
-        p = probs
-    fixed = _fixed_inputs(inputs, p=p, p_unsafe=p_unsafe, risk=risk)
+    fixed = _fixed_inputs(inputs, p=_p_or_probs(p, probs), p_unsafe=p_unsafe, risk=risk)
     if hasattr(monitor, "reset"):
         monitor.reset()
     recorder = None
