@@ -19,7 +19,8 @@ CONCERNS = ("monitor", "risk", "sim", "verify")
 #: imported by the scripts, not run: no JSON of their own
 LIBRARIES = {"risk_data.py", "__init__.py"}
 DOCS = ["README.md", "bench/README.md", "verification/README.md", "src/ethimon/sim/README.md",
-        "src/ethimon/risk/default_model/MODEL_CARD.md"]
+        "src/ethimon/risk/default_model/MODEL_CARD.md", "CHANGELOG.md",
+        *sorted(str(p.relative_to(ROOT)) for p in (ROOT / "docs").glob("*.md"))]
 
 
 def scripts() -> list[Path]:

@@ -591,7 +591,7 @@ def test_readme_example_command():
     for ok in ("separation", "contact_force", "joint_speed", "risk"):
         assert rows[ok].split()[-1] == "PASS", rows[ok]
     assert "human_distance: stale (last /human/range message 0.160 s old, max_age_s 0.15) on 19 cycles" in r.stderr
-    readme = (ROOT / "README.md").read_text()
+    readme = (ROOT / "README.md").read_text() + (ROOT / "docs" / "replay.md").read_text()
     assert ("ethimon replay examples/replay/cell --spec examples/replay/spec.yaml "
             "--map examples/replay/mapping.yaml") in readme
 
