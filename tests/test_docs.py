@@ -68,3 +68,23 @@ def test_layout_names_every_package() -> None:
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     pkgs = sorted(p.name for p in (ROOT / "src" / "ethimon").iterdir() if (p / "__init__.py").is_file())
     assert [p for p in pkgs if f"src/ethimon/{p}/" not in readme and f"{p}/ " not in readme] == []
+
+
+def test_cli_docstring_names_every_exit_code_main_returns() -> None:
+    src = (ROOT / "src" / "ethimon" / "cli" / "__init__.py").read_text(encoding="utf-8")
+    tree = ast.parse(src)
+    doc = ast.get_docstring(tree) or ""
+    main = next(n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == "main")
+    codes = {n.value.value for n in ast.walk(main)
+             if isinstance(n, ast.Return) and isinstance(n.value, ast.Constant) and isinstance(n.value.value, int)}
+    assert {0, 2, 3, 130} <= codes
+    stated = {int(c) for c in re.findall(r"\b(\d+) [a-z]", doc.split("Exit codes:")[1])}
+    assert codes - stated == set(), doc
+
+
+def test_bench_readme_says_not_cited_only_of_uncited_scripts() -> None:
+    bench = (ROOT / "bench" / "README.md").read_text(encoding="utf-8")
+    cited = "".join(p.read_text(encoding="utf-8") for p in [ROOT / "README.md", *DOCS.glob("*.md"),
+                                                           ROOT / "src/ethimon/risk/default_model/MODEL_CARD.md"])
+    wrong = [m for m in re.findall(r"^\| `(\w+\.py)` \|[^\n]*not cited yet", bench, re.M) if m in cited]
+    assert wrong == []
