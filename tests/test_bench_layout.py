@@ -13,6 +13,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 BENCH = ROOT / "bench"
 CONCERNS = ("monitor", "risk", "sim", "verify")
@@ -49,6 +51,7 @@ def test_every_script_records_machine_facts() -> None:
     assert missing == []
 
 
+@pytest.mark.slow
 def test_every_script_runs_as_a_module_and_the_facts_carry_the_load() -> None:
     """``python -m bench.<concern>.<script> --help`` for all of them, in one interpreter."""
     code = (

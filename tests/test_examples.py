@@ -8,6 +8,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "embed_monitor.py"
 
@@ -22,6 +24,7 @@ def test_readme_shows_the_example_verbatim():
     assert blocks and blocks[0] == EXAMPLE.read_text(encoding="utf-8")
 
 
+@pytest.mark.slow
 def test_example_runs_and_prints_what_the_readme_says():
     out = subprocess.run([sys.executable, str(EXAMPLE)], capture_output=True, text=True, check=True,
                          cwd=str(ROOT / "examples"), timeout=120).stdout
