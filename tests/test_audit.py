@@ -186,6 +186,7 @@ _KILL_CHILD = textwrap.dedent("""
 """)
 
 
+@pytest.mark.slow
 def test_kill_loses_no_record_reported_written(tmp_path):
     p = tmp_path / "kill.jsonl"
     child = subprocess.Popen([sys.executable, "-c", _KILL_CHILD, str(p)], stdout=subprocess.PIPE, text=True,
@@ -208,6 +209,7 @@ def test_kill_loses_no_record_reported_written(tmp_path):
     assert [r["cycle"] for r in recs[1:last_seq + 1]] == list(range(last_seq))
 
 
+@pytest.mark.slow
 def test_log_left_open_is_closed_at_exit(tmp_path):
     p = tmp_path / "exit.jsonl"
     code = ("import sys\nfrom ethimon.audit import AuditLog\nlog = AuditLog(sys.argv[1])\n"
@@ -222,6 +224,7 @@ def _cli(*args: str) -> subprocess.CompletedProcess:
                           text=True, timeout=60, cwd=ROOT)
 
 
+@pytest.mark.slow
 def test_cli_verify_exit_codes(tmp_path):
     p = tmp_path / "a.jsonl"
     _write(p)
@@ -239,6 +242,7 @@ def test_cli_verify_exit_codes(tmp_path):
     assert r.returncode == 2
 
 
+@pytest.mark.slow
 def test_cli_require_closed(tmp_path):
     p = tmp_path / "a.jsonl"
     _write(p)

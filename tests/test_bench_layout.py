@@ -13,13 +13,16 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 BENCH = ROOT / "bench"
 CONCERNS = ("monitor", "risk", "sim", "verify")
 #: imported by the scripts, not run: no JSON of their own
 LIBRARIES = {"risk_data.py", "__init__.py"}
 DOCS = ["README.md", "bench/README.md", "verification/README.md", "src/ethimon/sim/README.md",
-        "src/ethimon/risk/default_model/MODEL_CARD.md"]
+        "src/ethimon/risk/default_model/MODEL_CARD.md", "CHANGELOG.md",
+        *sorted(str(p.relative_to(ROOT)) for p in (ROOT / "docs").glob("*.md"))]
 
 
 def scripts() -> list[Path]:
@@ -48,6 +51,7 @@ def test_every_script_records_machine_facts() -> None:
     assert missing == []
 
 
+@pytest.mark.slow
 def test_every_script_runs_as_a_module_and_the_facts_carry_the_load() -> None:
     """``python -m bench.<concern>.<script> --help`` for all of them, in one interpreter."""
     code = (

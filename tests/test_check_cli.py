@@ -5,6 +5,8 @@ import xml.etree.ElementTree as ET
 
 from _cli import run_cli
 
+import pytest
+
 from ethimon.scenario import build_inputs, load_scenario_text
 
 
@@ -14,6 +16,7 @@ def write_scenario(tmp_path, root, body: str, name="sc.yaml"):
     return p
 
 
+@pytest.mark.slow
 def test_shipped_scenarios_pass(root):
     # text-only scenarios are scored by the shipped model: it needs torch and the base weights
     import pytest
@@ -25,6 +28,7 @@ def test_shipped_scenarios_pass(root):
     assert doc["failed"] == 0 and doc["errors"] == 0 and doc["passed"] >= 20
 
 
+@pytest.mark.slow
 def test_failed_expectation_exits_1_with_location(tmp_path, root):
     sc = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.2}\nexpect: {override: true}\n")
     r = run_cli("check", str(sc))
@@ -33,6 +37,7 @@ def test_failed_expectation_exits_1_with_location(tmp_path, root):
     assert "FAIL" in r.stdout and "0 passed, 1 failed" in r.stdout
 
 
+@pytest.mark.slow
 def test_json_and_junit_reports(tmp_path, root):
     ok = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.2}\nexpect: {override: false}\n", "ok.yaml")
     bad = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.9}\nexpect: {override: false}\n", "bad.yaml")
@@ -46,6 +51,7 @@ def test_json_and_junit_reports(tmp_path, root):
     assert suite.get("tests") == "2" and suite.get("failures") == "1"
 
 
+@pytest.mark.slow
 def test_json_to_stdout_is_pure_json(tmp_path, root):
     # regression (issue 13): the table and the summary were printed to stdout before the JSON
     ok = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.2}\nexpect: {override: false}\n", "ok.yaml")
@@ -61,6 +67,7 @@ def test_json_to_stdout_is_pure_json(tmp_path, root):
     assert "PASS" in r.stdout and "1 passed" in r.stdout
 
 
+@pytest.mark.slow
 def test_bad_and_good_mixed_exit_2_but_all_reported(tmp_path, root):
     ok = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.2}\n", "ok.yaml")
     broken = tmp_path / "broken.yaml"
@@ -70,6 +77,7 @@ def test_bad_and_good_mixed_exit_2_but_all_reported(tmp_path, root):
     assert "PASS" in r.stdout and f"{broken}:" in r.stderr and "Traceback" not in r.stderr
 
 
+@pytest.mark.slow
 def test_schema_is_json_schema():
     for kind in ("spec", "scenario"):
         r = run_cli("schema", kind)
@@ -92,6 +100,7 @@ def test_timeline_piecewise_and_revert(tmp_path):
     assert frames[5] == {"a": 1, "b": 2, "c": 3}
 
 
+@pytest.mark.slow
 def test_no_args_and_unknown_command_exit_2():
     assert run_cli().returncode == 2
     r = run_cli("frobnicate")

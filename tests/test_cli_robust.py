@@ -69,6 +69,7 @@ def hostile_folder(tmp_path):
 
 # -- (a) one bad file is one row ---------------------------------------------------------------------
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sim", [False, True])
 def test_hostile_files_are_one_error_row_each_and_reports_are_written(tmp_path, sim):
     d = hostile_folder(tmp_path)
@@ -176,6 +177,7 @@ def test_a_cached_spec_failure_is_raised_fresh_for_each_scenario(tmp_path, monke
         depths.append(n)
     assert len(set(depths)) == 1, depths
 
+@pytest.mark.slow
 def test_lint_reports_every_file_despite_a_hostile_one(tmp_path):
     hexs, chain = hostile_specs(tmp_path)
     good = tmp_path / "good.yaml"
@@ -206,6 +208,7 @@ def test_lint_unexpected_exception_is_one_line(tmp_path, monkeypatch, capsys):
     assert f"{tmp_path / 'b.yaml'}: ok" in cap.out
 
 
+@pytest.mark.slow
 def test_lint_empty_folder_message_is_about_specs(tmp_path):
     r = run_cli("lint", str(tmp_path))
     assert r.returncode == 2
@@ -244,6 +247,7 @@ def kettle(tmp_path, body):
     return sc
 
 
+@pytest.mark.slow
 def test_timeline_typo_is_an_error_with_a_hint(tmp_path):
     sc = kettle(tmp_path, "inputs: {risk: 0.1, vessel_temp: 20, human_distance: 0.2}\n"
                           "timeline:\n  - {at: 5, set: {vesel_temp: 90}}\n"
@@ -255,6 +259,7 @@ def test_timeline_typo_is_an_error_with_a_hint(tmp_path):
     assert "Traceback" not in r.stderr and "PASS" not in r.stdout
 
 
+@pytest.mark.slow
 def test_inputs_typo_is_an_error_not_a_missing_signal(tmp_path):
     sc = kettle(tmp_path, "inputs: {risk: 0.1, vessel_temp: 20, human_distnce: 3.0}\n"
                           "expect: {override: true}\n")
@@ -286,6 +291,7 @@ def test_builtin_inputs_stay_valid(tmp_path, risk):
     assert res.passed, res.failures
 
 
+@pytest.mark.slow
 def test_counterexample_style_scenario_stays_valid(tmp_path):
     # what 'ethimon verify --counterexamples' writes: signals, risk, risk_age_s, nulls in the timeline
     sc = kettle(tmp_path, "inputs: {vessel_temp: 20.0, human_distance: 3.0, risk: 0.1, risk_age_s: 0.0}\n"
@@ -300,6 +306,7 @@ def test_counterexample_style_scenario_stays_valid(tmp_path):
 needs_fifo = pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs on this platform")
 
 
+@pytest.mark.slow
 @needs_fifo
 def test_fifo_in_a_folder_is_a_skipped_row(tmp_path):
     ok_scenario(tmp_path / "a.yaml", "a")
@@ -312,6 +319,7 @@ def test_fifo_in_a_folder_is_a_skipped_row(tmp_path):
     assert ET.parse(junit).getroot().get("skipped") == "1"
 
 
+@pytest.mark.slow
 @needs_fifo
 @pytest.mark.parametrize("cmd", ["check", "lint", "simulate"])
 def test_fifo_on_the_command_line_is_refused(tmp_path, cmd):
@@ -323,6 +331,7 @@ def test_fifo_on_the_command_line_is_refused(tmp_path, cmd):
     assert "Traceback" not in r.stderr
 
 
+@pytest.mark.slow
 @needs_fifo
 def test_fifo_in_a_folder_is_skipped_by_lint(tmp_path):
     (tmp_path / "a.yaml").write_text(GOVERNOR.read_text())
@@ -332,6 +341,7 @@ def test_fifo_in_a_folder_is_skipped_by_lint(tmp_path):
     assert "skipped" in r.stdout and "regular file" in r.stdout
 
 
+@pytest.mark.slow
 @needs_fifo
 def test_scenario_whose_spec_is_a_fifo_is_one_error_row(tmp_path):
     os.mkfifo(tmp_path / "spec.yaml")
@@ -343,6 +353,7 @@ def test_scenario_whose_spec_is_a_fifo_is_one_error_row(tmp_path):
     assert "regular file" in r.stderr and "FIFO" in r.stderr
 
 
+@pytest.mark.slow
 @needs_fifo
 def test_fifo_key_file_is_refused(tmp_path):
     fifo = tmp_path / "key"
@@ -353,6 +364,7 @@ def test_fifo_key_file_is_refused(tmp_path):
     assert r.returncode == 2 and "regular file" in r.stderr
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not os.path.exists("/dev/stdin"), reason="no /dev/stdin")
 @pytest.mark.parametrize("cmd", ["check", "lint"])
 def test_dev_stdin_as_a_pipe_does_not_hang(cmd):
@@ -367,6 +379,7 @@ def test_dev_stdin_as_a_pipe_does_not_hang(cmd):
     assert "regular file" in p.stderr and "Traceback" not in p.stderr
 
 
+@pytest.mark.slow
 @needs_fifo
 def test_report_to_a_fifo_without_reader_does_not_hang(tmp_path):
     ok_scenario(tmp_path / "a.yaml", "a")
@@ -379,6 +392,7 @@ def test_report_to_a_fifo_without_reader_does_not_hang(tmp_path):
     assert ET.parse(junit).getroot().get("tests") == "1"  # the other report is still written
 
 
+@pytest.mark.slow
 def test_unwritable_report_is_one_line(tmp_path):
     ok_scenario(tmp_path / "a.yaml", "a")
     junit = tmp_path / "no" / "such" / "r.xml"

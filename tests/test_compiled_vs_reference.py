@@ -80,6 +80,7 @@ def test_all_operators_spec_agrees(seed):
     assert_same(spec, random_trace(rng, spec, 120))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["governor", "cobot_cell"])
 def test_shipped_specs_agree(root, name):
     spec = ethimon.load_spec(root / "specs" / f"{name}.yaml")

@@ -24,6 +24,8 @@ from _cli import ROOT, run_cli
 from ethimon.errors import EthimonError
 from ethimon.fleet import Failure, check_address, plain
 
+pytestmark = pytest.mark.slow  # a local Ray instance and CLI subprocesses: seconds each
+
 RAY_MISSING = "ray is not installed (pip install -e '.[fleet]'; CI installs it with .[all,test])"
 
 SPEC = f"{ROOT}/specs/cobot_cell.yaml"

@@ -204,6 +204,7 @@ def test_no_risk_input_is_a_fault_not_a_silent_default():
     assert info["cost"] == 1.0 and info["decision"]["fault_kinds"] == ["missing"]
 
 
+@pytest.mark.slow
 def test_import_ethimon_stays_light():
     code = ("import sys, ethimon; import ethimon.sim; "
             "assert 'gymnasium' not in sys.modules and 'pybullet' not in sys.modules, 'heavy'; "
@@ -226,6 +227,7 @@ def panda():
     env.close()
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 @pytestmark_sim
 def test_panda_cell_passes_check_env():
@@ -276,6 +278,7 @@ def test_action_bounds_are_the_rated_joint_speeds():
     assert tuple(RATED_DQ_MAX) == PANDA_RATED_JOINT_SPEED_RAD_S
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 @pytestmark_sim
 def test_panda_cell_tracks_joint_velocity_targets(panda):
@@ -308,6 +311,7 @@ def test_panda_cell_with_no_or_several_people(n_humans):
         gymnasium.make("ethimon/PandaCell-v0", n_humans=5)
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 @pytestmark_sim
 def test_panda_cell_is_deterministic_with_a_seed(panda):
@@ -350,6 +354,7 @@ def test_panda_shield_replaces_fast_commands_near_the_limits(panda):
     assert info["shield"]["replaced"] and "invalid" in info["decision"]["fault_kinds"]
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 @pytestmark_sim
 def test_gym_shield_example_runs(capsys):

@@ -75,6 +75,7 @@ def test_anything_but_a_verdict_is_no_judgement(server, model, status):
     assert (r.status, r.p_unsafe) == (status, None), r
 
 
+@pytest.mark.slow
 def test_timeout_is_no_judgement_and_bounded(server):
     t0 = time.monotonic()
     r = _j(server, "delay=3", timeout_s=0.3).judge("slow one")
@@ -141,6 +142,7 @@ def _outcome(r_e, p):
 _RANK = {"execute": 0, "confirm": 1, "stop": 2}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("model", ["fooled", "words", "echo"])
 def test_hostile_texts_never_move_toward_execute(server, model):
     """A judge fully taken in (always 0, or answer-shaped replies) on every hostile row of the set:
@@ -200,6 +202,7 @@ def _cli_spec(tmp_path, url, model, tc=0.0, tau=0.99):
     return p
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("model, outcome, status", [("p=0.02", "execute", "ok"), ("http500", "confirm", "error")])
 def test_cli_risk_prints_the_judge_and_the_outcome(server, tmp_path, model, outcome, status):
     from _cli import run_cli

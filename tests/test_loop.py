@@ -105,6 +105,7 @@ def test_source_detects_dead_thread():
         src.stop()
 
 
+@pytest.mark.slow
 def test_process_estimator_kills_a_hung_child_and_respawns():
     env = {"PYTHONPATH": str(ROOT / "tests")}
     est = ProcessEstimator("_estimators:ScriptedEstimator", {"probs": [0.8, 0.2]}, timeout_s=2.0, env=env)
@@ -217,6 +218,7 @@ def test_run_paces_cycles_with_injected_sleep():
     assert 95 <= stats.cycles <= 101 and stats.deadline_misses == 0 and stats.overrides == 0
 
 
+@pytest.mark.slow
 def test_run_in_thread_real_time_smoke():
     est = ScriptedEstimator()
     src = AsyncRiskSource(est, text="t", rate_hz=50.0)
@@ -327,6 +329,7 @@ def test_reload_verification_hook_can_reject(tmp_path):
     assert not res.ok and "vacuous" in res.error
 
 
+@pytest.mark.slow
 def test_reload_smt_verification_rejects_a_refuted_spec(tmp_path):
     pytest.importorskip("z3")
     loop, _ = _loop(verify="smt")
@@ -441,6 +444,7 @@ def test_loop_acknowledge_is_audited_and_checked(tmp_path):
     assert acks[1]["rules"] == ["fault"] and acks[1]["cycle"] == 5
 
 
+@pytest.mark.slow
 def test_loop_acknowledge_from_another_thread_is_applied_between_cycles():
     clock, gate, ran = FakeClock(), threading.Event(), []
     script = iter([{}])                                   # one fault cycle, then a clean signal forever

@@ -68,6 +68,7 @@ def test_verify_refuses_a_fifo_without_blocking(tmp_path):
     assert isinstance(out.get("exc"), AuditFormatError) and "not a regular file" in str(out["exc"])
 
 
+@pytest.mark.slow
 def test_cli_verify_refuses_dev_stdin_pipe_without_blocking():
     # stdin is a pipe nobody writes to: reading it would block forever
     proc = subprocess.Popen([sys.executable, "-m", "ethimon.cli._audit_cmds", "audit", "verify", "/dev/stdin"],
@@ -347,6 +348,7 @@ class _RegexEstimator:
         return (0.95, 0.05)
 
 
+@pytest.mark.slow
 def test_an_estimator_holding_the_gil_is_reported_as_a_stall():
     n = _gil_hog_seconds()
     est = _RegexEstimator(n)
@@ -371,6 +373,7 @@ def test_an_estimator_holding_the_gil_is_reported_as_a_stall():
     assert stalls, "the on_stall callback (hardware stop) was never called"
 
 
+@pytest.mark.slow
 def test_a_factory_string_runs_the_estimator_in_a_child_process(tmp_path):
     env = {"PYTHONPATH": str(ROOT / "tests")}
     log = AuditLog(tmp_path / "p.jsonl")

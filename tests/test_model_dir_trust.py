@@ -134,6 +134,7 @@ def says_yes(monkeypatch):
     monkeypatch.setattr(builtins, "input", lambda *a, **k: "y")
 
 
+@pytest.mark.slow
 def test_cli_with_yes_on_stdin_runs_nothing(tmp_path):
     canary = tmp_path / "CANARY"
     d = _evil_dir(tmp_path / "evil", canary)
@@ -169,6 +170,7 @@ def _clean_bert_with_evil(tmp_path: Path, canary: Path) -> Path:
 @pytest.mark.parametrize("case", ["config_auto_map", "tokenizer_auto_map", "custom_pipelines",
                                   "unknown_model_type", "no_model_type", "model_type_not_str",
                                   "python_file", "python_file_in_subdir"])
+@pytest.mark.slow
 def test_each_code_route_is_refused(tmp_path, says_yes, case):
     canary = tmp_path / "CANARY"
     d = _clean_bert_with_evil(tmp_path, canary)
@@ -206,6 +208,7 @@ def test_each_code_route_is_refused(tmp_path, says_yes, case):
     assert re.search(want, str(ei.value)), ei.value
 
 
+@pytest.mark.slow
 def test_a_huge_tree_is_not_walked(tmp_path, monkeypatch):
     from ethimon.risk import _modeldir as D
     d = _bert_dir(tmp_path / "m", transformers.BertForSequenceClassification, num_labels=2)
@@ -216,6 +219,7 @@ def test_a_huge_tree_is_not_walked(tmp_path, monkeypatch):
         D.check_model_dir(d)
 
 
+@pytest.mark.slow
 def test_adapter_with_foreign_base_or_tokenizer_is_refused(tmp_path, base, says_yes):
     canary = tmp_path / "CANARY"
     evil = _evil_dir(tmp_path / "evil", canary)
@@ -233,6 +237,7 @@ def test_adapter_with_foreign_base_or_tokenizer_is_refused(tmp_path, base, says_
     assert not canary.exists()
 
 
+@pytest.mark.slow
 def test_every_transformers_load_says_trust_remote_code_false(tmp_path, base, monkeypatch):
     """At run time: every from_pretrained the risk package makes passes trust_remote_code=False."""
     calls = []
@@ -268,12 +273,14 @@ def test_every_transformers_call_in_the_source_says_trust_remote_code_false():
 
 
 # ================================================================ 2. no invented heads
+@pytest.mark.slow
 def test_plain_encoder_dir_is_refused_not_given_a_random_head(tmp_path):
     d = _bert_dir(tmp_path / "enc")  # BertModel: no classifier
     with pytest.raises(ModelError, match=r"config\.json.*'architectures'.*BertModel.*classif"):
         load_estimator(d, max_length=32)
 
 
+@pytest.mark.slow
 def test_classifier_whose_head_weights_are_missing_is_refused(tmp_path):
     d = _bert_dir(tmp_path / "clf", transformers.BertForSequenceClassification, num_labels=2)
     w = d / "model.safetensors"
@@ -299,6 +306,7 @@ def test_classifier_with_fewer_than_two_labels_is_refused(tmp_path, num_labels):
         load_estimator(d, max_length=32)
 
 
+@pytest.mark.slow
 def test_base_encoder_with_missing_layers_is_refused(tmp_path, base):
     b = tmp_path / "base"
     import shutil
@@ -311,6 +319,7 @@ def test_base_encoder_with_missing_layers_is_refused(tmp_path, base):
         load_estimator(a)
 
 
+@pytest.mark.slow
 def test_real_classifiers_still_load_and_are_deterministic(tmp_path, base):
     clf = _distilbert_clf(tmp_path / "clf")
     p1 = load_estimator(clf, max_length=32, cache_size=0, jit=False).probs(TEXT)
@@ -343,6 +352,7 @@ BAD_FIELDS = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("key,value", BAD_FIELDS, ids=[f"{k}={v!r}"[:40] for k, v in BAD_FIELDS])
 def test_bad_manifest_field_is_a_clean_model_error(tmp_path, base, key, value):
     d = _adapter_dir(tmp_path / "a", base, **{key: value})
@@ -354,6 +364,7 @@ def test_bad_manifest_field_is_a_clean_model_error(tmp_path, base, key, value):
 
 @pytest.mark.parametrize("text", ["[]", '"a string"', "3", "null", "[" * 100_000 + "]" * 100_000,
                                   '{"temperature": 1.0, "temperature": -1.0}', "{bad json", "\xff"])
+@pytest.mark.slow
 def test_non_object_or_ambiguous_manifest_is_refused(tmp_path, base, text):
     d = _adapter_dir(tmp_path / "a", base)
     if text == "\xff":
@@ -369,6 +380,7 @@ def test_non_object_or_ambiguous_manifest_is_refused(tmp_path, base, text):
         load_estimator(d, jit=False)
 
 
+@pytest.mark.slow
 def test_pickle_adapter_is_refused_even_when_its_sha256_is_pinned(tmp_path, base, monkeypatch):
     d = _adapter_dir(tmp_path / "a", base)
     torch.save({"head.weight": torch.zeros(2, 32), "head.bias": torch.zeros(2)}, str(d / "adapter.safetensors"))
@@ -383,6 +395,7 @@ def test_pickle_adapter_is_refused_even_when_its_sha256_is_pinned(tmp_path, base
         load_estimator(d, jit=False)
 
 
+@pytest.mark.slow
 def test_warm_start_from_a_pinned_pickle_adapter_is_refused(tmp_path, base, monkeypatch):
     """train --init-from reads an adapter too: the same safetensors-only rule."""
     from ethimon.risk import _backend as B
@@ -403,6 +416,7 @@ def test_warm_start_from_a_pinned_pickle_adapter_is_refused(tmp_path, base, monk
         _warm_start(encoder, model, d, base, 2, 4.0, targets)
 
 
+@pytest.mark.slow
 def test_adapter_with_non_finite_weights_is_refused(tmp_path, base):
     d = _adapter_dir(tmp_path / "a", base)
     save_file({"head.weight": torch.full((2, 32), float("nan")), "head.bias": torch.zeros(2)},
@@ -412,6 +426,7 @@ def test_adapter_with_non_finite_weights_is_refused(tmp_path, base):
         load_estimator(d, jit=False)
 
 
+@pytest.mark.slow
 def test_negative_temperature_would_flip_the_verdict(tmp_path, base):
     """Why a bad temperature is refused rather than used: T = -1 swaps p_safe and p_unsafe."""
     good = load_estimator(_adapter_dir(tmp_path / "g", base), jit=False, cache_size=0).probs(TEXT)
@@ -422,6 +437,7 @@ def test_negative_temperature_would_flip_the_verdict(tmp_path, base):
 
 @pytest.mark.parametrize("key,value", [("temperature", -1.0), ("unsafe_index", 5), ("num_labels", 10 ** 12),
                                        ("lora", {"r": 0, "alpha": 8}), ("adapter_file", "adapter.bin")])
+@pytest.mark.slow
 def test_cli_reports_bad_manifest_as_exit_2(tmp_path, base, capsys, key, value):
     from ethimon.cli import main
     d = _adapter_dir(tmp_path / "a", base, **{key: value})
@@ -430,6 +446,7 @@ def test_cli_reports_bad_manifest_as_exit_2(tmp_path, base, capsys, key, value):
     assert "ethimon_model.json" in err and repr(key) in err and "Traceback" not in err
 
 
+@pytest.mark.slow
 def test_average_refuses_a_bad_manifest_cleanly(tmp_path, base):
     from ethimon.risk._average import average_runs
     a = _adapter_dir(tmp_path / "a", base, lora={"r": 0, "alpha": 8})

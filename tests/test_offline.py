@@ -307,6 +307,7 @@ def test_step_method_and_empty_trace():
     assert check_trace(spec, {}, length=0).n_cycles == 0
 
 
+@pytest.mark.slow
 def test_import_rules():
     code = ("import sys, ethimon; assert 'ethimon.offline' not in sys.modules; import ethimon.offline; "
             "bad = [m for m in sys.modules if m.split('.')[:2] in (['ethimon', 'cli'], ['ethimon', 'loop'], "

@@ -1,6 +1,8 @@
 import subprocess
 import sys
 
+import pytest
+
 import ethimon
 
 
@@ -9,6 +11,7 @@ def test_all_names_import():
         assert hasattr(ethimon, name), name
 
 
+@pytest.mark.slow
 def test_import_and_step_do_not_load_torch_or_pybullet():
     code = (
         "import sys, ethimon\n"

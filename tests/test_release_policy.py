@@ -282,6 +282,7 @@ def test_step_stays_allocation_free_of_new_objects_per_rule_while_latched():
 
 # -- verify and lint ------------------------------------------------------------------------------
 
+@pytest.mark.slow
 def test_lint_warns_on_auto_release_after_a_stop_that_cut_power():
     s = spec("on_fault: {response: stop_1, release: auto}\n",
              obligations='obligations:\n  - {id: contact, require: "f <= 140", response: stop_0, release: auto}\n')
@@ -293,6 +294,7 @@ def test_lint_warns_on_auto_release_after_a_stop_that_cut_power():
     assert rep.finding("release.rule").status == "proved"
 
 
+@pytest.mark.slow
 def test_lint_lists_the_manual_rules_by_default():
     rep = verify_spec(spec())
     f = rep.finding("lint.release_policy")
@@ -310,6 +312,7 @@ def test_lint_warns_on_a_risk_stop_1_that_releases_by_itself():
                for f in rep.findings)
 
 
+@pytest.mark.slow
 def test_model_agrees_is_refuted_when_the_monitor_releases_a_manual_rule(monkeypatch):
     """A broken monitor (manual rules releasing by themselves) disagrees with the decision model."""
     orig = ethimon.Monitor._release_pass
@@ -350,6 +353,7 @@ def test_ethimon_lint_prints_release_policy_warnings(tmp_path, capsys):
     assert main(["lint", str(tmp_path / "none.yaml")]) == 2
 
 
+@pytest.mark.slow
 def test_json_schema_accepts_the_short_and_long_forms():
     jsonschema = pytest.importorskip("jsonschema")
     schema = ethimon.Spec.model_json_schema()

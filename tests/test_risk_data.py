@@ -7,6 +7,7 @@ import pytest
 from ethimon.errors import SpecError
 
 
+@pytest.mark.slow
 def test_metrics_and_ece():
     from ethimon.risk._evaluate import classification_metrics, expected_calibration_error, flag_stats
     m = classification_metrics([1, 1, 0, 0], [0.9, 0.4, 0.6, 0.1])
@@ -17,6 +18,7 @@ def test_metrics_and_ece():
     assert f["flag_rate_unsafe"] == 0.5 and f["false_alarm_rate"] == 0.5
 
 
+@pytest.mark.slow
 def test_evaluate_logits_records_both_thresholds():
     """The confusion matrix is at p_unsafe >= 0.5, the flags at R_e >= tau: both are recorded."""
     from ethimon.risk._evaluate import evaluate_logits

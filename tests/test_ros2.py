@@ -19,6 +19,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+pytestmark = pytest.mark.slow  # a DDS stand-in robot and ethimon ros2 in subprocesses
+
 pytest.importorskip("cyclonedds")
 pytest.importorskip("rosbags")
 

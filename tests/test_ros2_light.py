@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -14,6 +16,7 @@ def _run(code: str) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=str(ROOT))
 
 
+@pytest.mark.slow
 def test_import_ethimon_ros2_does_not_load_cyclonedds_or_rosbags():
     out = _run("import sys, ethimon, ethimon.ros2, ethimon.cli\n"
                "from ethimon.cli import _build_parser\n"
@@ -23,6 +26,7 @@ def test_import_ethimon_ros2_does_not_load_cyclonedds_or_rosbags():
     assert out.stdout.strip() == "[]"
 
 
+@pytest.mark.slow
 def test_cli_without_cyclonedds_names_the_extra(tmp_path):
     spec = tmp_path / "s.yaml"
     spec.write_text("ethimon: 1\nname: s\nsignals:\n  v: {unit: m/s, range: [0, 10]}\n")
@@ -37,6 +41,7 @@ def test_cli_without_cyclonedds_names_the_extra(tmp_path):
     assert "pip install 'ethimon[ros2]'" in out.stderr and "Traceback" not in out.stderr
 
 
+@pytest.mark.slow
 def test_cli_bad_mapping_is_located(tmp_path):
     spec = tmp_path / "s.yaml"
     spec.write_text("ethimon: 1\nname: s\nsignals:\n  v: {unit: m/s, range: [0, 10]}\n")

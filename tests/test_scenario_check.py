@@ -55,6 +55,7 @@ def captured_sim(monkeypatch):
     (f"inputs: {{{SIGNALS}}}\ntimeline:\n  - {{at: 3, set: {{risk: 0.2}}}}\n", {"risk": 0.2}),
     (f"task: Wipe the table.\ninputs: {{{SIGNALS}}}\n", {"p": (0.9, 0.1)}),
 ])
+@pytest.mark.slow
 def test_simulate_and_check_sim_feed_a_scenario_the_same_risk(tmp_path, captured_sim, capsys, body, expected):
     sc = sim_scenario(tmp_path, "feed", body)
     assert main(["simulate", str(sc)]) == 0, capsys.readouterr()
@@ -135,6 +136,7 @@ def test_progress_bar_only_when_stdout_is_a_terminal(tmp_path, monkeypatch):
     assert err2.getvalue() == ""
 
 
+@pytest.mark.slow
 def test_check_with_a_pipe_draws_no_progress_bar(tmp_path):
     write_ok(tmp_path, "a")
     r = run_cli("check", str(tmp_path))
@@ -142,6 +144,7 @@ def test_check_with_a_pipe_draws_no_progress_bar(tmp_path):
     assert "\r" not in r.stderr and "file/s" not in r.stderr and r.stderr == ""
 
 
+@pytest.mark.slow
 def test_lint_is_listed_with_a_description():
     r = run_cli("--help")
     assert r.returncode == 0
@@ -174,6 +177,7 @@ def test_errors_have_one_prefix(tmp_path, monkeypatch, capsys):
     assert capsys.readouterr().err.startswith("ethimon: error: internal error: KeyError")
 
 
+@pytest.mark.slow
 def test_check_without_text_risk_or_sim_imports_neither_torch_nor_pybullet(tmp_path):
     # one-shot speed: the learned model (torch, transformers) only when a task text must be scored,
     # the simulator only with --sim
@@ -186,6 +190,7 @@ def test_check_without_text_risk_or_sim_imports_neither_torch_nor_pybullet(tmp_p
     assert r.stdout.strip().splitlines()[-1] == "0 []", r.stdout + r.stderr
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not hasattr(__import__("os"), "openpty"), reason="no pseudo-terminals here")
 def test_check_on_a_terminal_draws_the_bar_on_stderr(tmp_path):
     pytest.importorskip("tqdm")

@@ -198,6 +198,7 @@ def _verify(spec):
     return verify_spec(spec)
 
 
+@pytest.mark.slow
 def test_verify_linear_and_nonlinear_forms():
     rep = _verify(spec_with("d >= separation_distance(vh, vr, 0.1, t_s, 0.2, 0.1, 0.04, 0.01)"))
     assert rep.finding("ssm.defined").status == "proved"
@@ -207,6 +208,7 @@ def test_verify_linear_and_nonlinear_forms():
     assert rep.finding("ssm.defined").status == "proved"
 
 
+@pytest.mark.slow
 def test_verify_refutes_a_range_that_allows_a_negative_speed():
     wide = HEAD.replace("vh: {unit: m/s, range: [0, 3]}", "vh: {unit: m/s, range: [-3, 3]}")
     rep = _verify(spec_with(SSM, head=wide))

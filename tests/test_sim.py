@@ -20,6 +20,7 @@ def _needs_pybullet(request):
         pytest.importorskip("pybullet")
 
 
+@pytest.mark.slow
 def test_import_is_light():
     code = ("import sys, ethimon.sim, ethimon.sim._model; "
             "assert 'pybullet' not in sys.modules, 'ethimon.sim imported pybullet'")

@@ -12,6 +12,7 @@ pytest.importorskip("pybullet")
 pytestmark = pytest.mark.sim
 
 
+@pytest.mark.slow
 def test_simulate_records_and_passes(tmp_path, capsys, root):
     rc = main(["simulate", str(root / "scenarios/sim/knife_handover_child.yaml"),
                "--record", str(tmp_path), "--json", str(tmp_path / "out.json")])
@@ -59,6 +60,7 @@ def test_simulate_unknown_input_is_an_error_with_a_hint(tmp_path, capsys, root):
     assert "did you mean 'human_distance'?" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_simulate_unexpected_exception_in_one_file_is_one_line(tmp_path, capsys, root, monkeypatch):
     import ethimon.scenario as scenario_pkg
     real = scenario_pkg.load_scenario
@@ -78,6 +80,7 @@ def test_simulate_unexpected_exception_in_one_file_is_one_line(tmp_path, capsys,
     assert "routine_wipe" in cap.out and "PASS" in cap.out and "Traceback" not in cap.err
 
 
+@pytest.mark.slow
 def test_simulate_json_to_stdout_is_pure_json(capsys, root):
     # regression (issue 13): the table and summary were printed to stdout before the JSON
     rc = main(["simulate", str(root / "scenarios/sim/routine_wipe.yaml"), "--json", "-"])
@@ -88,6 +91,7 @@ def test_simulate_json_to_stdout_is_pure_json(capsys, root):
     assert "PASS" in cap.err and "1 passed, 0 failed" in cap.err
 
 
+@pytest.mark.slow
 def test_recorded_summary_has_the_wall_time_and_every_file(tmp_path, root):
     # regression (issue 13): summary.json had wall_time_s 0.0 (written before it was set) and
     # listed the frames only, not the trace, summary and plot files

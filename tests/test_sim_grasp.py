@@ -30,6 +30,7 @@ def _hold_still(sim, cycles):
         sim.step()
 
 
+@pytest.mark.slow
 def test_a_powered_grasp_holds_the_object():
     with _cell() as sim:
         _hold_still(sim, 60)
@@ -38,6 +39,7 @@ def test_a_powered_grasp_holds_the_object():
         assert sim.grip_capacity_n == pytest.approx(70.0)  # 2 x 0.5 x 70 N
 
 
+@pytest.mark.slow
 def test_stop_0_drops_the_object_from_a_gripper_that_is_not_self_locking():
     with _cell() as sim:
         _hold_still(sim, 10)
@@ -50,6 +52,7 @@ def test_stop_0_drops_the_object_from_a_gripper_that_is_not_self_locking():
         assert sim.object_z()["knife"] < 0.05          # on the floor, not in the hand
 
 
+@pytest.mark.slow
 def test_a_self_locking_gripper_keeps_the_object_without_power():
     with _cell({"self_locking": True}) as sim:
         _hold_still(sim, 10)
@@ -61,6 +64,7 @@ def test_a_self_locking_gripper_keeps_the_object_without_power():
         assert abs(sim.object_z()["knife"] - z0) < 0.12  # rides with the (slightly sagging) hand
 
 
+@pytest.mark.slow
 def test_stop_1_drops_the_object_at_its_power_off_not_before():
     from ethimon.sim._control import StopController
     with _cell() as sim:

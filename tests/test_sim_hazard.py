@@ -37,6 +37,7 @@ def test_hazard_axis_needs_a_hazard_and_a_direction():
     assert SimObject(name="k", xyz_m=(0, 0, 0), hazard="sharp", hazard_axis=(1, 0, 0)).hazard_axis == (1, 0, 0)
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 def test_retreat_turns_the_blade_away_from_the_child():
     from ethimon.sim import check_sim_expectations
@@ -48,6 +49,7 @@ def test_retreat_turns_the_blade_away_from_the_child():
     assert check_sim_expectations(block, res) == []
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 def test_without_the_wrist_turn_the_blade_ends_pointing_at_the_child(monkeypatch):
     from ethimon.sim import check_sim_expectations
@@ -57,6 +59,7 @@ def test_without_the_wrist_turn_the_blade_ends_pointing_at_the_child(monkeypatch
     assert any("hazard axis" in m for m in check_sim_expectations(block, res))
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 def test_dropped_object_is_an_event_and_the_task_does_not_resume_without_it():
     from ethimon.sim import check_sim_expectations
@@ -78,6 +81,7 @@ def test_dropped_object_is_an_event_and_the_task_does_not_resume_without_it():
     assert check_sim_expectations(block, res) == []
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 def test_without_the_check_the_task_resumed_and_placed_nothing(monkeypatch):
     import ethimon.sim._control as control

@@ -30,6 +30,7 @@ def test_a_stop_never_plans_a_joint_past_its_rated_limit():
         assert np.all(np.abs(qd) <= np.abs(qd0) + 1e-12)
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 def test_stop_1_near_joint_limits_ends_inside_and_the_brakes_do_not_creep():
     """Before: 2.07 mrad past (joint 4 creeping 0.55 mrad/s with the brakes on)."""
@@ -42,6 +43,7 @@ def test_stop_1_near_joint_limits_ends_inside_and_the_brakes_do_not_creep():
     assert res.max_past_limit_mrad == 0.0 and not res.powered_at_end
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 def test_an_engaged_brake_holds_the_position_it_stopped_at():
     pytest.importorskip("pybullet")

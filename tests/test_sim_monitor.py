@@ -43,6 +43,7 @@ def test_ships_at_least_eight_sim_scenarios():
     assert len(SCENARIOS) >= 8
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", SCENARIOS, ids=lambda p: p.stem)
 def test_shipped_scenario_meets_its_sim_expectations(path):
     from ethimon.sim import check_sim_expectations
@@ -55,6 +56,7 @@ def test_shipped_scenario_meets_its_sim_expectations(path):
     assert res.realtime_factor > 1.0
 
 
+@pytest.mark.slow
 def test_override_switches_controller_in_the_same_cycle():
     _, res, _ = _run("person_enters_cell")
     i = res.first_override_cycle
@@ -74,6 +76,7 @@ def test_override_switches_controller_in_the_same_cycle():
             assert order.index(a.controller) <= order.index(b.controller)
 
 
+@pytest.mark.slow
 def test_text_risk_sends_arm_to_safe_pose_under_the_speed_limit():
     _, res, spec = _run("knife_handover_child")
     assert res.first_override_cycle == 0 and "risk" in res.trace[0].violations
@@ -89,6 +92,7 @@ def test_text_risk_sends_arm_to_safe_pose_under_the_speed_limit():
     assert not res.task_completed
 
 
+@pytest.mark.slow
 def test_sensor_dropout_fails_closed_with_stop_1():
     _, res, _ = _run("sensor_dropout")
     rec = res.trace[res.first_override_cycle]
@@ -97,6 +101,7 @@ def test_sensor_dropout_fails_closed_with_stop_1():
     assert rec.controller == "stop_1"
 
 
+@pytest.mark.slow
 def test_release_resumes_and_completes_the_task():
     _, res, _ = _run("release_after_person_leaves")
     assert res.released and res.task_completed
@@ -104,6 +109,7 @@ def test_release_resumes_and_completes_the_task():
     assert "task" in after
 
 
+@pytest.mark.slow
 def test_two_runs_are_identical():
     from ethimon.sim import SimBlock, run_sim
     doc = yaml.safe_load((ROOT / "scenarios" / "sim" / "hot_pour_near_person.yaml").read_text())
@@ -119,6 +125,7 @@ def test_two_runs_are_identical():
     assert a.time_to_safe_pose_s == b.time_to_safe_pose_s
 
 
+@pytest.mark.slow
 def test_governed_arm_in_a_user_loop():
     from ethimon.sim import ArmSim, GovernedArm
     spec = ethimon.load_spec(str(SPEC))
@@ -130,6 +137,7 @@ def test_governed_arm_in_a_user_loop():
     assert max(r.joint_speed_max_rad_s for r in recs) <= spec.safe_pose.max_joint_speed_rad_s
 
 
+@pytest.mark.slow
 def test_record_writes_frames_trace_and_plot(tmp_path):
     from ethimon.sim import SimBlock, run_sim
     block = SimBlock.model_validate({"duration_s": 0.5, "start_xyz_m": [0.5, 0.2, 0.3]})
@@ -162,6 +170,7 @@ obligations:
     assert np.isfinite(res.min_separation_m) and res.min_separation_m < 0.5
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("control_hz", [30, 120, 240])
 def test_control_rate_is_configurable(control_hz):
     from ethimon.sim import SimBlock, run_sim
@@ -210,6 +219,7 @@ safe_pose: {joints_rad: [0, 0, 0, 0, 0, 0]}
         GovernedArm(sim, ethimon.Monitor(spec))
 
 
+@pytest.mark.slow
 def test_unreachable_target_is_a_sim_error():
     from ethimon.sim import SimBlock, SimError, run_sim
     block = SimBlock.model_validate({"task": [{"primitive": "reach", "xyz_m": [1.5, 0.0, 0.3]}]})

@@ -22,6 +22,7 @@ def _pybullet():
     pytest.importorskip("pybullet")
 
 
+@pytest.mark.slow
 def test_the_planning_probe_keeps_the_held_objects_velocity():
     """The cause of the spikes: resetting the held object's pose to probe zeroed its velocity."""
     from ethimon.sim import ArmSim, SimObject
@@ -42,6 +43,7 @@ def test_the_planning_probe_keeps_the_held_objects_velocity():
         assert np.allclose(before, after)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("mass", [0.0, 0.6, 3.0])
 def test_safe_pose_deceleration_with_any_payload_up_to_3_kg_keeps_the_ratings(mass):
     """Before: 14.7 x rated with 3 kg (2.85 x with 0.6 kg), the speed rising 1.71 -> 1.83 rad/s."""

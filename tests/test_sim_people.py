@@ -32,6 +32,7 @@ def _scenario(name: str, **over):
     return block, res
 
 
+@pytest.mark.slow
 def test_a_person_arriving_mid_retreat_slows_it_within_one_cycle():
     """Before: 0.51 m/s within 1.5 m of the worker (nobody in range at the override, no cap)."""
     from ethimon.sim import check_sim_expectations
@@ -48,6 +49,7 @@ def test_a_person_arriving_mid_retreat_slows_it_within_one_cycle():
     assert res.time_to_safe_pose_s is not None
 
 
+@pytest.mark.slow
 def test_a_person_who_leaves_lets_the_retreat_speed_up_again():
     humans = [{"name": "worker", "waypoints": [
         {"t_s": 0.0, "xy_m": [-3.0, 0.6]}, {"t_s": 0.3, "xy_m": [-3.0, 0.6]},
@@ -60,6 +62,7 @@ def test_a_person_who_leaves_lets_the_retreat_speed_up_again():
     assert res.retreat_max_link_speed_near_human_m_s <= 0.2 + 1e-3
 
 
+@pytest.mark.slow
 def test_a_fast_compliant_person_walks_as_scripted_and_stops_at_the_last_waypoint():
     """Before: 3.2 m/s against 2.0 scripted, 0.70 m past the last waypoint, 3860 N into the
     stopped arm."""
@@ -70,6 +73,7 @@ def test_a_fast_compliant_person_walks_as_scripted_and_stops_at_the_last_waypoin
     assert res.max_contact_force_n == 0.0
 
 
+@pytest.mark.slow
 def test_a_compliant_person_held_up_catches_up_at_walking_speed_not_faster():
     """person_walks_into_arm: the arm stops the worker; the drive keeps pushing (at most 150 N)
     but the body never runs to catch up with its script."""
@@ -78,6 +82,7 @@ def test_a_compliant_person_held_up_catches_up_at_walking_speed_not_faster():
     assert res.max_contact_force_n > 0.0  # the script does bring the worker into the arm
 
 
+@pytest.mark.slow
 def test_a_child_walking_round_a_knife_retreat_gets_the_blade_turned_away_on_arrival():
     """Before: the wrist turned once, for where she stood at the override: 58 deg at the end."""
     from ethimon.sim import check_sim_expectations

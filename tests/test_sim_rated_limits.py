@@ -43,6 +43,7 @@ def _verify(tmp_path, text):
     return rep, str(p)
 
 
+@pytest.mark.slow
 def test_verify_reports_a_safe_pose_outside_the_rated_range_naming_each_joint(tmp_path):
     rep, path = _verify(tmp_path, BAD)
     found = [f for f in rep.findings if f.name == "lint.safe_pose_range"]
@@ -69,6 +70,7 @@ def test_lint_cli_reports_it_as_an_error(tmp_path, capsys):
     assert "joint 4 = 0.2 rad" in err and f"{p}:10:" in err
 
 
+@pytest.mark.slow
 def test_verify_does_not_import_sim():
     import subprocess
     import sys

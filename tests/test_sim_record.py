@@ -135,6 +135,7 @@ obligations:
         and any(s.startswith("rel.require") for s in skipped)
 
 
+@pytest.mark.slow
 def test_plot_has_tau_limits_event_markers_and_a_controller_lane(root):
     from ethimon.sim._plot import build_figure
     from ethimon.sim._record import trace_events
@@ -169,6 +170,7 @@ def test_plot_has_tau_limits_event_markers_and_a_controller_lane(root):
     assert {m["letter"] for m in meta["event_marks"]} == {"A", "B", "C", "D", "E"}
 
 
+@pytest.mark.slow
 def test_overlay_is_burned_into_the_render():
     from ethimon.sim._overlay import compose_frame
 
@@ -187,6 +189,7 @@ def test_overlay_is_burned_into_the_render():
     assert np.all(img[:, 560:][150:200, 100:200] == side[150:200, 100:200])
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 def test_a_recording_has_its_events_frames_and_files(tmp_path, root):
     pytest.importorskip("pybullet")

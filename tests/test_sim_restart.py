@@ -32,6 +32,7 @@ def _run(name: str, **over):
     return res, check_sim_expectations(block, res)
 
 
+@pytest.mark.slow
 def test_acknowledgement_with_a_worker_in_the_zone_is_refused_then_accepted_when_clear():
     res, problems = _run("ack_worker_in_zone")
     assert problems == []
@@ -43,6 +44,7 @@ def test_acknowledgement_with_a_worker_in_the_zone_is_refused_then_accepted_when
     assert min(r.human_distance_true_m for r in res.trace if r.controller == "task" and r.t_s >= t2) > 1.5
 
 
+@pytest.mark.slow
 def test_a_refused_acknowledgement_is_never_remembered():
     res, problems = _run("ack_refused_not_remembered")
     assert problems == []
@@ -67,6 +69,7 @@ def test_an_acknowledgement_is_refused_while_a_rule_fires_or_a_fault_is_reported
         assert not a and "transient_contact" in a.message
 
 
+@pytest.mark.slow
 def test_automatic_release_waits_the_dwell_so_task_and_retreat_cannot_chatter():
     res, problems = _run("release_dwell_no_chatter")
     assert problems == [] and res.min_response_s >= 1.0

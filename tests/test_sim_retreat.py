@@ -38,6 +38,7 @@ def test_near_human_rule_is_read_from_the_spec():
     assert near_human_speed_rule(ethimon.load_spec(str(ROOT / "specs" / "governor.yaml"))) is None
 
 
+@pytest.mark.slow
 def test_retreat_folds_around_a_cabinet_instead_of_hitting_it():
     from ethimon.sim import check_sim_expectations
     block, res = _scenario("retreat_around_cabinet")
@@ -46,6 +47,7 @@ def test_retreat_folds_around_a_cabinet_instead_of_hitting_it():
     assert check_sim_expectations(block, res) == []
 
 
+@pytest.mark.slow
 def test_retreat_holds_rather_than_carry_a_knife_towards_a_person():
     block, res = _scenario("knife_retreat_toward_person")
     assert res.route == "hold" and res.executed_response == "stop_2"
@@ -54,6 +56,7 @@ def test_retreat_holds_rather_than_carry_a_knife_towards_a_person():
     assert res.trace[-1].powered
 
 
+@pytest.mark.slow
 def test_retreat_near_a_person_keeps_the_spec_speed_rule():
     """knife hand-over: every link and the knife under 0.25 m/s within 1.5 m of the child
     (was 0.43..0.62 m/s), and slow_near_human never violated on the way."""
@@ -64,6 +67,7 @@ def test_retreat_near_a_person_keeps_the_spec_speed_rule():
     assert res.time_to_safe_pose_s is not None
 
 
+@pytest.mark.slow
 def test_stop_1_runs_to_power_off_even_when_released():
     """A monitor that releases one cycle after a stop 1: the arm still stops and powers off."""
     from ethimon.sim import ArmSim, GovernedArm
@@ -106,6 +110,7 @@ def test_safe_pose_outside_the_rated_range_is_a_spec_error():
     assert "joint 1" not in str(ei.value)
 
 
+@pytest.mark.slow
 def test_fast_motion_fault_stop_never_adds_speed():
     block, res = _scenario("fast_motion_fault")
     assert res.executed_response == "stop_1"
@@ -115,6 +120,7 @@ def test_fast_motion_fault_stop_never_adds_speed():
     assert max(r.joint_speed_max_rad_s for r in res.trace) <= 2.175 * 1.01
 
 
+@pytest.mark.slow
 def test_a_compliant_person_is_stopped_by_an_obstacle_and_pushes_with_max_push_n():
     """issue 14 item 6: a compliant human walks into a fixed block: it stops there (does not
     pass through) and the quasi-static contact force is the push it walks with."""
@@ -138,6 +144,7 @@ def test_a_compliant_person_is_stopped_by_an_obstacle_and_pushes_with_max_push_n
         assert sim.human_position("w")[0] == pytest.approx(1.5)
 
 
+@pytest.mark.slow
 def test_retreat_backs_out_the_way_it_came_in_from_under_a_shelf():
     """Issue 23: direct, fold and lift all rise into the board; before, the arm held (a stop 2)."""
     from ethimon.sim import check_sim_expectations

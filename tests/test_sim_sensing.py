@@ -66,6 +66,7 @@ def test_sensors_and_stuck_at_name_simulated_signals_only():
         SimBlock.model_validate({"stuck_at": [{"signal": "human_speed", "from_s": 0, "value": "nan"}]})
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 def test_human_speed_is_measured_from_the_persons_motion():
     pytest.importorskip("pybullet")
@@ -86,6 +87,7 @@ def test_human_speed_is_measured_from_the_persons_motion():
             sim.step()
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 def test_robot_speed_toward_human_is_the_closest_points_approach_speed():
     pytest.importorskip("pybullet")
@@ -116,6 +118,7 @@ def _scenario(name):
         return yaml.safe_load(fh)
 
 
+@pytest.mark.slow
 @pytest.mark.sim
 def test_a_stuck_distance_sensor_is_caught_by_the_staleness_rule_and_hides_the_person_without_it():
     pytest.importorskip("pybullet")

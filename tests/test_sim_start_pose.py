@@ -32,6 +32,7 @@ def _pybullet():
     pytest.importorskip("pybullet")
 
 
+@pytest.mark.slow
 def test_a_start_pose_inside_a_fixed_object_is_a_located_error(tmp_path):
     from tests._cli import run_cli
     f = tmp_path / "start_in_cabinet.yaml"
@@ -42,6 +43,7 @@ def test_a_start_pose_inside_a_fixed_object_is_a_located_error(tmp_path):
     assert "Traceback" not in r.stderr
 
 
+@pytest.mark.slow
 def test_a_start_pose_clear_of_the_object_runs(tmp_path):
     from ethimon.sim import SimBlock, run_sim
     import ethimon

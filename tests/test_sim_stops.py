@@ -124,6 +124,7 @@ def test_stop_0_brake_delay_and_deceleration(sim):
     assert moved >= v0 * BRAKE_ENGAGE_S + 0.5 * v0 * v0 / BRAKE_DECEL_RAD_S2[0] * 0.8
 
 
+@pytest.mark.slow
 def test_safe_pose_switch_respects_the_current_velocity(sim):
     """The switch from a fast task motion to the safe pose keeps the rated acceleration
     (was 45..74 rad/s² at the switch)."""

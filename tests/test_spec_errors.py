@@ -79,6 +79,7 @@ def test_api_raises_spec_error_with_position(tmp_path, name):
     assert (err.line, err.column) == (line, column), str(err)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["broken_yaml", "python_tag", "unknown_signal", "binary", "version"])
 def test_cli_exit_2_one_line_no_traceback(tmp_path, name):
     data, fragment, line, column = CASES[name]
@@ -105,6 +106,7 @@ def test_python_tag_executes_nothing(tmp_path):
     assert not os.path.exists(marker)
 
 
+@pytest.mark.slow
 def test_alias_bomb_is_refused_quickly(tmp_path):
     lines = ["ethimon: 1", "name: x", 'a: &a ["lol","lol","lol","lol","lol","lol","lol","lol","lol"]']
     prev = "a"
@@ -120,6 +122,7 @@ def test_alias_bomb_is_refused_quickly(tmp_path):
     assert "expands to more than" in info.value.message and info.value.line is not None
 
 
+@pytest.mark.slow
 def test_deep_nesting_is_refused(tmp_path):
     path = tmp_path / "deep.yaml"
     path.write_text("ethimon: 1\nname: x\ndescription: " + "[" * 5000 + "]" * 5000 + "\n")
@@ -155,6 +158,7 @@ def test_block_scalar_errors_point_into_the_block(tmp_path):
     assert (info.value.line, info.value.column) == (7, 7)
 
 
+@pytest.mark.slow
 def test_scenario_missing_spec_and_empty_dir(tmp_path):
     sc = tmp_path / "sc.yaml"
     sc.write_text("ethimon: 1\nname: s\nspec: nowhere.yaml\ninputs: {risk: 0.1}\n")
@@ -166,6 +170,7 @@ def test_scenario_missing_spec_and_empty_dir(tmp_path):
     assert r.returncode == 2 and "no scenario files" in r.stderr and "Traceback" not in r.stderr
 
 
+@pytest.mark.slow
 def test_scenario_bad_expectation_id_has_hint(tmp_path, root):
     sc = tmp_path / "sc.yaml"
     sc.write_text(f"ethimon: 1\nname: s\nspec: {root}/specs/cobot_cell.yaml\n"

@@ -53,6 +53,7 @@ def runs_clean(spec) -> None:
 # -- long chains: handled, or a clear SpecError -------------------------------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("op,n", [("and", 400), ("or", 600), ("and", 1000), ("or", 2500)])
 def test_long_and_or_chains_load_and_run(op, n):
     terms = ["b", "x < 2", "not b", "x > -1"] if op == "and" else ["not b", "x > 2", "b"]
@@ -112,6 +113,7 @@ def test_deepest_accepted_tree_compiles_and_runs_in_a_deep_caller():
     nest(200)
 
 
+@pytest.mark.slow
 def test_thousand_term_chain_passes_ethimon_check(tmp_path):
     src = " and ".join(["b"] * 1000)
     (tmp_path / "s.yaml").write_text(spec_with(src))
@@ -122,6 +124,7 @@ def test_thousand_term_chain_passes_ethimon_check(tmp_path):
     assert "Traceback" not in r.stdout + r.stderr
 
 
+@pytest.mark.slow
 def test_long_chain_in_cli_is_exit_2_not_internal_error(tmp_path):
     (tmp_path / "s.yaml").write_text(spec_with("+".join(["x"] * 500) + " > 0"))
     (tmp_path / "sc.yaml").write_text("ethimon: 1\nname: sc\nspec: s.yaml\ninputs: {x: 0.5, b: true, risk: 0.1}\n")
@@ -381,6 +384,7 @@ def test_devices_and_directories_are_refused(tmp_path):
     assert err is not None and "directory" in err.message
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not os.path.exists("/dev/stdin") or not hasattr(os, "pipe"), reason="no /dev/stdin")
 @pytest.mark.parametrize("how", ["api", "cli"])
 def test_dev_stdin_pipe_does_not_hang(how):

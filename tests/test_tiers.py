@@ -134,6 +134,7 @@ def test_tier_rule_ids_are_reserved(oid):
         ethimon.load_spec_text(f"ethimon: 1\nname: x\nobligations: [{{id: {oid}, require: 'true'}}]\n")
 
 
+@pytest.mark.slow
 def test_monitor_and_reference_agree_on_random_tier_traces():
     spec = ethimon.load_spec_text(TIERS)
     rng = random.Random(7)
@@ -193,6 +194,7 @@ def test_lint_warns_on_a_band_covering_every_reachable_risk(tmp_path):
     assert got["lint.confirm_band"].status == "warning"
 
 
+@pytest.mark.slow
 def test_cli_lint_names_the_line_of_a_bad_confirm_threshold(tmp_path):
     from _cli import run_cli
     p = tmp_path / "bad.yaml"
@@ -245,6 +247,7 @@ def test_reload_refuses_a_weaker_band():
     assert w == []
 
 
+@pytest.mark.slow
 def test_cli_evaluate_reports_the_three_outcomes(tmp_path):
     import json
     from _cli import run_cli

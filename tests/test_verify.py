@@ -30,6 +30,7 @@ def cobot():
     return verify_spec(os.path.join(SPECS, "cobot_cell.yaml"))
 
 
+@pytest.mark.slow
 def test_import_does_not_load_z3():
     code = "import sys, ethimon, ethimon.verify; print('z3' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
@@ -50,6 +51,7 @@ def test_missing_z3_names_the_extra(monkeypatch):
         verify_spec(os.path.join(SPECS, "governor.yaml"))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["governor.yaml", "cobot_cell.yaml"])
 def test_shipped_specs_prove_everything_without_warnings(name):
     rep = verify_spec(os.path.join(SPECS, name))
@@ -63,6 +65,7 @@ def test_shipped_specs_prove_everything_without_warnings(name):
     assert rep.exit_code == 0
 
 
+@pytest.mark.slow
 def test_cobot_cell_has_one_proof_per_obligation(cobot):
     for oid in ("separation", "slow_near_human", "transient_contact", "clamping", "joint_speed"):
         assert cobot.finding(f"{oid}.response").status == "proved"
@@ -84,6 +87,7 @@ def test_cobot_cell_has_one_proof_per_obligation(cobot):
     ("fault_gap.yaml", "lint.fault_gap.clamping"),
     ("risk_not_monotone.yaml", "lint.risk_monotone"),
 ])
+@pytest.mark.slow
 def test_each_lint_fires_on_its_fixture(file, lint):
     rep = verify_spec(fixture(file))
     f = rep.finding(lint)
@@ -133,6 +137,7 @@ def test_refuted_property_replays_in_the_monitor(tmp_path):
     assert not res.passed and any("expected no fault" in x for x in res.failures)
 
 
+@pytest.mark.slow
 def test_multi_cycle_counterexample_inside_a_window(tmp_path):
     text = """
 ethimon: 1
@@ -155,6 +160,7 @@ obligations:
     assert all(fr["d"] < 1 for fr in cex.frames[-3:])
 
 
+@pytest.mark.slow
 def test_cli_exit_codes_json_and_tables(tmp_path, capsys):
     out = tmp_path / "v.json"
     assert main(["verify", SPECS, "--json", str(out)]) == 0
@@ -179,6 +185,7 @@ def test_counterexample_scenario_roundtrips_nan_free_values(tmp_path):
                for fr in cex.frames for v in fr.values())
 
 
+@pytest.mark.slow
 def test_three_classes_and_long_windows():
     spec = ethimon.load_spec_text("""
 ethimon: 1
@@ -198,6 +205,7 @@ obligations:
     assert rep.finding("risk.override").status == "proved"
 
 
+@pytest.mark.slow
 def test_sqrt_is_encoded_exactly():
     spec = ethimon.load_spec_text("""
 ethimon: 1

@@ -37,6 +37,7 @@ def _random_simplex(rng: random.Random, k: int):
     return [x / s for x in e]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("k, n", [(3, 60), (4, 24), (5, 12)])
 @pytest.mark.parametrize("variance", ["sample", "population"])
 def test_risk_range_matches_brute_force(k, n, variance):
@@ -95,6 +96,7 @@ def test_risk_range_paper_weights_and_errors():
             risk_range(**bad)
 
 
+@pytest.mark.slow
 def test_risk_range_for_many_classes_is_a_sane_interval():
     # (a timing assert lived here; timings belong in bench/, never in tests: it failed under load)
     # (its exactness against brute force is test_risk_range_matches_brute_force, for small k)
@@ -154,6 +156,7 @@ def test_release_bound_is_exact_in_the_decision_model():
     assert s.check() == z3.sat
 
 
+@pytest.mark.slow
 def test_release_lint_with_risk_pinned_at_the_bound():
     """An obligation that keeps R_e >= 0.22: no release is reachable (it was "reachable" with 0.22000000000000003)."""
     rep = verify_spec(_spec(RELEASE_027 % (2, '  - {id: pinned, require: "risk >= 0.22"}')))
@@ -180,6 +183,7 @@ obligations:
 """
 
 
+@pytest.mark.slow
 def test_release_lint_unrolls_the_hold_window():
     rep = verify_spec(_spec(SLOW_NEVER % 10))
     f = rep.finding("lint.release")
@@ -191,6 +195,7 @@ def test_release_lint_unrolls_the_hold_window():
     assert f.status == "ok" and "releases at cycle 3" in f.message, format_table(rep)
 
 
+@pytest.mark.slow
 def test_contradiction_lint_unrolls_the_response_window():
     rep = verify_spec(_spec(SLOW_NEVER % 10))
     f = rep.finding("lint.contradiction.slow.moving")
@@ -198,6 +203,7 @@ def test_contradiction_lint_unrolls_the_response_window():
     assert rep.finding("lint.unsatisfiable.slow") is None and rep.finding("lint.unsatisfiable.moving") is None
 
 
+@pytest.mark.slow
 def test_release_lint_says_unknown_rather_than_a_wrong_yes():
     # 3 cycles of history + 10 of window do not fit in 5: not decided, and not "reachable"
     rep = verify_spec(_spec(SLOW_NEVER % 10), max_unroll=5)
@@ -209,6 +215,7 @@ def test_release_lint_says_unknown_rather_than_a_wrong_yes():
     assert f.status == "ok" and "replayed in the Monitor" in f.message, format_table(rep)
 
 
+@pytest.mark.slow
 def test_windowed_lints_stay_quiet_on_consistent_windows():
     rep = verify_spec(_spec("""
 ethimon: 1
@@ -225,6 +232,7 @@ obligations:
 
 
 # -- 3. the K-class τ-range lint: exact, whatever the solver's time limit -----------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("k, hi", [(4, 0.65), (5, 0.64), (8, 0.6 + 0.2 * (7 / 8) / 7)])
 def test_tau_range_for_many_classes_is_exact_and_needs_no_solver_time(k, hi):
     spec = _spec(f"ethimon: 1\nname: k{k}\nrisk: {{classes: {k}, threshold: {hi + 0.01}}}\n")
@@ -250,6 +258,7 @@ def _many(n: int) -> str:
     return "\n".join(lines) + "\n"
 
 
+@pytest.mark.slow
 def test_budget_cuts_the_run_and_reports_what_it_did_not_reach(monkeypatch):
     from ethimon.verify import _checks, _verifier
     real_resume = _verifier.Verifier.prop_resume_explained
@@ -275,6 +284,7 @@ def test_budget_cuts_the_run_and_reports_what_it_did_not_reach(monkeypatch):
     assert d["complete"] is False and d["budget_s"] == 60 and d["counts"]["not_reached"] == 11
 
 
+@pytest.mark.slow
 def test_budget_bounds_a_large_spec(tmp_path, capsys):
     import time
     path = tmp_path / "many.yaml"
@@ -295,6 +305,7 @@ def test_budget_bounds_a_large_spec(tmp_path, capsys):
     assert sum(spec["counts"][k] for k in ("proved", "refuted", "unknown")) == len(names)
 
 
+@pytest.mark.slow
 def test_budget_complete_run_and_bad_values(capsys):
     rep = verify_spec(os.path.join(SPECS, "governor.yaml"), budget_s=120)
     assert rep.not_reached == 0 and rep.exit_code == 0 and rep.as_dict()["complete"] is True
@@ -303,6 +314,7 @@ def test_budget_complete_run_and_bad_values(capsys):
     assert main(["verify", os.path.join(SPECS, "governor.yaml"), "--budget-s", "nan"]) == 2
 
 
+@pytest.mark.slow
 def test_release_window_after_a_history_that_clears_the_start():
     # prev(x, 5) is 5 on the first cycle after a reset or fault: that cycle is always a violation,
     # so the clean window needs one cycle of history before it (found, and replayed in the Monitor)
@@ -318,6 +330,7 @@ obligations:
     assert f.status == "ok" and "releases at cycle 3" in f.message, format_table(rep)
 
 
+@pytest.mark.slow
 def test_response_proof_by_one_obligation_still_refutes_a_wrong_model(monkeypatch):
     """The per-obligation proof over-approximates; when it cannot prove, the whole trace decides."""
     from ethimon.verify import _checks, _encode, _properties
@@ -335,6 +348,7 @@ def test_response_proof_by_one_obligation_still_refutes_a_wrong_model(monkeypatc
     assert f.status == "refuted" and not f.counterexample.confirmed, format_table(rep)
 
 
+@pytest.mark.slow
 def test_free_history_window_admits_every_clean_window_of_real_runs():
     """The 'never' side of the windowed lints rests on this: every window that is clean in a real
     Monitor run, however long, is a solution of the free-history encoding of its last P + s cycles."""
@@ -421,6 +435,7 @@ obligations:
 """
 
 
+@pytest.mark.slow
 def test_defined_is_refuted_where_a_product_underflows_to_a_float_zero():
     """Issue 25 row 5: ``1/(a*b)`` with a, b > 0 was "defined: proved" (a*b > 0 over the reals) yet
     a = b = 1e-200 makes a*b == 0.0 and the monitor faults. The IEEE-754 model refutes it now,
@@ -434,6 +449,7 @@ def test_defined_is_refuted_where_a_product_underflows_to_a_float_zero():
     assert f.counterexample is not None and f.counterexample.confirmed
 
 
+@pytest.mark.slow
 def test_response_over_an_overflowing_term_is_proved_in_real_arithmetic_only():
     """``x*1e308/1e308 >= 2`` was "response: proved", yet x = 1.9 does not override (x*1e308 is inf)."""
     spec = _spec(FLOATS % '  - {id: big, require: "x * 1e308 / 1e308 >= 2"}')

@@ -47,6 +47,7 @@ def valid_trace(draw, n_max: int = 7):
     return frames[:n]
 
 
+@pytest.mark.slow
 @given(specs(max_obligations=2, depth=2), valid_trace())
 def test_encoding_agrees_with_the_monitor(gen, frames):
     assume("sqrt" not in gen.text and "/" not in gen.text and "separation_distance" not in gen.text)
@@ -117,6 +118,7 @@ def partial_specs(draw):
     return GenSpec(text, ethimon.load_spec_text(text, "<generated>"), doc)
 
 
+@pytest.mark.slow
 @given(partial_specs(), valid_trace(n_max=4))
 def test_definedness_matches_the_monitors_internal_errors(gen, frames):
     spec = gen.spec

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import os
 
+import pytest
 from hypothesis import given, note, settings
 from hypothesis import strategies as st
 
@@ -50,6 +51,7 @@ def run_both(spec, trace):
                 assert (x != x and y != y) or x == y or math.isclose(x, y, rel_tol=1e-9, abs_tol=1e-12), (x, y)
 
 
+@pytest.mark.slow
 @settings(max_examples=2 * settings.default.max_examples)  # the core differential check
 @given(st.data())
 def test_compiled_equals_reference_on_random_specs(data):
@@ -58,6 +60,7 @@ def test_compiled_equals_reference_on_random_specs(data):
     run_both(gen.spec, data.draw(ops(gen.spec, max_size=25)))
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_compiled_equals_reference_at_trace_start_and_after_faults(data):
     # short traces, many faults: windows are never full, history is cleared often
@@ -66,6 +69,7 @@ def test_compiled_equals_reference_at_trace_start_and_after_faults(data):
     run_both(gen.spec, data.draw(ops(gen.spec, max_size=8, p_bad=0.3)))
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_compiled_equals_reference_on_shipped_specs(data):
     spec = ethimon.load_spec(data.draw(st.sampled_from(SHIPPED)))
@@ -92,6 +96,7 @@ def shape(node):
     return (node.func, *map(shape, node.args))
 
 
+@pytest.mark.slow
 @given(st.one_of(bool_expr(3), num_expr(3)))
 def test_to_source_round_trips(tree):
     text = to_source(tree)

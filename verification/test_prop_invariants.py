@@ -25,6 +25,7 @@ from collections.abc import Mapping, Set
 from fractions import Fraction
 from numbers import Real
 
+import pytest
 from hypothesis import given, note, settings
 from hypothesis import strategies as st
 
@@ -215,12 +216,14 @@ def check_trace(spec, trace) -> None:
         prev_override, explicit = d.override, False
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_invariants_on_shipped_specs(data):
     spec = ethimon.load_spec(data.draw(st.sampled_from(SHIPPED)))
     check_trace(spec, data.draw(ops(spec, max_size=40, p_bad=0.03)))
 
 
+@pytest.mark.slow
 @settings(max_examples=2 * settings.default.max_examples)  # the core differential check
 @given(st.data())
 def test_invariants_on_random_specs(data):
@@ -229,6 +232,7 @@ def test_invariants_on_random_specs(data):
     check_trace(gen.spec, data.draw(ops(gen.spec, max_size=25, p_bad=0.05)))
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_every_kind_of_bad_input_fails_closed(data):
     gen = data.draw(specs(max_obligations=1, depth=1))
@@ -257,6 +261,7 @@ def test_every_kind_of_bad_input_fails_closed(data):
     assert d.override and d.faults and d.response.severity >= Response(spec.on_fault).severity
 
 
+@pytest.mark.slow
 @given(st.lists(st.tuples(st.floats(0, 10), st.floats(0, 3)), min_size=1, max_size=20))
 def test_cobot_cell_separation_distance(pairs):
     """human_distance < S_p(ee_speed) ⇒ override (at least stop_2) in the same cycle, written out by hand."""

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 import yaml
+import pytest
 from hypothesis import given, note
 from hypothesis import strategies as st
 
@@ -62,6 +63,7 @@ def assert_equal_to_monitor(spec, columns, frames, *, margins: bool = True) -> N
         assert summary[oid]["first_violation"] == (int(hits[0]) if len(hits) else None)
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_offline_equals_monitor_on_random_specs(data):
     gen = data.draw(specs())
@@ -122,6 +124,7 @@ def numeric_columns(spec, n: int, seed: int, p_bad: float, risk_kind: str) -> di
     return cols
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_offline_equals_monitor_on_numeric_columns(data):
     gen = data.draw(specs())
@@ -180,6 +183,7 @@ def long_window_specs(draw):
 
 @given(long_window_specs(), st.integers(100, 400), st.integers(0, 2 ** 32 - 1),
        st.sampled_from((0.0, 0.003, 0.02)))
+@pytest.mark.slow
 def test_offline_equals_monitor_on_long_windows(spec_and_text, n, seed, p_bad):
     text, spec = spec_and_text
     note(text)
@@ -235,6 +239,7 @@ def raising_specs(draw):
     return text, ethimon.load_spec_text(text, "<raising>")
 
 
+@pytest.mark.slow
 @given(raising_specs(), st.integers(1, 150), st.integers(0, 2 ** 32 - 1), st.sampled_from((0.0, 0.02)))
 def test_offline_equals_monitor_where_expressions_raise(spec_and_text, n, seed, p_bad):
     text, spec = spec_and_text
@@ -243,6 +248,7 @@ def test_offline_equals_monitor_where_expressions_raise(spec_and_text, n, seed, 
     assert_equal_to_monitor(spec, cols, list(iter_rows(spec, cols)))
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_offline_step_method_equals_vector(data):
     gen = data.draw(specs(max_obligations=2, depth=2))

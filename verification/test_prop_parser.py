@@ -12,6 +12,7 @@ import re
 import time
 
 import yaml
+import pytest
 from hypothesis import example, given, note
 from hypothesis import strategies as st
 
@@ -61,6 +62,7 @@ def check_load(text: str) -> ethimon.SpecError | None:
 yaml_chars = st.sampled_from(list("abcxyz_019 .-:,[]{}#&*!|>'\"%@`\t\n?<=()+/") + ["\n  ", ": ", "- ", "\u00e9"])
 
 
+@pytest.mark.slow
 @given(st.text(max_size=300))
 def test_random_text(text):
     check_load(text)
@@ -98,6 +100,7 @@ def mutated(draw):
     return text
 
 
+@pytest.mark.slow
 @given(mutated())
 def test_mutated_shipped_specs(text):
     check_load(text)
@@ -114,6 +117,7 @@ documents = st.recursive(scalars, lambda kids: st.one_of(st.lists(kids, max_size
                          max_leaves=25)
 
 
+@pytest.mark.slow
 @given(documents, st.booleans())
 def test_random_documents(doc, versioned):
     if versioned and isinstance(doc, dict):
@@ -121,6 +125,7 @@ def test_random_documents(doc, versioned):
     check_load(yaml.safe_dump(doc, allow_unicode=True))
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_valid_specs_with_one_field_broken(data):
     doc = spec_doc(data.draw, max_obligations=2, depth=2)
@@ -134,6 +139,7 @@ def test_valid_specs_with_one_field_broken(data):
     check_load(yaml.safe_dump(doc, allow_unicode=True))
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_random_expressions_point_into_the_file(data):
     doc = spec_doc(data.draw, max_obligations=1, depth=1)
@@ -207,6 +213,7 @@ def long_chains(draw):
     pattern = draw(st.lists(terms, min_size=1, max_size=6))
     body = f" {op} ".join((pattern * (n // len(pattern) + 1))[:n])
     return body if op in ("and", "or") else body + " > -1e300"
+@pytest.mark.slow
 @given(long_chains())
 @example(" and ".join(["b"] * 400))
 @example(" or ".join(["x < 2"] * 600))
@@ -253,6 +260,7 @@ def deep_nesting(draw):
     return expr if switch < levels else f"{expr} < 3"
 
 
+@pytest.mark.slow
 @given(deep_nesting())
 @example("(" * 40 + "x" + " + x)" * 40 + " < 3")
 @example("not " * (MAX_EXPR_DEPTH + 1) + "b")
@@ -347,6 +355,7 @@ def test_loose_types_are_never_coerced(value, place):
             and "hold_cycles" not in place, text
 
 
+@pytest.mark.slow
 @given(st.integers(MAX_EXPR_DEPTH - 2, MAX_EXPR_DEPTH + 400), st.sampled_from(("(", "not (", "-(", "abs(")))
 def test_deep_parentheses_are_refused_with_a_position(depth, opener):
     inner = "x" if opener != "not (" else "b"

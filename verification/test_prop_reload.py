@@ -15,6 +15,7 @@ from __future__ import annotations
 import copy
 
 import yaml
+import pytest
 from hypothesis import assume, event, given, note, settings
 from hypothesis import strategies as st
 
@@ -182,6 +183,7 @@ def _missed(old, new, trace) -> list[int]:
 _CI = settings.get_profile(settings._current_profile).max_examples <= 100
 
 
+@pytest.mark.slow
 @settings(max_examples=200) if _CI else (lambda f: f)
 @given(pair=pairs(), data=st.data())
 def test_a_reload_accepting_what_the_old_spec_overrides_on_is_refused(pair, data):

@@ -10,6 +10,7 @@ specs of :mod:`ethimon_strategies` draw the function as well; this suite makes s
 from __future__ import annotations
 
 import yaml
+import pytest
 from hypothesis import given, note
 from hypothesis import strategies as st
 
@@ -50,6 +51,7 @@ def separation_specs(draw) -> GenSpec:
     return GenSpec(text, ethimon.load_spec_text(text, "<generated>"), doc)
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_compiled_equals_reference_with_separation_distance(data):
     gen = data.draw(separation_specs())
@@ -58,6 +60,7 @@ def test_compiled_equals_reference_with_separation_distance(data):
     run_both(gen.spec, data.draw(ops(gen.spec, max_size=20)))
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_offline_equals_monitor_with_separation_distance(data):
     gen = data.draw(separation_specs())
@@ -66,6 +69,7 @@ def test_offline_equals_monitor_with_separation_distance(data):
     assert_equal_to_monitor(gen.spec, object_columns(frames), frames)
 
 
+@pytest.mark.slow
 def test_the_strategy_reaches_both_outcomes():
     """The generated rules are not all faults nor all fault-free (the property would be weak)."""
     seen = set()

@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import os
 
+import pytest
 import yaml
 
 from hypothesis import strategies as st
@@ -21,6 +22,8 @@ from ethimon.testing import ReferenceMonitor
 from ethimon.compiler._risk_formula import release_bound
 from ethimon.spec._model import Response
 from ethimon_strategies import decision_key, frame, specs
+
+pytestmark = pytest.mark.slow  # a stateful Hypothesis run: ~4 s
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 import yaml
+import pytest
 from hypothesis import given, note
 from hypothesis import strategies as st
 
@@ -56,6 +57,7 @@ def tier_ops(draw, spec):
     return out
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_monitor_equals_reference_with_tiers(data):
     text, spec = data.draw(tier_specs())
@@ -76,6 +78,7 @@ def test_monitor_equals_reference_with_tiers(data):
             assert decision_key(a) == decision_key(b)
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_tier_rules_hold_on_every_valid_cycle(data):
     """R_e >= tau overrides; in the band without a safe verdict or a confirmation it overrides at
@@ -103,6 +106,7 @@ def test_tier_rules_hold_on_every_valid_cycle(data):
                 and confirmed_task is None
 
 
+@pytest.mark.slow
 @given(st.data())
 def test_offline_equals_monitor_with_tiers(data):
     text, spec = data.draw(tier_specs())

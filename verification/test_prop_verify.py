@@ -12,6 +12,7 @@ from ethimon.verify import format_table, verify_spec  # noqa: E402
 from ethimon_strategies import specs  # noqa: E402
 
 
+@pytest.mark.slow
 @settings(max_examples=max(6, settings.default.max_examples // 4))
 @given(specs(max_obligations=2, depth=2))
 def test_verify_random_specs(gen):

@@ -1,6 +1,7 @@
 """The ``ethimon`` command line: a thin layer over the library.
 
-Exit codes: 0 success, 1 an expectation/property failed, 2 bad input.
+Exit codes: 0 success, 1 an expectation/property failed, 2 bad input, 3 an internal error
+(a bug: the message asks for a report), 130 interrupted (Ctrl-C).
 Errors print as ``path:line:column: message (hint)``, never as a traceback.
 """
 
