@@ -59,8 +59,10 @@ IDS = ("s1_speed", "s2_stop_after_contact", "s3_separation", "s4_slow_after_forc
 V_MAX, V_STOP, V_SLOW, D_MIN, F_MAX = 1.5, 0.1, 0.25, 0.5, 140.0
 
 
-def ethimon_spec(w: int) -> ethimon.Spec:
-    return ethimon.load_spec_text(f"""
+def spec_text(w: int) -> str:
+    """The S1-S4 spec with window ``w`` as YAML text (also parsed by another tree's ethimon in
+    ``step_peers --baseline``)."""
+    return f"""
 ethimon: 1
 name: s1_s4_w{w}
 signals:
@@ -79,7 +81,11 @@ obligations:
   - {{id: {IDS[1]}, when: "contact", require: "speed <= v_stop", within_cycles: {w}}}
   - {{id: {IDS[2]}, require: "distance >= d_min or speed <= v_slow"}}
   - {{id: {IDS[3]}, require: "once(force > f_max, {w}) implies speed <= v_slow"}}
-""", f"<s1_s4_w{w}>")
+"""
+
+
+def ethimon_spec(w: int) -> ethimon.Spec:
+    return ethimon.load_spec_text(spec_text(w), f"<s1_s4_w{w}>")
 
 
 def rtamt_formulas(w: int) -> list[str]:

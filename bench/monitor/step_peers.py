@@ -45,7 +45,7 @@ import numpy as np
 import ethimon
 from bench import RESULTS
 from bench._machine import machine_facts
-from bench.monitor.offline_check import D_MIN, F_MAX, IDS, V_MAX, V_SLOW, V_STOP, make_trace
+from bench.monitor.offline_check import D_MIN, F_MAX, IDS, V_MAX, V_SLOW, V_STOP, make_trace, spec_text
 
 
 def rtamt_formulas(w: int) -> list[str]:
@@ -262,30 +262,6 @@ def main() -> int:
         json.dump(result, fh, indent=2)
     print(f"\nload average {result['machine']['loadavg']} (start {load_start}); wrote {args.json}")
     return 0
-
-
-def spec_text(w: int) -> str:
-    """The spec of ``offline_check.ethimon_spec(w)`` as text (a baseline tree parses it itself)."""
-    return f"""
-ethimon: 1
-name: s1_s4_w{w}
-signals:
-  speed:    {{unit: m/s, range: [0, 10]}}
-  distance: {{unit: m, range: [0, 20]}}
-  contact:  {{type: bool}}
-  force:    {{unit: N, range: [0, 1000]}}
-constants:
-  v_max: {{value: {V_MAX}, unit: m/s}}
-  v_stop: {{value: {V_STOP}, unit: m/s}}
-  v_slow: {{value: {V_SLOW}, unit: m/s}}
-  d_min: {{value: {D_MIN}, unit: m}}
-  f_max: {{value: {F_MAX}, unit: N}}
-obligations:
-  - {{id: {IDS[0]}, require: "speed <= v_max"}}
-  - {{id: {IDS[1]}, when: "contact", require: "speed <= v_stop", within_cycles: {w}}}
-  - {{id: {IDS[2]}, require: "distance >= d_min or speed <= v_slow"}}
-  - {{id: {IDS[3]}, require: "once(force > f_max, {w}) implies speed <= v_slow"}}
-"""
 
 
 def _versions() -> dict:
