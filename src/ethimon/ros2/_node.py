@@ -544,51 +544,13 @@ class _Dds:
             self.w_ack_result.write(self.String(data=text))
 
     # readers -----------------------------------------------------------------
-    def _data_cb(self, sub: _Sub) -> Callable:
-        node = self.node
-
-        def on_data(reader: Any) -> None:
-            try:
-                samples = reader.take(N=64)
-            except Exception:  # noqa: BLE001
-                return
-            for smp in samples:
-                info = getattr(smp, "sample_info", None)
-                if info is not None and not info.valid_data:
-                    continue
-                try:
-                    node._on_sample(sub, smp, info)
-                except Exception:  # noqa: BLE001 - never raise into Cyclone's thread; the value goes stale
-                    pass
-        return on_data
-
-    def drain(self, sub: _Sub) -> None:
-        """Take the samples waiting on ``sub``'s reader (the loop thread, once per cycle)."""
-        reader = sub.reader
-        if reader is None:
-            return
+    @staticmethod
+    def _take(reader: Any, n: int, handle: Callable[[Any, Any], None]) -> None:
+        """Take up to ``n`` samples from ``reader`` and hand each valid one to ``handle(sample, info)``.
+        Never raises (it runs in Cyclone's thread too): a take that fails takes nothing, so the held
+        values age and go stale; a sample that ``handle`` cannot use is dropped."""
         try:
-            samples = reader.take(N=64)
-        except Exception:  # noqa: BLE001 - nothing taken: the held values age and go stale
-            return
-        node = self.node
-        for smp in samples:
-            info = getattr(smp, "sample_info", None)
-            if info is not None and not info.valid_data:
-                continue
-            try:
-                node._on_sample(sub, smp, info)
-            except Exception:  # noqa: BLE001
-                pass
-
-    def _matched_cb(self, sub: _Sub) -> Callable:
-        def on_matched(reader: Any, status: Any) -> None:
-            sub.dirty = True
-        return on_matched
-
-    def _ack_cb(self, reader: Any) -> None:
-        try:
-            samples = reader.take(N=16)
+            samples = reader.take(N=n)
         except Exception:  # noqa: BLE001
             return
         for smp in samples:
@@ -596,9 +558,30 @@ class _Dds:
             if info is not None and not info.valid_data:
                 continue
             try:
-                self.node._on_ack(smp, info)
+                handle(smp, info)
             except Exception:  # noqa: BLE001
                 pass
+
+    def _data_cb(self, sub: _Sub) -> Callable:
+        node = self.node
+
+        def on_data(reader: Any) -> None:
+            self._take(reader, 64, lambda smp, info: node._on_sample(sub, smp, info))
+        return on_data
+
+    def drain(self, sub: _Sub) -> None:
+        """Take the samples waiting on ``sub``'s reader (the loop thread, once per cycle)."""
+        if sub.reader is not None:
+            node = self.node
+            self._take(sub.reader, 64, lambda smp, info: node._on_sample(sub, smp, info))
+
+    def _matched_cb(self, sub: _Sub) -> Callable:
+        def on_matched(reader: Any, status: Any) -> None:
+            sub.dirty = True
+        return on_matched
+
+    def _ack_cb(self, reader: Any) -> None:
+        self._take(reader, 16, self.node._on_ack)
 
     def writer_of(self, info: Any) -> str:
         """``writer <guid> of participant <guid>`` for a sample's publication, as far as it is known."""
