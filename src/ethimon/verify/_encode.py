@@ -114,20 +114,24 @@ class Unrolled:
         free_history: the first cycle is not a reset but any point of a longer run (see the module doc).
     """
 
-    def __init__(self, plan: Plan, k: int, prefix: str = "", free_history: bool = False) -> None:
+    def _tables(self, plan: Plan, k: int, prefix: str, free_history: bool) -> None:
+        """The per-trace tables both encodings fill (reals here, doubles in :class:`FloatUnrolled`)."""
         self.plan = plan
         self.k = k
         self.prefix = prefix
         self.free_history = free_history
         self._lb: dict[int, int] = {}
         self.sig: list[dict[str, z3.ExprRef]] = []
-        self.R: list[z3.ArithRef] = []
+        self.R: list = []
         self.domain: list[z3.BoolRef] = []
         self._ev: dict[tuple[int, int], z3.ExprRef] = {}
         self._df: dict[tuple[int, int], z3.BoolRef] = {}
         self._obdf: dict[tuple[int, int], z3.BoolRef] = {}
         self._alldf: list[z3.BoolRef] = []
         self._aux: list[z3.BoolRef] = []
+
+    def __init__(self, plan: Plan, k: int, prefix: str = "", free_history: bool = False) -> None:
+        self._tables(plan, k, prefix, free_history)
         rlo, rhi = risk_input_range(plan)
         for t in range(k):
             row: dict[str, z3.ExprRef] = {}
@@ -393,19 +397,7 @@ class FloatUnrolled(Unrolled):
     """
 
     def __init__(self, plan: Plan, k: int, prefix: str = "") -> None:
-        self.plan = plan
-        self.k = k
-        self.prefix = prefix
-        self.free_history = False
-        self._lb: dict[int, int] = {}
-        self.sig: list[dict[str, z3.ExprRef]] = []
-        self.R: list = []
-        self.domain: list[z3.BoolRef] = []
-        self._ev: dict[tuple[int, int], z3.ExprRef] = {}
-        self._df: dict[tuple[int, int], z3.BoolRef] = {}
-        self._obdf: dict[tuple[int, int], z3.BoolRef] = {}
-        self._alldf: list[z3.BoolRef] = []
-        self._aux: list[z3.BoolRef] = []
+        self._tables(plan, k, prefix, False)
         rlo, rhi = risk_input_range(plan)
 
         def bounded(v, lo, hi):
