@@ -43,6 +43,21 @@ def err(msg: str) -> int:
     return 2
 
 
+def open_audit_log(path: str, compiled_spec: Any, /, **meta: Any) -> tuple[Any, int | None]:
+    """A new audit log for a command (``--audit PATH``), its meta with ``compiled_spec``'s sha256.
+
+    Returns ``(log, None)``, or ``(None, 2)`` after printing why (the file exists: a log is never
+    appended to; it cannot be written).
+    """
+    from ..audit import AuditLog, spec_hash
+    try:
+        return AuditLog(path, fsync="interval", meta={**meta, "spec_sha256": spec_hash(compiled_spec)}), None
+    except FileExistsError:
+        return None, err(f"{path}: the audit log exists already (a log is never appended to; pick a new name)")
+    except OSError as exc:
+        return None, err(f"{path}: cannot write the audit log: {exc.strerror or exc}")
+
+
 def write_report(path: str, text: str, what: str) -> None:
     """Write a report file without ever blocking on a FIFO that has no reader
     (:func:`ethimon._files.open_regular`; a FIFO with a reader or ``/dev/null`` is accepted).

@@ -17,7 +17,7 @@ import sys
 import time
 import xml.etree.ElementTree as ET
 
-from ._common import Progress, add_ray_options, emit_json, emit_report, err, ray_options
+from ._common import Progress, add_ray_options, emit_json, emit_report, err, open_audit_log, ray_options
 
 __all__ = ["add_replay_parsers", "cmd_replay"]
 
@@ -84,15 +84,10 @@ def cmd_replay(args: argparse.Namespace) -> int:
         return 2
     audit = None
     if args.audit:
-        from ..audit import AuditLog, spec_hash
-        try:
-            audit = AuditLog(args.audit, fsync="interval", meta={
-                "tool": "ethimon replay", "spec": args.spec, "spec_sha256": spec_hash(spec),
-                "mapping": args.mapping, "bags": list(args.bags)})
-        except FileExistsError:
-            return err(f"{args.audit}: the audit log exists already (a log is never appended to; pick a new name)")
-        except OSError as exc:
-            return err(f"{args.audit}: cannot write the audit log: {exc.strerror or exc}")
+        audit, rc = open_audit_log(args.audit, spec, tool="ethimon replay", spec=args.spec, mapping=args.mapping,
+                                   bags=list(args.bags))
+        if rc is not None:
+            return rc
     json_to_stdout = args.json == "-"
     out = sys.stderr if json_to_stdout else sys.stdout  # stdout is the JSON's alone
     t0 = time.perf_counter()

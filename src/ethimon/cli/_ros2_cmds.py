@@ -14,7 +14,7 @@ import signal
 import sys
 import threading
 
-from ._common import add_deprecated_alias, emit_json, err
+from ._common import add_deprecated_alias, emit_json, err, open_audit_log
 
 __all__ = ["add_ros2_parsers", "cmd_ros2"]
 
@@ -75,15 +75,10 @@ def cmd_ros2(args: argparse.Namespace) -> int:
     from ..ros2 import Ros2Monitor
     audit = None
     if args.audit:
-        from ..audit import AuditLog, spec_hash
-        try:
-            audit = AuditLog(args.audit, fsync="interval", meta={
-                "tool": "ethimon ros2", "spec": args.spec, "spec_sha256": spec_hash(spec),
-                "mapping": args.mapping, "domain_id": domain})
-        except FileExistsError:
-            return err(f"{args.audit}: the audit log exists already (a log is never appended to; pick a new name)")
-        except OSError as exc:
-            return err(f"{args.audit}: cannot write the audit log: {exc.strerror or exc}")
+        audit, rc = open_audit_log(args.audit, spec, tool="ethimon ros2", spec=args.spec, mapping=args.mapping,
+                                   domain_id=domain)
+        if rc is not None:
+            return rc
     kwargs = {}
     if args.model:
         kwargs["estimator_kwargs"] = {"model_dir": os.path.abspath(args.model)}
