@@ -454,6 +454,15 @@ def test_fixed_p_needs_no_task(tmp_path, spec):
     ("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.1\nsignals:\n  ee_speed: {topic: /t, field: 'a..b'}\n", 5, 32,
      "field"),
     ("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.1\nsignals:\n  ee_speed: {topic: /t\n", 6, 1, "invalid YAML"),
+    # issue 20: mapping numbers validated with located errors
+    ("ethimon: 1\nrate_hz: 10\nmax_age_s: 0\nsignals:\n  d: {topic: /d}\n", 3, 12, "greater than 0"),
+    ("ethimon: 1\nrate_hz: 10\nmax_age_s: -1\nsignals:\n  d: {topic: /d}\n", 3, 12, "greater than 0"),
+    ("ethimon: 1\nrate_hz: 10\nmax_age_s: 0.1\nsignals:\n  d: {topic: /d, max_age_s: 0}\n", 5, 29, "greater than 0"),
+    ("ethimon: 1\nrate_hz: 10\nmax_age_s: 0.1\nsignals:\n  d: {topic: /d, scale: 0}\n", 5, 6, "scale 0"),
+    ("ethimon: 1\nrate_hz: 10\nmax_age_s: 0.1\nsignals:\n  d: {topic: /d, scale: -2.5}\n", 5, 6, "negative scale"),
+    ("ethimon: 1\nrate_hz: 1e-10\nmax_age_s: 0.1\nsignals:\n  d: {topic: /d}\n", 2, 10, "0.1"),
+    ("ethimon: 1\nrate_hz: 1e9\nmax_age_s: 0.1\nsignals:\n  d: {topic: /d}\n", 2, 10, "100000"),
+    ("ethimon: 1\nrate_hz: 10\nmax_age_s: 0.1\nsignals:\n  d: {topic: /d, type: not a type}\n", 5, 24, "type"),
 ])
 def test_bad_mapping_is_located(tmp_path, text, line, col, words):
     f = tmp_path / "m.yaml"

@@ -385,24 +385,8 @@ def test_inf_and_out_of_range_are_reported_as_what_they_are(tmp_path, fmt):
 
 
 # ----------------------------------------------------------------------------- row: mapping numbers
-@pytest.mark.parametrize("text, line, col, words", [
-    ("ethimon: 1\nrate_hz: 10\nmax_age_s: 0\nsignals:\n  d: {topic: /d}\n", 3, 12, "greater than 0"),
-    ("ethimon: 1\nrate_hz: 10\nmax_age_s: -1\nsignals:\n  d: {topic: /d}\n", 3, 12, "greater than 0"),
-    ("ethimon: 1\nrate_hz: 10\nmax_age_s: 0.1\nsignals:\n  d: {topic: /d, max_age_s: 0}\n", 5, 29, "greater than 0"),
-    ("ethimon: 1\nrate_hz: 10\nmax_age_s: 0.1\nsignals:\n  d: {topic: /d, scale: 0}\n", 5, 6, "scale 0"),
-    ("ethimon: 1\nrate_hz: 10\nmax_age_s: 0.1\nsignals:\n  d: {topic: /d, scale: -2.5}\n", 5, 6, "negative scale"),
-    ("ethimon: 1\nrate_hz: 1e-10\nmax_age_s: 0.1\nsignals:\n  d: {topic: /d}\n", 2, 10, "0.1"),
-    ("ethimon: 1\nrate_hz: 1e9\nmax_age_s: 0.1\nsignals:\n  d: {topic: /d}\n", 2, 10, "100000"),
-    ("ethimon: 1\nrate_hz: 10\nmax_age_s: 0.1\nsignals:\n  d: {topic: /d, type: not a type}\n", 5, 24, "type"),
-])
-def test_mapping_numbers_are_validated_with_located_errors(tmp_path, text, line, col, words):
-    f = tmp_path / "m.yaml"
-    f.write_text(text)
-    with pytest.raises(SpecError) as ei:
-        load_mapping(f)
-    e = ei.value
-    assert (e.path, e.line, e.column) == (str(f), line, col), str(e)
-    assert words in str(e)
+# the issue-20 rows of mapping numbers (max_age_s, scale, rate_hz, type) are cases of
+# tests/test_replay.py::test_bad_mapping_is_located
 
 
 def test_unusual_scale_when_stated(tmp_path):
