@@ -131,7 +131,7 @@ class Monitor:
         (True, ('keep_away',))
     """
 
-    __slots__ = ("spec", "plan", "obligation_ids", "_m", "_sig", "_vals", "_rslot", "_updates", "_obs",
+    __slots__ = ("spec", "plan", "obligation_ids", "_m", "_sig", "_vals", "_rslot", "_obs",
                  "_margin_fns", "_nan_margins", "_tau", "_risk_sev", "_fault_sev", "_release_cut",
                  "_alpha", "_beta", "_gamma", "_sample", "_k", "_uidx", "_rlo", "_rhi",
                  "_max_age", "_age_missing", "_cycle", "_margins_on", "_stateless",
@@ -153,7 +153,6 @@ class Monitor:
         # built-in float in range (or a bool) hands over to _read_rest, which judges it as before
         self._fsig = tuple((k, s.name, s.slot, s.kind == "bool", s.lo, s.hi) for k, s in enumerate(plan.signals))
         self._rslot = plan.risk_slot
-        self._updates = m.updates
         # one call each per cycle: every temporal update (inner operators first), then every
         # obligation's verdict (all of them, in order: bounded responses keep state), as one tuple
         self._ucall = m.updates[0] if len(m.updates) == 1 else _tuple_of_calls(m.updates)

@@ -56,7 +56,6 @@ class CheckBase:
         want = max([2, *self.need.values()])
         self.k = min(want, self.max_unroll)
         self.truncated = want > self.max_unroll
-        r = spec.risk
         plan = self.plan  # τ, the release bound and the rules' releases: resolved once, in the plan
         self.tau = plan.threshold
         # the release bound tau - delta, exactly (0.27 - 0.05 is 0.22, not 0.22000000000000003)

@@ -272,6 +272,7 @@ class Unrolled:
             elif node.func == "separation_distance":  # a negative argument raises
                 ds += [self._nonneg(self.ev(a, t)) for a in node.args]
             return z3.And(ds)
+        raise TypeError(f"cannot encode {node!r}")  # pragma: no cover
 
     # what raises, in this encoding's arithmetic (reals here; IEEE doubles in FloatUnrolled)
     @staticmethod
@@ -285,7 +286,6 @@ class Unrolled:
     @staticmethod
     def _sqrt_ok(v):
         return v >= 0
-        raise TypeError(f"cannot encode {node!r}")  # pragma: no cover
 
     def temporal_nodes(self, root: Node) -> list[Call]:
         """Temporal calls inside ``root`` (each has its arguments evaluated every cycle)."""
@@ -555,7 +555,7 @@ def decision_trace(enc: Unrolled, *, fresh: bool = False, prefix: str = "",
     below = release_below(plan)
     rules = rules_of(plan)
     n = len(plan.obligations)
-    ri, fi = n, n + 1
+    ri = n
     encoded = [only is None or i == only for i in range(n)] + [True, True]
     zero = z3.IntVal(0)
     lat0 = [z3.Bool(f"{prefix}latched#{k}@start") for k in range(n + 2)]
