@@ -113,6 +113,8 @@ INTERNAL_REACHES: dict[str, tuple[set[str], str]] = {
                    "the expression AST each interpreter walks (sim: the recording's plot reads the "
                    "obligations' limits from it; loop: the names a reloaded obligation reads; replay: "
                    "which rules read R_e, NOT CHECKED under 'risk: none')"),
+    "spec._visit": ({"compiler", "offline", "testing", "verify"},
+                    "ExprVisitor, the interpreter protocol the four back-ends implement"),
     "spec._load": ({"replay", "scenario"}, "the located YAML validation, for their own file formats"),
     "spec._yaml": ({"replay", "scenario"}, "the located YAML reader, for their own file formats"),
     "spec._model": ({"replay", "scenario", "verify"}, "field types and defaults (FiniteFloat, ACTIVE_RESPONSES, "

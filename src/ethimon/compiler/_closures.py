@@ -14,18 +14,18 @@ from the checked AST only.
 from __future__ import annotations
 
 import math
-from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, COMPARISONS, CONNECTIVE_MARGINS, Binary, BoolLit, Call,
-                          Name, Node, Num, Unary, separation_distance, walk)
+from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call, Name,
+                          Node, Num, Unary, separation_distance, walk)
+from ..spec._visit import ExprVisitor
+from ._machines import bounded_margin, held_machine, once_machine, prev_machine, since_machine
 from ._plan import Plan
 
 __all__ = ["Machine", "build_machine"]
 
 INF = math.inf
-NAN = math.nan
 _NEGATIVE = "separation_distance() argument is negative or not a number"
 
 
@@ -162,7 +162,11 @@ def _arith(op: str, a, b):
     return lambda: f() / g()
 
 
-class _Gen:
+class _Gen(ExprVisitor):
+    """The closures back-end of the interpreter protocol: each ``visit_*`` returns the zero-argument
+    closure of its node (built once, at compile time); a temporal operator's also builds its state
+    machine (:mod:`._machines`), kept in ``machines`` by its index in ``plan.temporal``."""
+
     def __init__(self, plan: Plan) -> None:
         self.plan = plan
         self.vals: list = [0.0] * plan.n_slots
@@ -171,71 +175,112 @@ class _Gen:
         self.slots = plan.slots
         self.consts = plan.constants
         self.pending: list[tuple[str, Callable[[], bool]]] = []
+        self.machines: list = [None] * len(plan.temporal)  # (update, reset) per temporal node
 
     # -- values --------------------------------------------------------------
     def d(self, node: Node):
-        """Operand descriptor of ``node``."""
-        if isinstance(node, Num):
-            return ("c", node.value)
-        if isinstance(node, BoolLit):
+        """Operand descriptor of ``node`` (a constant or a slot is read inline by the closure above it)."""
+        if isinstance(node, (Num, BoolLit)):
             return ("c", node.value)
         if isinstance(node, Name):
             if node.id in self.consts:
                 return ("c", self.consts[node.id])
             return ("r", self.vals, self.slots[node.id])
-        if isinstance(node, Call) and node.func in ("prev", "held", "once", "since"):
+        if isinstance(node, Call) and node.func in TEMPORAL:
             return ("r", self.tv, self.tindex[id(node)])
         if isinstance(node, Unary) and node.op == "-" and isinstance(node.operand, Num):
             return ("c", -node.operand.value)
         return ("f", self.fn(node))
 
     def fn(self, node: Node) -> Callable[[], object]:
-        if isinstance(node, (Num, BoolLit, Name)) or (isinstance(node, Call) and node.func in (
-                "prev", "held", "once", "since")):
-            return _as_fn(self.d(node))
-        if isinstance(node, Unary):
-            f = self.fn(node.operand)
-            if node.op == "not":
-                return lambda: not f()
-            return lambda: -f()
-        if isinstance(node, Binary):
-            op = node.op
-            if op == "and":
-                f, g = self.fn(node.left), self.fn(node.right)
-                return lambda: f() and g()
-            if op == "or":
-                f, g = self.fn(node.left), self.fn(node.right)
-                return lambda: f() or g()
-            if op == "implies":
-                f, g = self.fn(node.left), self.fn(node.right)
-                return lambda: (not f()) or g()
-            a, b = self.d(node.left), self.d(node.right)
-            if op in COMPARISONS:
-                c = _cmp(op, a, b)
-                return c
-            return _arith(op, a, b)
-        if isinstance(node, Call):
-            if node.func == "separation_distance":
-                return self.separation(node)
-            args = [self.fn(a) for a in node.args]
-            f = node.func
-            if f == "abs":
-                g = args[0]
-                return lambda: abs(g())
-            if f == "sqrt":
-                g = args[0]
-                return lambda: math.sqrt(g())
-            if f == "min":
-                if len(args) == 2:
-                    g, h = args
-                    return lambda: min(g(), h())
-                return lambda: min([g() for g in args])
-            if f == "max":
-                if len(args) == 2:
-                    g, h = args
-                    return lambda: max(g(), h())
-                return lambda: max([g() for g in args])
-        raise TypeError(f"cannot compile {node!r}")  # pragma: no cover
+        """The closure of ``node``: :meth:`visit` (the protocol's dispatch, at compile time)."""
+        return self.visit(node)
+
+    def _leaf(self, node: Node) -> Callable[[], object]:
+        return _as_fn(self.d(node))
+
+    visit_num = visit_bool = visit_name = _leaf
+
+    def visit_neg(self, node: Unary) -> Callable[[], object]:
+        f = self.fn(node.operand)
+        return lambda: -f()
+
+    def visit_not(self, node: Unary) -> Callable[[], object]:
+        f = self.fn(node.operand)
+        return lambda: not f()
+
+    def _compare(self, node: Binary) -> Callable[[], bool]:
+        return _cmp(node.op, self.d(node.left), self.d(node.right))
+
+    visit_lt = visit_le = visit_gt = visit_ge = visit_eq = visit_ne = _compare
+
+    def _arithmetic(self, node: Binary) -> Callable[[], float]:
+        return _arith(node.op, self.d(node.left), self.d(node.right))
+
+    visit_add = visit_sub = visit_mul = visit_div = _arithmetic
+
+    def visit_and(self, node: Binary) -> Callable[[], object]:
+        f, g = self.fn(node.left), self.fn(node.right)
+        return lambda: f() and g()
+
+    def visit_or(self, node: Binary) -> Callable[[], object]:
+        f, g = self.fn(node.left), self.fn(node.right)
+        return lambda: f() or g()
+
+    def visit_implies(self, node: Binary) -> Callable[[], object]:
+        f, g = self.fn(node.left), self.fn(node.right)
+        return lambda: (not f()) or g()
+
+    def visit_abs(self, node: Call) -> Callable[[], float]:
+        g = self.fn(node.args[0])
+        return lambda: abs(g())
+
+    def visit_sqrt(self, node: Call) -> Callable[[], float]:
+        g = self.fn(node.args[0])
+        return lambda: math.sqrt(g())
+
+    def visit_min(self, node: Call) -> Callable[[], float]:
+        args = [self.fn(a) for a in node.args]
+        if len(args) == 2:
+            g, h = args
+            return lambda: min(g(), h())
+        return lambda: min([g() for g in args])
+
+    def visit_max(self, node: Call) -> Callable[[], float]:
+        args = [self.fn(a) for a in node.args]
+        if len(args) == 2:
+            g, h = args
+            return lambda: max(g(), h())
+        return lambda: max([g() for g in args])
+
+    def visit_separation_distance(self, node: Call) -> Callable[[], float]:
+        return self.separation(node)
+
+    # -- temporal operators: a state machine each, read through its slot of ``tv`` ----------
+    def _temporal(self, node: Call, build) -> Callable[[], object]:
+        k = self.tindex[id(node)]
+        if self.machines[k] is None:
+            self.machines[k] = build(k)
+        return _as_fn(("r", self.tv, k))
+
+    def visit_held(self, node: Call) -> Callable[[], object]:
+        return self._temporal(node, lambda k: held_machine(self.fn(node.args[0]), self.tv, k,
+                                                           self.plan.windows[id(node)]))
+
+    def visit_once(self, node: Call) -> Callable[[], object]:
+        return self._temporal(node, lambda k: once_machine(self.fn(node.args[0]), self.tv, k,
+                                                           self.plan.windows[id(node)]))
+
+    def visit_since(self, node: Call) -> Callable[[], object]:
+        return self._temporal(node, lambda k: since_machine(self.fn(node.args[0]), self.fn(node.args[1]), self.tv,
+                                                            k, self.plan.windows[id(node)]))
+
+    def visit_prev(self, node: Call) -> Callable[[], object]:
+        def build(k):
+            e = self.fn(node.args[0])
+            init = self.fn(node.args[1]) if len(node.args) == 2 else None
+            return prev_machine(e, init, self.plan.type_of(node).kind == "bool", self.tv, k)
+        return self._temporal(node, build)
 
     def separation(self, node: Call) -> Callable[[], float]:
         """``separation_distance(...)``: evaluate every argument, raise if one is not ``>= 0``
@@ -308,93 +353,6 @@ class _Gen:
         return lambda: INF if b() else -INF
 
     # -- temporal operators ----------------------------------------------------
-    def temporal(self, node: Call):
-        k = self.tindex[id(node)]
-        tv = self.tv
-        n = self.plan.windows[id(node)]
-        f = node.func
-        if f == "held":
-            e = self.fn(node.args[0])
-            run = 0
-
-            def upd() -> None:
-                nonlocal run
-                if e():
-                    if run < n:
-                        run += 1
-                else:
-                    run = 0
-                tv[k] = run >= n
-
-            def rst() -> None:
-                nonlocal run
-                run = 0
-                tv[k] = False
-            return upd, rst
-        if f == "once":
-            e = self.fn(node.args[0])
-            age = n  # n means "not seen within the window"
-
-            def upd() -> None:
-                nonlocal age
-                if e():
-                    age = 0
-                elif age < n:
-                    age += 1
-                tv[k] = age < n
-
-            def rst() -> None:
-                nonlocal age
-                age = n
-                tv[k] = False
-            return upd, rst
-        if f == "since":
-            a, b = self.fn(node.args[0]), self.fn(node.args[1])
-            cap = n if n is not None else 1
-            bounded = n is not None
-            age = cap
-
-            def upd() -> None:
-                nonlocal age
-                va = a()
-                if b():
-                    age = 0
-                elif va and age < cap:
-                    if bounded:
-                        age += 1
-                else:
-                    age = cap
-                tv[k] = age < cap
-
-            def rst() -> None:
-                nonlocal age
-                age = cap
-                tv[k] = False
-            return upd, rst
-        # prev
-        e = self.fn(node.args[0])
-        init = self.fn(node.args[1]) if len(node.args) == 2 else None
-        is_bool = self.plan.type_of(node).kind == "bool"
-        first = True
-        last: object = None
-
-        def upd() -> None:
-            nonlocal first, last
-            cur = e()
-            iv = init() if init is not None else None
-            if first:
-                first = False
-                tv[k] = iv if init is not None else (False if is_bool else cur)
-            else:
-                tv[k] = last
-            last = cur
-
-        def rst() -> None:
-            nonlocal first, last
-            first = True
-            last = None
-            tv[k] = False
-        return upd, rst
 
     def obligation(self, ob) -> tuple[Callable[[], bool], Callable[[], None] | None]:
         req = self.fn(ob.require)
@@ -436,11 +394,10 @@ class _Gen:
 def build_machine(plan: Plan) -> Machine:
     """Build fresh closures and state for one monitor instance."""
     g = _Gen(plan)
-    updates, resets = [], []
-    for node in plan.temporal:
-        u, r = g.temporal(node)
-        updates.append(u)
-        resets.append(r)
+    for node in plan.temporal:  # children first; visiting one builds its state machine
+        g.visit(node)
+    updates = [u for u, _ in g.machines]
+    resets = [r for _, r in g.machines]
     violated, margins = [], []
     mbuf = [math.nan] * len(plan.obligations)
     may_raise = False
@@ -459,7 +416,7 @@ def build_machine(plan: Plan) -> Machine:
         raise_w = ob.when is not None and _may_raise(ob.when)
         raise_r = _may_raise(ob.require)
         if ob.within_cycles:  # guards its own terms (never raises)
-            mf, mr = _bounded_margin(rw, rr, ob.within_cycles, raise_w, raise_r)
+            mf, mr = bounded_margin(rw, rr, ob.within_cycles, raise_w, raise_r)
             margins.append(mf)
             resets.append(mr)
             continue
@@ -489,11 +446,6 @@ def _may_raise(node: Node) -> bool:
     return False
 
 
-def _safe(f: Callable[[], float]) -> float:
-    try:
-        return f()
-    except Exception:  # a margin that cannot be computed is NaN (e.g. a division by zero that
-        return math.nan  # the verdict short-circuits past); it is a diagnostic, never a fault
 
 
 def _margin_closure(shape: str, a, b) -> Callable[[], float]:
@@ -573,79 +525,6 @@ def _connective_closure(combine: str, negate_left: bool, f: Callable[[], float],
         return b if b > a else a
     return mx
 
-
-def _bounded_margin(rw: Callable[[], float] | None, rr: Callable[[], float], n: int,
-                    raise_w: bool = True, raise_r: bool = True):
-    """Robustness of a bounded response ``when ⇒ require within n cycles``, O(1) amortised.
-
-    The obligation is violated at ``t`` iff some trigger ``s ≤ t − n`` saw ``require``
-    false at every cycle of ``s .. t``. Its robustness is therefore
-
-        M(t) = min over s ≤ t − n of  max(−rob(when)(s), max over u in s..t of rob(require)(u))
-
-    (+inf while no trigger is old enough), whose sign agrees with the verdict; NaN from the
-    first due window that holds a term that could not be computed (until reset). Since
-    ``max(·, x)`` is monotone, ``M(t) = min(max(M(t−1), rr(t)), max(−rw(t−n), W(t)))``
-    with ``W(t)`` the maximum of ``rr`` over the last ``n + 1`` cycles, kept by a
-    monotone deque over a ring buffer (no per-cycle allocation beyond the deque's ints).
-
-    Must be called exactly once per valid cycle (the monitor computes every margin
-    once per cycle, and each call here never raises); the returned reset clears it.
-    ``raise_w``/``raise_r``: whether ``rw``/``rr`` can raise (else they are called unguarded).
-    """
-    if raise_w and rw is not None:
-        rw = (lambda f: lambda: _safe(f))(rw)
-    if raise_r:
-        rr = (lambda f: lambda: _safe(f))(rr)
-    has_w = rw is not None
-    size = n + 1
-    ring_w = [0.0] * size  # −rob(when) of the last n + 1 cycles
-    ring_r = [0.0] * size  # rob(require) of the last n + 1 cycles
-    win: deque[int] = deque()  # cycle numbers whose ring_r is decreasing: the window max at win[0]
-    t = -1
-    m = INF
-    unknown = False  # a NaN term entered some due window: NaN until reset, as in the reference
-
-    def margin() -> float:
-        nonlocal t, m, unknown
-        t += 1
-        a = -rw() if has_w else -INF
-        b = rr()
-        if b != b:
-            unknown = True  # every window from now on contains it (the oldest trigger's does)
-        if unknown:
-            return NAN if t >= n else INF
-        i = t % size
-        ring_w[i] = a
-        ring_r[i] = b
-        while win and not ring_r[win[-1] % size] > b:
-            win.pop()
-        win.append(t)
-        if win[0] < t - n:
-            win.popleft()
-        if b > m:
-            m = b
-        if t >= n:
-            cand = ring_w[(t - n) % size]
-            if cand == INF:  # no trigger at t - n (a false boolean `when`): max(inf, W) < m never holds
-                return m
-            if cand != cand:
-                unknown = True
-                return NAN
-            top = ring_r[win[0] % size]
-            if top > cand:
-                cand = top
-            if cand < m:
-                m = cand
-        return m
-
-    def reset() -> None:
-        nonlocal t, m, unknown
-        t = -1
-        m = INF
-        unknown = False
-        win.clear()
-    return margin, reset
 
 
 def _fused_comparison(g: _Gen, ob, mbuf: list, k: int):

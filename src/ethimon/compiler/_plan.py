@@ -9,6 +9,7 @@ from the :class:`~ethimon.Spec`.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 from fractions import Fraction
 
@@ -119,7 +120,6 @@ class Plan:
             built once here for every consumer (code generation, fault-path evaluation).
         risk: the spec's risk settings (τ, weights, classes, release, max age).
         on_fault: the response to a fault.
-        fault_release: ``(mode, hold_cycles)`` of the fault latch (defaults filled in).
         threshold: τ, the risk rule fires at ``R_e >= threshold``.
         release_exact: the exact release bound τ − δ (the spec's decimals, as a fraction).
         release_cut: the float test of it: a float R_e is below τ − δ exactly when ``R_e < release_cut``.
@@ -143,7 +143,6 @@ class Plan:
     slots: dict[str, int] = field(default_factory=dict)
     risk: RiskConfig = field(default_factory=RiskConfig)
     on_fault: Response = Response.SAFE_POSE
-    fault_release: tuple[str, int] = ("manual", 10)
     # resolved by compile_plan (no second set of defaults here: a plan built without them is refused)
     threshold: float = None  # type: ignore[assignment]
     release_exact: Fraction = None  # type: ignore[assignment]
@@ -166,6 +165,17 @@ class Plan:
         return tuple(ob.rule for ob in self.obligations) + (
             r, self.fault_rule, RuleRelease("judge", r.response, r.manual, r.hold),
             RuleRelease("confirm", Response.STOP_2, False, r.hold))
+
+    @property
+    def fault_release(self) -> tuple[str, int]:
+        """``(mode, hold_cycles)`` of the fault latch: ``(fault_rule.mode, fault_rule.hold)``.
+
+        .. deprecated:: Unreleased
+            Nothing reads it; read :attr:`fault_rule` (a :class:`RuleRelease`) instead.
+        """
+        warnings.warn("Plan.fault_release is deprecated: read Plan.fault_rule (.mode, .hold)",
+                      DeprecationWarning, stacklevel=2)
+        return (self.fault_rule.mode, self.fault_rule.hold)
 
     @property
     def manual_rules(self) -> tuple[str, ...]:

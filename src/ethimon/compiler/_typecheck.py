@@ -383,7 +383,7 @@ def compile_plan(spec: Spec) -> Plan:
     return Plan(spec=spec, signals=tuple(signals), risk_slot=len(signals), constants=dict(ck.consts),
                 obligations=tuple(obligations), temporal=tuple(ck.temporal), types=ck.types,
                 windows=ck.windows, slots=slots, risk=r, on_fault=Response(spec.on_fault),
-                fault_release=(fmode, int(fhold)), threshold=float(r.threshold), release_exact=exact,
+                threshold=float(r.threshold), release_exact=exact,
                 release_cut=cut,
                 risk_rule=RuleRelease("risk", Response(r.response), r.release.mode == "manual",
                                       int(r.release.hold_cycles)),

@@ -1,11 +1,16 @@
-"""Whether a reloaded spec weakens monitoring, judged field by field."""
+"""Whether a reloaded spec weakens monitoring, judged field by field.
+
+Every rule's release (mode, hold), response, τ and the exact release bound τ − δ are read from the
+two compiled plans (``Plan.rules()``, ``Plan.threshold``,
+``Plan.release_exact``), never resolved again from the specs.
+"""
 
 from __future__ import annotations
 
 from typing import Any
 
-from ..compiler import plan_of
-from ..compiler._risk_formula import release_bound, risk_range
+from ..compiler import Plan, plan_of
+from ..compiler._risk_formula import risk_range
 from ..spec import Response, Spec
 from ..spec._expr import Name, walk
 
@@ -38,18 +43,23 @@ def _meaning(m: tuple | None) -> str:
                                                              "unsafe_index"), m[1])) + ")"
 
 
-def _release_weaker(what: str, old: tuple[str, int], new: tuple[str, int]) -> list[str]:
-    """A rule's release (mode, hold_cycles; defaults filled in) made easier."""
-    if old[0] == "manual" and new[0] == "auto":
+def _release_weaker(what: str, old: Any, new: Any) -> list[str]:
+    """A rule's release made easier: ``old``/``new`` are its ``RuleRelease`` in each plan (mode, hold)."""
+    if old.manual and not new.manual:
         return [f"{what}: release manual -> auto (its latch now releases by itself)"]
-    if new[1] < old[1]:
-        return [f"{what}: release hold_cycles lowered {old[1]} -> {new[1]}"]
+    if new.hold < old.hold:
+        return [f"{what}: release hold_cycles lowered {old.hold} -> {new.hold}"]
     return []
 
 
-def _risk_inputs(spec: Spec) -> tuple[float, float]:
-    """The interval of ``risk`` inputs the monitor accepts for ``spec`` (as ``Monitor`` computes it)."""
-    r = spec.risk
+def _rules(plan: Plan) -> dict[str, Any]:
+    """Every latch of ``plan`` by name (``Plan.rules()``)."""
+    return {r.name: r for r in plan.rules()}
+
+
+def _risk_inputs(plan: Plan) -> tuple[float, float]:
+    """The interval of ``risk`` inputs the monitor accepts for ``plan`` (as ``Monitor`` computes it)."""
+    r = plan.risk
     lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)
     return min(0.0, lo), max(1.0, hi)
 
@@ -118,6 +128,8 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     """
     weak: list[str] = []
     unjudged: list[str] = []
+    po, pn = plan_of(old), plan_of(new)  # the releases, τ and τ − δ as the monitors run them
+    old_rules, new_rules = _rules(po), _rules(pn)
     old_obs = {o.id: o for o in old.obligations}
     new_obs = {o.id: o for o in new.obligations}
     try:
@@ -150,9 +162,9 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
         ow, nw = o.within_cycles or 0, n.within_cycles or 0
         if nw > ow:
             weak.append(f"obligation {oid}: within_cycles {ow} -> {nw} (more cycles to respond)")
-        weak += _release_weaker(f"obligation {oid}", old.obligation_release(o), new.obligation_release(n))
+        weak += _release_weaker(f"obligation {oid}", old_rules[oid], new_rules[oid])
     ro, rn = old.risk, new.risk
-    if rn.threshold > ro.threshold:
+    if pn.threshold > po.threshold:
         weak.append(f"risk.threshold raised {ro.threshold!r} -> {rn.threshold!r} (overrides fire at a higher R_e)")
     for w in ("alpha", "beta", "gamma"):
         if getattr(rn, w) < getattr(ro, w):
@@ -162,24 +174,24 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     if ro.classes != rn.classes or ro.unsafe_index % ro.classes != rn.unsafe_index % rn.classes:
         weak.append(f"risk classes/unsafe_index changed ({ro.classes}/{ro.unsafe_index} -> "
                     f"{rn.classes}/{rn.unsafe_index}): what counts as unsafe is redefined")
-    if _sev(rn.response) < _sev(ro.response):
+    risk_o, risk_n = po.risk_rule, pn.risk_rule
+    if risk_n.severity < risk_o.severity:
         weak.append(f"risk.response {ro.response} -> {rn.response} (less severe)")
-    if _sev(new.on_fault) < _sev(old.on_fault):
+    if pn.fault_rule.severity < po.fault_rule.severity:
         weak.append(f"on_fault {old.on_fault} -> {new.on_fault} (less severe)")
-    weak += _release_weaker("on_fault", old.fault_release(), new.fault_release())
-    if ro.release.mode == "manual" and rn.release.mode == "auto":
+    weak += _release_weaker("on_fault", po.fault_rule, pn.fault_rule)
+    if risk_o.manual and not risk_n.manual:
         weak.append("release mode manual -> auto (a latched override now releases by itself)")
     # in every mode: an automatic latch releases, a manual one may be acknowledged, once R_e < τ − δ
     # has held hold_cycles cycles
-    bo = release_bound(ro.threshold, ro.release.hysteresis)[0]
-    bn = release_bound(rn.threshold, rn.release.hysteresis)[0]
+    bo, bn = po.release_exact, pn.release_exact
     if bn > bo:
         weak.append(f"release bound τ − δ raised {float(bo):g} -> {float(bn):g} (hysteresis "
                     f"{ro.release.hysteresis!r} -> {rn.release.hysteresis!r}: a latch releases at a higher R_e)")
-    if rn.release.hold_cycles < ro.release.hold_cycles:
-        weak.append(f"release hold_cycles lowered {ro.release.hold_cycles} -> {rn.release.hold_cycles}")
-    (olo, ohi), (nlo, nhi) = _risk_inputs(old), _risk_inputs(new)
-    if nlo < min(olo, rn.threshold) or (nhi > ohi and ohi < rn.threshold):
+    if risk_n.hold < risk_o.hold:
+        weak.append(f"release hold_cycles lowered {risk_o.hold} -> {risk_n.hold}")
+    (olo, ohi), (nlo, nhi) = _risk_inputs(po), _risk_inputs(pn)
+    if nlo < min(olo, pn.threshold) or (nhi > ohi and ohi < pn.threshold):
         weak.append(f"accepted risk inputs widened [{olo:g}, {ohi:g}] -> [{nlo:g}, {nhi:g}] (an R_e that "
                     "faulted is now accepted without an override)")
     ao = ro.max_age_s if ro.max_age_s is not None else loop_max_age_s
@@ -231,31 +243,24 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     return weak + unjudged, unjudged
 
 
-def _rule_identity(spec: Spec, name: str) -> tuple | None:
-    """What a latch of rule ``name`` means in ``spec``: its response and its release, defaults filled in
-    (``None``: no such rule)."""
-    if name == "risk":
-        r = spec.risk
-        return (Response(r.response).value, r.release.mode, int(r.release.hold_cycles),
-                release_bound(r.threshold, r.release.hysteresis)[0])
-    if name == "fault":
-        return (Response(spec.on_fault).value, *spec.fault_release())
-    if name == "judge":  # the judge's unsafe verdict: the risk rule's response and release
-        r = spec.risk
-        if r.judge is None:
-            return None
-        return (Response(r.response).value, r.release.mode, int(r.release.hold_cycles),
-                release_bound(r.threshold, r.release.hysteresis)[0], r.judge)
+def _rule_identity(plan: Plan, name: str) -> tuple | None:
+    """What a latch of rule ``name`` means in ``plan``: its response and its release as the plan resolved
+    them (``Plan.rules()``; ``None``: no such rule)."""
+    r = plan.risk
+    if (name == "judge" and r.judge is None) or (name == "confirm" and r.confirm_threshold is None):
+        return None
+    rule = _rules(plan).get(name)
+    if rule is None:
+        return None
     if name == "confirm":  # the confirm band [τ_confirm, τ): stop_2, released by a confirmation
-        r = spec.risk
-        if r.confirm_threshold is None:
-            return None
         # released by a confirmation or by the judge's safe verdict: another judge is another release
-        return ("stop_2", "band", r.confirm_threshold, r.threshold, r.judge)
-    for ob in spec.obligations:
-        if ob.id == name:
-            return (Response(ob.response).value, *spec.obligation_release(ob))
-    return None
+        return (rule.response.value, "band", r.confirm_threshold, plan.threshold, r.judge)
+    ident = (rule.response.value, rule.mode, rule.hold)
+    if name == "risk":
+        return ident + (plan.release_exact,)
+    if name == "judge":  # the judge's unsafe verdict: the risk rule's response and release
+        return ident + (plan.release_exact, r.judge)
+    return ident
 
 
 def unmapped_latches(old: Spec, new: Spec, latched) -> list[str]:
@@ -263,8 +268,9 @@ def unmapped_latches(old: Spec, new: Spec, latched) -> list[str]:
     cannot carry by identity: the same rule must exist with the same response and the same release
     (mode, hold_cycles; for the risk rule also its bound τ − δ). Empty: every latch carries over."""
     out = []
+    po, pn = plan_of(old), plan_of(new)
     for name in latched:
-        a, b = _rule_identity(old, name), _rule_identity(new, name)
+        a, b = _rule_identity(po, name), _rule_identity(pn, name)
         if b is None:
             out.append(f"{name}: latched, and the new spec has no such rule")
         elif a != b:

@@ -11,7 +11,7 @@ compiled closures evaluate it (``and``/``or``/``implies`` short-circuit, a
 division by zero, the square root of a negative number or a negative argument
 of ``separation_distance`` raises), ``None`` if
 it cannot raise. The temporal operators follow the compiled state machines
-(:mod:`ethimon.compiler._closures`), written as scans that are linear in the
+(:mod:`ethimon.compiler._machines`), written as scans that are linear in the
 trace and independent of the window length:
 
 * ``prev``: a shift; the initial value at each segment start;
@@ -30,16 +30,17 @@ import math
 
 import numpy as np
 
-from ..spec._expr import (CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary,
-                          comparison_margin, separation_distance)
+from ..spec._expr import (COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num,
+                          Unary, comparison_margin, separation_distance)
+from ..spec._visit import ExprVisitor
 
 __all__ = ["Evaluator", "TEMPORAL_FUNCS"]
 
 TEMPORAL_FUNCS = tuple(sorted(TEMPORAL))  # the parser's set of temporal operators
 INF = math.inf
-_CMP = {"<": np.less, "<=": np.less_equal, ">": np.greater, ">=": np.greater_equal, "==": np.equal,
-        "!=": np.not_equal}
-_ARITH = {"+": np.add, "-": np.subtract, "*": np.multiply, "/": np.divide}
+#: numpy's function of each comparison and arithmetic operator of ``BINARY_OPS``
+_ELEMENTWISE = {"<": np.less, "<=": np.less_equal, ">": np.greater, ">=": np.greater_equal, "==": np.equal,
+                "!=": np.not_equal, "+": np.add, "-": np.subtract, "*": np.multiply, "/": np.divide}
 
 
 def _or(a, b):
@@ -108,7 +109,7 @@ def clamp_scan(lo: np.ndarray, hi: np.ndarray, block: int = 32) -> tuple[np.ndar
     return lo_out.ravel()[:n], hi_out.ravel()[:n]
 
 
-class Evaluator:
+class Evaluator(ExprVisitor):
     """Values of every node of a plan on a set of cycles (see the module docstring)."""
 
     def __init__(self, plan, inputs, cycles: np.ndarray, starts: np.ndarray) -> None:
@@ -147,98 +148,137 @@ class Evaluator:
         return got
 
     def _ev(self, node: Node):
-        if isinstance(node, Num):
-            return np.float64(node.value), None
-        if isinstance(node, BoolLit):
-            return np.bool_(node.value), None
-        if isinstance(node, Name):
-            if node.id in self.consts:
-                return np.float64(self.consts[node.id]), None
-            return self.env[node.id], None
-        if isinstance(node, Unary):
-            v, e = self.ev(node.operand)
-            return (np.logical_not(v) if node.op == "not" else np.negative(v)), e
-        if isinstance(node, Binary):
-            op = node.op
-            lv, le = self.ev(node.left)
-            rv, re = self.ev(node.right)
-            if op == "and":
-                return np.logical_and(lv, rv), _or(le, None if re is None else lv & re)
-            if op == "or":
-                return np.logical_or(lv, rv), _or(le, None if re is None else ~lv & re)
-            if op == "implies":
-                return np.logical_or(np.logical_not(lv), rv), _or(le, None if re is None else lv & re)
-            if op in _CMP:
-                return _CMP[op](lv, rv), _or(le, re)
-            v = _ARITH[op](lv, rv)
-            e = _or(le, re)
-            if op == "/":
-                e = _or(e, self.full(rv == 0.0, "bool"))
-            return v, e
-        if isinstance(node, Call):
-            f = node.func
-            if f in TEMPORAL_FUNCS:
-                return self.temporal(node), None
-            vals = [self.ev(a) for a in node.args]
-            e = None
-            for _, ae in vals:
-                e = _or(e, ae)
-            if f == "abs":
-                return np.abs(vals[0][0]), e
-            if f == "sqrt":
-                x = vals[0][0]
-                return np.sqrt(x), _or(e, self.full(x < 0.0, "bool"))
-            if f == "separation_distance":  # an argument that is not >= 0 (negative, NaN) raises
-                with np.errstate(invalid="ignore", over="ignore"):
-                    for v, _ in vals:
-                        if np.ndim(v) or not v >= 0.0:  # a constant is >= 0 (the compiler checks)
-                            e = _or(e, self.full(~(np.asarray(v) >= 0.0), "bool"))
-                    return separation_distance(*(v for v, _ in vals)), e
-            cur = vals[0][0]
-            for v, _ in vals[1:]:  # Python's min/max: keep the first unless a later one is strictly better
-                cur = np.where(v < cur, v, cur) if f == "min" else np.where(v > cur, v, cur)
-            return cur, e
-        raise TypeError(f"cannot evaluate {node!r}")  # pragma: no cover
+        return self.visit(node)
+
+    # the offline back-end of the interpreter protocol: each visit_* gives ``(value, err)``
+    def visit_num(self, node: Num):
+        return np.float64(node.value), None
+
+    def visit_bool(self, node: BoolLit):
+        return np.bool_(node.value), None
+
+    def visit_name(self, node: Name):
+        if node.id in self.consts:
+            return np.float64(self.consts[node.id]), None
+        return self.env[node.id], None
+
+    def visit_neg(self, node: Unary):
+        v, e = self.ev(node.operand)
+        return np.negative(v), e
+
+    def visit_not(self, node: Unary):
+        v, e = self.ev(node.operand)
+        return np.logical_not(v), e
+
+    def _elementwise(self, node: Binary):
+        """A comparison or arithmetic: numpy's function of the operator on both arrays."""
+        (lv, le), (rv, re) = self.ev(node.left), self.ev(node.right)
+        return _ELEMENTWISE[node.op](lv, rv), _or(le, re)
+
+    visit_lt = visit_le = visit_gt = visit_ge = visit_eq = visit_ne = _elementwise
+    visit_add = visit_sub = visit_mul = _elementwise
+
+    def visit_div(self, node: Binary):
+        v, e = self._elementwise(node)
+        return v, _or(e, self.full(self.ev(node.right)[0] == 0.0, "bool"))
+
+    def visit_and(self, node: Binary):
+        (lv, le), (rv, re) = self.ev(node.left), self.ev(node.right)
+        return np.logical_and(lv, rv), _or(le, None if re is None else lv & re)
+
+    def visit_or(self, node: Binary):
+        (lv, le), (rv, re) = self.ev(node.left), self.ev(node.right)
+        return np.logical_or(lv, rv), _or(le, None if re is None else ~lv & re)
+
+    def visit_implies(self, node: Binary):
+        (lv, le), (rv, re) = self.ev(node.left), self.ev(node.right)
+        return np.logical_or(np.logical_not(lv), rv), _or(le, None if re is None else lv & re)
+
+    def _args(self, node: Call):
+        """The arguments' values and where any of them raises."""
+        vals = [self.ev(a) for a in node.args]
+        e = None
+        for _, ae in vals:
+            e = _or(e, ae)
+        return vals, e
+
+    def visit_abs(self, node: Call):
+        vals, e = self._args(node)
+        return np.abs(vals[0][0]), e
+
+    def visit_sqrt(self, node: Call):
+        vals, e = self._args(node)
+        x = vals[0][0]
+        return np.sqrt(x), _or(e, self.full(x < 0.0, "bool"))
+
+    def visit_separation_distance(self, node: Call):  # an argument that is not >= 0 (negative, NaN) raises
+        vals, e = self._args(node)
+        with np.errstate(invalid="ignore", over="ignore"):
+            for v, _ in vals:
+                if np.ndim(v) or not v >= 0.0:  # a constant is >= 0 (the compiler checks)
+                    e = _or(e, self.full(~(np.asarray(v) >= 0.0), "bool"))
+            return separation_distance(*(v for v, _ in vals)), e
+
+    def visit_min(self, node: Call):
+        vals, e = self._args(node)
+        cur = vals[0][0]
+        for v, _ in vals[1:]:  # Python's min: keep the first unless a later one is strictly smaller
+            cur = np.where(v < cur, v, cur)
+        return cur, e
+
+    def visit_max(self, node: Call):
+        vals, e = self._args(node)
+        cur = vals[0][0]
+        for v, _ in vals[1:]:  # Python's max: keep the first unless a later one is strictly larger
+            cur = np.where(v > cur, v, cur)
+        return cur, e
 
     # -- temporal operators ------------------------------------------------------
-    def temporal(self, node: Call) -> np.ndarray:
-        f = node.func
-        n = self.plan.windows.get(id(node))
-        idx, seg_first = self.idx, self.seg_first
-        args = [self.ev(a) for a in node.args if not (f in ("held", "once") and a is node.args[1])
-                and not (f == "since" and len(node.args) == 3 and a is node.args[2])]
+    def _operands(self, node: Call, count: int) -> list:
+        """The first ``count`` arguments' values (not the window bound); where they raise is an
+        update error (the monitor updates every temporal operator every cycle)."""
+        args = [self.ev(a) for a in node.args[:count]]
         for _, e in args:
             self.update_err = _or(self.update_err, e)
-        if f == "prev":
-            kind = self.plan.type_of(node).kind
-            cur = self.full(args[0][0], kind)
-            out = np.empty(self.n, dtype=cur.dtype)
-            out[1:] = cur[:-1]
-            st = self.starts
-            if len(args) == 2:
-                out[st] = self.full(args[1][0], kind)[st]
-            elif kind == "bool":
-                out[st] = False
-            else:
-                out[st] = cur[st]
-            return out
-        if f == "held":
-            e = self.full(args[0][0], "bool")
-            base = last_index(~e, idx)
-            if not self.single:
-                base = np.maximum(base, seg_first - 1)
-            return idx - base >= n
-        if f == "once":
-            e = self.full(args[0][0], "bool")
-            return last_index(e, idx) >= np.maximum(seg_first, idx - (n - 1))
-        # since
-        a = self.full(args[0][0], "bool")
-        b = self.full(args[1][0], "bool")
+        return args
+
+    def visit_prev(self, node: Call):
+        args = self._operands(node, 2)
+        kind = self.plan.type_of(node).kind
+        cur = self.full(args[0][0], kind)
+        out = np.empty(self.n, dtype=cur.dtype)
+        out[1:] = cur[:-1]
+        st = self.starts
+        if len(args) == 2:
+            out[st] = self.full(args[1][0], kind)[st]
+        elif kind == "bool":
+            out[st] = False
+        else:
+            out[st] = cur[st]
+        return out, None
+
+    def visit_held(self, node: Call):
+        e = self.full(self._operands(node, 1)[0][0], "bool")
+        idx = self.idx
+        base = last_index(~e, idx)
+        if not self.single:
+            base = np.maximum(base, self.seg_first - 1)
+        return idx - base >= self.plan.windows[id(node)], None
+
+    def visit_once(self, node: Call):
+        e = self.full(self._operands(node, 1)[0][0], "bool")
+        n = self.plan.windows[id(node)]
+        return last_index(e, self.idx) >= np.maximum(self.seg_first, self.idx - (n - 1)), None
+
+    def visit_since(self, node: Call):
+        (av, _), (bv, _) = self._operands(node, 2)
+        a, b = self.full(av, "bool"), self.full(bv, "bool")
+        idx, n = self.idx, self.plan.windows.get(id(node))
         lb = last_index(b, idx)
-        out = (lb >= seg_first) & (last_index(~a, idx) <= lb)
+        out = (lb >= self.seg_first) & (last_index(~a, idx) <= lb)
         if n is not None:
             out &= idx - lb < n
-        return out
+        return out, None
 
     def touch_temporal(self) -> None:
         """Evaluate every temporal operator (the monitor updates them all every cycle)."""
@@ -284,7 +324,7 @@ class Evaluator:
         """Robustness ``(value, err)`` as the compiled margins compute it (no short-circuit)."""
         if isinstance(node, Binary):
             op = node.op
-            if op in _CMP and self.plan.type_of(node.left).kind == "num":
+            if op in COMPARISON_MARGINS and self.plan.type_of(node.left).kind == "num":
                 (a, ae), (b, be) = self.ev(node.left), self.ev(node.right)
                 return self.full(comparison_margin(op, a, b), "num"), _or(ae, be)
             if op in CONNECTIVE_MARGINS:  # Python's min/max elementwise: the right where strictly smaller/larger
@@ -323,7 +363,7 @@ class Evaluator:
 
     def _bounded_margin(self, a: np.ndarray, b: np.ndarray, n: int) -> np.ndarray:
         """``M(t) = min(max(M(t−1), b(t)), max(a(t−n), max b(t−n..t)))`` per segment, +inf for the first
-        ``n`` cycles, NaN from the first due window holding a NaN (as ``_closures._bounded_margin``).
+        ``n`` cycles, NaN from the first due window holding a NaN (as ``_machines.bounded_margin``).
 
         ``x ↦ min(max(x, lo), hi)`` with ``lo <= hi`` is a clamp, and clamps compose into clamps,
         so the recurrence is a prefix scan (:func:`clamp_scan`); a segment's first cycle is the

@@ -78,6 +78,7 @@ from ..compiler import plan_of
 from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call,
                           Name, Node, Num, Unary, comparison_margin, connective_margin, separation_distance,
                           walk)
+from ..spec._visit import ExprVisitor
 from ..spec import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import decimal_reading, risk_from_p_unsafe, risk_from_probs, risk_range
 from ..runtime import Decision, Fault
@@ -94,6 +95,94 @@ _BAD_INPUT = (Fault("invalid", "fault: a bad or missing input (reference interpr
 _EVAL_ERROR = (Fault("internal", "fault: an evaluation error (reference interpreter)"),)
 
 
+class _Semantics(ExprVisitor):
+    """The reference back-end of the interpreter protocol: each ``visit_*(node, t)`` is the value of
+    its node at cycle ``t`` of ``monitor.history``, straight from the definitions above (the
+    temporal operators look back over the history)."""
+
+    def __init__(self, monitor: "ReferenceMonitor") -> None:
+        self.m = monitor
+        self.plan = monitor.plan
+
+    def visit_num(self, node: Num, t: int) -> float:
+        return node.value
+
+    def visit_bool(self, node: BoolLit, t: int) -> bool:
+        return node.value
+
+    def visit_name(self, node: Name, t: int) -> Any:
+        if node.id in self.plan.constants:
+            return self.plan.constants[node.id]
+        return self.m.history[t][node.id]
+
+    def visit_neg(self, node: Unary, t: int) -> float:
+        return -self.visit(node.operand, t)
+
+    def visit_not(self, node: Unary, t: int) -> bool:
+        return not self.visit(node.operand, t)
+
+    def _apply(self, node: Binary, t: int) -> Any:
+        """A comparison or arithmetic: the operator's function of ``BINARY_OPS`` on both values."""
+        return BINARY_OPS[node.op][1](self.visit(node.left, t), self.visit(node.right, t))
+
+    visit_lt = visit_le = visit_gt = visit_ge = visit_eq = visit_ne = _apply
+    visit_add = visit_sub = visit_mul = visit_div = _apply
+
+    def visit_and(self, node: Binary, t: int) -> bool:
+        return bool(self.visit(node.left, t)) and bool(self.visit(node.right, t))
+
+    def visit_or(self, node: Binary, t: int) -> bool:
+        return bool(self.visit(node.left, t)) or bool(self.visit(node.right, t))
+
+    def visit_implies(self, node: Binary, t: int) -> bool:
+        return (not self.visit(node.left, t)) or bool(self.visit(node.right, t))
+
+    def visit_abs(self, node: Call, t: int) -> float:
+        return abs(self.visit(node.args[0], t))
+
+    def visit_sqrt(self, node: Call, t: int) -> float:
+        return math.sqrt(self.visit(node.args[0], t))
+
+    def visit_min(self, node: Call, t: int) -> float:
+        return min(self.visit(a, t) for a in node.args)
+
+    def visit_max(self, node: Call, t: int) -> float:
+        return max(self.visit(a, t) for a in node.args)
+
+    def visit_separation_distance(self, node: Call, t: int) -> float:
+        vals = [self.visit(a, t) for a in node.args]
+        if not all(v >= 0 for v in vals):  # negative or NaN: an evaluation error
+            raise ValueError("separation_distance() of a negative argument")
+        return separation_distance(*vals)
+
+    def visit_prev(self, node: Call, t: int) -> Any:
+        args = node.args
+        if t == 0:
+            if len(args) == 2:
+                return self.visit(args[1], 0)
+            return False if self.plan.type_of(node).kind == "bool" else self.visit(args[0], 0)
+        return self.visit(args[0], t - 1)
+
+    def visit_held(self, node: Call, t: int) -> bool:
+        n = self.plan.windows[id(node)]
+        if t + 1 < n:
+            return False
+        return all(self.visit(node.args[0], j) for j in range(t - n + 1, t + 1))
+
+    def visit_once(self, node: Call, t: int) -> bool:
+        n = self.plan.windows[id(node)]
+        return any(self.visit(node.args[0], j) for j in range(max(0, t - n + 1), t + 1))
+
+    def visit_since(self, node: Call, t: int) -> bool:
+        n = self.plan.windows.get(id(node))
+        a, b = node.args[0], node.args[1]
+        first = 0 if n is None else max(0, t - n + 1)
+        for j in range(first, t + 1):
+            if self.visit(b, j) and all(self.visit(a, k) for k in range(j + 1, t + 1)):
+                return True
+        return False
+
+
 class ReferenceMonitor:
     """Same contract as :class:`~ethimon.Monitor`, implemented by AST walking."""
 
@@ -101,6 +190,7 @@ class ReferenceMonitor:
         self.plan = plan_of(spec)
         self.spec = self.plan.spec
         self.obligation_ids = tuple(ob.id for ob in self.plan.obligations)
+        self._semantics = _Semantics(self)
         self.reset()
 
     def reset(self) -> None:
@@ -196,62 +286,8 @@ class ReferenceMonitor:
 
     # -- expression semantics -----------------------------------------------------
     def ev(self, node: Node, t: int) -> Any:
-        env = self.history[t]
-        if isinstance(node, Num):
-            return node.value
-        if isinstance(node, BoolLit):
-            return node.value
-        if isinstance(node, Name):
-            if node.id in self.plan.constants:
-                return self.plan.constants[node.id]
-            return env[node.id]
-        if isinstance(node, Unary):
-            v = self.ev(node.operand, t)
-            return (not v) if node.op == "not" else -v
-        if isinstance(node, Binary):
-            op = node.op
-            if op == "and":
-                return bool(self.ev(node.left, t)) and bool(self.ev(node.right, t))
-            if op == "or":
-                return bool(self.ev(node.left, t)) or bool(self.ev(node.right, t))
-            if op == "implies":
-                return (not self.ev(node.left, t)) or bool(self.ev(node.right, t))
-            return BINARY_OPS[op][1](self.ev(node.left, t), self.ev(node.right, t))
-        if isinstance(node, Call):
-            f, args = node.func, node.args
-            if f == "abs":
-                return abs(self.ev(args[0], t))
-            if f == "sqrt":
-                return math.sqrt(self.ev(args[0], t))
-            if f == "min":
-                return min(self.ev(a, t) for a in args)
-            if f == "max":
-                return max(self.ev(a, t) for a in args)
-            if f == "separation_distance":
-                vals = [self.ev(a, t) for a in args]
-                if not all(v >= 0 for v in vals):  # negative or NaN: an evaluation error
-                    raise ValueError("separation_distance() of a negative argument")
-                return separation_distance(*vals)
-            n = self.plan.windows.get(id(node))
-            if f == "prev":
-                if t == 0:
-                    if len(args) == 2:
-                        return self.ev(args[1], 0)
-                    return False if self.plan.type_of(node).kind == "bool" else self.ev(args[0], 0)
-                return self.ev(args[0], t - 1)
-            if f == "held":
-                if t + 1 < n:
-                    return False
-                return all(self.ev(args[0], j) for j in range(t - n + 1, t + 1))
-            if f == "once":
-                return any(self.ev(args[0], j) for j in range(max(0, t - n + 1), t + 1))
-            if f == "since":
-                first = 0 if n is None else max(0, t - n + 1)
-                for j in range(first, t + 1):
-                    if self.ev(args[1], j) and all(self.ev(args[0], k) for k in range(j + 1, t + 1)):
-                        return True
-                return False
-        raise TypeError(node)  # pragma: no cover
+        """The value of ``node`` at cycle ``t`` of the history (:class:`_Semantics`)."""
+        return self._semantics.visit(node, t)
 
     def rob(self, node: Node, t: int) -> float:
         """Quantitative robustness of a condition at ``t`` (> 0 true, < 0 false, ±inf for boolean leaves)."""

@@ -44,7 +44,8 @@ import z3
 from ..compiler import plan_of
 from ..compiler._plan import RISK_NAME, Plan
 from ..compiler._risk_formula import risk_range
-from ..spec._expr import BINARY_OPS, Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance, walk
+from ..spec._expr import BINARY_OPS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance, walk
+from ..spec._visit import ExprVisitor
 
 __all__ = ["Unrolled", "FloatUnrolled", "float_value", "DecisionTrace", "RuleInfo", "decision_trace", "rules_of", "lookback", "real", "release_below",
            "risk_input_range", "z3_value"]
@@ -104,7 +105,7 @@ def lookback(plan: Plan, node: Node) -> int:
     return 0
 
 
-class Unrolled:
+class Unrolled(ExprVisitor):
     """z3 variables and expressions of one k-cycle trace of a plan (all inputs valid).
 
     Args:
@@ -163,81 +164,124 @@ class Unrolled:
         return got
 
     def _ev_new(self, node: Node, t: int) -> z3.ExprRef:
-        plan = self.plan
-        if isinstance(node, Num):
-            return real(node.value)
-        if isinstance(node, BoolLit):
-            return z3.BoolVal(node.value)
-        if isinstance(node, Name):
-            if node.id in plan.constants:
-                return real(plan.constants[node.id])
-            if node.id == RISK_NAME:
-                return self.R[t]
-            return self.sig[t][node.id]
-        if isinstance(node, Unary):
-            v = self.ev(node.operand, t)
-            return z3.Not(v) if node.op == "not" else -v
-        if isinstance(node, Binary):
-            a, b = self.ev(node.left, t), self.ev(node.right, t)
-            op = node.op
-            if op == "and":
-                return z3.And(a, b)
-            if op == "or":
-                return z3.Or(a, b)
-            if op == "implies":
-                return z3.Implies(a, b)
-            return BINARY_OPS[op][1](a, b)  # the parser's one table: the same call builds the z3 term
-        if isinstance(node, Call):
-            f, args = node.func, node.args
-            if f == "abs":
-                v = self.ev(args[0], t)
-                return z3.If(v >= 0, v, -v)
-            if f == "sqrt":
-                v = self.ev(args[0], t)
-                s = z3.Real(f"{self.prefix}sqrt#{id(node)}@{t}")
-                # s = sqrt(v) where defined; unconstrained otherwise (that case is a fault)
-                self._aux.append(z3.Implies(v >= 0, z3.And(s >= 0, s * s == v)))
-                return s
-            if f == "separation_distance":
-                # the same + and * as the monitor: linear in the signals while the times are
-                # constants (exact), a product of reals when a time is a signal (z3's nonlinear arithmetic)
-                return separation_distance(*(self.ev(a, t) for a in args))
-            if f in ("min", "max"):
-                vals = [self.ev(a, t) for a in args]
-                out = vals[0]
-                for v in vals[1:]:
-                    # Python's min/max keep the first of equal values; equal reals are equal
-                    out = z3.If(v < out, v, out) if f == "min" else z3.If(v > out, v, out)
-                return out
-            n = plan.windows.get(id(node))
-            if self.free_history:
-                lb = self._lb.get(id(node))
-                if lb is None:
-                    lb = self._lb[id(node)] = lookback(plan, node)
-                if t < lb:  # reads cycles before the window: any value a history could leave
-                    name = f"{self.prefix}hist#{id(node)}@{t}"
-                    return z3.Bool(name) if plan.type_of(node).kind == "bool" else z3.Real(name)
-                if f == "since" and n is None:  # since(t) = b(t) or (a(t) and since(t - 1))
-                    return z3.Or(self.ev(args[1], t), z3.And(self.ev(args[0], t), self.ev(node, t - 1)))
-            if f == "prev":
-                if t == 0:
-                    if len(args) == 2:
-                        return self.ev(args[1], 0)
-                    return z3.BoolVal(False) if plan.type_of(node).kind == "bool" else self.ev(args[0], 0)
-                return self.ev(args[0], t - 1)
-            if f == "held":
-                if t + 1 < n:
-                    return z3.BoolVal(False)
-                return z3.And([self.ev(args[0], j) for j in range(t - n + 1, t + 1)])
-            if f == "once":
-                return z3.Or([self.ev(args[0], j) for j in range(max(0, t - n + 1), t + 1)])
-            if f == "since":
-                first = 0 if n is None else max(0, t - n + 1)
-                terms = []
-                for j in range(first, t + 1):
-                    terms.append(z3.And([self.ev(args[1], j)] + [self.ev(args[0], m) for m in range(j + 1, t + 1)]))
-                return z3.Or(terms)
-        raise TypeError(f"cannot encode {node!r}")  # pragma: no cover
+        return self.visit(node, t)
+
+    # the z3 back-end of the interpreter protocol: each visit_*(node, t) is the node's term at cycle t
+    def visit_num(self, node: Num, t: int) -> z3.ExprRef:
+        return real(node.value)
+
+    def visit_bool(self, node: BoolLit, t: int) -> z3.ExprRef:
+        return z3.BoolVal(node.value)
+
+    def visit_name(self, node: Name, t: int) -> z3.ExprRef:
+        if node.id in self.plan.constants:
+            return real(self.plan.constants[node.id])
+        if node.id == RISK_NAME:
+            return self.R[t]
+        return self.sig[t][node.id]
+
+    def visit_neg(self, node: Unary, t: int) -> z3.ExprRef:
+        return -self.ev(node.operand, t)
+
+    def visit_not(self, node: Unary, t: int) -> z3.ExprRef:
+        return z3.Not(self.ev(node.operand, t))
+
+    def _apply(self, node: Binary, t: int) -> z3.ExprRef:
+        """The parser's one table: the same ``operator`` call builds the z3 term."""
+        return BINARY_OPS[node.op][1](self.ev(node.left, t), self.ev(node.right, t))
+
+    visit_lt = visit_le = visit_gt = visit_ge = visit_eq = visit_ne = _apply
+    visit_add = visit_sub = visit_mul = visit_div = _apply
+
+    def visit_and(self, node: Binary, t: int) -> z3.ExprRef:
+        return z3.And(self.ev(node.left, t), self.ev(node.right, t))
+
+    def visit_or(self, node: Binary, t: int) -> z3.ExprRef:
+        return z3.Or(self.ev(node.left, t), self.ev(node.right, t))
+
+    def visit_implies(self, node: Binary, t: int) -> z3.ExprRef:
+        return z3.Implies(self.ev(node.left, t), self.ev(node.right, t))
+
+    def visit_abs(self, node: Call, t: int) -> z3.ExprRef:
+        v = self.ev(node.args[0], t)
+        return z3.If(v >= 0, v, -v)
+
+    def visit_sqrt(self, node: Call, t: int) -> z3.ExprRef:
+        v = self.ev(node.args[0], t)
+        s = z3.Real(f"{self.prefix}sqrt#{id(node)}@{t}")
+        # s = sqrt(v) where defined; unconstrained otherwise (that case is a fault)
+        self._aux.append(z3.Implies(v >= 0, z3.And(s >= 0, s * s == v)))
+        return s
+
+    def visit_separation_distance(self, node: Call, t: int) -> z3.ExprRef:
+        # the same + and * as the monitor: linear in the signals while the times are
+        # constants (exact), a product of reals when a time is a signal (z3's nonlinear arithmetic)
+        return separation_distance(*(self.ev(a, t) for a in node.args))
+
+    def _extremum(self, node: Call, t: int) -> z3.ExprRef:
+        vals = [self.ev(a, t) for a in node.args]
+        out = vals[0]
+        for v in vals[1:]:
+            # Python's min/max keep the first of equal values; equal reals are equal
+            out = z3.If(v < out, v, out) if node.func == "min" else z3.If(v > out, v, out)
+        return out
+
+    visit_min = visit_max = _extremum
+
+    # -- temporal operators, unrolled from their definitions --------------------------
+    def _history(self, node: Call, t: int) -> z3.ExprRef | None:
+        """With ``free_history``: the term of a temporal node whose look-back reaches before the first
+        encoded cycle (any value a history could leave), else ``None``."""
+        if not self.free_history:
+            return None
+        lb = self._lb.get(id(node))
+        if lb is None:
+            lb = self._lb[id(node)] = lookback(self.plan, node)
+        if t < lb:  # reads cycles before the window: any value a history could leave
+            name = f"{self.prefix}hist#{id(node)}@{t}"
+            return z3.Bool(name) if self.plan.type_of(node).kind == "bool" else z3.Real(name)
+        return None
+
+    def visit_prev(self, node: Call, t: int) -> z3.ExprRef:
+        free = self._history(node, t)
+        if free is not None:
+            return free
+        args = node.args
+        if t == 0:
+            if len(args) == 2:
+                return self.ev(args[1], 0)
+            return z3.BoolVal(False) if self.plan.type_of(node).kind == "bool" else self.ev(args[0], 0)
+        return self.ev(args[0], t - 1)
+
+    def visit_held(self, node: Call, t: int) -> z3.ExprRef:
+        free = self._history(node, t)
+        if free is not None:
+            return free
+        n = self.plan.windows[id(node)]
+        if t + 1 < n:
+            return z3.BoolVal(False)
+        return z3.And([self.ev(node.args[0], j) for j in range(t - n + 1, t + 1)])
+
+    def visit_once(self, node: Call, t: int) -> z3.ExprRef:
+        free = self._history(node, t)
+        if free is not None:
+            return free
+        n = self.plan.windows[id(node)]
+        return z3.Or([self.ev(node.args[0], j) for j in range(max(0, t - n + 1), t + 1)])
+
+    def visit_since(self, node: Call, t: int) -> z3.ExprRef:
+        free = self._history(node, t)
+        if free is not None:
+            return free
+        a, b = node.args[0], node.args[1]
+        n = self.plan.windows.get(id(node))
+        if self.free_history and n is None:  # since(t) = b(t) or (a(t) and since(t - 1))
+            return z3.Or(self.ev(b, t), z3.And(self.ev(a, t), self.ev(node, t - 1)))
+        first = 0 if n is None else max(0, t - n + 1)
+        terms = []
+        for j in range(first, t + 1):
+            terms.append(z3.And([self.ev(b, j)] + [self.ev(a, m) for m in range(j + 1, t + 1)]))
+        return z3.Or(terms)
 
     # -- definedness ---------------------------------------------------------------
     def defined(self, node: Node, t: int) -> z3.BoolRef:
@@ -264,7 +308,7 @@ class Unrolled:
                 return z3.And(da, db, self._nonzero(self.ev(node.right, t)))
             return z3.And(da, db)
         if isinstance(node, Call):
-            if node.func in ("prev", "held", "once", "since"):
+            if node.func in TEMPORAL:
                 return z3.BoolVal(True)
             ds = [self.defined(a, t) for a in node.args]
             if node.func == "sqrt":
@@ -289,7 +333,7 @@ class Unrolled:
 
     def temporal_nodes(self, root: Node) -> list[Call]:
         """Temporal calls inside ``root`` (each has its arguments evaluated every cycle)."""
-        return [n for n in walk(root) if isinstance(n, Call) and n.func in ("prev", "held", "once", "since")]
+        return [n for n in walk(root) if isinstance(n, Call) and n.func in TEMPORAL]
 
     def obligation_defined(self, ob, t: int) -> z3.BoolRef:
         """Evaluating obligation ``ob`` at ``t`` raises nothing (its temporal updates included)."""
@@ -422,39 +466,45 @@ class FloatUnrolled(Unrolled):
             self.R.append(r)
             self.domain += bounded(r, rlo, rhi)
 
-    def _ev_new(self, node: Node, t: int) -> z3.ExprRef:
-        plan = self.plan
-        if isinstance(node, Num):
-            return _fpv(node.value)
-        if isinstance(node, Name) and node.id in plan.constants:
-            return _fpv(plan.constants[node.id])
-        if isinstance(node, Unary) and node.op != "not":
-            return z3.fpNeg(self.ev(node.operand, t))
-        if isinstance(node, Binary) and node.op not in ("and", "or", "implies"):
-            a, b = self.ev(node.left, t), self.ev(node.right, t)
-            op = node.op
-            if op == "+":
-                return z3.fpAdd(_RNE, a, b)
-            if op == "-":
-                return z3.fpSub(_RNE, a, b)
-            if op == "*":
-                return z3.fpMul(_RNE, a, b)
-            if op == "/":
-                return z3.fpDiv(_RNE, a, b)
-            if op == "==":
-                return z3.fpEQ(a, b)  # IEEE: -0.0 == 0.0, NaN == NaN is false (z3's = is not)
-            if op == "!=":
-                return z3.Not(z3.fpEQ(a, b))
-            return BINARY_OPS[op][1](a, b)  # <, <=, >, >=: z3's fp.lt & co., false on NaN as in Python
-        if isinstance(node, Call):
-            f, args = node.func, node.args
-            if f == "abs":
-                return z3.fpAbs(self.ev(args[0], t))
-            if f == "sqrt":
-                return z3.fpSqrt(_RNE, self.ev(args[0], t))
-            if f == "separation_distance":
-                return separation_distance(*(_F(self.ev(a, t)) for a in args)).e
-        return super()._ev_new(node, t)
+    # the protocol's methods whose double arithmetic differs from the reals (the rest are Unrolled's)
+    def visit_num(self, node: Num, t: int) -> z3.ExprRef:
+        return _fpv(node.value)
+
+    def visit_name(self, node: Name, t: int) -> z3.ExprRef:
+        if node.id in self.plan.constants:
+            return _fpv(self.plan.constants[node.id])
+        return super().visit_name(node, t)
+
+    def visit_neg(self, node: Unary, t: int) -> z3.ExprRef:
+        return z3.fpNeg(self.ev(node.operand, t))
+
+    def visit_add(self, node: Binary, t: int) -> z3.ExprRef:
+        return z3.fpAdd(_RNE, self.ev(node.left, t), self.ev(node.right, t))
+
+    def visit_sub(self, node: Binary, t: int) -> z3.ExprRef:
+        return z3.fpSub(_RNE, self.ev(node.left, t), self.ev(node.right, t))
+
+    def visit_mul(self, node: Binary, t: int) -> z3.ExprRef:
+        return z3.fpMul(_RNE, self.ev(node.left, t), self.ev(node.right, t))
+
+    def visit_div(self, node: Binary, t: int) -> z3.ExprRef:
+        return z3.fpDiv(_RNE, self.ev(node.left, t), self.ev(node.right, t))
+
+    def visit_eq(self, node: Binary, t: int) -> z3.ExprRef:
+        return z3.fpEQ(self.ev(node.left, t), self.ev(node.right, t))  # IEEE: -0.0 == 0.0, NaN == NaN is false
+
+    def visit_ne(self, node: Binary, t: int) -> z3.ExprRef:
+        return z3.Not(z3.fpEQ(self.ev(node.left, t), self.ev(node.right, t)))
+    # <, <=, >, >=: Unrolled's BINARY_OPS call builds z3's fp.lt & co., false on NaN as in Python
+
+    def visit_abs(self, node: Call, t: int) -> z3.ExprRef:
+        return z3.fpAbs(self.ev(node.args[0], t))
+
+    def visit_sqrt(self, node: Call, t: int) -> z3.ExprRef:
+        return z3.fpSqrt(_RNE, self.ev(node.args[0], t))
+
+    def visit_separation_distance(self, node: Call, t: int) -> z3.ExprRef:
+        return separation_distance(*(_F(self.ev(a, t)) for a in node.args)).e
 
     @staticmethod
     def _nonzero(v):
