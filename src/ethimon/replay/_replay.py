@@ -14,7 +14,8 @@ import numpy as np
 
 from ..errors import SpecError
 from ..spec import Response, Spec
-from ._bag import BagData, BagError, Series, read_bag
+from ._bag import BagData, BagError, read_bag
+from ._collect import Series
 from ._verdicts import CycleResults, check_columns
 from ._mapping import RISK_INPUTS, Mapping, check_against_spec, lint_mapping, load_mapping
 from ._resample import MISSING, OK, STALE, cycle_grid, hold, judged
