@@ -30,7 +30,10 @@ from ._mapping import (Mapping, SignalMap, TaskMap, check_against_spec, lint_map
                        load_mapping_text, mapping_json_schema)
 from ._mcap import write_mcap
 from ._record import ReplayReport, replay_paths
-from ._replay import BagReplay, CheckResult, TaskScorer, replay_bag, replay_data, resample
+from ._columns import resample
+from ._replay import replay_bag, replay_data
+from ._result import BagReplay, CheckResult
+from ._scoring import TaskScorer
 from ._resample import cycle_grid, hold
 from ._topics import TopicInfo, list_topics
 
