@@ -16,7 +16,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "ethimon"
 PRIVATE_INTERNAL = {
     ("spec/_model.py", "_LocError"),        # a pydantic validator's ValueError, turned into a SpecError by the loader
     ("scenario/_session.py", "_SpecLoadError"),  # wraps a spec's error so the row names the spec; unwrapped there
-    ("risk/_onnx.py", "_NoGraph"),          # "no ONNX form here": load_estimator falls back to torch or raises ModelError
+    ("risk/_onnx_build.py", "_NoGraph"),    # "no ONNX form here": load_estimator falls back to torch or raises ModelError
 }
 
 

@@ -133,7 +133,7 @@ INTERNAL_REACHES: dict[str, tuple[set[str], str]] = {
     "sim._arm": ({"gym"}, "the Panda cell env drives the simulated arm directly"),
     "verify._policy": ({"_lint"}, "lint's release-policy warnings (no z3)"),
     "replay._record": ({"cli", "fleet"}, "one bag's record, shared by the serial loop and the Ray workers"),
-    "replay._bag": ({"ros2"}, "reduce_value: live samples become numbers exactly as a bag's do"),
+    "replay._values": ({"ros2"}, "reduce_value: live samples become numbers exactly as a bag's do"),
     "replay._mapping": ({"ros2"}, "RISK_INPUTS and parse_field_path of the one mapping format"),
     "scenario._session": ({"fleet"}, "the skipped-file rows of a check report"),
 }

@@ -21,17 +21,10 @@ MAX_FUNCTION_LINES = 150
 LONG_FUNCTIONS: dict[str, str] = {
     "runtime/_monitor.py::Monitor.step": "the hot path: one allocation-light pass per cycle, kept in one "
                                          "piece on purpose (issue 24 names it as the one exception)",
-    "risk/_train.py::train_lora": "train_lora(recipe) is another part of issue 24 (not this one)",
 }
 
-_OTHERS = "another engineer's part of issue 24 (or their area) splits it; not touched by the rooms part"
 #: files allowed past MAX_FILE_LINES: path -> why
 LONG_FILES: dict[str, str] = {
-    "runtime/_monitor.py": _OTHERS + " (the hot path; Plan resolution, item 1)",
-    "loop/_governed.py": _OTHERS + " (loop: hardening)",
-    "replay/_bag.py": _OTHERS + " (replay_paths, item 4's replay part)",
-    "replay/_replay.py": _OTHERS + " (replay_paths, item 4's replay part)",
-    "risk/_onnx.py": _OTHERS + " (ONNX back-end)",
 }
 
 

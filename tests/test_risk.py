@@ -48,13 +48,14 @@ def _write_tiny_base(d: Path, seed: int = 0) -> Path:
 @pytest.fixture(scope="module")
 def tiny(tmp_path_factory):
     """(base_dir, adapter_dir) built once: a tiny BERT and a 3-step LoRA adapter on it."""
+    from ethimon.risk._recipe import Recipe
     from ethimon.risk._train import train_lora
     root = tmp_path_factory.mktemp("risk")
     base = _write_tiny_base(root / "base")
     ys = [1, 0, 1, 0, 1, 0]
-    train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=base, out_dir=root / "adapter", epochs=1,
-               batch_size=2, r=4, alpha=8, max_length=32, seed=0, progress=False,
-               log=lambda m: None, num_threads=1)
+    train_lora(TEXTS, ys, TEXTS[:4], ys[:4], Recipe(epochs=1, batch_size=2, lora_r=4, lora_alpha=8, max_length=32,
+                                                    seed=0),
+               base_dir=base, out_dir=root / "adapter", progress=False, log=lambda m: None, num_threads=1)
     return base, root / "adapter"
 
 
@@ -259,6 +260,7 @@ def _write_tiny_distilbert(d: Path, cls=None) -> Path:
 @pytest.mark.slow
 def test_distilbert_is_first_class(tmp_path):
     """DistilBERT as in the paper: a fine-tuned classification dir loads; LoRA training on a base works."""
+    from ethimon.risk._recipe import Recipe
     from ethimon.risk._train import train_lora
     hf = _write_tiny_distilbert(tmp_path / "clf", transformers.DistilBertForSequenceClassification)
     e = load_estimator(hf, max_length=32, cache_size=0, jit=True, backend="torch")
@@ -267,9 +269,9 @@ def test_distilbert_is_first_class(tmp_path):
     assert e.probs(TEXTS[1]) == pytest.approx(eager.probs(TEXTS[1]), abs=1e-5)
     base = _write_tiny_distilbert(tmp_path / "base")
     ys = [1, 0, 1, 0, 1, 0]
-    s = train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=base, out_dir=tmp_path / "ad", epochs=1,
-                   batch_size=3, r=2, alpha=4, max_length=24, seed=0, progress=False,
-                   log=lambda m: None, num_threads=1)
+    s = train_lora(TEXTS, ys, TEXTS[:4], ys[:4], Recipe(epochs=1, batch_size=3, lora_r=2, lora_alpha=4,
+                                                        max_length=24, seed=0),
+                   base_dir=base, out_dir=tmp_path / "ad", progress=False, log=lambda m: None, num_threads=1)
     man = json.loads((tmp_path / "ad" / "ethimon_model.json").read_text())
     assert len(man["lora"]["targets"]) == 2 * 6 and all(".layer." in t for t in man["lora"]["targets"])
     assert s["best_epoch"] == 1
@@ -297,32 +299,60 @@ def test_missing_base_package_names_pip(monkeypatch):
 
 @pytest.mark.slow
 def test_training_is_seeded(tiny, tmp_path):
+    from ethimon.risk._recipe import Recipe
     from ethimon.risk._train import train_lora
     ys = [1, 0, 1, 0, 1, 0]
     shas = []
     for k in range(2):
-        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=tiny[0], out_dir=tmp_path / f"r{k}",
-                   epochs=2, batch_size=3, r=2, alpha=4, max_length=24, seed=7, progress=False,
-                   log=lambda m: None, num_threads=1)
+        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], Recipe(epochs=2, batch_size=3, lora_r=2, lora_alpha=4,
+                                                        max_length=24, seed=7),
+                   base_dir=tiny[0], out_dir=tmp_path / f"r{k}", progress=False, log=lambda m: None, num_threads=1)
         shas.append(json.loads((tmp_path / f"r{k}" / "ethimon_model.json").read_text())["adapter_sha256"])
         m = json.loads((tmp_path / f"r{k}" / "metrics.json").read_text())
         assert len(m["history"]) >= 1 and m["best_epoch"] >= 1
     assert shas[0] == shas[1]
 
 
+
+@pytest.mark.slow
+def test_train_lora_keyword_form_is_deprecated_and_trains_as_its_recipe(tiny, tmp_path):
+    """Issue 24: the hyper-parameter keywords still work for one release, with a DeprecationWarning; they
+    become a recipe with that form's defaults (max_length 128, head_lr 2e-3, lr as given), so the adapter
+    is byte for byte the one the recipe form trains."""
+    from ethimon.risk._recipe import Recipe
+    from ethimon.risk._train import recipe_from_keywords, train_lora
+    ys = [1, 0, 1, 0, 1, 0]
+    kw = dict(epochs=1, batch_size=3, r=2, alpha=4, seed=5, lr=1e-3)
+    run = dict(base_dir=tiny[0], progress=False, log=lambda m: None, num_threads=1)
+    with pytest.warns(DeprecationWarning, match="Recipe"):
+        old = train_lora(TEXTS, ys, TEXTS[:4], ys[:4], out_dir=tmp_path / "kw", **run, **kw)
+    recipe = Recipe(epochs=1, batch_size=3, lora_r=2, lora_alpha=4, seed=5, lr=1e-3, head_lr=2e-3, max_length=128)
+    assert recipe_from_keywords(**kw).encoder_lr_used() == recipe.encoder_lr_used() == 1e-3
+    new = train_lora(TEXTS, ys, TEXTS[:4], ys[:4], recipe, out_dir=tmp_path / "rc", **run)
+    sha = [json.loads((tmp_path / d / "ethimon_model.json").read_text())["adapter_sha256"] for d in ("kw", "rc")]
+    assert sha[0] == sha[1]
+    assert {k: v for k, v in old["config"].items()} == new["config"]
+    with pytest.raises(TypeError, match="epochs"):  # a recipe and keywords: which one counts?
+        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], recipe, out_dir=tmp_path / "x", epochs=2, **run)
+    with pytest.warns(DeprecationWarning), pytest.raises(TypeError, match="unexpected keyword argument 'rank'"):
+        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], out_dir=tmp_path / "x", rank=2, **run)
+    assert not (tmp_path / "x").exists()
+
 @pytest.mark.slow
 def test_init_seed_fixes_the_starting_point_only(tiny, tmp_path):
     """lr 0: the saved adapter is the initial one. init_seed=42 starts where seed=42 starts."""
     from safetensors.torch import load_file
 
+    from ethimon.risk._recipe import Recipe
     from ethimon.risk._train import train_lora
     ys = [1, 0, 1, 0, 1, 0]
     aux = [("other", ["I took the money.", "Put the fork in the drawer."] * 3, [1, 0] * 3)]
     got = {}
     for tag, kw in {"s42": dict(seed=42), "i42s7": dict(seed=7, init_seed=42), "s7": dict(seed=7)}.items():
-        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=tiny[0], out_dir=tmp_path / tag, epochs=1,
-                   batch_size=3, r=2, alpha=4, max_length=24, lr=0.0, head_lr=0.0, progress=False,
-                   log=lambda m: None, num_threads=1, aux_tasks=aux, **kw)
+        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], Recipe(epochs=1, batch_size=3, lora_r=2, lora_alpha=4,
+                                                        max_length=24, lr=0.0, head_lr=0.0, **kw),
+                   base_dir=tiny[0], out_dir=tmp_path / tag, progress=False, log=lambda m: None, num_threads=1,
+                   aux_tasks=aux)
         got[tag] = load_file(str(tmp_path / tag / "adapter.safetensors"))
     assert all(torch.equal(got["s42"][k], got["i42s7"][k]) for k in got["s42"])
     assert not all(torch.equal(got["s42"][k], got["s7"][k]) for k in got["s42"])
@@ -332,15 +362,17 @@ def test_init_seed_fixes_the_starting_point_only(tiny, tmp_path):
 def test_auxiliary_tasks_share_the_encoder_but_only_the_main_head_is_saved(tiny, tmp_path):
     from safetensors.torch import load_file
 
+    from ethimon.risk._recipe import Recipe
     from ethimon.risk._train import train_lora
     ys = [1, 0, 1, 0, 1, 0]
     aux = [("other", ["I took the money.", "Put the fork in the drawer."] * 3, [1, 0] * 3)]
     shas = []
     for k, tasks in enumerate([None, aux, aux]):
         out = tmp_path / f"a{k}"
-        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=tiny[0], out_dir=out, epochs=1,
-                   batch_size=4, r=2, alpha=4, max_length=24, seed=3, progress=False,
-                   log=lambda m: None, num_threads=1, aux_tasks=tasks, aux_weight=0.5)
+        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], Recipe(epochs=1, batch_size=4, lora_r=2, lora_alpha=4,
+                                                        max_length=24, seed=3, aux_weight=0.5),
+                   base_dir=tiny[0], out_dir=out, progress=False, log=lambda m: None, num_threads=1,
+                   aux_tasks=tasks)
         shas.append(json.loads((out / "ethimon_model.json").read_text())["adapter_sha256"])
         heads = [k for k in load_file(str(out / "adapter.safetensors")) if k.startswith("head")]
         assert sorted(heads) == ["head.bias", "head.weight"]
@@ -416,11 +448,12 @@ def test_model_files_are_readable_like_any_file(tiny, tmp_path):
     """adapter.safetensors was written 0600 (safetensors' private temp file): a service could not read it."""
     old = os.umask(0o022)
     try:
+        from ethimon.risk._recipe import Recipe
         from ethimon.risk._train import train_lora
         ys = [1, 0, 1, 0, 1, 0]
-        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=tiny[0], out_dir=tmp_path / "m", epochs=1,
-                   batch_size=2, r=2, alpha=4, max_length=32, seed=0, progress=False,
-                   log=lambda m: None, num_threads=1)
+        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], Recipe(epochs=1, batch_size=2, lora_r=2, lora_alpha=4,
+                                                        max_length=32, seed=0),
+                   base_dir=tiny[0], out_dir=tmp_path / "m", progress=False, log=lambda m: None, num_threads=1)
     finally:
         os.umask(old)
     for name in ("adapter.safetensors", "ethimon_model.json", "metrics.json"):
@@ -589,12 +622,13 @@ def test_cli_train_tiny(tiny, tmp_path, capsys):
 
 # ---------------------------------------------------------------- averaging runs
 def _two_runs(tiny, root):
+    from ethimon.risk._recipe import Recipe
     from ethimon.risk._train import train_lora
     ys = [1, 0, 1, 0, 1, 0]
     for seed, r in ((11, 4), (12, 2)):  # different seeds and ranks
-        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=tiny[0], out_dir=root / f"s{seed}", epochs=2,
-                   batch_size=2, r=r, alpha=3.0 * r, max_length=32, seed=seed, progress=False,
-                   log=lambda m: None, num_threads=1, lr=5e-3)
+        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], Recipe(epochs=2, batch_size=2, lora_r=r, lora_alpha=3.0 * r,
+                                                        max_length=32, seed=seed, lr=5e-3, head_lr=2e-3),
+                   base_dir=tiny[0], out_dir=root / f"s{seed}", progress=False, log=lambda m: None, num_threads=1)
     return root / "s11", root / "s12"
 
 
@@ -671,20 +705,21 @@ def test_average_fits_temperature_on_calibration_rows(tiny, tmp_path):
 @pytest.mark.slow
 def test_average_refuses_what_cannot_be_averaged(tiny, tmp_path):
     from ethimon.risk._average import average_runs
+    from ethimon.risk._recipe import Recipe
     from ethimon.risk._train import train_lora
     a, _ = _two_runs(tiny, tmp_path)
     with pytest.raises(ModelError, match="at least two"):
         average_runs([a], tmp_path / "x")
     other_base = _write_tiny_base(tmp_path / "base2", seed=5)
     ys = [1, 0, 1, 0, 1, 0]
-    train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=other_base, out_dir=tmp_path / "o", epochs=1,
-               batch_size=3, r=2, alpha=4, max_length=32, seed=0, progress=False, log=lambda m: None,
-               num_threads=1)
+    train_lora(TEXTS, ys, TEXTS[:4], ys[:4], Recipe(epochs=1, batch_size=3, lora_r=2, lora_alpha=4, max_length=32,
+                                                    seed=0),
+               base_dir=other_base, out_dir=tmp_path / "o", progress=False, log=lambda m: None, num_threads=1)
     with pytest.raises(ModelError, match=r"o: base(_sha256)? .*differs"):
         average_runs([a, tmp_path / "o"], tmp_path / "x")
-    train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=tiny[0], out_dir=tmp_path / "l", epochs=1,
-               batch_size=3, r=2, alpha=4, max_length=24, seed=0, progress=False, log=lambda m: None,
-               num_threads=1)
+    train_lora(TEXTS, ys, TEXTS[:4], ys[:4], Recipe(epochs=1, batch_size=3, lora_r=2, lora_alpha=4, max_length=24,
+                                                    seed=0),
+               base_dir=tiny[0], out_dir=tmp_path / "l", progress=False, log=lambda m: None, num_threads=1)
     with pytest.raises(ModelError, match="max_length"):
         average_runs([a, tmp_path / "l"], tmp_path / "x")
     assert average_runs([a, tmp_path / "l"], tmp_path / "x", max_length=24)["max_length"] == 24

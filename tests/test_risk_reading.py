@@ -119,13 +119,14 @@ def _tiny_base(d: Path) -> Path:
 
 @pytest.fixture(scope="module")
 def tiny(tmp_path_factory):
+    from ethimon.risk._recipe import Recipe
     from ethimon.risk._train import train_lora
     root = tmp_path_factory.mktemp("reading")
     base = _tiny_base(root / "base")
     ys = [1, 0, 1, 0, 1, 0]
-    train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=base, out_dir=root / "adapter", epochs=2,
-               batch_size=2, r=4, alpha=8, max_length=48, seed=0, progress=False, log=lambda m: None,
-               num_threads=1, lr=5e-3, head_lr=2e-2)
+    train_lora(TEXTS, ys, TEXTS[:4], ys[:4], Recipe(epochs=2, batch_size=2, lora_r=4, lora_alpha=8, max_length=48,
+                                                    seed=0, lr=5e-3, head_lr=2e-2),
+               base_dir=base, out_dir=root / "adapter", progress=False, log=lambda m: None, num_threads=1)
     return base, root / "adapter"
 
 
@@ -240,12 +241,13 @@ def test_cli_risk_explain(tiny, capsys):
 @pytest.mark.slow
 def test_full_finetuning_saves_an_exact_full_rank_adapter(tiny, tmp_path):
     from ethimon.risk import _backend as B
+    from ethimon.risk._recipe import Recipe
     from ethimon.risk._train import train_lora
     base = tiny[0]
     ys = [1, 0, 1, 0, 1, 0]
-    s = train_lora(TEXTS, ys, TEXTS[:4], ys[:4], base_dir=base, out_dir=tmp_path / "full", epochs=1,
-                   batch_size=2, max_length=32, seed=0, progress=False, log=lambda m: None,
-                   num_threads=1, lr=1e-3, full=True)
+    s = train_lora(TEXTS, ys, TEXTS[:4], ys[:4], Recipe(epochs=1, batch_size=2, max_length=32, seed=0,
+                                                        encoder_lr=1e-3, full_finetune=True),
+                   base_dir=base, out_dir=tmp_path / "full", progress=False, log=lambda m: None, num_threads=1)
     assert s["config"]["full"] is True
     man = json.loads((tmp_path / "full" / "ethimon_model.json").read_text())
     assert man["format"] == "ethimon-lora/1" and man["lora"]["r"] == 32 and man["lora"]["alpha"] == 32

@@ -57,6 +57,7 @@ def main() -> None:
     import torch
     torch.set_num_threads(2)
     from ethimon.risk import _backend as B
+    from ethimon.risk._recipe import Recipe
     from ethimon.risk._train import train_lora
 
     e_tr, e_va, _ = D.ethics_splits()
@@ -99,14 +100,15 @@ def main() -> None:
           f"aux {[(n, len(t)) for n, t, _ in aux]}", flush=True)
     base = B.base_package_dir()
     t0 = time.time()
-    s = train_lora(tr.texts, tr.labels, va.texts, va.labels, base_dir=base, out_dir=a.out,
-                   base_ref={"package": B.BASE_PACKAGE}, train_weights=w, epochs=a.epochs, lr=a.lr,
-                   r=a.r, alpha=2.0 * a.r, max_length=a.max_length, truncation=a.truncation,
-                   seed=a.seed, init_seed=a.init_seed, max_steps=a.max_steps, name="ethimon-minilm-l6-lora",
+    # lr as given (no FULL_LR_FACTOR under --full) and head_lr 2e-3: what this script always trained with
+    recipe = Recipe(epochs=a.epochs, lr=a.lr, encoder_lr=a.lr, head_lr=2e-3, lora_r=a.r, lora_alpha=2.0 * a.r,
+                    max_length=a.max_length, truncation=a.truncation, seed=a.seed, init_seed=a.init_seed,
+                    max_steps=a.max_steps, aux_weight=a.aux_weight, pair_weight=a.pair_weight,
+                    pair_margin=a.pair_margin, pairs_per_step=a.pairs_per_step, full_finetune=a.full)
+    s = train_lora(tr.texts, tr.labels, va.texts, va.labels, recipe, base_dir=base, out_dir=a.out,
+                   base_ref={"package": B.BASE_PACKAGE}, train_weights=w, name="ethimon-minilm-l6-lora",
                    num_threads=2, progress=False,
-                   log=lambda m: print(m, flush=True), aux_tasks=aux, aux_weight=a.aux_weight,
-                   init_from=a.init_from, pairs=pairs, pair_weight=a.pair_weight, pair_margin=a.pair_margin,
-                   pairs_per_step=a.pairs_per_step, full=a.full,
+                   log=lambda m: print(m, flush=True), aux_tasks=aux, init_from=a.init_from, pairs=pairs,
                    extra_meta={"writers": wids, "val_writers": vids, "ethics_only": a.ethics_only, "robot_only": a.robot_only,
                                "robot_weight": a.robot_weight, "aux": a.aux, "aux_n": a.aux_n,
                                "natural": a.natural, "natural_weight": a.natural_weight, "ethics_n": a.ethics_n,

@@ -274,13 +274,14 @@ def _print_explain(why: dict) -> None:
 
 def cmd_train(args: argparse.Namespace) -> int:
     try:
-        from ..risk._recipe import Recipe, train_recipe
+        from ..risk._recipe import Recipe  # no torch until the options are checked
         recipe = Recipe(data=tuple(args.data), extra_train=tuple(args.extra_train), aux=tuple(args.aux),
                         aux_rows=args.aux_rows, base=args.base, epochs=args.epochs, lr=args.lr,
                         batch_size=args.batch_size, lora_r=args.lora_r, max_length=args.max_length,
                         truncation=args.truncation, val_frac=args.val_frac, patience=args.patience,
                         seed=args.seed, init_seed=args.init_seed, full_finetune=args.full)
         recipe.check()
+        from ..risk._train import train_recipe
         s = train_recipe(recipe, args.out, num_threads=_threads(args, args.batch_size),
                          progress=_isatty(sys.stdout))
     except (EthimonError, ValueError, OSError) as exc:

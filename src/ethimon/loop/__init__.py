@@ -8,8 +8,9 @@ the audit trail, and reloads specs (refusing one that :func:`weakenings` finds
 weaker unless asked, optionally gated by the SMT proofs).
 """
 
-from ._governed import GovernedLoop, ReloadResult
+from ._governed import GovernedLoop
 from ._process import ProcessEstimator
+from ._reload import ReloadResult
 from ._source import AsyncJudgeSource, AsyncRiskSource, RiskReading
 from ._stats import LoopStats
 from ._watchdog import Watchdog

@@ -23,14 +23,19 @@ topics to write a mapping from; :func:`replay_paths` replays many bags as
 
 from __future__ import annotations
 
-from ._bag import BagData, BagError, Series, TopicInfo, list_topics, read_bag
+from ._bag import BagData, BagError, read_bag
+from ._collect import Series
 from ._verdicts import CycleResults, check_columns
 from ._mapping import (Mapping, SignalMap, TaskMap, check_against_spec, lint_mapping, load_mapping,
                        load_mapping_text, mapping_json_schema)
 from ._mcap import write_mcap
 from ._record import ReplayReport, replay_paths
-from ._replay import BagReplay, CheckResult, TaskScorer, replay_bag, replay_data, resample
+from ._columns import resample
+from ._replay import replay_bag, replay_data
+from ._result import BagReplay, CheckResult
+from ._scoring import TaskScorer
 from ._resample import cycle_grid, hold
+from ._topics import TopicInfo, list_topics
 
 __all__ = ["BagData", "BagError", "BagReplay", "CheckResult", "CycleResults", "Mapping", "ReplayReport", "Series",
            "SignalMap", "TaskMap", "TaskScorer", "TopicInfo", "check_against_spec", "check_columns", "cycle_grid",

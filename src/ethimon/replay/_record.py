@@ -105,7 +105,7 @@ def replay_paths(bags: Sequence[str | os.PathLike], spec: Any, mapping: Mapping,
     all bags (the model loads once)."""
     import time
 
-    from ._replay import TaskScorer
+    from ._scoring import TaskScorer
     t0 = time.perf_counter()
     names = [os.fspath(b) for b in bags]
     if score is None and p is None:

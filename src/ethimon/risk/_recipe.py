@@ -1,20 +1,17 @@
-"""The training recipe of ``ethimon train``: data mix, split and hyperparameters in one place.
+"""The training recipe: data mix, split and every hyper-parameter of a run in one place.
 
 ``ethimon train`` only parses its options into a :class:`Recipe` and calls
-:func:`train_recipe`; the defaults here are the command's defaults (those of
-the shipped model: 4 epochs, LoRA rank 16 with α = 2r, learning rate 5e-4 and
-4x that on the head, 256 tokens keeping head and tail, a seeded stratified
-80/20 split). Torch is imported only by :func:`train_recipe`.
+``_train.train_recipe``, which reads its data and hands the recipe to ``_train.train_lora``; the
+defaults here are the command's defaults (those of the shipped model: 4 epochs, LoRA rank 16 with
+α = 2r, learning rate 5e-4 and 4x that on the head, 256 tokens keeping head and tail, a seeded
+stratified 80/20 split). No torch here.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
-from pathlib import Path
-from typing import Any
 
-__all__ = ["Recipe", "train_recipe", "HEAD_LR_FACTOR", "ALPHA_PER_RANK", "FULL_LR_FACTOR"]
+__all__ = ["Recipe", "HEAD_LR_FACTOR", "ALPHA_PER_RANK", "FULL_LR_FACTOR"]
 
 #: the head learns this many times faster than the LoRA factors
 HEAD_LR_FACTOR = 4.0
@@ -40,6 +37,18 @@ class Recipe:
         full_finetune: train every weight matrix of the encoder's layers (at ``lr`` ×
             :data:`FULL_LR_FACTOR`) instead of LoRA factors; saved as an exact full-rank
             adapter in the same format (``lora_r`` is then unused).
+        head_lr: the heads' learning rate; ``None``: :data:`HEAD_LR_FACTOR` × ``lr``.
+        encoder_lr: the LoRA factors' (or, with ``full_finetune``, the matrices') learning rate;
+            ``None``: ``lr``, × :data:`FULL_LR_FACTOR` with ``full_finetune``.
+        lora_alpha: LoRA α; ``None``: :data:`ALPHA_PER_RANK` × ``lora_r``.
+        lora_dropout, pooling, weight_decay, warmup: dropout on the LoRA input, the sentence
+            pooling (``mean``/``cls``), AdamW's weight decay, the share of steps warming up.
+        max_steps: stop after this many optimiser steps (``None``: every epoch).
+        aux_weight: loss weight of the ``aux`` rows.
+        pair_weight, pair_margin, pairs_per_step: the pair-aware objective (``train_lora(pairs=...)``).
+
+    ``data``, ``extra_train``, ``aux``, ``aux_rows``, ``base`` and ``val_frac`` are read by
+    ``train_recipe``; ``train_lora`` takes its rows as arguments and reads the rest.
 
     >>> Recipe(data=("a.csv",)).check()
     >>> Recipe(data=("a.csv",), val_frac=1.0).check()
@@ -48,7 +57,7 @@ class Recipe:
     ValueError: --val-frac 1.0 must be between 0 and 1
     """
 
-    data: tuple[str, ...]
+    data: tuple[str, ...] = ()
     extra_train: tuple[str, ...] = ()
     aux: tuple[str, ...] = ()
     aux_rows: int = 2000
@@ -64,6 +73,33 @@ class Recipe:
     seed: int = 42
     init_seed: int | None = None
     full_finetune: bool = False
+    head_lr: float | None = None
+    encoder_lr: float | None = None
+    lora_alpha: float | None = None
+    lora_dropout: float = 0.05
+    pooling: str = "mean"
+    weight_decay: float = 0.01
+    warmup: float = 0.06
+    max_steps: int | None = None
+    aux_weight: float = 1.0
+    pair_weight: float = 0.0
+    pair_margin: float = 1.0
+    pairs_per_step: int = 8
+
+    def encoder_lr_used(self) -> float:
+        """The learning rate of what adapts the encoder: ``encoder_lr``, else ``lr`` (× :data:`FULL_LR_FACTOR`
+        with ``full_finetune``)."""
+        if self.encoder_lr is not None:
+            return self.encoder_lr
+        return self.lr * FULL_LR_FACTOR if self.full_finetune else self.lr
+
+    def head_lr_used(self) -> float:
+        """The heads' learning rate: ``head_lr``, else :data:`HEAD_LR_FACTOR` × ``lr``."""
+        return self.head_lr if self.head_lr is not None else HEAD_LR_FACTOR * self.lr
+
+    def lora_alpha_used(self) -> float:
+        """LoRA α: ``lora_alpha``, else :data:`ALPHA_PER_RANK` × ``lora_r``."""
+        return self.lora_alpha if self.lora_alpha is not None else ALPHA_PER_RANK * self.lora_r
 
     def check(self) -> None:
         """Raise :class:`ValueError` (naming the command-line option) for a value out of range."""
@@ -78,46 +114,3 @@ class Recipe:
         if self.truncation not in ("head", "head_tail"):
             raise ValueError(f"--truncation {self.truncation!r}: 'head' or 'head_tail' expected")
 
-
-def train_recipe(recipe: Recipe, out_dir: str | Path, *, num_threads: int | None = None,
-                 progress: bool = False, log: Callable[[str], Any] = print) -> dict:
-    """Load the recipe's data, split it, train a LoRA adapter into ``out_dir``; return the run summary.
-
-    ``log`` gets one line with the row counts before training starts, then one per epoch.
-
-    Raises:
-        ValueError: an option out of range (see :meth:`Recipe.check`).
-        EthimonError: a CSV or the base directory is unusable.
-    """
-    from ..errors import ModelError
-    from ._data import concat_rows, load_labelled_csv, stratified_split
-
-    recipe.check()
-    data = concat_rows([load_labelled_csv(p) for p in recipe.data])
-    extra = concat_rows([load_labelled_csv(p) for p in recipe.extra_train]) if recipe.extra_train else None
-    aux = []
-    for path in recipe.aux:
-        rows = load_labelled_csv(path, any_ethics_layout=True).sample(recipe.aux_rows, recipe.seed)
-        aux.append((Path(path).stem, rows.texts, rows.labels))
-    tr_idx, va_idx = stratified_split(data.labels, recipe.val_frac, recipe.seed)
-    tr, va = data.subset(tr_idx), data.subset(va_idx)
-    if extra is not None:
-        tr = concat_rows([tr, extra])
-    from . import _backend as B
-    from ._train import train_lora
-    if recipe.base:
-        base, ref = Path(recipe.base), {"path": str(Path(recipe.base).resolve())}
-        if not base.is_dir():
-            raise ModelError(f"base directory {recipe.base!r} does not exist")
-    else:
-        base, ref = B.base_package_dir(), {"package": B.BASE_PACKAGE}
-    log(f"train {len(tr)} rows, validation {len(va)} rows (dropped {data.dropped} unusable)"
-        + "".join(f"; aux {n}: {len(t)} rows" for n, t, _ in aux))
-    lr = recipe.lr * FULL_LR_FACTOR if recipe.full_finetune else recipe.lr
-    return train_lora(tr.texts, tr.labels, va.texts, va.labels, base_dir=base, out_dir=out_dir,
-                      base_ref=ref, epochs=recipe.epochs, lr=lr, head_lr=HEAD_LR_FACTOR * recipe.lr,
-                      full=recipe.full_finetune,
-                      batch_size=recipe.batch_size, r=recipe.lora_r, alpha=ALPHA_PER_RANK * recipe.lora_r,
-                      max_length=recipe.max_length, truncation=recipe.truncation, seed=recipe.seed,
-                      patience=recipe.patience, num_threads=num_threads, aux_tasks=aux,
-                      init_seed=recipe.init_seed, progress=progress, log=log)

@@ -14,10 +14,12 @@ import math
 import random
 import sys
 import time
+import warnings
 from pathlib import Path
 from typing import Any, Callable
 
 from . import _backend as B
+from ._recipe import Recipe
 from ._data import stratified_split  # noqa: F401 - re-exported for callers
 
 torch = B.torch
@@ -134,77 +136,65 @@ def _warm_start_merged(encoder, model, d: Path, base_dir: Path) -> None:
         raise B.ModelError(f"{adapter}: tensor missing or of the wrong shape for a warm start: {exc}") from None
 
 
-def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[str],
-               val_labels: list[int], *, base_dir: str | Path, out_dir: str | Path,
-               base_ref: dict | None = None, train_weights: list[float] | None = None,
-               epochs: int = 4, lr: float = 5e-4, head_lr: float = 2e-3, batch_size: int = 32,
-               r: int = 16, alpha: float = 32.0, lora_dropout: float = 0.05,
-               max_length: int = 128, truncation: str = "head_tail", pooling: str = "mean",
-               seed: int = 42, patience: int = 1, weight_decay: float = 0.01,
-               warmup: float = 0.06, max_steps: int | None = None, name: str = "ethimon-risk",
-               num_threads: int | None = None, progress: bool = True,
-               log: Callable[[str], Any] = print, extra_meta: dict | None = None,
-               aux_tasks: list[tuple[str, list[str], list[int]]] | None = None,
-               aux_weight: float = 1.0, init_seed: int | None = None,
-               init_from: str | Path | None = None, pairs: list[tuple[int, int]] | None = None,
-               pair_weight: float = 0.0, pair_margin: float = 1.0, pairs_per_step: int = 8,
-               full: bool = False) -> dict:
-    """Train a LoRA adapter + head; write an ethimon model directory to ``out_dir``.
+#: the keyword form of train_lora (deprecated): keyword -> (Recipe field, its default in that form)
+_OLD_KEYWORDS: dict[str, tuple[str, Any]] = {
+    "epochs": ("epochs", 4), "lr": ("lr", 5e-4), "head_lr": ("head_lr", 2e-3), "batch_size": ("batch_size", 32),
+    "r": ("lora_r", 16), "alpha": ("lora_alpha", 32.0), "lora_dropout": ("lora_dropout", 0.05),
+    "max_length": ("max_length", 128), "truncation": ("truncation", "head_tail"), "pooling": ("pooling", "mean"),
+    "seed": ("seed", 42), "patience": ("patience", 1), "weight_decay": ("weight_decay", 0.01),
+    "warmup": ("warmup", 0.06), "max_steps": ("max_steps", None), "aux_weight": ("aux_weight", 1.0),
+    "init_seed": ("init_seed", None), "pair_weight": ("pair_weight", 0.0), "pair_margin": ("pair_margin", 1.0),
+    "pairs_per_step": ("pairs_per_step", 8), "full": ("full_finetune", False),
+}
 
-    ``aux_tasks`` (multi-task learning): ``(name, texts, labels)`` binary tasks
-    that share the encoder and its LoRA factors but each get their own head;
-    their rows are mixed into the training batches with loss weight
-    ``aux_weight``. Only the main head is saved; early stopping and the
-    temperature use the main validation rows only.
 
-    ``seed`` drives everything; ``init_seed``, if given, drives only the
-    initial LoRA factors and heads, so runs that differ in ``seed`` start from
-    one point and differ in data order, dropout and auxiliary draw — the
-    setting in which their weights can be averaged (``ethimon average``).
+def recipe_from_keywords(**keywords: Any) -> Recipe:
+    """The :class:`Recipe` of the deprecated keyword form of :func:`train_lora`, with that form's defaults.
 
-    ``init_from`` (warm start): an ethimon LoRA model directory on the same base with the
-    same rank and adapted layers; its LoRA factors and head are the starting point (its
-    sha256 is checked as at load time).
+    There ``lr`` was the encoder's learning rate as given (no :data:`FULL_LR_FACTOR` under ``full``)
+    and ``head_lr``/``alpha`` were given, not derived: the recipe pins all three.
 
-    ``pairs`` (pair-aware objective): ``(unsafe_row, safe_row)`` indices into the training
-    rows, the two members of a minimal pair. Every step also draws ``pairs_per_step`` pairs
-    and adds ``pair_weight · mean(relu(pair_margin − (z_unsafe − z_safe)))``, z being the
-    unsafe-minus-safe logit: the unsafe member must outscore its safe twin by a margin, so
-    the detail that flips the verdict has to move the score.
-
-    ``full`` (full fine-tuning, issue 19 item 4): instead of LoRA factors, every weight
-    matrix of the transformer layers (the ``nn.Linear`` layers LoRA would adapt) is trained
-    at ``lr``; embeddings, biases and LayerNorms stay frozen, so the update is exactly
-    a weight difference ΔW per matrix. It is saved in the same ``ethimon-lora/1`` format
-    as an exact full-rank "LoRA" (r = hidden size, α = r, one factor the identity, the
-    other ΔW in fp16), so every loader (and the ONNX graph builder) reads it unchanged;
-    the temperature is fitted on the weights as saved. ``r``/``alpha`` are then ignored;
-    ``init_from`` may be any ethimon LoRA model on the same base (merged as the start).
-
-    Returns:
-        The run summary (also written to ``out_dir/metrics.json``).
+    Raises:
+        TypeError: a keyword the old form did not have.
     """
+    unknown = sorted(set(keywords) - set(_OLD_KEYWORDS))
+    if unknown:
+        raise TypeError(f"train_lora() got an unexpected keyword argument {unknown[0]!r}")
+    values = {fld: keywords.get(k, default) for k, (fld, default) in _OLD_KEYWORDS.items()}
+    return Recipe(encoder_lr=values["lr"], **values)
+
+
+class _Run:
+    """One training run's state between :func:`_setup`, :func:`_epoch` and :func:`_save`."""
+
+
+def _setup(train_texts, train_labels, val_texts, recipe: Recipe, base_dir: Path, out: Path, train_weights,
+           aux_tasks, init_from, num_threads, progress) -> _Run:
+    """Seeds, tokenizer, encoder with its LoRA factors (or trainable matrices), heads, warm start, the
+    encoded rows (auxiliary ones appended), optimiser and schedule."""
+    k = _Run()
+    seed, init_seed, full = recipe.seed, recipe.init_seed, recipe.full_finetune
+    r, alpha = recipe.lora_r, recipe.lora_alpha_used()
     if num_threads:
         torch.set_num_threads(num_threads)
     random.seed(seed)
     torch.manual_seed(seed if init_seed is None else init_seed)
-    rng = random.Random(seed)
-    base_dir = Path(base_dir)
-    out = Path(out_dir)
+    k.rng = random.Random(seed)
     out.mkdir(parents=True, exist_ok=True)
     tok = B.load_tokenizer(base_dir)
     encoder = B.load_encoder(base_dir)
     for p in encoder.parameters():
         p.requires_grad_(False)
+    k.base_w0 = None
     if full:
         targets = B.lora_target_names(encoder)
         r = alpha = int(encoder.config.hidden_size)
         for name in targets:
             encoder.get_submodule(name).weight.requires_grad_(True)
-        base_w0 = {name: encoder.get_submodule(name).weight.detach().clone() for name in targets}
+        k.base_w0 = {name: encoder.get_submodule(name).weight.detach().clone() for name in targets}
     else:
-        targets = B.inject_lora(encoder, r, alpha, lora_dropout)
-    model = B.PooledClassifier(encoder, 2, pooling)
+        targets = B.inject_lora(encoder, r, alpha, recipe.lora_dropout)
+    model = B.PooledClassifier(encoder, 2, recipe.pooling)
     aux_tasks = list(aux_tasks or [])
     heads = nn.ModuleList([model.head] + [nn.Linear(encoder.config.hidden_size, 2) for _ in aux_tasks])
     if init_from is not None and full:
@@ -214,110 +204,127 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     if init_seed is not None:
         torch.manual_seed(seed)  # the rest (dropout) follows the run's own seed
     model.train()
-    pad = tok.pad_token_id or 0
-    tr = B.encode(tok, train_texts, max_length, truncation)
-    va = B.encode(tok, val_texts, max_length, truncation)
+    k.pad = tok.pad_token_id or 0
+    ml, trunc = recipe.max_length, recipe.truncation
+    tr = B.encode(tok, train_texts, ml, trunc)
+    k.va = B.encode(tok, val_texts, ml, trunc)
     labels = list(train_labels)
     weights = list(train_weights if train_weights is not None else [1.0] * len(tr))
     task = [0] * len(tr)
-    for k, (_name, a_texts, a_labels) in enumerate(aux_tasks, start=1):
-        tr += B.encode(tok, a_texts, max_length, truncation)
+    for j, (_name, a_texts, a_labels) in enumerate(aux_tasks, start=1):
+        tr += B.encode(tok, a_texts, ml, trunc)
         labels += list(a_labels)
-        weights += [aux_weight] * len(a_texts)
-        task += [k] * len(a_texts)
-    ytr = torch.tensor(labels, dtype=torch.long)
-    wtr = torch.tensor(weights)
-    ttr = torch.tensor(task, dtype=torch.long)
-    lora_params = ([encoder.get_submodule(n).weight for n in targets] if full
-                   else [p for n, p in model.named_parameters() if "lora_" in n])
-    head_params = list(heads.parameters())
-    opt = torch.optim.AdamW([{"params": lora_params, "lr": lr},
-                             {"params": head_params, "lr": head_lr}], weight_decay=weight_decay)
-    lengths = [len(s) for s in tr]
-    steps_per_epoch = math.ceil(len(tr) / batch_size)
+        weights += [recipe.aux_weight] * len(a_texts)
+        task += [j] * len(a_texts)
+    k.ytr = torch.tensor(labels, dtype=torch.long)
+    k.wtr = torch.tensor(weights)
+    k.ttr = torch.tensor(task, dtype=torch.long)
+    k.lora_params = ([encoder.get_submodule(n).weight for n in targets] if full
+                     else [p for n, p in model.named_parameters() if "lora_" in n])
+    k.head_params = list(heads.parameters())
+    k.opt = torch.optim.AdamW([{"params": k.lora_params, "lr": recipe.encoder_lr_used()},
+                               {"params": k.head_params, "lr": recipe.head_lr_used()}],
+                              weight_decay=recipe.weight_decay)
+    k.lengths = [len(s) for s in tr]
+    steps_per_epoch = math.ceil(len(tr) / recipe.batch_size)
+    max_steps, epochs = recipe.max_steps, recipe.epochs
     total = steps_per_epoch * epochs if max_steps is None else min(max_steps, steps_per_epoch * epochs)
-    wu = max(1, int(warmup * total))
-    sched = torch.optim.lr_scheduler.LambdaLR(
-        opt, lambda s: min(1.0, (s + 1) / wu) * max(0.0, (total - s) / max(1, total - wu)))
-    history: list[dict] = []
-    train_curve: list[float] = []
-    best = (math.inf, None, -1)
-    bad = 0
-    step = 0
-    t_start = time.time()
-    use_bar = progress
-    try:
-        from tqdm import tqdm
-    except ImportError:  # pragma: no cover
-        use_bar = False
-    for ep in range(epochs):
-        batches = _batches(lengths, batch_size, rng)
-        it = tqdm(batches, desc=f"epoch {ep + 1}/{epochs}", file=sys.stderr, mininterval=5,
-                  disable=not use_bar) if use_bar else batches
-        run_loss, n_seen = 0.0, 0
-        for bidx in it:
-            if max_steps is not None and step >= max_steps:
-                break
-            ids, mask = B.collate([tr[i] for i in bidx], pad)
-            if aux_tasks:
-                x = model.dropout(model.pool(ids, mask))
-                tb = ttr[bidx]
-                # every head on every row (a 384x2 matmul each), then each row's own task
-                logits = torch.stack([h(x) for h in heads])[tb, torch.arange(len(bidx))]
-            else:
-                logits = model(ids, mask)
-            loss_vec = nn.functional.cross_entropy(logits, ytr[bidx], reduction="none")
-            w = wtr[bidx]
-            loss = (loss_vec * w).sum() / w.sum()
-            if pairs and pair_weight > 0:
-                chosen = [pairs[rng.randrange(len(pairs))] for _ in range(pairs_per_step)]
-                idx = [u for u, _ in chosen] + [v for _, v in chosen]
-                pids, pmask = B.collate([tr[i] for i in idx], pad)
-                pl = model(pids, pmask)
-                z = pl[:, 1] - pl[:, 0]
-                k = len(chosen)
-                loss = loss + pair_weight * nn.functional.relu(pair_margin - (z[:k] - z[k:])).mean()
-            opt.zero_grad(set_to_none=True)
-            loss.backward()
-            torch.nn.utils.clip_grad_norm_(lora_params + head_params, 1.0)
-            opt.step()
-            sched.step()
-            step += 1
-            train_curve.append(float(loss.detach()))
-            run_loss += float(loss.detach()) * len(bidx)
-            n_seen += len(bidx)
-        vlog = predict_logits(model, va, pad)
-        yv = torch.tensor(val_labels, dtype=torch.long)
-        vloss = float(nn.functional.cross_entropy(vlog, yv)) if len(va) else math.nan
-        vacc = float((vlog.argmax(-1) == yv).float().mean()) if len(va) else math.nan
-        rec = {"epoch": ep + 1, "train_loss": run_loss / max(1, n_seen), "val_loss": vloss,
-               "val_acc": vacc, "steps": step, "elapsed_s": round(time.time() - t_start, 1)}
-        history.append(rec)
-        log(json.dumps(rec))
-        if vloss < best[0] - 1e-4 or best[1] is None:
-            weights_now = ({f"full.{n}": encoder.get_submodule(n).weight.detach().clone() for n in targets}
-                           if full else B.lora_state(encoder))
-            best = (vloss, {**weights_now, "head.weight": model.head.weight.detach().clone(),
-                            "head.bias": model.head.bias.detach().clone()}, ep + 1)
-            bad = 0
-        else:
-            bad += 1
-            if bad > patience:
-                log(f"early stop after epoch {ep + 1} (best epoch {best[2]})")
-                break
-        if max_steps is not None and step >= max_steps:
+    wu = max(1, int(recipe.warmup * total))
+    k.sched = torch.optim.lr_scheduler.LambdaLR(
+        k.opt, lambda s: min(1.0, (s + 1) / wu) * max(0.0, (total - s) / max(1, total - wu)))
+    k.tr, k.model, k.encoder, k.heads, k.targets, k.r, k.alpha, k.aux_tasks = (
+        tr, model, encoder, heads, targets, r, alpha, aux_tasks)
+    k.history, k.train_curve = [], []
+    k.best = (math.inf, None, -1)
+    k.bad = k.step = 0
+    k.t_start = time.time()
+    k.tqdm = None
+    if progress:
+        try:
+            from tqdm import tqdm
+            k.tqdm = tqdm
+        except ImportError:  # pragma: no cover
+            pass
+    return k
+
+
+def _epoch(k: _Run, ep: int, recipe: Recipe, val_labels, pairs, log: Callable[[str], Any]) -> bool:
+    """One epoch: the steps (``max_steps`` counted), then validation and the best state kept; ``True``
+    when the run stops here (early stop, or ``max_steps`` reached)."""
+    model, tr, pad, max_steps, full = k.model, k.tr, k.pad, recipe.max_steps, recipe.full_finetune
+    batches = _batches(k.lengths, recipe.batch_size, k.rng)
+    it = k.tqdm(batches, desc=f"epoch {ep + 1}/{recipe.epochs}", file=sys.stderr, mininterval=5,
+                disable=False) if k.tqdm is not None else batches
+    run_loss, n_seen = 0.0, 0
+    pair_weight = recipe.pair_weight
+    for bidx in it:
+        if max_steps is not None and k.step >= max_steps:
             break
-    # restore best state, fit temperature on the validation logits
-    state = best[1]
+        ids, mask = B.collate([tr[i] for i in bidx], pad)
+        if k.aux_tasks:
+            x = model.dropout(model.pool(ids, mask))
+            tb = k.ttr[bidx]
+            # every head on every row (a 384x2 matmul each), then each row's own task
+            logits = torch.stack([h(x) for h in k.heads])[tb, torch.arange(len(bidx))]
+        else:
+            logits = model(ids, mask)
+        loss_vec = nn.functional.cross_entropy(logits, k.ytr[bidx], reduction="none")
+        w = k.wtr[bidx]
+        loss = (loss_vec * w).sum() / w.sum()
+        if pairs and pair_weight > 0:
+            chosen = [pairs[k.rng.randrange(len(pairs))] for _ in range(recipe.pairs_per_step)]
+            idx = [u for u, _ in chosen] + [v for _, v in chosen]
+            pids, pmask = B.collate([tr[i] for i in idx], pad)
+            pl = model(pids, pmask)
+            z = pl[:, 1] - pl[:, 0]
+            n = len(chosen)
+            loss = loss + pair_weight * nn.functional.relu(recipe.pair_margin - (z[:n] - z[n:])).mean()
+        k.opt.zero_grad(set_to_none=True)
+        loss.backward()
+        torch.nn.utils.clip_grad_norm_(k.lora_params + k.head_params, 1.0)
+        k.opt.step()
+        k.sched.step()
+        k.step += 1
+        k.train_curve.append(float(loss.detach()))
+        run_loss += float(loss.detach()) * len(bidx)
+        n_seen += len(bidx)
+    va = k.va
+    vlog = predict_logits(model, va, pad)
+    yv = torch.tensor(val_labels, dtype=torch.long)
+    vloss = float(nn.functional.cross_entropy(vlog, yv)) if len(va) else math.nan
+    vacc = float((vlog.argmax(-1) == yv).float().mean()) if len(va) else math.nan
+    rec = {"epoch": ep + 1, "train_loss": run_loss / max(1, n_seen), "val_loss": vloss,
+           "val_acc": vacc, "steps": k.step, "elapsed_s": round(time.time() - k.t_start, 1)}
+    k.history.append(rec)
+    log(json.dumps(rec))
+    if vloss < k.best[0] - 1e-4 or k.best[1] is None:
+        encoder = k.encoder
+        weights_now = ({f"full.{n}": encoder.get_submodule(n).weight.detach().clone() for n in k.targets}
+                       if full else B.lora_state(encoder))
+        k.best = (vloss, {**weights_now, "head.weight": model.head.weight.detach().clone(),
+                          "head.bias": model.head.bias.detach().clone()}, ep + 1)
+        k.bad = 0
+    else:
+        k.bad += 1
+        if k.bad > recipe.patience:
+            log(f"early stop after epoch {ep + 1} (best epoch {k.best[2]})")
+            return True
+    return max_steps is not None and k.step >= max_steps
+
+
+def _restore_best(k: _Run, full: bool) -> dict:
+    """Put the best epoch's weights back in the model (full fine-tuning: ΔW as saved, in fp16); its state."""
+    state = k.best[1]
+    encoder, model = k.encoder, k.model
     with torch.no_grad():
         if full:
             # ΔW as saved (fp16), exactly as the loader will merge it, before the temperature is fitted
             factors = {}
-            for n_ in targets:
-                delta = (state.pop(f"full.{n_}") - base_w0[n_]).half()
-                a, b = _identity_factors(delta, r)
+            for n_ in k.targets:
+                delta = (state.pop(f"full.{n_}") - k.base_w0[n_]).half()
+                a, b = _identity_factors(delta, k.r)
                 factors[f"lora.{n_}.A"], factors[f"lora.{n_}.B"] = a, b
-                encoder.get_submodule(n_).weight.copy_(base_w0[n_] + delta.float())
+                encoder.get_submodule(n_).weight.copy_(k.base_w0[n_] + delta.float())
             state = {**factors, **state}
         for n_, mod in encoder.named_modules():
             if isinstance(mod, B.LoRALinear):
@@ -325,13 +332,21 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
                 mod.lora_B.copy_(state[f"lora.{n_}.B"])
         model.head.weight.copy_(state["head.weight"])
         model.head.bias.copy_(state["head.bias"])
+    return state
+
+
+def _save(k: _Run, recipe: Recipe, state: dict, val_labels, n_train: int, base_dir: Path, out: Path,
+          base_ref, name: str, init_from, pairs, extra_meta, log: Callable[[str], Any]) -> dict:
+    """Fit the temperature on the validation logits; write the adapter, the manifest, metrics.json and
+    the plots; return the run summary."""
+    full, va, r, alpha = recipe.full_finetune, k.va, k.r, k.alpha
     temperature = 1.0
     if len(va):
-        vlog = predict_logits(model, va, pad)
+        vlog = predict_logits(k.model, va, k.pad)
         temperature = fit_temperature(vlog, val_labels)
     # LoRA factors in fp16 (half the size; merged in fp32 at load), head in fp32
-    tensors = {k: (v.half() if k.startswith("lora.") else v.float()).contiguous()
-               for k, v in state.items()}
+    tensors = {key: (v.half() if key.startswith("lora.") else v.float()).contiguous()
+               for key, v in state.items()}
     B.save_adapter(tensors, out / "adapter.safetensors")
     base_w = base_dir / "model.safetensors"
     manifest = {
@@ -341,27 +356,28 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
         "base_sha256": B.sha256_file(base_w),
         "adapter_file": "adapter.safetensors",
         "adapter_sha256": B.sha256_file(out / "adapter.safetensors"),
-        "lora": {"r": r, "alpha": alpha, "targets": targets},
-        "pooling": pooling, "num_labels": 2, "unsafe_index": 1,
+        "lora": {"r": r, "alpha": alpha, "targets": k.targets},
+        "pooling": recipe.pooling, "num_labels": 2, "unsafe_index": 1,
         "labels": ["acceptable", "unsafe"],
-        "max_length": max_length, "truncation": truncation,
+        "max_length": recipe.max_length, "truncation": recipe.truncation,
         "temperature": round(temperature, 6),
     }
     (out / B.MANIFEST).write_text(json.dumps(manifest, indent=2) + "\n", encoding="utf-8")
     summary = {
-        "config": {"epochs": epochs, "lr": lr, "head_lr": head_lr, "batch_size": batch_size, "r": r,
-                   "alpha": alpha, "lora_dropout": lora_dropout, "max_length": max_length,
-                   "truncation": truncation, "pooling": pooling, "seed": seed, "init_seed": init_seed,
-                   "patience": patience,
-                   "weight_decay": weight_decay, "n_train": len(train_texts), "n_val": len(va),
-                   "aux_tasks": {n: len(t) for n, t, _ in aux_tasks}, "aux_weight": aux_weight,
+        "config": {"epochs": recipe.epochs, "lr": recipe.encoder_lr_used(), "head_lr": recipe.head_lr_used(),
+                   "batch_size": recipe.batch_size, "r": r,
+                   "alpha": alpha, "lora_dropout": recipe.lora_dropout, "max_length": recipe.max_length,
+                   "truncation": recipe.truncation, "pooling": recipe.pooling, "seed": recipe.seed,
+                   "init_seed": recipe.init_seed, "patience": recipe.patience,
+                   "weight_decay": recipe.weight_decay, "n_train": n_train, "n_val": len(va),
+                   "aux_tasks": {n: len(t) for n, t, _ in k.aux_tasks}, "aux_weight": recipe.aux_weight,
                    "init_from": str(init_from) if init_from is not None else None,
-                   "pairs": len(pairs or []), "pair_weight": pair_weight, "pair_margin": pair_margin,
-                   "pairs_per_step": pairs_per_step, "full": full,
+                   "pairs": len(pairs or []), "pair_weight": recipe.pair_weight, "pair_margin": recipe.pair_margin,
+                   "pairs_per_step": recipe.pairs_per_step, "full": full,
                    "base_dir": str(base_dir), **(extra_meta or {})},
-        "history": history, "best_epoch": best[2], "best_val_loss": best[0],
-        "temperature": temperature, "train_loss_curve": train_curve,
-        "train_time_s": round(time.time() - t_start, 1),
+        "history": k.history, "best_epoch": k.best[2], "best_val_loss": k.best[0],
+        "temperature": temperature, "train_loss_curve": k.train_curve,
+        "train_time_s": round(time.time() - k.t_start, 1),
     }
     (out / "metrics.json").write_text(json.dumps(summary, indent=1) + "\n", encoding="utf-8")
     try:
@@ -370,3 +386,112 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     except Exception as exc:  # noqa: BLE001 - plots are optional
         log(f"(plots skipped: {exc})")
     return summary
+
+
+def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[str],
+               val_labels: list[int], recipe: Recipe | None = None, *, out_dir: str | Path,
+               base_dir: str | Path, base_ref: dict | None = None, train_weights: list[float] | None = None,
+               aux_tasks: list[tuple[str, list[str], list[int]]] | None = None,
+               pairs: list[tuple[int, int]] | None = None, init_from: str | Path | None = None,
+               name: str = "ethimon-risk", num_threads: int | None = None, progress: bool = True,
+               log: Callable[[str], Any] = print, extra_meta: dict | None = None, **keywords: Any) -> dict:
+    """Train a LoRA adapter + head with ``recipe``'s hyper-parameters; write an ethimon model directory to
+    ``out_dir``.
+
+    ``recipe`` (a :class:`~ethimon.risk._recipe.Recipe`) carries every hyper-parameter: epochs, the
+    learning rates (:meth:`~ethimon.risk._recipe.Recipe.encoder_lr_used`, ``head_lr_used``), batch size,
+    LoRA rank (``lora_r``), α and dropout, tokens, pooling, seeds, patience, weight decay, warm-up,
+    ``max_steps``, the auxiliary and pair weights, ``full_finetune``; its data fields (``data``, ``aux``,
+    ...) are :func:`train_recipe`'s, unused here. The keywords are the run's data and where it goes.
+
+    .. deprecated:: issue 24
+        The keyword form (``train_lora(..., base_dir=..., out_dir=..., epochs=4, lr=5e-4, r=16, ...)``,
+        no recipe) still works for one release with a :class:`DeprecationWarning`: the keywords become a
+        recipe (:func:`recipe_from_keywords`, the old defaults: ``max_length`` 128).
+
+    ``aux_tasks`` (multi-task learning): ``(name, texts, labels)`` binary tasks
+    that share the encoder and its LoRA factors but each get their own head;
+    their rows are mixed into the training batches with loss weight
+    ``recipe.aux_weight``. Only the main head is saved; early stopping and the
+    temperature use the main validation rows only.
+
+    ``recipe.seed`` drives everything; ``recipe.init_seed``, if given, drives only the
+    initial LoRA factors and heads, so runs that differ in ``seed`` start from
+    one point and differ in data order, dropout and auxiliary draw — the
+    setting in which their weights can be averaged (``ethimon average``).
+
+    ``init_from`` (warm start): an ethimon LoRA model directory on the same base with the
+    same rank and adapted layers; its LoRA factors and head are the starting point (its
+    sha256 is checked as at load time).
+
+    ``pairs`` (pair-aware objective): ``(unsafe_row, safe_row)`` indices into the training
+    rows, the two members of a minimal pair. Every step also draws ``recipe.pairs_per_step`` pairs
+    and adds ``pair_weight · mean(relu(pair_margin − (z_unsafe − z_safe)))`` (the recipe's), z being the
+    unsafe-minus-safe logit: the unsafe member must outscore its safe twin by a margin, so
+    the detail that flips the verdict has to move the score.
+
+    ``recipe.full_finetune`` (full fine-tuning, issue 19 item 4): instead of LoRA factors, every weight
+    matrix of the transformer layers (the ``nn.Linear`` layers LoRA would adapt) is trained
+    at the encoder's learning rate; embeddings, biases and LayerNorms stay frozen, so the update is exactly
+    a weight difference ΔW per matrix. It is saved in the same ``ethimon-lora/1`` format
+    as an exact full-rank "LoRA" (r = hidden size, α = r, one factor the identity, the
+    other ΔW in fp16), so every loader (and the ONNX graph builder) reads it unchanged;
+    the temperature is fitted on the weights as saved. the LoRA rank and α are then ignored;
+    ``init_from`` may be any ethimon LoRA model on the same base (merged as the start).
+
+    Returns:
+        The run summary (also written to ``out_dir/metrics.json``).
+    """
+    if recipe is None:
+        warnings.warn("train_lora's hyper-parameter keywords (epochs=, lr=, r=, ...) are deprecated and go in the "
+                      "next release: pass a Recipe (ethimon.risk._recipe) as the fifth argument",
+                      DeprecationWarning, stacklevel=2)
+        recipe = recipe_from_keywords(**keywords)
+    elif keywords:
+        raise TypeError("train_lora: the recipe carries the hyper-parameters; also given as keywords: "
+                        + ", ".join(sorted(keywords)))
+    base_dir, out = Path(base_dir), Path(out_dir)
+    k = _setup(train_texts, train_labels, val_texts, recipe, base_dir, out, train_weights, aux_tasks, init_from,
+               num_threads, progress)
+    for ep in range(recipe.epochs):
+        if _epoch(k, ep, recipe, val_labels, pairs, log):
+            break
+    state = _restore_best(k, recipe.full_finetune)
+    return _save(k, recipe, state, val_labels, len(train_texts), base_dir, out, base_ref, name, init_from, pairs,
+                 extra_meta, log)
+
+
+def train_recipe(recipe: Recipe, out_dir: str | Path, *, num_threads: int | None = None,
+                 progress: bool = False, log: Callable[[str], Any] = print) -> dict:
+    """Load the recipe's data, split it, train a LoRA adapter into ``out_dir``; return the run summary.
+
+    ``log`` gets one line with the row counts before training starts, then one per epoch.
+
+    Raises:
+        ValueError: an option out of range (see :meth:`Recipe.check`).
+        EthimonError: a CSV or the base directory is unusable.
+    """
+    from ..errors import ModelError
+    from ._data import concat_rows, load_labelled_csv
+
+    recipe.check()
+    data = concat_rows([load_labelled_csv(p) for p in recipe.data])
+    extra = concat_rows([load_labelled_csv(p) for p in recipe.extra_train]) if recipe.extra_train else None
+    aux = []
+    for path in recipe.aux:
+        rows = load_labelled_csv(path, any_ethics_layout=True).sample(recipe.aux_rows, recipe.seed)
+        aux.append((Path(path).stem, rows.texts, rows.labels))
+    tr_idx, va_idx = stratified_split(data.labels, recipe.val_frac, recipe.seed)
+    tr, va = data.subset(tr_idx), data.subset(va_idx)
+    if extra is not None:
+        tr = concat_rows([tr, extra])
+    if recipe.base:
+        base, ref = Path(recipe.base), {"path": str(Path(recipe.base).resolve())}
+        if not base.is_dir():
+            raise ModelError(f"base directory {recipe.base!r} does not exist")
+    else:
+        base, ref = B.base_package_dir(), {"package": B.BASE_PACKAGE}
+    log(f"train {len(tr)} rows, validation {len(va)} rows (dropped {data.dropped} unusable)"
+        + "".join(f"; aux {n}: {len(t)} rows" for n, t, _ in aux))
+    return train_lora(tr.texts, tr.labels, va.texts, va.labels, recipe, base_dir=base, out_dir=out_dir,
+                      base_ref=ref, num_threads=num_threads, aux_tasks=aux, progress=progress, log=log)

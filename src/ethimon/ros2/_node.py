@@ -48,7 +48,7 @@ from typing import Any
 from ..errors import DependencyNotInstalled, Ros2Error, SpecError
 from ..loop import AsyncRiskSource, GovernedLoop, LoopStats, ProcessEstimator
 from ..replay import Mapping, SignalMap, check_against_spec, load_mapping
-from ..replay._bag import reduce_value
+from ..replay._values import reduce_value
 from ..replay._mapping import RISK_INPUTS, parse_field_path
 from ..runtime import Decision, Fault, Monitor
 from ..spec import Spec
