@@ -58,7 +58,7 @@ def _module_level_imports(name: str) -> set[str]:
 
 
 def _resolve(imp: str) -> str | None:
-    """The ethimon module an imported name lives in (``ethimon.spec.Spec`` -> ``ethimon.spec``)."""
+    """The ethimon module an imported name lives in (``ethimon.language.Spec`` -> ``ethimon.language``)."""
     target = imp
     while target and not ((SRC.parent / (target.replace(".", "/") + ".py")).exists() or _is_package(target)):
         target = target.rpartition(".")[0]
@@ -99,7 +99,7 @@ LIGHT = sorted(set(_ALL) - _heavy_modules(_ALL))
 
 def test_the_heavy_modules_are_left_out_and_most_are_checked():
     assert "ethimon.risk._backend" not in LIGHT and "ethimon.gym" not in LIGHT
-    assert {"ethimon.errors", "ethimon.spec._expr", "ethimon.runtime._monitor", "ethimon.risk._estimator"} <= set(LIGHT)
+    assert {"ethimon.errors", "ethimon.language._expr", "ethimon.runtime._monitor", "ethimon.risk._estimator"} <= set(LIGHT)
 
 
 @pytest.mark.parametrize("modname", LIGHT)

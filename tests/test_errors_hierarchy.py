@@ -14,7 +14,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "ethimon"
 
 #: private exception classes that never leave their module (each raised and caught inside it)
 PRIVATE_INTERNAL = {
-    ("spec/_model.py", "_LocError"),        # a pydantic validator's ValueError, turned into a SpecError by the loader
+    ("language/_model.py", "_LocError"),        # a pydantic validator's ValueError, turned into a SpecError by the loader
     ("scenario/_session.py", "_SpecLoadError"),  # wraps a spec's error so the row names the spec; unwrapped there
     ("risk/_onnx_build.py", "_NoGraph"),    # "no ONNX form here": load_estimator falls back to torch or raises ModelError
 }
@@ -53,20 +53,20 @@ def test_builtin_bases_kept_for_callers_that_catch_them(name, builtin):
 
 
 def test_packages_re_export_the_same_classes():
-    from ethimon import audit, risk, sim, spec
+    from ethimon import audit, language, risk, sim
     from ethimon.replay import BagError
-    from ethimon.spec._expr import ExprSyntaxError
+    from ethimon.language._expr import ExprSyntaxError
     assert audit.AuditFormatError is errors.AuditFormatError
     assert audit.AuditTampered is errors.AuditTampered
     assert risk.RiskInferenceError is errors.RiskInferenceError
     assert sim.SimError is errors.SimError
     assert BagError is errors.BagError
     assert ExprSyntaxError is errors.ExprSyntaxError
-    assert spec.ExprSyntaxError is errors.ExprSyntaxError
+    assert language.ExprSyntaxError is errors.ExprSyntaxError
 
 
 def test_parse_expr_raises_an_ethimon_error():
-    from ethimon.spec import parse_expr
+    from ethimon.language import parse_expr
     with pytest.raises(errors.EthimonError) as info:
         parse_expr("human_distance >")
     assert isinstance(info.value, errors.ExprSyntaxError) and info.value.index > 0

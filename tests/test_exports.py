@@ -33,6 +33,9 @@ PUBLIC: dict[str, list[str]] = {
                       "map_files", "plain", "replay_records"],
     "ethimon.gym": ["MonitorWrapper", "PANDA_ENV_ID", "PANDA_RATED_JOINT_SPEED_RAD_S", "PANDA_SPEC_PATH",
                     "PandaCellEnv", "panda_signals", "panda_spec"],
+    "ethimon.language": ["Constant", "DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "ExprSyntaxError", "Obligation",
+                     "OnFault", "Release", "Response", "RiskConfig", "RuleRelease", "SEVERITY_ORDER", "SafePose",
+                     "Signal", "VARIANCE_MODES", "Spec", "parse_expr", "parse_spec_file", "parse_spec_text"],
     "ethimon.loop": ["AsyncJudgeSource", "AsyncRiskSource", "CANNOT_TELL", "GovernedLoop", "LoopStats", "ProcessEstimator",
                      "ReloadResult", "RiskReading", "Watchdog", "weakenings"],
     "ethimon.offline": ["OfflineResult", "check_trace", "iter_rows"],
@@ -59,9 +62,6 @@ PUBLIC: dict[str, list[str]] = {
                     "InputChange", "PHYSICS_HZ", "Pick", "Place", "Pour", "Reach", "SIGNAL_NAMES", "SimBlock",
                     "SimError", "SimExpect", "SimObject", "SimResult", "Wait", "Waypoint", "Wipe",
                     "check_sim_expectations", "run_sim"],
-    "ethimon.spec": ["Constant", "DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "ExprSyntaxError", "Obligation",
-                     "OnFault", "Release", "Response", "RiskConfig", "RuleRelease", "SEVERITY_ORDER", "SafePose",
-                     "Signal", "VARIANCE_MODES", "Spec", "parse_expr", "parse_spec_file", "parse_spec_text"],
     "ethimon.testing": ["ReferenceMonitor"],
     "ethimon.verify": ["Counterexample", "DEFAULT_BUDGET_S", "DEFAULT_MAX_UNROLL", "DEFAULT_TIMEOUT_S", "Finding",
                        "SpecReport", "exit_code", "find_specs", "format_table", "reports_to_json", "require_z3",
@@ -109,15 +109,15 @@ def test_internals_named_by_issue_13_are_not_exported():
 #: another package's private module -> the floors allowed to reach into it, and why. A new reach is a
 #: conscious change: prefer a public name (the package's __all__); add a row here only with a reason.
 INTERNAL_REACHES: dict[str, tuple[set[str], str]] = {
-    "spec._expr": ({"compiler", "loop", "offline", "replay", "sim", "testing", "verify"},
+    "language._expr": ({"compiler", "loop", "offline", "replay", "sim", "testing", "verify"},
                    "the expression AST each interpreter walks (sim: the recording's plot reads the "
                    "obligations' limits from it; loop: the names a reloaded obligation reads; replay: "
                    "which rules read R_e, NOT CHECKED under 'risk: none')"),
-    "spec._visit": ({"compiler", "offline", "testing", "verify"},
+    "language._visit": ({"compiler", "offline", "testing", "verify"},
                     "ExprVisitor, the interpreter protocol the four back-ends implement"),
-    "spec._load": ({"replay", "scenario"}, "the located YAML validation, for their own file formats"),
-    "spec._yaml": ({"replay", "scenario"}, "the located YAML reader, for their own file formats"),
-    "spec._model": ({"replay", "scenario", "verify"}, "field types and defaults (FiniteFloat, ACTIVE_RESPONSES, "
+    "language._load": ({"replay", "scenario"}, "the located YAML validation, for their own file formats"),
+    "language._yaml": ({"replay", "scenario"}, "the located YAML reader, for their own file formats"),
+    "language._model": ({"replay", "scenario", "verify"}, "field types and defaults (FiniteFloat, ACTIVE_RESPONSES, "
                                                       "MANUAL_BY_DEFAULT, the located-error helper)"),
     "compiler._plan": ({"testing", "verify"}, "RISK_NAME, the name R_e has in a plan"),
     "compiler._closures": ({"runtime"}, "the closures the monitor runs"),
@@ -155,3 +155,23 @@ def test_reaches_into_other_packages_internals_are_reviewed():
             if here not in allowed:
                 bad.append(f"{path.relative_to(SRC.parent)}:{line}: {here} imports {target}")
     assert bad == [], "use the package's public names, or review the reach in INTERNAL_REACHES:\n" + "\n".join(bad)
+
+
+def test_the_old_spec_module_serves_the_language_for_one_release():
+    """``ethimon.spec`` (stage 1's name before ``ethimon.language``) imports silently and serves the same objects."""
+    import warnings
+
+    import ethimon.language
+    import ethimon.spec
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        importlib.reload(ethimon.spec)  # importing it warns nothing
+    assert ethimon.spec.__all__ == ethimon.language.__all__
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert ethimon.spec.Spec is ethimon.language.Spec and ethimon.spec.load_spec is ethimon.load_spec
+        from ethimon.spec import parse_expr
+    assert parse_expr is ethimon.language.parse_expr
+    assert [w.category for w in caught] == [DeprecationWarning] * 3
+    with pytest.raises(AttributeError):
+        ethimon.spec.no_such_name  # noqa: B018

@@ -1,6 +1,6 @@
 import pytest
 
-from ethimon.spec._expr import Binary, Call, ExprSyntaxError, Name, Num, Unary, parse_expr, to_source
+from ethimon.language._expr import Binary, Call, ExprSyntaxError, Name, Num, Unary, parse_expr, to_source
 
 
 def test_precedence_and_associativity():
@@ -60,7 +60,7 @@ def test_round_trip():
 
 
 def test_and_or_chains_are_balanced_and_keep_order():
-    from ethimon.spec._expr import walk
+    from ethimon.language._expr import walk
     n = 1000
     e = parse_expr(" and ".join(f"a{i}" for i in range(n)))
     names = [x.id for x in walk(e) if isinstance(x, Name)]
@@ -74,7 +74,7 @@ def test_and_or_chains_are_balanced_and_keep_order():
 
 
 def test_arithmetic_chains_stay_left_nested_up_to_the_limit():
-    from ethimon.spec._expr import MAX_CHAIN_TERMS
+    from ethimon.language._expr import MAX_CHAIN_TERMS
     e = parse_expr(" - ".join(["x"] * MAX_CHAIN_TERMS))
     depth = 0
     while isinstance(e, Binary):
@@ -104,7 +104,7 @@ def test_non_finite_literals_are_syntax_errors(num):
 
 
 def test_length_limit():
-    from ethimon.spec._expr import MAX_EXPR_CHARS
+    from ethimon.language._expr import MAX_EXPR_CHARS
     src = " or ".join(["x"] * (MAX_EXPR_CHARS // 5 + 1))
     assert len(src) > MAX_EXPR_CHARS
     with pytest.raises(ExprSyntaxError, match="too long"):

@@ -80,7 +80,7 @@ def _module_graph() -> dict[str, set[str]]:
         deps = set()
         for _, target in imports_of(p, SRC):
             # "from .x import name" gives the module; "from . import x" gives package.x; a name of a
-            # package (from ..spec import Spec) stays the package
+            # package (from ..language import Spec) stays the package
             while target and target not in modules:
                 target = target.rpartition(".")[0]
             if target and target != mod:

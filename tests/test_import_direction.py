@@ -4,9 +4,10 @@ The floors, lowest first (a package may import only what its row lists; its
 own modules are always allowed):
 
     errors, _files, _robot  shared error types, safe file opening, robot facts (the Panda's home pose)
-    spec                    YAML → validated Spec, the expression parser
+    language                YAML → validated Spec, the expression parser (stage 1)
     compiler                names, types, units → Plan → closures; the R_e formula
-    _api                    load_spec = spec + compiler in one call
+    _api                    load_spec = language + compiler in one call
+    spec                    deprecated alias of language (one release): its names, load_spec
     runtime                 Monitor.step → Decision (never loads files)
     audit, risk, sim,       beside each other above runtime: none imports another
       verify, testing       (testing: ReferenceMonitor, the test oracle)
@@ -30,8 +31,8 @@ from pathlib import Path
 SRC = Path(__file__).resolve().parents[1] / "src" / "ethimon"
 
 _LOW = {"errors", "_files", "_robot"}
-_SPEC = _LOW | {"spec"}
-_COMPILED = _SPEC | {"compiler"}
+_LANGUAGE = _LOW | {"language"}
+_COMPILED = _LANGUAGE | {"compiler"}
 _BESIDE = _COMPILED | {"_api", "runtime"}
 
 #: floor -> the floors it may import (besides itself)
@@ -39,9 +40,10 @@ ALLOWED: dict[str, set[str]] = {
     "errors": set(),
     "_files": {"errors"},
     "_robot": set(),
-    "spec": _LOW,
-    "compiler": _SPEC,
+    "language": _LOW,
+    "compiler": _LANGUAGE,
     "_api": _COMPILED,
+    "spec": _LANGUAGE | {"_api"},
     "runtime": _COMPILED,
     "audit": _BESIDE,
     "risk": _BESIDE,

@@ -1,7 +1,7 @@
 """Every back-end interprets every entry of the expression language (issue 24, item 2).
 
 The four interpreters of the AST (the compiled closures, the reference interpreter, the offline
-checker, the z3 encoder in both arithmetics) implement :class:`ethimon.spec._visit.ExprVisitor`.
+checker, the z3 encoder in both arithmetics) implement :class:`ethimon.language._visit.ExprVisitor`.
 For every node kind, unary and binary operator (``BINARY_OPS``), function and temporal operator
 (``FUNCTIONS``) this checks that each back-end has its method (introspection) and that one small
 expression using it gives the same verdicts and margins on the monitor, the reference and the
@@ -21,8 +21,8 @@ from ethimon.compiler import plan_of
 from ethimon.compiler._closures import _Gen
 from ethimon.offline import check_trace
 from ethimon.offline._eval import Evaluator
-from ethimon.spec._expr import BINARY_OPS, FUNCTIONS, Binary, walk
-from ethimon.spec._visit import PROTOCOL, _protocol, missing_methods
+from ethimon.language._expr import BINARY_OPS, FUNCTIONS, Binary, walk
+from ethimon.language._visit import PROTOCOL, _protocol, missing_methods
 from ethimon.testing import ReferenceMonitor
 from ethimon.testing._reference import _Semantics
 
@@ -126,7 +126,7 @@ def test_an_entry_without_backend_methods_fails(monkeypatch, table, entry, metho
 def test_visit_dispatches_by_table_not_by_isinstance():
     import inspect
 
-    from ethimon.spec._visit import ExprVisitor
+    from ethimon.language._visit import ExprVisitor
     src = inspect.getsource(ExprVisitor.visit)
     assert "isinstance" not in src and "_by_type" in src and "_by_key" in src
     assert set(_Gen._by_key.values()) <= {getattr(_Gen, m) for m in PROTOCOL.values()}

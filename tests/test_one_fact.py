@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 
 import ethimon
-from ethimon.spec import SEVERITY_ORDER, Response
-from ethimon.spec._expr import BINARY_OPS, COMPARISONS, Binary, parse_expr, walk
+from ethimon.language import SEVERITY_ORDER, Response
+from ethimon.language._expr import BINARY_OPS, COMPARISONS, Binary, parse_expr, walk
 
 
 def test_every_binary_operator_the_parser_builds_is_in_the_one_table():
@@ -31,7 +31,7 @@ def test_severity_order_is_the_response_order():
 def test_home_pose_is_one_tuple():
     from ethimon._robot import PANDA_HOME_JOINTS_RAD
     from ethimon.sim._arm import HOME_JOINTS_RAD
-    from ethimon.spec import SafePose
+    from ethimon.language import SafePose
     assert HOME_JOINTS_RAD is PANDA_HOME_JOINTS_RAD
     assert tuple(SafePose().joints_rad) == PANDA_HOME_JOINTS_RAD
 
@@ -75,7 +75,7 @@ PAIRS = [(1.0, 2.5), (2.5, 1.0), (2.0, 2.0), (-0.0, 0.0), (0.0, -0.0), (-10.0, 1
 
 
 def test_the_three_compute_the_tables_margins():
-    from ethimon.spec._expr import COMPARISON_MARGINS, comparison_margin
+    from ethimon.language._expr import COMPARISON_MARGINS, comparison_margin
     assert COMPARISON_MARGINS["<"] == "b - a" and COMPARISON_MARGINS[">="] == "a - b"
     assert comparison_margin("<", 2.0, 2.0) == 0.0 and math.copysign(1.0, comparison_margin("<", 2.0, 2.0)) == 1.0
     for op in COMPARISONS:
@@ -87,7 +87,7 @@ def test_the_three_compute_the_tables_margins():
 
 def test_the_three_read_the_one_table(monkeypatch):
     """Rewrite the table (every operator's margin negated): all three follow it, none keeps its own copy."""
-    from ethimon.spec._expr import COMPARISON_MARGINS, MARGIN_SHAPES, comparison_margin
+    from ethimon.language._expr import COMPARISON_MARGINS, MARGIN_SHAPES, comparison_margin
     other = {"a - b": "b - a", "b - a": "a - b", "|a - b|": "-|a - b|", "-|a - b|": "|a - b|"}
     assert set(other) == set(MARGIN_SHAPES)
     before = {op: _margins_three_ways(op, 1.0, 2.5) for op in COMPARISONS}
@@ -103,7 +103,7 @@ def test_the_three_read_the_one_table(monkeypatch):
 
 def test_the_three_read_the_one_connective_table(monkeypatch):
     """``and``/``or``/``implies`` combine the operands' margins as CONNECTIVE_MARGINS says (rewritten here)."""
-    from ethimon.spec._expr import CONNECTIVE_MARGINS, connective_margin
+    from ethimon.language._expr import CONNECTIVE_MARGINS, connective_margin
     assert connective_margin("and", 1.5, 2.5) == 1.5 and connective_margin("or", 1.5, 2.5) == 2.5
     assert connective_margin("implies", 1.5, 2.5) == 2.5 and connective_margin("implies", -3.0, 2.5) == 3.0
     obligations = "".join(f'  - {{id: o{i}, require: "x < y {op} y <= 5"}}\n'

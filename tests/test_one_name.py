@@ -228,7 +228,7 @@ def test_the_two_defaults_of_tau_are_two_named_facts():
     """The spec language's default τ (a spec that writes no threshold) and the shipped model's
     calibrated τ are different numbers with different names; the shipped specs write the latter."""
     from ethimon.risk import DEFAULT_TAU
-    from ethimon.spec import RiskConfig
+    from ethimon.language import RiskConfig
     spec_default = RiskConfig.model_fields["threshold"].default
     assert (spec_default, DEFAULT_TAU) == (0.5, 0.47)
     assert ethimon.load_spec_text("ethimon: 1\nname: t\nsignals: {}\n").risk.threshold == spec_default

@@ -42,7 +42,7 @@ def test_public_names_import():
 def test_default_tau_is_one_fact():
     """Without --spec the commands use the shipped model's τ and the spec language's weights."""
     from ethimon.cli._risk_cmds import risk_config
-    from ethimon.spec import RiskConfig
+    from ethimon.language import RiskConfig
     cfg = risk_config(None)
     d = RiskConfig()
     assert cfg["threshold"] == DEFAULT_TAU and cfg["spec"] is None
@@ -53,13 +53,13 @@ def test_default_tau_is_one_fact():
 
 
 def test_risk_weights_are_one_fact():
-    """RiskConfig's α/β/γ and every default of the formula's functions are ethimon.spec's DEFAULT_*."""
+    """RiskConfig's α/β/γ and every default of the formula's functions are ethimon.language's DEFAULT_*."""
     import inspect
 
     from ethimon.compiler._risk_formula import risk_bounds, risk_from_probs, risk_range
     from ethimon.risk._evaluate import evaluate_logits
     from ethimon.risk._estimator import RiskEstimator
-    from ethimon.spec import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, RiskConfig
+    from ethimon.language import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, RiskConfig
     d = RiskConfig()
     want = (DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA)
     assert (d.alpha, d.beta, d.gamma) == want

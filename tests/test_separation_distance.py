@@ -16,7 +16,7 @@ import pytest
 
 import ethimon
 from ethimon.offline import check_trace, iter_rows
-from ethimon.spec._expr import SEPARATION_PARAMS, parse_expr, separation_distance, to_source
+from ethimon.language._expr import SEPARATION_PARAMS, parse_expr, separation_distance, to_source
 from ethimon.testing import ReferenceMonitor
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

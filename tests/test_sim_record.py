@@ -117,7 +117,7 @@ def test_limits_are_read_from_the_spec(root):
 
 def test_limits_not_drawable_are_listed_not_guessed():
     from ethimon.sim._plot import spec_limits
-    from ethimon.spec import parse_spec_text
+    from ethimon.language import parse_spec_text
 
     spec = parse_spec_text("""
 ethimon: 1

@@ -18,7 +18,7 @@ import pytest
 import ethimon
 from ethimon.testing import ReferenceMonitor
 from ethimon.scenario import load_scenario
-from ethimon.spec._expr import MAX_CHAIN_TERMS, MAX_EXPR_CHARS, MAX_TREE_DEPTH
+from ethimon.language._expr import MAX_CHAIN_TERMS, MAX_EXPR_CHARS, MAX_TREE_DEPTH
 
 from _cli import run_cli
 

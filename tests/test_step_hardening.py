@@ -15,7 +15,7 @@ import pytest
 
 import ethimon
 from ethimon.testing import ReferenceMonitor
-from ethimon.spec._model import Response
+from ethimon.language._model import Response
 
 SPEC = """
 ethimon: 1

@@ -8,7 +8,7 @@ import pytest
 
 import ethimon
 from ethimon.scenario import load_scenario, load_scenario_text
-from ethimon.spec._yaml import parse_yaml_text
+from ethimon.language._yaml import parse_yaml_text
 
 SPEC = """\
 ethimon: 1

@@ -14,7 +14,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..compiler import Plan, plan_of
-from ..spec import SEVERITY_ORDER, Response, Spec
+from ..language import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import risk_from_probs, two_class_risk
 from ._calls import _EMPTY
 from ._construction import _Construction

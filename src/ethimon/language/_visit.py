@@ -1,6 +1,6 @@
 """The interpreter protocol: one method per node kind, operator and function of the expression language.
 
-Four back-ends interpret the AST of :mod:`ethimon.spec._expr`: the compiled closures
+Four back-ends interpret the AST of :mod:`ethimon.language._expr`: the compiled closures
 (``compiler/_closures.py``, a visitor that returns closures, run once at compile time), the
 reference interpreter (``testing/_reference.py``), the offline checker (``offline/_eval.py``,
 numpy arrays) and the z3 encoder (``verify/_encode.py``). Each subclasses :class:`ExprVisitor`
@@ -8,8 +8,8 @@ and implements every method of :data:`PROTOCOL`; :meth:`ExprVisitor.visit` dispa
 built once per class (by node type, then by operator or function name), never by an ``isinstance``
 chain per call.
 
-The methods are derived from the language's own tables (:data:`~ethimon.spec._expr.BINARY_OPS`,
-:data:`~ethimon.spec._expr.FUNCTIONS`, :data:`UNARY_OPS`), and an entry added there without a
+The methods are derived from the language's own tables (:data:`~ethimon.language._expr.BINARY_OPS`,
+:data:`~ethimon.language._expr.FUNCTIONS`, :data:`UNARY_OPS`), and an entry added there without a
 method here fails at import; a method added here is abstract, so a back-end that lacks it cannot be
 instantiated; ``tests/test_interpreter_coverage.py`` names what each back-end lacks
 (:func:`missing_methods`) and evaluates one expression per entry on all four.
