@@ -11,7 +11,7 @@ chain per call.
 The methods are derived from the language's own tables (:data:`~ethimon.language._expr.BINARY_OPS`,
 :data:`~ethimon.language._expr.FUNCTIONS`, :data:`UNARY_OPS`), and an entry added there without a
 method here fails at import; a method added here is abstract, so a back-end that lacks it cannot be
-instantiated; ``tests/test_interpreter_coverage.py`` names what each back-end lacks
+instantiated; ``tests/compiler/test_interpreter_coverage.py`` names what each back-end lacks
 (:func:`missing_methods`) and evaluates one expression per entry on all four.
 """
 

@@ -171,7 +171,7 @@ class Monitor(_Construction, _Latches, _FailClosed):
             else:
                 q = get("p_unsafe")
                 if type(q) is float and self._p2 and 0.0 <= q <= 1.0:  # the common case, as _risk_p
-                    # compiler._risk_formula.two_class_risk inlined (hot path; tests/test_plan_of.py
+                    # compiler._risk_formula.two_class_risk inlined (hot path; tests/compiler/test_plan_of.py
                     # checks this copy equals the one definition on a grid of inputs and weights)
                     d = q - 0.5
                     var = 2.0 * d * d if self._sample else d * d
