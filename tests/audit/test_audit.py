@@ -29,6 +29,7 @@ def _lines(path: Path) -> list[bytes]:
     return path.read_bytes().splitlines(keepends=True)
 
 
+@pytest.mark.slow
 def test_roundtrip_chain_is_intact(tmp_path):
     p = tmp_path / "a.jsonl"
     head = _write(p)

@@ -12,6 +12,8 @@ import ast
 import sys
 from pathlib import Path
 
+import pytest
+
 SRC = Path(__file__).resolve().parents[2] / "src" / "ethimon"
 
 MAX_FILE_LINES = 700
@@ -141,6 +143,7 @@ def test_no_source_file_over_700_lines_but_the_listed_ones():
     assert not stale, f"no longer over {MAX_FILE_LINES} lines: remove from LONG_FILES: {stale}"
 
 
+@pytest.mark.slow
 def test_no_function_over_150_lines_but_monitor_step_and_the_listed_ones():
     got = long_functions()
     unlisted = {f: n for f, n in got.items() if f not in LONG_FUNCTIONS}
@@ -150,10 +153,12 @@ def test_no_function_over_150_lines_but_monitor_step_and_the_listed_ones():
     assert not stale, f"no longer over {MAX_FUNCTION_LINES} lines: remove from LONG_FUNCTIONS: {stale}"
 
 
+@pytest.mark.slow
 def test_no_import_circles_between_modules():
     assert import_circles() == []
 
 
+@pytest.mark.slow
 def test_the_checks_see_what_they_claim(tmp_path):
     """The three checks fail on a tree that breaks them (so they cannot pass vacuously)."""
     assert long_files(limit=50), "some file has more than 50 lines"
