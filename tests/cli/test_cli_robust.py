@@ -8,7 +8,7 @@ import sys
 import xml.etree.ElementTree as ET
 
 import pytest
-from tests._cli import ROOT, run_cli
+from tests._cli import ROOT, call_cli, run_cli
 
 from ethimon.cli import main
 from ethimon.errors import SpecError
@@ -74,7 +74,7 @@ def hostile_folder(tmp_path):
 def test_hostile_files_are_one_error_row_each_and_reports_are_written(tmp_path, sim):
     d = hostile_folder(tmp_path)
     out, junit = tmp_path / "r.json", tmp_path / "r.xml"
-    r = run_cli("check", str(d), "--json", str(out), "--junit", str(junit), *(["--sim"] if sim else []),
+    r = call_cli("check", str(d), "--json", str(out), "--junit", str(junit), *(["--sim"] if sim else []),
                 timeout=120)
     assert r.returncode == 2, r.stdout + r.stderr
     assert "Traceback" not in r.stderr
@@ -182,7 +182,7 @@ def test_lint_reports_every_file_despite_a_hostile_one(tmp_path):
     hexs, chain = hostile_specs(tmp_path)
     good = tmp_path / "good.yaml"
     good.write_text(GOVERNOR.read_text())
-    r = run_cli("lint", str(tmp_path), timeout=120)
+    r = call_cli("lint", str(tmp_path), timeout=120)
     assert r.returncode == 2, r.stdout + r.stderr
     assert "Traceback" not in r.stderr
     assert f"{good}: ok (governor" in r.stdout
@@ -252,7 +252,7 @@ def test_timeline_typo_is_an_error_with_a_hint(tmp_path):
     sc = kettle(tmp_path, "inputs: {risk: 0.1, vessel_temp: 20, human_distance: 0.2}\n"
                           "timeline:\n  - {at: 5, set: {vesel_temp: 90}}\n"
                           "expect: {override: false}\n")
-    r = run_cli("check", str(sc))
+    r = call_cli("check", str(sc))
     assert r.returncode == 2, r.stdout + r.stderr
     assert f"{sc}:7:" in r.stderr  # file:line:column of the key
     assert "'vesel_temp'" in r.stderr and "did you mean 'vessel_temp'?" in r.stderr
@@ -396,7 +396,7 @@ def test_report_to_a_fifo_without_reader_does_not_hang(tmp_path):
 def test_unwritable_report_is_one_line(tmp_path):
     ok_scenario(tmp_path / "a.yaml", "a")
     junit = tmp_path / "no" / "such" / "r.xml"
-    r = run_cli("check", str(tmp_path / "a.yaml"), "--junit", str(junit))
+    r = call_cli("check", str(tmp_path / "a.yaml"), "--junit", str(junit))
     assert r.returncode == 2, r.stdout + r.stderr
     assert f"{junit}: cannot write the JUnit report" in r.stderr and "Traceback" not in r.stderr
     assert "1 passed" in r.stdout

@@ -7,7 +7,7 @@ import pytest
 import ethimon
 from ethimon.scenario import load_scenario
 
-from tests._cli import run_cli
+from tests._cli import call_cli, run_cli
 
 GOOD_HEAD = "ethimon: 1\nname: x\n"
 SIGS = "signals:\n  ee_speed: {unit: m/s, range: [0, 3]}\n  human_distance: {unit: m, range: [0, 10]}\n"
@@ -176,7 +176,7 @@ def test_scenario_bad_expectation_id_has_hint(tmp_path, root):
     sc.write_text(f"ethimon: 1\nname: s\nspec: {root}/specs/cobot_cell.yaml\n"
                   "inputs: {p_unsafe: 0.1, human_distance: 3, ee_speed: 0, contact_force: 0, joint_speed_max: 0}\n"
                   "expect: {fired: [seperation]}\n")
-    r = run_cli("check", str(sc))
+    r = call_cli("check", str(sc))
     assert r.returncode == 2
     assert "did you mean 'separation'?" in r.stderr and f"{sc}:5:" in r.stderr
 

@@ -20,7 +20,7 @@ from ethimon.testing import ReferenceMonitor
 from ethimon.scenario import load_scenario
 from ethimon.language._expr import MAX_CHAIN_TERMS, MAX_EXPR_CHARS, MAX_TREE_DEPTH
 
-from tests._cli import run_cli
+from tests._cli import call_cli
 
 HEAD = "ethimon: 1\nname: x\n"
 COL0 = len("    require: '") + 1  # column of the first character of a spec_with() expression
@@ -119,7 +119,7 @@ def test_thousand_term_chain_passes_ethimon_check(tmp_path):
     (tmp_path / "s.yaml").write_text(spec_with(src))
     (tmp_path / "sc.yaml").write_text("ethimon: 1\nname: sc\nspec: s.yaml\ncycles: 5\n"
                                       "inputs: {x: 0.5, b: true, risk: 0.1}\nexpect: {override: false}\n")
-    r = run_cli("check", str(tmp_path / "sc.yaml"))
+    r = call_cli("check", str(tmp_path / "sc.yaml"))
     assert r.returncode == 0, r.stdout + r.stderr
     assert "Traceback" not in r.stdout + r.stderr
 
@@ -128,7 +128,7 @@ def test_thousand_term_chain_passes_ethimon_check(tmp_path):
 def test_long_chain_in_cli_is_exit_2_not_internal_error(tmp_path):
     (tmp_path / "s.yaml").write_text(spec_with("+".join(["x"] * 500) + " > 0"))
     (tmp_path / "sc.yaml").write_text("ethimon: 1\nname: sc\nspec: s.yaml\ninputs: {x: 0.5, b: true, risk: 0.1}\n")
-    r = run_cli("check", str(tmp_path / "sc.yaml"))
+    r = call_cli("check", str(tmp_path / "sc.yaml"))
     assert r.returncode == 2, r.stdout + r.stderr
     assert "Traceback" not in r.stderr and "too long: 500 terms" in r.stderr
 

@@ -25,7 +25,7 @@ from rosbags.typesys import Stores, get_typestore  # noqa: E402
 
 from ethimon.replay import BagError, load_mapping, load_mapping_text, replay_bag  # noqa: E402
 
-from tests._cli import ROOT, run_cli  # noqa: E402
+from tests._cli import ROOT, call_cli  # noqa: E402
 
 SPEC = """
 ethimon: 1
@@ -538,7 +538,7 @@ def test_cli_table_json_junit_audit_and_error_row(tmp_path):
     bad = tmp_path / "bad.bag"
     bad.write_bytes(b"not a bag at all")
     junit, audit = tmp_path / "j.xml", tmp_path / "audit.jsonl"
-    r = run_cli("replay", str(good), str(bad), str(ros1), "--spec", str(tmp_path / "spec.yaml"), "--map",
+    r = call_cli("replay", str(good), str(bad), str(ros1), "--spec", str(tmp_path / "spec.yaml"), "--map",
                 str(tmp_path / "map.yaml"), "--json", "-", "--junit", str(junit), "--audit", str(audit))
     assert r.returncode == 2, r.stderr
     assert "Traceback" not in r.stderr
@@ -569,15 +569,15 @@ def test_cli_pass_exit_0_and_usage_errors(tmp_path):
         "max_age_s: 0.08", "max_age_s: 1.0") + "start: all_seen\n")
     good = _cli_bag(tmp_path / "good")
     args = ["--spec", str(tmp_path / "spec.yaml"), "--map", str(tmp_path / "map.yaml")]
-    r = run_cli("replay", str(good), *args)
+    r = call_cli("replay", str(good), *args)
     assert r.returncode == 0, r.stdout + r.stderr
     assert "1 passed, 0 failed, 0 errors" in r.stdout
-    r = run_cli("replay", *args)
+    r = call_cli("replay", *args)
     assert r.returncode == 2 and "give at least one BAG" in r.stderr
     (tmp_path / "bad.yaml").write_text(CLI_MAP.replace("reduce: norm", "reduce: nrom"))
-    r = run_cli("replay", str(good), "--spec", str(tmp_path / "spec.yaml"), "--map", str(tmp_path / "bad.yaml"))
+    r = call_cli("replay", str(good), "--spec", str(tmp_path / "spec.yaml"), "--map", str(tmp_path / "bad.yaml"))
     assert r.returncode == 2 and f"{tmp_path / 'bad.yaml'}:" in r.stderr and "Traceback" not in r.stderr
-    r = run_cli("replay", "--schema")
+    r = call_cli("replay", "--schema")
     assert r.returncode == 0 and json.loads(r.stdout)["title"].startswith("ethimon replay mapping")
 
 
@@ -600,7 +600,7 @@ def test_without_rosbags_each_bag_is_an_error_row(tmp_path):
 @pytest.mark.slow
 def test_readme_example_command():
     """Exactly the command the README shows (the real risk model scores the task text)."""
-    r = run_cli("replay", "examples/replay/cell", "--spec", "examples/replay/spec.yaml", "--map",
+    r = call_cli("replay", "examples/replay/cell", "--spec", "examples/replay/spec.yaml", "--map",
                 "examples/replay/mapping.yaml", timeout=300)
     assert r.returncode == 1, r.stdout + r.stderr
     rows = {line.split()[1]: line for line in r.stdout.splitlines() if line.startswith("examples/replay/cell")}

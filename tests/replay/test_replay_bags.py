@@ -25,7 +25,7 @@ from rosbags.typesys import Stores, get_typestore  # noqa: E402
 
 from ethimon.replay import BagError, load_mapping, load_mapping_text, replay_bag  # noqa: E402
 
-from tests._cli import run_cli  # noqa: E402
+from tests._cli import call_cli, run_cli  # noqa: E402
 
 T0 = 1_700_000_000 * 10**9
 P = (0.9, 0.1)
@@ -181,6 +181,7 @@ def test_backwards_clock_jump_is_an_error_not_a_pass(tmp_path, fmt):
 
 
 # ----------------------------------------------------------------------------- row: a Bool as a number
+@pytest.mark.slow
 @pytest.mark.parametrize("fmt", FORMATS)
 def test_bool_field_feeds_only_a_bool_signal(tmp_path, fmt):
     bag = write(bag_path(tmp_path, fmt), fmt, [(ns(i * 0.05), "/d", "bool", i % 2) for i in range(20)])
@@ -438,7 +439,7 @@ def test_topics_lists_types_counts_rates_and_both_time_spans(tmp_path, fmt):
     msgs = [(ns(i * 0.01), "/joint_states", "js", [0.1] * 7) for i in range(101)]
     msgs += [(ns(i * 0.1), "/d", "f64", 1.0) for i in range(11)]
     bag = write(bag_path(tmp_path, fmt), fmt, msgs, stamp=lambda t: t - 2_000_000_000)
-    r = run_cli("replay", str(bag), "--topics")
+    r = call_cli("replay", str(bag), "--topics")
     assert r.returncode == 0, r.stderr
     out = r.stdout
     js = next(line for line in out.splitlines() if line.strip().startswith("/joint_states "))
@@ -446,7 +447,7 @@ def test_topics_lists_types_counts_rates_and_both_time_spans(tmp_path, fmt):
     assert f"{(T0 - 2 * 10**9) / 1e9:.3f} .. {(T0 - 10**9) / 1e9:.3f}" in js  # header span
     assert f"{T0 / 1e9:.3f} .. {(T0 + 10**9) / 1e9:.3f}" in js  # log span
     assert "names: panda_joint1" in out and "field: position[panda_joint1]" in out
-    r = run_cli("replay", str(bag), "--topics", "--json", "-")
+    r = call_cli("replay", str(bag), "--topics", "--json", "-")
     doc = json.loads(r.stdout)
     (d,) = [t for t in doc["bags"][0]["topics"] if t["topic"] == "/d"]
     assert d["count"] == 11 and d["header_first_ns"] is None and abs(d["rate_hz"] - 10.0) < 1e-9

@@ -486,10 +486,10 @@ def _mpnet(d: Path) -> Path:
 
 @pytest.mark.slow
 def test_export_makes_an_unsupported_family_run_on_onnx_and_pins_it(tmp_path):
-    from tests._cli import run_cli
+    from tests._cli import call_cli
     d = _mpnet(tmp_path / "mpnet")
     assert load_estimator(d, max_length=24).backend == "torch"  # no ONNX form yet
-    r = run_cli("export", str(d), timeout=120)
+    r = call_cli("export", str(d), timeout=120)
     assert r.returncode == 0 and "model.onnx" in r.stdout, r.stderr
     side = json.loads((d / "ethimon_onnx.json").read_text())
     assert side["graphs"]["fp32"]["sha256"] == _sha(d / "model.onnx")
@@ -523,8 +523,8 @@ def test_export_of_an_adapter_dir_equals_the_built_graph(dirs, tmp_path):
 
 @pytest.mark.slow
 def test_export_cli_errors_are_one_line(tmp_path):
-    from tests._cli import run_cli
-    r = run_cli("export", str(tmp_path / "nope"))
+    from tests._cli import call_cli
+    r = call_cli("export", str(tmp_path / "nope"))
     assert r.returncode == 2 and r.stderr.startswith("ethimon: error:") and "Traceback" not in r.stderr
 
 

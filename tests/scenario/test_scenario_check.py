@@ -7,7 +7,7 @@ import io
 import json
 
 import pytest
-from tests._cli import ROOT, run_cli
+from tests._cli import ROOT, call_cli
 
 from ethimon.cli import main
 from ethimon.scenario import check_paths, load_scenario_text, sim_risk_inputs
@@ -139,18 +139,18 @@ def test_progress_bar_only_when_stdout_is_a_terminal(tmp_path, monkeypatch):
 @pytest.mark.slow
 def test_check_with_a_pipe_draws_no_progress_bar(tmp_path):
     write_ok(tmp_path, "a")
-    r = run_cli("check", str(tmp_path))
+    r = call_cli("check", str(tmp_path))
     assert r.returncode == 0
     assert "\r" not in r.stderr and "file/s" not in r.stderr and r.stderr == ""
 
 
 @pytest.mark.slow
 def test_lint_is_listed_with_a_description():
-    r = run_cli("--help")
+    r = call_cli("--help")
     assert r.returncode == 0
     line = next(ln for ln in r.stdout.splitlines() if ln.strip().startswith("lint"))
     assert "spec" in line
-    r = run_cli("lint", "--help")
+    r = call_cli("lint", "--help")
     assert "ethimon verify" in r.stdout and "Exit 0" in r.stdout
     assert "ethimon lint" in (ROOT / "README.md").read_text()
 

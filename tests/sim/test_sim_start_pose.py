@@ -34,10 +34,10 @@ def _pybullet():
 
 @pytest.mark.slow
 def test_a_start_pose_inside_a_fixed_object_is_a_located_error(tmp_path):
-    from tests._cli import run_cli
+    from tests._cli import call_cli
     f = tmp_path / "start_in_cabinet.yaml"
     f.write_text(SCENARIO.format(spec=ROOT / "specs" / "cobot_cell.yaml", z=0.3))
-    r = run_cli("simulate", str(f))
+    r = call_cli("simulate", str(f))
     assert r.returncode == 2
     assert f"{f}:10:3: sim.start_xyz_m: the arm" in r.stderr and "inside 'cabinet'" in r.stderr
     assert "Traceback" not in r.stderr
