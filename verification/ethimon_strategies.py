@@ -5,7 +5,7 @@ boolean ``b`` and ``risk``), with every operator and every temporal operator
 (``prev`` with and without an initial value, ``held``, ``once``, bounded and
 unbounded ``since``) and every function (``abs``, ``sqrt``, ``min``, ``max``, and
 ``separation_distance`` compared with a risk-free operand: its result is in [m]),
-rendered with :func:`~ethimon.spec._expr.to_source` and compiled through
+rendered with :func:`~ethimon.language._expr.to_source` and compiled through
 :func:`ethimon.load_spec_text`, exactly like a user's file.
 """
 
@@ -21,7 +21,7 @@ import yaml
 from hypothesis import strategies as st
 
 import ethimon
-from ethimon.spec._expr import Binary, BoolLit, Call, Name, Num, Unary, parse_expr, separation_distance, to_source
+from ethimon.language._expr import Binary, BoolLit, Call, Name, Num, Unary, parse_expr, separation_distance, to_source
 
 NUM_SIGNALS = {"x": (-5.0, 5.0), "y": (0.0, 10.0), "z": (-1.0, 1.0)}
 BOOL_SIGNALS = ("b",)

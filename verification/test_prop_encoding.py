@@ -21,7 +21,7 @@ z3 = pytest.importorskip("z3")
 
 import yaml  # noqa: E402
 
-from ethimon.spec._expr import Binary, Call, Name, Num, to_source  # noqa: E402
+from ethimon.language._expr import Binary, Call, Name, Num, to_source  # noqa: E402
 from ethimon.verify._encode import Unrolled, decision_trace, real  # noqa: E402
 from ethimon_strategies import (NUM_SIGNALS, GenSpec, _n, _no_risk, _nonneg, _nonzero, bool_expr,  # noqa: E402
                                 num_expr, spec_doc, specs)

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 
 import ethimon
 from ethimon.testing import ReferenceMonitor
-from ethimon.spec._expr import Binary, BoolLit, Name, Num, Unary, parse_expr, to_source
+from ethimon.language._expr import Binary, BoolLit, Name, Num, Unary, parse_expr, to_source
 from ethimon_strategies import bool_expr, decision_key, num_expr, ops, specs
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

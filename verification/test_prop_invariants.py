@@ -32,7 +32,7 @@ from hypothesis import strategies as st
 import ethimon
 from ethimon.testing import ReferenceMonitor
 from ethimon.risk._formula import risk_from_p_unsafe, risk_from_probs, risk_range
-from ethimon.spec._model import Response
+from ethimon.language._model import Response
 from ethimon_strategies import frame, ops, specs
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

@@ -25,7 +25,7 @@ from hypothesis import strategies as st
 
 import ethimon
 from ethimon.offline import check_trace, iter_rows
-from ethimon.spec._expr import to_source
+from ethimon.language._expr import to_source
 from ethimon_strategies import BOOL_SIGNALS, NUM_SIGNALS, RESPONSES, bool_expr, frame, specs
 
 

@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 
 import ethimon
 from ethimon.testing import ReferenceMonitor
-from ethimon.spec._yaml import parse_yaml_bytes
+from ethimon.language._yaml import parse_yaml_bytes
 from ethimon_strategies import bool_expr, spec_doc
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -155,7 +155,7 @@ def test_random_expressions_point_into_the_file(data):
 
 @given(bool_expr(2))
 def test_generated_expressions_compile(tree):
-    from ethimon.spec._expr import to_source
+    from ethimon.language._expr import to_source
     doc = {"ethimon": 1, "name": "e", "signals": {"x": {"range": [-5, 5]}, "y": {"range": [0, 10]},
                                                    "z": {"range": [-1, 1]}, "b": {"type": "bool"}},
            "obligations": [{"id": "o", "require": to_source(tree)}]}
@@ -175,7 +175,7 @@ def test_random_bytes(raw):
 # on a 400-term 'and' chain, an OverflowError on held(x, 1e400) or a ValueError on a 4,300-digit
 # 0x... integer. These reach the sizes and shapes at and past every limit.
 
-from ethimon.spec._expr import MAX_CHAIN_TERMS, MAX_EXPR_CHARS, MAX_EXPR_DEPTH, MAX_TREE_DEPTH  # noqa: E402
+from ethimon.language._expr import MAX_CHAIN_TERMS, MAX_EXPR_CHARS, MAX_EXPR_DEPTH, MAX_TREE_DEPTH  # noqa: E402
 
 _BOUNDARY_COUNTS = sorted({1, 2, 3, MAX_CHAIN_TERMS - 1, MAX_CHAIN_TERMS, MAX_CHAIN_TERMS + 1,
                            MAX_TREE_DEPTH - 1, MAX_TREE_DEPTH, MAX_TREE_DEPTH + 1, 400, 600, 1000, 1300, 2500,

@@ -15,7 +15,7 @@ from hypothesis import given, note
 from hypothesis import strategies as st
 
 import ethimon
-from ethimon.spec._expr import Binary, Call, Name, Num, to_source
+from ethimon.language._expr import Binary, Call, Name, Num, to_source
 from ethimon_strategies import (GenSpec, _n, _no_risk, bool_expr, frame, num_expr, ops, separation_calls,
                                 spec_doc)
 from test_prop_equivalence import run_both

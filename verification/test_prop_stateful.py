@@ -20,7 +20,7 @@ from fractions import Fraction
 import ethimon
 from ethimon.testing import ReferenceMonitor
 from ethimon.compiler._risk_formula import release_bound
-from ethimon.spec._model import Response
+from ethimon.language._model import Response
 from ethimon_strategies import decision_key, frame, specs
 
 pytestmark = pytest.mark.slow  # a stateful Hypothesis run: ~4 s

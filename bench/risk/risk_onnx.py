@@ -100,7 +100,7 @@ def main() -> None:
         a.json = str(RESULTS / "risk" / ("risk_onnx_oneshot.json" if a.one_shot_only else "risk_onnx.json"))
     load_start = loadavg()
     from ethimon.risk import DEFAULT_TAU, load_estimator, risk_from_probs
-    from ethimon.spec import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA
+    from ethimon.language import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA
 
     def decide(p):
         return risk_from_probs(p, DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, "sample") >= DEFAULT_TAU

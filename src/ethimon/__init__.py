@@ -17,7 +17,7 @@ from ._api import load_spec, load_spec_text
 from .errors import DependencyNotInstalled, EthimonError, ModelError, SpecError
 from .compiler._risk_formula import risk_from_p_unsafe, risk_from_probs
 from .runtime import Decision, Fault, Monitor
-from .spec import Response, Spec
+from .language import Response, Spec
 
 __version__ = "0.1.0"
 

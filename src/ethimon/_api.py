@@ -5,8 +5,8 @@ from __future__ import annotations
 import os
 
 from .compiler import plan_of
-from .spec import parse_spec_file, parse_spec_text
-from .spec import Spec
+from .language import parse_spec_file, parse_spec_text
+from .language import Spec
 
 __all__ = ["load_spec", "load_spec_text"]
 

@@ -11,7 +11,7 @@ from . import _api
 from ._files import scan_yaml_files
 from ._robot import out_of_range, safe_pose_problem
 from .scenario import error_line
-from .spec import Spec
+from .language import Spec
 from .verify._policy import release_policy_warnings  # no z3
 
 __all__ = ["LintLine", "LintReport", "iter_lint", "lint_paths", "lint_safe_pose"]

@@ -5,7 +5,7 @@ The spec's default safe pose is the Franka Panda's "ready" pose, which is also
 where the simulated arm starts; the Panda's rated joint limits bound every simulated
 controller, and a safe pose outside the rated position range is an error for ``ethimon lint``,
 ``ethimon verify`` (lint.safe_pose_range) and ``check --sim``. They live here once so that
-``spec``/``verify`` (which may not import ``sim``) and ``sim`` read the same numbers.
+``language``/``verify`` (which may not import ``sim``) and ``sim`` read the same numbers.
 
 Rated limits: Franka Emika, FCI documentation, "Robot and interface specifications", section
 "Limits for Panda" (https://frankaemika.github.io/docs/control_parameters.html).

@@ -91,7 +91,7 @@ class DependencyNotInstalled(EthimonError, ImportError):
 
 
 class ExprSyntaxError(EthimonError, ValueError):
-    """A syntax error at character ``index`` of an expression's text (raised by ``ethimon.spec.parse_expr``;
+    """A syntax error at character ``index`` of an expression's text (raised by ``ethimon.language.parse_expr``;
     the spec loader turns it into a :class:`SpecError` at the expression's file, line and column)."""
 
     def __init__(self, message: str, index: int, hint: str | None = None) -> None:

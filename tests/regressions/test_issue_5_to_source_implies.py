@@ -1,7 +1,7 @@
 """Issue 5 (found by the verification suite): ``to_source`` dropped the parentheses of a
 left-nested ``implies``, so ``(a implies b) implies c`` came back as ``a implies (b implies c)``."""
 
-from ethimon.spec._expr import Binary, parse_expr, to_source
+from ethimon.language._expr import Binary, parse_expr, to_source
 
 
 def test_left_nested_implies_keeps_its_parentheses():

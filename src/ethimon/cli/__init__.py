@@ -55,7 +55,7 @@ def _build_parser() -> argparse.ArgumentParser:
 
 def _cmd_schema(args: argparse.Namespace) -> int:
     if args.kind == "spec":
-        from ..spec import Spec as model
+        from ..language import Spec as model
     else:
         from ..scenario import Scenario as model
     schema = model.model_json_schema()

@@ -23,7 +23,7 @@ def risk_config(spec_path: str | None) -> dict:
     """
     if not spec_path:
         from ..risk import DEFAULT_TAU
-        from ..spec import RiskConfig
+        from ..language import RiskConfig
         d = RiskConfig()
         return {"alpha": d.alpha, "beta": d.beta, "gamma": d.gamma, "variance": d.variance,
                 "threshold": DEFAULT_TAU, "spec": None}

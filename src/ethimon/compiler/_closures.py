@@ -17,9 +17,9 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call, Name,
+from ..language._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call, Name,
                           Node, Num, Unary, separation_distance, walk)
-from ..spec._visit import ExprVisitor
+from ..language._visit import ExprVisitor
 from ._machines import bounded_margin, held_machine, once_machine, prev_machine, since_machine
 from ._plan import Plan
 
@@ -285,7 +285,7 @@ class _Gen(ExprVisitor):
     def separation(self, node: Call) -> Callable[[], float]:
         """``separation_distance(...)``: evaluate every argument, raise if one is not ``>= 0``
         (a fault, like ``sqrt`` of a negative), else the formula of
-        :func:`~ethimon.spec._expr.separation_distance` in its order.
+        :func:`~ethimon.language._expr.separation_distance` in its order.
 
         Constant arguments (checked ``>= 0`` by the compiler) are read once; with constant times
         and offsets (the usual shape) ``T_r + T_s`` is computed once (the formula's first step,

@@ -13,8 +13,8 @@ import warnings
 from dataclasses import dataclass, field
 from fractions import Fraction
 
-from ..spec._expr import Call, Node
-from ..spec import Response, RiskConfig, Spec
+from ..language._expr import Call, Node
+from ..language import Response, RiskConfig, Spec
 from ._units import Unit, format_unit
 
 __all__ = ["Plan", "ObligationPlan", "SignalSlot", "RuleRelease", "Ty", "BOOL", "RISK_NAME", "MAX_WINDOW"]

@@ -9,8 +9,8 @@ spec (``model_copy``, ``deepcopy``, a pickle) is another spec and compiles its o
 
 from __future__ import annotations
 
-from ..spec._expr import TEMPORAL, Call, Name, walk
-from ..spec import Spec
+from ..language._expr import TEMPORAL, Call, Name, walk
+from ..language import Spec
 from ._plan import Plan
 from ._typecheck import compile_plan
 

@@ -15,7 +15,7 @@ from collections.abc import Sequence
 from decimal import Decimal
 from fractions import Fraction
 
-from ..spec import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, VARIANCE_MODES
+from ..language import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, VARIANCE_MODES
 
 __all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "two_class_risk", "risk_from_p_unsafe", "risk_from_probs", "risk_bounds",
            "release_bound", "decimal_reading", "risk_range", "VARIANCE_MODES", "OUTCOMES", "judge_verdict",

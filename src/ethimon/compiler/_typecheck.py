@@ -9,9 +9,9 @@ import difflib
 import math
 
 from ..errors import SpecError
-from ..spec._expr import (FUNCTIONS, SEPARATION_PARAMS, TEMPORAL, Binary, BoolLit, Call, ExprSyntaxError, Name,
+from ..language._expr import (FUNCTIONS, SEPARATION_PARAMS, TEMPORAL, Binary, BoolLit, Call, ExprSyntaxError, Name,
                           Node, Num, Unary, parse_expr, separation_distance)
-from ..spec import Constant, Response, Spec
+from ..language import Constant, Response, Spec
 from ._plan import BOOL, MAX_WINDOW, RISK_NAME, ObligationPlan, Plan, RuleRelease, SignalSlot, Ty
 from ._risk_formula import release_bound
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit

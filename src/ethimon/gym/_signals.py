@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 from .._api import load_spec
-from ..spec import Spec
+from ..language import Spec
 
 __all__ = ["panda_signals", "panda_spec", "PANDA_SPEC_PATH"]
 

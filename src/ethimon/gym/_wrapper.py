@@ -31,7 +31,7 @@ import numpy as np
 
 from .._api import load_spec
 from ..runtime import Decision, Fault, Monitor
-from ..spec import Spec
+from ..language import Spec
 
 __all__ = ["MonitorWrapper"]
 

@@ -49,7 +49,7 @@ from typing import Any
 from ..audit import spec_hash
 from ..errors import EthimonError
 from ..runtime import Decision, Fault, Monitor
-from ..spec import Spec
+from ..language import Spec
 from ._acknowledge import _Acknowledging
 from ._process import ProcessEstimator
 from ._reload import ReloadResult, _Reloading, _verify_smt

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from .._api import load_spec
 from ..errors import EthimonError
 from ..runtime import Monitor
-from ..spec import Spec
+from ..language import Spec
 from ._source import AsyncJudgeSource
 from ._weakenings import unmapped_latches, weakenings
 

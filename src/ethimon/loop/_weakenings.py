@@ -11,8 +11,8 @@ from typing import Any
 
 from ..compiler import Plan, plan_of
 from ..compiler._risk_formula import risk_range
-from ..spec import Response, Spec
-from ..spec._expr import Name, walk
+from ..language import Response, Spec
+from ..language._expr import Name, walk
 
 __all__ = ["CANNOT_TELL", "weakenings", "unmapped_latches"]
 

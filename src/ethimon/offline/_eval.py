@@ -30,9 +30,9 @@ import math
 
 import numpy as np
 
-from ..spec._expr import (COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num,
+from ..language._expr import (COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num,
                           Unary, comparison_margin, separation_distance)
-from ..spec._visit import ExprVisitor
+from ..language._visit import ExprVisitor
 
 __all__ = ["Evaluator", "TEMPORAL_FUNCS"]
 

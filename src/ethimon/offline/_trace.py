@@ -35,7 +35,7 @@ import numpy as np
 
 from ..runtime import Decision
 from ..runtime import Monitor
-from ..spec import SEVERITY_ORDER, Response, Spec
+from ..language import SEVERITY_ORDER, Response, Spec
 from ..compiler import Plan, stateless_slots
 from ._columns import Inputs, read_inputs, row
 from ._eval import Evaluator, last_index

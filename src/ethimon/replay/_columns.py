@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from ..spec import Spec
+from ..language import Spec
 from ._bag import BagData, BagError
 from ._collect import Series
 from ._mapping import RISK_INPUTS, Mapping, lint_mapping

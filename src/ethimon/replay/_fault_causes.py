@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..spec import Spec
+from ..language import Spec
 from ._bag import BagData
 from ._columns import Resampled
 from ._mapping import Mapping

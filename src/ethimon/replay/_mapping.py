@@ -39,9 +39,9 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
 from ..errors import SpecError
-from ..spec._load import validate_document
-from ..spec._model import FiniteFloat, Spec
-from ..spec._yaml import SourceMap, parse_yaml_text, read_yaml
+from ..language._load import validate_document
+from ..language._model import FiniteFloat, Spec
+from ..language._yaml import SourceMap, parse_yaml_text, read_yaml
 
 __all__ = ["FIELD_PATH", "MSGTYPE", "REDUCTIONS", "RISK_INPUTS", "ByName", "Mapping", "Ros2Map", "SignalMap", "TaskMap",
            "load_mapping", "load_mapping_text", "mapping_json_schema", "check_against_spec", "lint_mapping",

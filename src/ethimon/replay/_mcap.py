@@ -24,7 +24,7 @@ from typing import Any
 
 from .._files import open_regular
 from ..errors import BagError, DependencyNotInstalled
-from ..spec import Response, Spec
+from ..language import Response, Spec
 
 __all__ = ["TOPICS", "write_mcap"]
 

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import SpecError
-from ..spec import Spec
+from ..language import Spec
 from ._bag import BagData, read_bag
 from ._columns import Resampled, resample
 from ._fault_causes import _why_fault
@@ -218,7 +218,7 @@ def _reads_risk(spec: Spec) -> set[str]:
     """The ids of the obligations whose ``when`` or ``require`` reads R_e (a name that is neither a
     signal nor a constant: the built-in ``risk``)."""
     from ..compiler import plan_of
-    from ..spec._expr import Name, walk
+    from ..language._expr import Name, walk
     known = set(spec.signals) | set(spec.constants)
     out = set()
     for ob in plan_of(spec).obligations:

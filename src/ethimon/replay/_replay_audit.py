@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..spec import Response, Spec
+from ..language import Response, Spec
 from ._bag import BagError
 from ._columns import Resampled
 from ._result import BagReplay

@@ -6,7 +6,7 @@ from __future__ import annotations
 import copy
 from collections.abc import Callable, Sequence
 
-from ..spec import Spec
+from ..language import Spec
 
 __all__ = ["TaskScorer"]
 

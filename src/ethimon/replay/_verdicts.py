@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from ..runtime import Monitor
-from ..spec import Spec
+from ..language import Spec
 
 __all__ = ["CycleResults", "check_columns"]
 

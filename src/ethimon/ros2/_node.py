@@ -51,7 +51,7 @@ from ..replay import Mapping, SignalMap, check_against_spec, load_mapping
 from ..replay._values import reduce_value
 from ..replay._mapping import RISK_INPUTS, parse_field_path
 from ..runtime import Decision, Fault, Monitor
-from ..spec import Spec
+from ..language import Spec
 from ._config import cyclone_config
 from ._names import dds_topic, normalize_type
 from ._qos import DEFAULT, SENSOR_DATA, to_cyclone

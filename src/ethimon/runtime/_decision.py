@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..spec import Response
+from ..language import Response
 from ._fault import Fault
 
 __all__ = ["Decision", "Acknowledgement", "Fault", "Response"]

@@ -3,7 +3,7 @@ outside the monitor (watchdog, estimator, audit)."""
 
 from __future__ import annotations
 
-from ..spec import SEVERITY_ORDER
+from ..language import SEVERITY_ORDER
 from ._calls import _EMPTY
 from ._decision import Decision
 from ._fault import Fault

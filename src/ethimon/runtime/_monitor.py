@@ -14,7 +14,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ..compiler import Plan, plan_of
-from ..spec import SEVERITY_ORDER, Response, Spec
+from ..language import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import risk_from_probs, two_class_risk
 from ._calls import _EMPTY
 from ._construction import _Construction
@@ -171,7 +171,7 @@ class Monitor(_Construction, _Latches, _FailClosed):
             else:
                 q = get("p_unsafe")
                 if type(q) is float and self._p2 and 0.0 <= q <= 1.0:  # the common case, as _risk_p
-                    # compiler._risk_formula.two_class_risk inlined (hot path; tests/test_plan_of.py
+                    # compiler._risk_formula.two_class_risk inlined (hot path; tests/compiler/test_plan_of.py
                     # checks this copy equals the one definition on a grid of inputs and weights)
                     d = q - 0.5
                     var = 2.0 * d * d if self._sample else d * d

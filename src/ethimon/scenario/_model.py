@@ -8,7 +8,7 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, model_validator
 
 from ..sim import SimBlock
-from ..spec._model import ACTIVE_RESPONSES
+from ..language._model import ACTIVE_RESPONSES
 
 __all__ = ["Scenario", "TimelineEntry", "Expect", "Value"]
 
@@ -76,7 +76,7 @@ class Scenario(BaseModel):
     def _check(self) -> "Scenario":
         for i, entry in enumerate(self.timeline):
             if entry.at >= self.cycles:
-                from ..spec._model import _LocError
+                from ..language._model import _LocError
                 raise _LocError(f"timeline entry at cycle {entry.at} is past the end (cycles: {self.cycles})",
                                 ("timeline", i, "at"), hint="raise 'cycles' or move the entry")
         return self

@@ -11,9 +11,9 @@ from .._api import load_spec
 from .._files import find_yaml_files
 from ..errors import SpecError
 from ..runtime import Decision, Monitor
-from ..spec._load import validate_document
-from ..spec import Response, Spec
-from ..spec._yaml import parse_yaml_text, read_yaml
+from ..language._load import validate_document
+from ..language import Response, Spec
+from ..language._yaml import parse_yaml_text, read_yaml
 from ._model import Scenario
 
 if TYPE_CHECKING:  # pragma: no cover

@@ -16,12 +16,12 @@ from ._arm import ArmSim
 from ._cell import Segment, _half_height, _half_width
 from ._limits import (BRAKE_ENGAGE_S, LIMIT_MARGIN_RAD, RATED_DDDQ_MAX, RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX,
                       RATED_Q_MIN)
-from ..spec import SEVERITY_ORDER
+from ..language import SEVERITY_ORDER
 from ._model import SimError, HandOver, Pick, Place, Pour, Reach, SimBlock, Wait, Wipe
 
 __all__ = ["plan_task", "TaskController", "StopController", "SEVERITY"]
 
-#: Response name -> severity (the spec's one order, ``ethimon.spec.SEVERITY_ORDER``); the arm never
+#: Response name -> severity (the spec's one order, ``ethimon.language.SEVERITY_ORDER``); the arm never
 #: de-escalates while overridden.
 SEVERITY = {r.value: r.severity for r in SEVERITY_ORDER}
 

@@ -109,13 +109,13 @@ def spec_constants(spec: Any) -> dict[str, float]:
 
 
 def _sp_function():
-    from ..spec import _expr  # the language's own S_p (ISO/TS 15066), + and * only: arrays work
+    from ..language import _expr  # the language's own S_p (ISO/TS 15066), + and * only: arrays work
     return getattr(_expr, "separation_distance", None)
 
 
 def _drawable(node: Any, names: set[str]) -> bool:
     """``node`` is arithmetic over ``names`` (constants and signals) that :func:`_eval` computes."""
-    from ..spec._expr import Binary, Call, Name, Num, Unary
+    from ..language._expr import Binary, Call, Name, Num, Unary
     if isinstance(node, Num):
         return True
     if isinstance(node, Name):
@@ -132,7 +132,7 @@ def _drawable(node: Any, names: set[str]) -> bool:
 
 def _eval(node: Any, columns: Mapping[str, np.ndarray], constants: Mapping[str, float]) -> Any:
     """The value of a :func:`_drawable` bound (numpy arrays for signal columns)."""
-    from ..spec._expr import Binary, Name, Num, Unary
+    from ..language._expr import Binary, Name, Num, Unary
     if isinstance(node, Num):
         return float(node.value)
     if isinstance(node, Name):
@@ -148,14 +148,14 @@ def _eval(node: Any, columns: Mapping[str, np.ndarray], constants: Mapping[str, 
 
 
 def _names(node: Any) -> set[str]:
-    from ..spec._expr import Name, walk
+    from ..language._expr import Name, walk
     return {n.id for n in walk(node) if isinstance(n, Name)}
 
 
 def spec_limits(spec: Any) -> tuple[list[Limit], list[str]]:
     """``(limits, skipped)``: the drawable comparisons of ``spec``'s obligations and, as text,
     the comparisons on a signal that were not drawable."""
-    from ..spec._expr import Binary, Name, parse_expr, to_source, walk
+    from ..language._expr import Binary, Name, parse_expr, to_source, walk
     if spec is None:
         return [], []
     constants = spec_constants(spec)

@@ -3,7 +3,7 @@
 :class:`ReferenceMonitor` is the reference interpreter: slow, obviously correct,
 written straight from the definitions of the spec language (it keeps the whole
 history and walks the AST every cycle). The compiled :class:`~ethimon.Monitor`
-must agree with it cycle by cycle (``tests/test_compiled_vs_reference.py``,
+must agree with it cycle by cycle (``tests/compiler/test_compiled_vs_reference.py``,
 ``verification/test_prop_equivalence.py``, ``verification/test_prop_stateful.py``).
 Never use it to govern an arm: it is O(history) per step.
 

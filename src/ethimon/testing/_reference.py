@@ -75,11 +75,11 @@ from typing import Any
 
 from ..compiler._plan import RISK_NAME, Plan
 from ..compiler import plan_of
-from ..spec._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call,
+from ..language._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call,
                           Name, Node, Num, Unary, comparison_margin, connective_margin, separation_distance,
                           walk)
-from ..spec._visit import ExprVisitor
-from ..spec import SEVERITY_ORDER, Response, Spec
+from ..language._visit import ExprVisitor
+from ..language import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import decimal_reading, risk_from_p_unsafe, risk_from_probs, risk_range
 from ..runtime import Decision, Fault
 # the monitor's own input rules (what counts as a number, a flag, a probability vector): the

@@ -14,7 +14,7 @@ from ..compiler import Plan
 from ..compiler import plan_of
 from ..compiler._risk_formula import risk_range
 from ..runtime import Monitor
-from ..spec import Response, Spec
+from ..language import Response, Spec
 from ._encode import DecisionTrace, Unrolled, decision_trace, lookback, release_below, z3_value
 from ._report import SKIPPED, UNKNOWN, Counterexample, Finding
 from ._tiers import base_spec

@@ -44,8 +44,8 @@ import z3
 from ..compiler import plan_of
 from ..compiler._plan import RISK_NAME, Plan
 from ..compiler._risk_formula import risk_range
-from ..spec._expr import BINARY_OPS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance, walk
-from ..spec._visit import ExprVisitor
+from ..language._expr import BINARY_OPS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance, walk
+from ..language._visit import ExprVisitor
 
 __all__ = ["Unrolled", "FloatUnrolled", "float_value", "DecisionTrace", "RuleInfo", "decision_trace", "rules_of", "lookback", "real", "release_below",
            "risk_input_range", "z3_value"]

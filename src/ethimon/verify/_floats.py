@@ -19,7 +19,7 @@ import sys
 from fractions import Fraction
 
 from ..compiler._plan import RISK_NAME
-from ..spec._expr import Binary, Call, Name, Num, Unary, separation_distance, to_source, walk
+from ..language._expr import Binary, Call, Name, Num, Unary, separation_distance, to_source, walk
 
 __all__ = ["float_hazards", "defined_in_doubles"]
 

@@ -13,7 +13,7 @@ import z3
 
 from ..compiler._risk_formula import risk_from_p_unsafe, two_class_risk
 from ..runtime import Monitor
-from ..spec._expr import Name, walk
+from ..language._expr import Name, walk
 from .._robot import out_of_range, safe_pose_problem
 from ._policy import manual_rules, release_policy_warnings
 from ._checks import CheckBase, _fmt

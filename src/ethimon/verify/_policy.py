@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..compiler import Plan, plan_of
-from ..spec._model import MANUAL_BY_DEFAULT, Spec
+from ..language._model import MANUAL_BY_DEFAULT, Spec
 
 __all__ = ["release_policy_warnings", "manual_rules"]
 

@@ -11,7 +11,7 @@ import z3
 
 from ..compiler._risk_formula import risk_bounds, risk_from_p_unsafe, two_class_risk
 from ..runtime import Monitor
-from ..spec._expr import walk
+from ..language._expr import walk
 from ._checks import _SEV_NAME, BUDGET_NOTE, CheckBase, _fmt
 from ._encode import FloatUnrolled, Unrolled, decision_trace, real, rules_of, z3_value
 from ._report import OK, PROVED, PROVED_REAL, REFUTED, SKIPPED, UNKNOWN, Counterexample, Finding
@@ -293,7 +293,7 @@ class Properties(CheckBase):
 
     def _arith(self, ob) -> bool:
         """Whether ``ob`` computes anything (arithmetic or a function): else floats are the reals."""
-        from ..spec._expr import Binary, Call, Unary
+        from ..language._expr import Binary, Call, Unary
         return any((isinstance(n, Binary) and n.op in ("+", "-", "*", "/")) or
                    (isinstance(n, Unary) and n.op == "-") or
                    (isinstance(n, Call) and n.func in ("sqrt", "abs", "min", "max", "separation_distance"))
@@ -304,7 +304,7 @@ class Properties(CheckBase):
         ``a * b`` of in-range non-zero inputs can be 0 and ``x / (a * b)`` raise."""
         name = f"{ob.id}.defined"
         what = "no division by zero, sqrt of a negative or negative separation_distance() argument for any in-range input"
-        from ..spec._expr import Binary, Call
+        from ..language._expr import Binary, Call
         if not any((isinstance(n, Binary) and n.op == "/") or (isinstance(n, Call) and n.func in (
                 "sqrt", "separation_distance")) for root in (ob.when, ob.require) if root is not None
                 for n in walk(root)):

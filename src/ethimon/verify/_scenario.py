@@ -9,7 +9,7 @@ from typing import Any
 
 import yaml
 
-from ..spec import Spec
+from ..language import Spec
 from ._report import Counterexample
 
 __all__ = ["counterexample_scenario", "write_counterexample"]

@@ -22,7 +22,7 @@ import z3
 
 from ..compiler._risk_formula import tier_outcome
 from ..runtime import Monitor
-from ..spec import Response, Spec
+from ..language import Response, Spec
 from ._encode import real, risk_input_range
 from ._report import OK, PROVED, REFUTED, UNKNOWN, WARNING, Finding
 

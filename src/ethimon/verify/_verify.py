@@ -14,7 +14,7 @@ from typing import Any
 
 from .._files import find_yaml_files
 from ..errors import DependencyNotInstalled, SpecError
-from ..spec import Spec
+from ..language import Spec
 from ._report import WARNING, Finding, SpecReport
 
 __all__ = ["verify_spec", "verify_paths", "find_specs", "require_z3", "DEFAULT_TIMEOUT_S", "DEFAULT_MAX_UNROLL",

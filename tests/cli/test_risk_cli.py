@@ -1,0 +1,163 @@
+"""The risk package and its commands without torch: import cost, defaults, argument errors, doctests.
+
+Nothing here loads a model; every check runs where the ``risk`` extra is not installed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import doctest
+import subprocess
+import sys
+
+import pytest
+
+from ethimon.risk import DEFAULT_TAU, RiskEstimate, default_threads, risk_from_p_unsafe
+
+
+def _cli(argv):
+    from ethimon.cli._risk_cmds import add_risk_parsers
+    ap = argparse.ArgumentParser(prog="ethimon")
+    add_risk_parsers(ap.add_subparsers(dest="cmd", required=True))
+    args = ap.parse_args(argv)
+    return args.handler(args)
+
+
+@pytest.mark.slow
+def test_import_is_light():
+    code = ("import sys, ethimon, ethimon.risk, ethimon.risk._recipe, ethimon.cli._risk_cmds; "
+            "print(any(m in sys.modules for m in ('torch', 'transformers')))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+
+
+def test_public_names_import():
+    import ethimon.risk as r
+    for name in r.__all__:
+        assert getattr(r, name) is not None
+    e = RiskEstimate((0.3, 0.7), 0.7, risk_from_p_unsafe(0.7), 0.001)
+    assert e.cached is False and e.model_id == ""
+
+
+def test_default_tau_is_one_fact():
+    """Without --spec the commands use the shipped model's τ and the spec language's weights."""
+    from ethimon.cli._risk_cmds import risk_config
+    from ethimon.language import RiskConfig
+    cfg = risk_config(None)
+    d = RiskConfig()
+    assert cfg["threshold"] == DEFAULT_TAU and cfg["spec"] is None
+    assert (cfg["alpha"], cfg["beta"], cfg["gamma"], cfg["variance"]) == (d.alpha, d.beta, d.gamma, d.variance)
+    assert 0.0 < DEFAULT_TAU <= 1.0
+    # a spec that writes no threshold keeps the spec language's default, not the shipped model's
+    assert d.threshold == 0.5
+
+
+def test_risk_weights_are_one_fact():
+    """RiskConfig's α/β/γ and every default of the formula's functions are ethimon.language's DEFAULT_*."""
+    import inspect
+
+    from ethimon.compiler._risk_formula import risk_bounds, risk_from_probs, risk_range
+    from ethimon.risk._evaluate import evaluate_logits
+    from ethimon.risk._estimator import RiskEstimator
+    from ethimon.language import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, RiskConfig
+    d = RiskConfig()
+    want = (DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA)
+    assert (d.alpha, d.beta, d.gamma) == want
+    for fn in (risk_from_p_unsafe, risk_from_probs, risk_bounds, risk_range, evaluate_logits,
+               RiskEstimator.estimate):
+        ps = inspect.signature(fn).parameters
+        assert (ps["alpha"].default, ps["beta"].default, ps["gamma"].default) == want, fn.__name__
+
+
+def test_default_tau_matches_the_shipped_specs(root):
+    """The shipped specs write the shipped model's τ as a literal (specs are user YAML)."""
+    import yaml
+    p = root / "specs" / "governor.yaml"
+    if not p.is_file():
+        pytest.skip("no specs/governor.yaml in this checkout")
+    assert yaml.safe_load(p.read_text(encoding="utf-8"))["risk"]["threshold"] == DEFAULT_TAU
+
+
+def test_default_threads_rule(monkeypatch):
+    import os
+    assert default_threads(1) == 1 and default_threads(0) == 1
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    monkeypatch.setattr(os, "getloadavg", lambda: (0.1, 0.0, 0.0))
+    assert default_threads(64) == 2
+    monkeypatch.setattr(os, "getloadavg", lambda: (1.9, 0.0, 0.0))   # the other core is busy too
+    assert default_threads(64) == 1
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(16)), raising=False)
+    monkeypatch.setattr(os, "getloadavg", lambda: (0.0, 0.0, 0.0))
+    assert default_threads(64) == 2                                  # never more than 2
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0}, raising=False)
+    assert default_threads(64) == 1
+
+
+def test_recipe_defaults_are_the_commands_defaults():
+    from ethimon.risk._recipe import ALPHA_PER_RANK, HEAD_LR_FACTOR, Recipe
+    ap = argparse.ArgumentParser(prog="ethimon")
+    from ethimon.cli._risk_cmds import add_risk_parsers
+    add_risk_parsers(ap.add_subparsers(dest="cmd"))
+    args = ap.parse_args(["train", "--data", "a.csv", "--out", "o"])
+    r = Recipe(data=("a.csv",))
+    for f in ("epochs", "lr", "batch_size", "lora_r", "max_length", "truncation", "val_frac", "patience",
+              "seed", "aux_rows", "init_seed"):
+        assert getattr(args, f) == getattr(r, f), f
+    assert (HEAD_LR_FACTOR, ALPHA_PER_RANK) == (4.0, 2.0)
+    for bad, msg in ((dict(val_frac=0.0), "--val-frac"), (dict(epochs=0), "--epochs"),
+                     (dict(max_length=4), "--max-length"), (dict(aux_rows=-1), "--aux-rows"),
+                     (dict(data=()), "--data"), (dict(truncation="tail"), "--truncation")):
+        with pytest.raises(ValueError, match=msg):
+            Recipe(**{"data": ("a.csv",), **bad}).check()
+
+
+def test_cli_bad_input_exit_2_without_a_model(tmp_path, capsys):
+    """Bad arguments are one-line errors (exit 2) found before any model (or torch) is loaded."""
+    assert _cli(["risk", "x", "--model", str(tmp_path / "nope")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "does not exist" in err and "Traceback" not in err
+    assert _cli(["risk", "  "]) == 2
+    assert _cli(["risk", "x", "--threads", "0"]) == 2
+    assert "--threads 0 must be >= 1" in capsys.readouterr().err
+    assert _cli(["risk", "x", "--spec", str(tmp_path / "no.yaml")]) == 2
+    assert _cli(["evaluate", "--data", str(tmp_path / "none.csv")]) == 2
+    assert _cli(["train", "--data", str(tmp_path / "none.csv"), "--out", str(tmp_path / "o")]) == 2
+    p = tmp_path / "t.csv"
+    p.write_text("label,input\n1,a\n0,b\n", encoding="utf-8")
+    for extra, msg in ((["--val-frac", "1.5"], "--val-frac"), (["--aux-rows", "-1"], "--aux-rows"),
+                       (["--epochs", "0"], "--epochs"), (["--threads", "0"], "--threads")):
+        assert _cli(["train", "--data", str(p), "--out", str(tmp_path / "o"), *extra]) == 2
+        err = capsys.readouterr().err
+        assert msg in err and "Traceback" not in err
+    assert not (tmp_path / "o").exists()
+
+
+def test_evaluate_help_describes_the_command(capsys):
+    with pytest.raises(SystemExit):
+        _cli(["evaluate", "--help"])
+    out = capsys.readouterr().out
+    assert "confusion matrix at p_unsafe >= 0.5" in out and "R_e >= tau" in out
+    assert "--max-length N" in out and "token budget" in out and "--threads" in out
+
+
+def test_progress_only_on_a_terminal():
+    import io
+
+    from ethimon.cli._risk_cmds import _isatty
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+    assert _isatty(Tty()) is True and _isatty(io.StringIO()) is False
+    closed = io.StringIO()
+    closed.close()
+    assert _isatty(closed) is False and _isatty(object()) is False
+
+
+@pytest.mark.parametrize("module", ["ethimon.risk._estimator", "ethimon.risk._recipe"])
+def test_doctests(module):
+    """The examples in the docstrings run (those that need a model are marked +SKIP)."""
+    import importlib
+    mod = importlib.import_module(module)
+    res = doctest.testmod(mod, optionflags=doctest.ELLIPSIS)
+    assert res.attempted > 0 and res.failed == 0

@@ -1,0 +1,107 @@
+"""A held sharp or hot object kept pointed away from people (issue 14 item 3: the declared
+``hazard_axis``), and dropped objects in recordings and in the task (DIRECT PyBullet)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import yaml
+from pydantic import ValidationError
+
+import ethimon
+
+ROOT = Path(__file__).resolve().parents[2]
+SPEC = ROOT / "specs" / "cobot_cell.yaml"
+
+
+def _run(name: str, monkeypatch=None, *, orient: bool = True, **kw):
+    pytest.importorskip("pybullet")
+    from ethimon.sim import SimBlock, run_sim
+    import ethimon.sim._safe_pose as safe_pose
+    if not orient:
+        monkeypatch.setattr(safe_pose.SafePoseController, "_orient_hazard", lambda self, sim, q_start=None: None)
+    doc = yaml.safe_load((ROOT / "scenarios" / "sim" / f"{name}.yaml").read_text())
+    block = SimBlock.model_validate(doc["sim"])
+    res = run_sim(block, ethimon.Monitor(ethimon.load_spec(str(SPEC))),
+                  p_unsafe=doc["inputs"].get("p_unsafe", 0.9), **kw)
+    return block, res
+
+
+def test_hazard_axis_needs_a_hazard_and_a_direction():
+    from ethimon.sim import SimObject
+    with pytest.raises(ValidationError, match="hazard_axis needs a hazard"):
+        SimObject(name="k", xyz_m=(0, 0, 0), hazard_axis=(1, 0, 0))
+    with pytest.raises(ValidationError, match="non-zero"):
+        SimObject(name="k", xyz_m=(0, 0, 0), hazard="sharp", hazard_axis=(0, 0, 0))
+    assert SimObject(name="k", xyz_m=(0, 0, 0), hazard="sharp", hazard_axis=(1, 0, 0)).hazard_axis == (1, 0, 0)
+
+
+@pytest.mark.slow
+@pytest.mark.sim
+def test_retreat_turns_the_blade_away_from_the_child():
+    from ethimon.sim import check_sim_expectations
+    block, res = _run("knife_blade_away_from_child")
+    assert res.route == "direct"
+    assert res.hazard_axis_angle_end_deg is not None and res.hazard_axis_angle_end_deg >= 120
+    assert abs(res.wrist_turn_rad) > 0.5          # joint 7 was turned from the spec's safe pose
+    assert res.time_to_safe_pose_s is not None    # and that pose (wrist turned) was reached
+    assert check_sim_expectations(block, res) == []
+
+
+@pytest.mark.slow
+@pytest.mark.sim
+def test_without_the_wrist_turn_the_blade_ends_pointing_at_the_child(monkeypatch):
+    from ethimon.sim import check_sim_expectations
+    block, res = _run("knife_blade_away_from_child", monkeypatch, orient=False)
+    assert res.hazard_axis_angle_end_deg < 90     # pointed toward the child: the old behaviour
+    assert res.wrist_turn_rad == 0.0
+    assert any("hazard axis" in m for m in check_sim_expectations(block, res))
+
+
+@pytest.mark.slow
+@pytest.mark.sim
+def test_dropped_object_is_an_event_and_the_task_does_not_resume_without_it():
+    from ethimon.sim import check_sim_expectations
+    from ethimon.sim._record import trace_events
+    block, res = _run("dropped_cup_not_resumed")
+    assert [d[0] for d in res.dropped] == ["cup"] and res.dropped[0][2] == "power_off"
+    assert res.released and not res.task_completed
+    assert res.task_stopped is not None and res.task_stopped.startswith("cup not in the gripper")
+    evs = trace_events(res.trace)
+    names = [e["event"] for e in evs]
+    drop = evs[names.index("object_dropped")]
+    assert drop["detail"] == "cup (power_off)" and drop["t_s"] == pytest.approx(res.dropped[0][1], abs=0.02)
+    stop = evs[names.index("task_stopped")]
+    rel = evs[names.index("release")]
+    assert stop["cycle"] == rel["cycle"]               # the task never commands the arm again
+    after = [r for r in res.trace if r.cycle >= stop["cycle"]]
+    assert after and all(r.controller == "stop_2" for r in after)
+    assert all(r.powered for r in after)               # holding with power on (stop 2)
+    assert check_sim_expectations(block, res) == []
+
+
+@pytest.mark.slow
+@pytest.mark.sim
+def test_without_the_check_the_task_resumed_and_placed_nothing(monkeypatch):
+    import ethimon.sim._control as control
+    from ethimon.sim import check_sim_expectations
+    monkeypatch.setattr(control.TaskController, "missing_object", lambda self, sim, q_start=None: None)
+    block, res = _run("dropped_cup_not_resumed")
+    assert res.task_completed and res.task_stopped is None   # "completed" with the cup on the floor
+    assert res.object_end_z_m["cup"] < 0.05
+    assert any("task_stopped_object_missing" in m for m in check_sim_expectations(block, res))
+
+
+def test_task_controller_knows_what_each_segment_carries():
+    import numpy as np
+    from ethimon.sim._arm import Segment
+    from ethimon.sim._control import TaskController
+    q = np.zeros(7)
+    segs = [Segment(q=q, duration_s=1, gripper_m=0.04, label="a"),
+            Segment(q=q, duration_s=1, gripper_m=0.01, attach="cup", label="grasp"),
+            Segment(q=q, duration_s=1, gripper_m=0.01, label="carry"),
+            Segment(q=q, duration_s=1, gripper_m=0.04, detach=True, label="release"),
+            Segment(q=q, duration_s=1, gripper_m=0.04, label="away")]
+    assert TaskController(segs, q, 1.0).carrying == [None, None, "cup", "cup", None]
+    assert TaskController(segs[2:], q, 1.0, holding="cup").carrying == ["cup", "cup", None]
