@@ -247,3 +247,20 @@ def test_tau_and_the_release_cut_have_one_name_in_the_monitor_and_offline():
     cut = release_bound(spec.risk.threshold, spec.risk.release.hysteresis)[1]
     assert mon._tau == spec.risk.threshold and mon._release_cut == cut == mon.plan.release_cut
     assert not hasattr(mon, "_below")
+
+
+def test_result_report_outcome_follow_the_glossary_rule() -> None:
+    """Every class named ``…Result``/``…Report``/``…Outcome`` is named in ARCHITECTURE.md's rule."""
+    import ast
+    import re
+    root = Path(__file__).resolve().parents[2]
+    doc = (root / "ARCHITECTURE.md").read_text(encoding="utf-8")
+    rule = doc[doc.index("**Result / Report / Outcome**"):]
+    rule = rule[:rule.index("\n- **", 1)]
+    found = set()
+    for path in (root / "src" / "ethimon").rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ClassDef) and re.search(r"(Result|Report|Outcome)$", node.name):
+                found.add(node.name)
+    assert found, "the scan found no class"
+    assert sorted(n for n in found if f"`{n}`" not in rule) == []
