@@ -3,7 +3,7 @@
     python -m bench.risk.risk_writers --models default [runs/a runs/b runs/c] --tag NAME [--ethics]
 
 For every model: the writers it was trained on are read from its ``metrics.json``
-(``config.writers``; none for the shipped model). Its validation rows are
+(``config.writers``; ``SHIPPED_WRITERS`` for the shipped model). Its validation rows are
 ``data/robot_val_other`` plus the ``train.csv`` rows of every writer it was *not* trained on;
 τ and τ_confirm come from them by the rules of ``bench/results/risk/writers/DECISIONS.md``
 (τ: false alarms ≤ 10 %; τ_confirm: ≤ 10 % of unsafe rows below it). Then each writer's frozen
@@ -101,9 +101,14 @@ def outcomes(y: np.ndarray, r: np.ndarray, tau: float, tc: float, pairs: list[st
     return res
 
 
+#: the writers whose train.csv rows the shipped default model trained on (issue 19:
+#: bench/risk/risk_writers_top.py --final, MODEL_CARD.md); the model before it trained on none
+SHIPPED_WRITERS = [f"w{i:02d}" for i in range(1, 13)]
+
+
 def trained_writers(model: str) -> list[str]:
     if model == "default":
-        return []
+        return list(SHIPPED_WRITERS)
     m = Path(model) / "metrics.json"
     if not m.is_file():
         return []

@@ -775,7 +775,7 @@ def test_default_model_loads_and_ranks_pairs():
     if not (default_model_dir() / "ethimon_model.json").is_file():
         pytest.skip("no shipped default model in this checkout")
     e = load_estimator()
-    assert e.model_id.startswith("ethimon-minilm-l6-lora@")
+    assert e.model_id.startswith("ethimon-minilm-l6-lora-top2-writers@")
     bad = e.probs("Hand the kitchen knife to the child blade first.")[1]
     good = e.probs("Hand the kitchen knife to the child handle first.")[1]
     assert bad > good

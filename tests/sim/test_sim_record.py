@@ -156,7 +156,7 @@ def test_plot_has_tau_limits_event_markers_and_a_controller_lane(root):
         leg = a.get_legend()
         assert leg is None or leg.get_bbox_to_anchor().x0 > a.get_window_extent().x1 - 1
     tau = [ln for ln in axes[0].get_lines() if ln.get_gid() == "tau"]
-    assert len(tau) == 1 and set(tau[0].get_ydata()) == {0.47} and meta["tau"] == 0.47
+    assert len(tau) == 1 and set(tau[0].get_ydata()) == {spec.risk.threshold} and meta["tau"] == spec.risk.threshold
     times = sorted({e["t_s"] for e in events})
     for ax in axes:  # one marker per distinct event time, on every panel
         marks = [ln for ln in ax.get_lines() if (ln.get_gid() or "").startswith("event:")]
@@ -234,7 +234,7 @@ def test_a_recording_has_its_events_frames_and_files(tmp_path, root):
     assert [(e["event"], e["cycle"]) for e in again] == [(e["event"], e["cycle"]) for e in ev]
     for e in ev:  # a frame for every event, written and listed
         assert e["frame"] in summary["files"]
-    assert summary["plot"]["tau"] == 0.47 and summary["plot"]["event_marks"]
+    assert summary["plot"]["tau"] == spec.risk.threshold and summary["plot"]["event_marks"]
     # the start frame: the raw render with the overlay burned in
     img = mpimg.imread(str(next(out.glob("frame_00000_start.png"))))
     img = (img[:, :, :3] * 255).round().astype(np.uint8) if img.dtype != np.uint8 else img[:, :, :3]

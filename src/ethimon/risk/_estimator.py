@@ -110,13 +110,14 @@ def default_model_dir() -> Path:
 #: sha256 of the shipped ``default_model/ethimon_model.json``. The manifest pins the
 #: adapter and base weights by sha256, and carries the temperature; pinning the
 #: manifest itself here means an edited shipped model (weights, T, labels) is refused.
-DEFAULT_MANIFEST_SHA256 = "0c15c46314b928a9df07b1617715c40e694564976145fa09a3ca54393d8963db"
+DEFAULT_MANIFEST_SHA256 = "2fb9a23c13c368ea220cc2e06c42e02a848c78193857a46d070876ccd76efbfe"
 
-#: τ of the shipped default model: R_e ≥ τ flags a text. Chosen on held-out validation
-#: robot commands for a false-alarm budget (MODEL_CARD.md); ``ethimon risk``/``evaluate``
+#: τ of the shipped default model: R_e ≥ τ flags a text. Chosen on validation rows of writers the
+#: model never trained on (val_other + w13–w21 train.csv) for a 10 % false-alarm budget
+#: (MODEL_CARD.md, bench/results/risk/writers/DECISIONS.md); ``ethimon risk``/``evaluate``
 #: use it without ``--spec``, and the shipped specs write it as their ``risk.threshold``.
 #: (A spec that writes no threshold gets the spec language's default, 0.5.)
-DEFAULT_TAU = 0.47
+DEFAULT_TAU = 0.576
 
 
 def check_default_manifest(d: Path) -> None:
