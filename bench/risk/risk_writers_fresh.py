@@ -3,7 +3,7 @@
     python -m bench.risk.risk_writers_fresh --top-json bench/results/risk/risk_writers_top_top2.json \
         --run-dirs runs/top2_k0 runs/top2_k1 runs/top2_k2 --writers w13 w14 ... --tag top2
 
-For every rotation k: the saved model dir of run k and the shipped model, each loaded as a user
+For every rotation k: the saved model dir of run k and the model they started from (``--baseline``: the shipped model when they ran), each loaded as a user
 loads it (``load_estimator``, step reading, torch backend as every issue-19 figure) and each at
 its own τ pair from that rotation's validation rows (stored in the top-k JSON), score the frozen
 test slices of ``--writers`` (sha256 checked; writers that no run trained on and no rule chose
@@ -56,6 +56,9 @@ def main() -> None:
     ap.add_argument("--top-json", required=True)
     ap.add_argument("--run-dirs", nargs="+", required=True, help="one model dir per rotation, in the JSON's order")
     ap.add_argument("--writers", nargs="+", required=True)
+    ap.add_argument("--baseline", default="default",
+                    help="the model the rotations started from (its τ pairs are in the JSON as 'shipped'); once "
+                         "the default has been replaced, the previous default's directory (git show it out)")
     ap.add_argument("--tag", required=True)
     a = ap.parse_args()
     t0 = time.time()
@@ -68,9 +71,10 @@ def main() -> None:
     if trained & set(a.writers):
         raise SystemExit(f"writers {sorted(trained & set(a.writers))} were trained on")
     tests = {w: D.writer_test(w) for w in a.writers}
-    est_ship = load("default")
+    est_ship = load(a.baseline)
     ship_r = {w: risks_both(est_ship, tests[w].texts)["steps"] for w in a.writers}
-    out = {"writers": a.writers, "top_json": a.top_json, "rotations": []}
+    out = {"writers": a.writers, "top_json": a.top_json, "baseline": a.baseline,
+           "baseline_model_id": est_ship.model_id, "rotations": []}
     for r, s, d in zip(rot, ship, a.run_dirs):
         est = load(d)
         rr = {w: risks_both(est, tests[w].texts)["steps"] for w in a.writers}
