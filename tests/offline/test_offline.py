@@ -314,3 +314,14 @@ def test_import_rules():
             "['ethimon', 'scenario'], ['ethimon', 'sim'], ['ethimon', 'replay']) or m in ('torch', 'pybullet')]; "
             "print(bad); assert not bad, bad")
     subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)
+
+
+def test_confirm_band_firings_are_reported_like_the_monitor():
+    """Regression: check_trace stepped a confirm-band spec through Monitor but dropped the tier rules
+    from Decision.violations (the monitor says ('confirm',), offline said ())."""
+    spec = ethimon.load_spec_text(
+        "ethimon: 1\nname: band\nsignals: {}\nrisk: {threshold: 0.576, confirm_threshold: 0.299}\n")
+    q = np.array([0.05, 0.7, 0.7, 0.05, 0.95, 0.05])       # R_e 0.496: in [0.299, 0.576); 0.95: above τ
+    res = assert_same(spec, {"p_unsafe": q})
+    assert res.violations_at(1) == ("confirm",) and res.decision(1).violations == ("confirm",)
+    assert "risk" in res.violations_at(4)

@@ -119,10 +119,13 @@ class OfflineResult:
         return _RESPONSES[int(self.response[t])]
 
     def violations_at(self, t: int) -> tuple[str, ...]:
-        """``Decision.violations`` of cycle ``t`` (obligation ids in spec order, then ``"risk"``)."""
+        """``Decision.violations`` of cycle ``t`` (obligation ids in spec order, then ``"risk"``, ``"judge"``, ``"confirm"``)."""
         out = [self.obligation_ids[k] for k in np.flatnonzero(self.violated[t])]
         if self.risk_violated[t]:
             out.append("risk")
+        for tier in ("judge", "confirm"):   # the tier rules, in the monitor's order (after "risk")
+            if self.tier_violated[tier][t]:
+                out.append(tier)
         return tuple(out)
 
     def row(self, t: int) -> dict[str, Any]:
