@@ -13,7 +13,7 @@
    as a one-shot command and a control loop use it; traced with TorchScript as a long-running
    service is).
 
-Writes bench/results/risk/risk_cost.json with the machine facts and the load average.
+Writes bench/results/risk/risk_cost.json (``--tag T``: risk_cost_T.json) with the machine facts and the load average.
 """
 
 from __future__ import annotations
@@ -135,6 +135,7 @@ def main() -> None:
     ap.add_argument("--steps", type=int, default=6, help="training steps timed per model (median)")
     ap.add_argument("--runs", type=int, default=200, help="scoring calls timed per text and reading")
     ap.add_argument("--skip-train", action="store_true")
+    ap.add_argument("--tag", default=None, help="write risk_cost_<tag>.json (default: risk_cost.json)")
     a = ap.parse_args()
     import os
     load0 = os.getloadavg()
@@ -147,7 +148,8 @@ def main() -> None:
         for k, v in per.items():
             v["min_per_epoch_20k_rows"] = v["s_per_step"] * 20000 / v["rows_per_step"] / 60
     res["machine"] = machine_facts(threads=2)
-    (results_dir("risk") / "risk_cost.json").write_text(json.dumps(res, indent=1) + "\n")
+    name = f"risk_cost_{a.tag}.json" if a.tag else "risk_cost.json"
+    (results_dir("risk") / name).write_text(json.dumps(res, indent=1) + "\n")
 
 
 if __name__ == "__main__":
