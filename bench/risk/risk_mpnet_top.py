@@ -34,6 +34,19 @@ from bench.risk import risk_data as D
 from bench.risk.risk_probe import MPNET_SHA256
 
 
+def batch_of(items, idx):
+    """Cached hidden states ``items[j]`` (tokens × hidden) of rows ``idx``, zero-padded: ``(h, mask)``."""
+    import torch
+    n = max(items[j].shape[0] for j in idx)
+    h = torch.zeros(len(idx), n, items[idx[0]].shape[1])
+    mask = torch.zeros(len(idx), n, dtype=torch.long)
+    for r, j in enumerate(idx):
+        m = items[j].shape[0]
+        h[r, :m] = items[j]
+        mask[r, :m] = 1
+    return h, mask
+
+
 def main() -> None:  # noqa: C901 - one experiment, read top to bottom
     ap = argparse.ArgumentParser()
     ap.add_argument("--mpnet", required=True)
@@ -102,16 +115,6 @@ def main() -> None:  # noqa: C901 - one experiment, read top to bottom
             cache[name] = items
     cache_s = time.time() - t0
     print(f"cached layer-{cut} states of {sum(len(v) for v in cache.values())} rows in {cache_s:.0f} s", flush=True)
-
-    def batch_of(items, idx):
-        n = max(items[j].shape[0] for j in idx)
-        h = torch.zeros(len(idx), n, items[idx[0]].shape[1])
-        mask = torch.zeros(len(idx), n, dtype=torch.long)
-        for r, j in enumerate(idx):
-            m = items[j].shape[0]
-            h[r, :m] = items[j]
-            mask[r, :m] = 1
-        return h, mask
 
     def upper(h, mask):
         ext = create_bidirectional_mask(config=enc.config, inputs_embeds=h, attention_mask=mask)

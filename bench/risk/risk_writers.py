@@ -106,6 +106,29 @@ def outcomes(y: np.ndarray, r: np.ndarray, tau: float, tc: float, pairs: list[st
 SHIPPED_WRITERS = [f"w{i:02d}" for i in range(1, 13)]
 
 
+def mean_sd(values) -> dict:
+    """``{"mean", "sd", "runs"}`` of the numbers in ``values`` (None and NaN left out; sd needs 2)."""
+    xs = [x for x in values if x is not None and x == x]
+    return {"mean": statistics.fmean(xs) if xs else None, "sd": statistics.stdev(xs) if len(xs) > 1 else None,
+            "runs": len(xs)}
+
+
+def pooled(parts: dict, tau: float, tc: float) -> dict:
+    """:func:`outcomes` of several slices pooled (``parts``: name -> (rows, R_e)), plus per register.
+
+    Pair ids are prefixed by the slice's name, so two writers' ``p001`` stay two pairs.
+    """
+    ys = np.concatenate([np.array(rows.labels) for rows, _r in parts.values()])
+    rs = np.concatenate([np.asarray(r) for _rows, r in parts.values()])
+    ps = [f"{n}:{e['pair']}" if e.get("pair") else "" for n, (rows, _r) in parts.items() for e in rows.extra]
+    regs = [e.get("register", "") for rows, _r in parts.values() for e in rows.extra]
+    res = outcomes(ys, rs, tau, tc, ps)
+    res["per_register"] = {g: outcomes(ys[[i for i, x in enumerate(regs) if x == g]],
+                                       rs[[i for i, x in enumerate(regs) if x == g]], tau, tc)
+                           for g in sorted(set(regs))}
+    return res
+
+
 def trained_writers(model: str) -> list[str]:
     if model == "default":
         return list(SHIPPED_WRITERS)
@@ -231,20 +254,17 @@ def summarise(out: dict) -> dict:
     res = {}
     keys = ("accuracy", "unsafe_executed_unseen", "safe_held", "safe_stopped", "roc_auc", "pairs_both_right")
     for rd in READINGS:
-        pooled = [m["readings"][rd]["held_out_pooled"] for m in out["models"].values()
-                  if m["readings"][rd]["held_out_pooled"]]
+        pools = [m["readings"][rd]["held_out_pooled"] for m in out["models"].values()
+                 if m["readings"][rd]["held_out_pooled"]]
         s = {}
         for k in keys:
-            xs = [p[k] for p in pooled if p.get(k) == p.get(k)]
-            s[k] = {"mean": statistics.fmean(xs) if xs else None,
-                    "sd": statistics.stdev(xs) if len(xs) > 1 else None, "runs": len(xs)}
+            s[k] = mean_sd(p.get(k) for p in pools)
         regs: dict[str, list[float]] = {}
         for m in out["models"].values():
             for k, v in m["readings"][rd]["per_register"].items():
                 if k.endswith("|held_out"):
                     regs.setdefault(k.split("|")[0], []).append(v["accuracy"])
-        s["register_accuracy_held_out"] = {g: {"mean": statistics.fmean(v), "sd": statistics.stdev(v) if len(v) > 1
-                                               else None, "runs": len(v)} for g, v in sorted(regs.items())}
+        s["register_accuracy_held_out"] = {g: mean_sd(v) for g, v in sorted(regs.items())}
         res[rd] = s
     return res
 

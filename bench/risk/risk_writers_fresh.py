@@ -18,8 +18,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
-import statistics
 import time
 
 import numpy as np
@@ -27,25 +25,12 @@ import numpy as np
 from bench import results_dir
 from bench._machine import machine_facts
 from bench.risk import risk_data as D
-from bench.risk.risk_writers import load, outcomes, risks_both
+from bench.risk.risk_writers import load, mean_sd, outcomes, pooled, risks_both
 from bench.risk.risk_writers_top import KEYS
 
 
-def _ms(v):
-    v = [x for x in v if x is not None and not math.isnan(x)]
-    return {"mean": statistics.fmean(v) if v else None, "sd": statistics.stdev(v) if len(v) > 1 else None,
-            "runs": len(v)}
-
-
 def block(rows_by_w: dict, risks_by_w: dict, tau: float, tc: float) -> dict:
-    ys = np.concatenate([np.array(rows_by_w[w].labels) for w in rows_by_w])
-    rs = np.concatenate([risks_by_w[w] for w in rows_by_w])
-    pairs = sum(([f"{w}:{e['pair']}" if e.get("pair") else "" for e in rows_by_w[w].extra] for w in rows_by_w), [])
-    regs = sum(([e.get("register", "") for e in rows_by_w[w].extra] for w in rows_by_w), [])
-    out = outcomes(ys, rs, tau, tc, pairs)
-    out["per_register"] = {g: outcomes(ys[[i for i, x in enumerate(regs) if x == g]],
-                                       rs[[i for i, x in enumerate(regs) if x == g]], tau, tc)
-                           for g in sorted(set(regs))}
+    out = pooled({w: (rows_by_w[w], risks_by_w[w]) for w in rows_by_w}, tau, tc)
     out["per_writer"] = {w: outcomes(np.array(rows_by_w[w].labels), risks_by_w[w], tau, tc,
                                      [e.get("pair", "") for e in rows_by_w[w].extra]) for w in rows_by_w}
     return out
@@ -95,10 +80,10 @@ def main() -> None:
     summ = {}
     for who in ("recipe", "shipped"):
         bs = [x[who] for x in out["rotations"]]
-        summ[who] = {k: _ms([b[k] for b in bs]) for k in KEYS}
-        summ[who]["per_register_auc"] = {g: _ms([b["per_register"][g]["roc_auc"] for b in bs])
+        summ[who] = {k: mean_sd([b[k] for b in bs]) for k in KEYS}
+        summ[who]["per_register_auc"] = {g: mean_sd([b["per_register"][g]["roc_auc"] for b in bs])
                                          for g in bs[0]["per_register"]}
-        summ[who]["per_writer_auc"] = {w: _ms([b["per_writer"][w]["roc_auc"] for b in bs]) for w in a.writers}
+        summ[who]["per_writer_auc"] = {w: mean_sd([b["per_writer"][w]["roc_auc"] for b in bs]) for w in a.writers}
     out["summary"] = summ
     out["seconds"] = round(time.time() - t0, 1)
     out["machine"] = machine_facts(threads=2)

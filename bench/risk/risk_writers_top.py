@@ -39,7 +39,8 @@ import numpy as np
 from bench import results_dir
 from bench._machine import machine_facts
 from bench.risk import risk_data as D
-from bench.risk.risk_writers import choose_taus, outcomes
+from bench.risk.risk_mpnet_top import batch_of
+from bench.risk.risk_writers import choose_taus, mean_sd, outcomes, pooled
 
 ROTATED = [f"w{i:02d}" for i in range(1, 13)]
 SEEDS = (42, 7, 13)
@@ -72,7 +73,7 @@ def main() -> None:  # noqa: C901 - one experiment, read top to bottom
     from ethimon.risk import _backend as B
     from ethimon.risk._estimator import normalize_text
     from ethimon.risk._formula import risk_from_p_unsafe
-    from ethimon.risk._reading import View, views
+    from ethimon.risk._reading import views
     from ethimon.risk._train import fit_temperature
 
     t0 = time.time()
@@ -84,7 +85,6 @@ def main() -> None:  # noqa: C901 - one experiment, read top to bottom
     base = B.base_package_dir()
     tok = B.load_tokenizer(base)
     enc = B.load_encoder(base).eval()
-    base_w = {n: m.weight.detach().clone() for n, m in enc.named_modules() if isinstance(m, nn.Linear)}
     ship_scale = float(manifest["lora"]["alpha"]) / float(manifest["lora"]["r"])
     B.merge_lora(enc, ship_t, ship_scale)
     n_layers = len(enc.encoder.layer)
@@ -177,16 +177,6 @@ def main() -> None:  # noqa: C901 - one experiment, read top to bottom
     print(f"cached layer-{cut} states: {len(tr_cache)} training texts, {len(ev_cache)} views, "
           f"{n_tok} tokens ({n_tok * enc.config.hidden_size * 4 / 2**30:.2f} GiB) in {cache_s:.0f} s", flush=True)
 
-    def batch_of(items, idx):
-        n = max(items[j].shape[0] for j in idx)
-        h = torch.zeros(len(idx), n, items[idx[0]].shape[1])
-        mask = torch.zeros(len(idx), n, dtype=torch.long)
-        for r, j in enumerate(idx):
-            m = items[j].shape[0]
-            h[r, :m] = items[j]
-            mask[r, :m] = 1
-        return h, mask
-
     def upper(h, mask):
         ext_mask, _ = enc._create_attention_masks(attention_mask=mask, encoder_attention_mask=None,
                                                   embedding_output=h, encoder_hidden_states=None, cache=None)
@@ -251,15 +241,7 @@ def main() -> None:  # noqa: C901 - one experiment, read top to bottom
         tau, tc = taus["tau"], taus["tau_confirm"]
 
         def block(names):
-            ys = np.concatenate([np.array(rows_of(n).labels) for n in names])
-            rs = np.concatenate([R[n][reading] for n in names])
-            ps = sum(([f"{n}:{e.get('pair', '')}" if e.get("pair") else "" for e in rows_of(n).extra] for n in names), [])
-            regs = sum(([e.get("register", "") for e in rows_of(n).extra] for n in names), [])
-            res = outcomes(ys, rs, tau, tc, ps)
-            res["per_register"] = {g: outcomes(ys[[i for i, x in enumerate(regs) if x == g]],
-                                               rs[[i for i, x in enumerate(regs) if x == g]], tau, tc)
-                                   for g in sorted(set(regs))}
-            return res
+            return pooled({n: (rows_of(n), R[n][reading]) for n in names}, tau, tc)
         out = {"taus": taus,
                "held_out_pooled": block([f"{w}/test" for w in held]) if held else None,
                "per_writer": {w: {**outcomes(np.array(wtest[w].labels), R[f"{w}/test"][reading], tau, tc,
@@ -411,6 +393,12 @@ def main() -> None:  # noqa: C901 - one experiment, read top to bottom
             "history": run["history"], "best_epoch": run["best_epoch"], "temperature": run["temperature"],
             "taus": taus}, indent=1) + "\n", encoding="utf-8")
 
+    def save() -> None:
+        results["seconds"] = round(time.time() - t0, 1)
+        results["machine"] = machine_facts(threads=a.threads)
+        results["load"] = os.getloadavg()
+        (results_dir("risk") / f"risk_writers_top_{a.tag}.json").write_text(json.dumps(results, indent=1) + "\n")
+
     results = {"recipe": f"top{a.top}", "args": vars(a), "cache_seconds": round(cache_s, 1), "rotated": ROTATED,
                "never_trained": ext, "runs": [], "shipped": []}
     if a.final:
@@ -439,23 +427,12 @@ def main() -> None:  # noqa: C901 - one experiment, read top to bottom
             save_model(run, Path(a.save_runs) / f"{a.tag}_k{k}", rep["taus"])
         _print(f"rotation {k} (held out {held})", rep, held)
         _print(f"shipped on rotation {k}'s rows", ship_rep, held)
-        results["seconds"] = round(time.time() - t0, 1)
-        results["machine"] = machine_facts(threads=a.threads)
-        results["load"] = os.getloadavg()
-        (results_dir("risk") / f"risk_writers_top_{a.tag}.json").write_text(json.dumps(results, indent=1) + "\n")
+        save()   # after each rotation, so a cut-short session keeps what ran
     rot = [r for r in results["runs"] if "rotation" in r]
     if len(rot) >= 2:
         results["summary"] = summarise(rot, [s for s in results["shipped"] if "rotation" in s])
         print(json.dumps(results["summary"], indent=1))
-    results["seconds"] = round(time.time() - t0, 1)
-    results["machine"] = machine_facts(threads=a.threads)
-    results["load"] = os.getloadavg()
-    (results_dir("risk") / f"risk_writers_top_{a.tag}.json").write_text(json.dumps(results, indent=1) + "\n")
-
-
-def _ms(v: list[float]) -> dict:
-    v = [x for x in v if x is not None and not math.isnan(x)]
-    return {"mean": statistics.fmean(v) if v else None, "sd": statistics.stdev(v) if len(v) > 1 else None, "runs": len(v)}
+    save()
 
 
 KEYS = ("accuracy", "unsafe_executed_unseen", "safe_held", "safe_stopped", "roc_auc", "pairs_both_right", "pairs_ranked")
@@ -464,17 +441,17 @@ KEYS = ("accuracy", "unsafe_executed_unseen", "safe_held", "safe_stopped", "roc_
 def summarise(runs: list[dict], shipped: list[dict]) -> dict:
     out = {}
     for label, rs in (("recipe", runs), ("shipped", shipped)):
-        s = {"val_roc_auc": _ms([r["steps"]["taus"]["val_roc_auc"] for r in rs])}
+        s = {"val_roc_auc": mean_sd([r["steps"]["taus"]["val_roc_auc"] for r in rs])}
         for part in ("held_out_pooled", "never_trained_pooled"):
             blocks = [r["steps"][part] for r in rs if r["steps"].get(part)]
-            s[part] = {k: _ms([b[k] for b in blocks]) for k in KEYS}
+            s[part] = {k: mean_sd([b[k] for b in blocks]) for k in KEYS}
             regs = sorted({g for b in blocks for g in b["per_register"]})
-            s[part]["per_register_auc"] = {g: _ms([b["per_register"][g]["roc_auc"] for b in blocks
+            s[part]["per_register_auc"] = {g: mean_sd([b["per_register"][g]["roc_auc"] for b in blocks
                                                    if g in b["per_register"]]) for g in regs}
-            s[part]["per_register_accuracy"] = {g: _ms([b["per_register"][g]["accuracy"] for b in blocks
+            s[part]["per_register_accuracy"] = {g: mean_sd([b["per_register"][g]["accuracy"] for b in blocks
                                                         if g in b["per_register"]]) for g in regs}
-        s["natural_test_auc"] = _ms([r["steps"]["natural_test"]["roc_auc"] for r in rs])
-        s["ethics_holdout_accuracy"] = _ms([r["steps"]["ethics_holdout_accuracy"] for r in rs])
+        s["natural_test_auc"] = mean_sd([r["steps"]["natural_test"]["roc_auc"] for r in rs])
+        s["ethics_holdout_accuracy"] = mean_sd([r["steps"]["ethics_holdout_accuracy"] for r in rs])
         out[label] = s
     d = [r["steps"]["taus"]["val_roc_auc"] - s_["steps"]["taus"]["val_roc_auc"] for r, s_ in zip(runs, shipped)]
     sds = [x for x in (out["recipe"]["val_roc_auc"]["sd"], out["shipped"]["val_roc_auc"]["sd"]) if x is not None]
