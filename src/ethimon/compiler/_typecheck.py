@@ -9,7 +9,7 @@ import difflib
 import math
 
 from ..errors import SpecError
-from ..language._expr import (FUNCTIONS, SEPARATION_PARAMS, TEMPORAL, Binary, BoolLit, Call, ExprSyntaxError, Name,
+from ..language._expr import (FUNCTIONS, SEPARATION_PARAMS, Binary, BoolLit, Call, ExprSyntaxError, Name,
                           Node, Num, Unary, parse_expr, separation_distance)
 from ..language import Constant, Response, Spec
 from ._plan import BOOL, MAX_WINDOW, RISK_NAME, ObligationPlan, Plan, RuleRelease, SignalSlot, Ty

@@ -7,7 +7,6 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from ..errors import SpecError
 from ._model import FORMAT_VERSION, Spec, _shown, validation_to_spec_error
 from ._yaml import SourceMap, parse_yaml_text, read_yaml
 

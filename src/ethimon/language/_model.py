@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import difflib
 import enum
-import math
 from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator

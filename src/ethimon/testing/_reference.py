@@ -70,7 +70,6 @@ Semantics (the definition both implementations follow), for a history
 from __future__ import annotations
 
 import math
-from fractions import Fraction
 from typing import Any
 
 from ..compiler._plan import RISK_NAME, Plan

@@ -125,9 +125,9 @@ def tier_properties(ck) -> list[tuple[str, Any]]:
                            z3.Implies(z3.And(no_safe, z3.Not(c.unsafe)), c.sev >= _STOP_2),
                            z3.Implies(z3.And(c.in_band, z3.Not(c.jk), z3.Not(c.conf)), c.sev >= _STOP_2))
             return _prove(ck, "tier.band", c, claim,
-                          f"tau_confirm <= R_e < tau without a safe verdict or a confirmation => override; unsure or "
-                          f"no judgement (timeout, error, malformed, none) => hold (stop_2 or more): never execute "
-                          f"on a missing judgement")
+                          "tau_confirm <= R_e < tau without a safe verdict or a confirmation => override; unsure or "
+                          "no judgement (timeout, error, malformed, none) => hold (stop_2 or more): never execute "
+                          "on a missing judgement")
         out.append(("tier.band", lambda: ck._timed(hold)))
     if judge:
         def unsafe():
