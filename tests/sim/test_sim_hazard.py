@@ -3,29 +3,18 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
-import yaml
 from pydantic import ValidationError
 
-import ethimon
-
-ROOT = Path(__file__).resolve().parents[2]
-SPEC = ROOT / "specs" / "cobot_cell.yaml"
+from tests.sim._scenarios import run_scenario
 
 
 def _run(name: str, monkeypatch=None, *, orient: bool = True, **kw):
     pytest.importorskip("pybullet")
-    from ethimon.sim import SimBlock, run_sim
     import ethimon.sim._safe_pose as safe_pose
     if not orient:
         monkeypatch.setattr(safe_pose.SafePoseController, "_orient_hazard", lambda self, sim, q_start=None: None)
-    doc = yaml.safe_load((ROOT / "scenarios" / "sim" / f"{name}.yaml").read_text())
-    block = SimBlock.model_validate(doc["sim"])
-    res = run_sim(block, ethimon.Monitor(ethimon.load_spec(str(SPEC))),
-                  p_unsafe=doc["inputs"].get("p_unsafe", 0.9), **kw)
-    return block, res
+    return run_scenario(name, **kw)
 
 
 def test_hazard_axis_needs_a_hazard_and_a_direction():

@@ -3,16 +3,11 @@ cycle for the people in range now; compliant people walk as scripted."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
-import yaml
 
-import ethimon
+from tests.sim._scenarios import run_scenario
 
-ROOT = Path(__file__).resolve().parents[2]
-SPEC = ROOT / "specs" / "cobot_cell.yaml"
 
 pytestmark = pytest.mark.sim
 
@@ -23,13 +18,7 @@ def _pybullet():
 
 
 def _scenario(name: str, **over):
-    from ethimon.sim import SimBlock, run_sim
-    doc = yaml.safe_load((ROOT / "scenarios" / "sim" / f"{name}.yaml").read_text())
-    doc["sim"].update(over)
-    block = SimBlock.model_validate(doc["sim"])
-    p_unsafe = doc["inputs"].get("p_unsafe", 0.9)
-    res = run_sim(block, ethimon.Monitor(ethimon.load_spec(str(SPEC))), p_unsafe=p_unsafe)
-    return block, res
+    return run_scenario(name, over)
 
 
 @pytest.mark.slow

@@ -7,9 +7,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-import yaml
 
 import ethimon
+from tests.sim._scenarios import run_scenario
 
 ROOT = Path(__file__).resolve().parents[2]
 SPEC = ROOT / "specs" / "cobot_cell.yaml"
@@ -23,12 +23,8 @@ def _pybullet():
 
 
 def _run(name: str, **over):
-    from ethimon.sim import SimBlock, check_sim_expectations, run_sim
-    doc = yaml.safe_load((ROOT / "scenarios" / "sim" / f"{name}.yaml").read_text())
-    doc["sim"].update(over)
-    block = SimBlock.model_validate(doc["sim"])
-    res = run_sim(block, ethimon.Monitor(ethimon.load_spec(str(SPEC))),
-                  p_unsafe=doc["inputs"].get("p_unsafe", 0.9))
+    from ethimon.sim import check_sim_expectations
+    block, res = run_scenario(name, over)
     return res, check_sim_expectations(block, res)
 
 

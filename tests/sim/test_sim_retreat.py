@@ -8,9 +8,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import yaml
 
 import ethimon
+from tests.sim._scenarios import run_scenario
 
 ROOT = Path(__file__).resolve().parents[2]
 SPEC = ROOT / "specs" / "cobot_cell.yaml"
@@ -24,12 +24,7 @@ def _pybullet():
 
 
 def _scenario(name: str):
-    from ethimon.sim import SimBlock, run_sim
-    doc = yaml.safe_load((ROOT / "scenarios" / "sim" / f"{name}.yaml").read_text())
-    block = SimBlock.model_validate(doc["sim"])
-    p_unsafe = doc["inputs"].get("p_unsafe", 0.9)  # the scenarios here without one are unsafe texts
-    res = run_sim(block, ethimon.Monitor(ethimon.load_spec(str(SPEC))), p_unsafe=p_unsafe)
-    return block, res
+    return run_scenario(name)
 
 
 def test_near_human_rule_is_read_from_the_spec():
