@@ -16,13 +16,15 @@ from __future__ import annotations
 
 import errno
 import os
+import re
 import stat
 from collections.abc import Callable, Iterable
 from typing import IO, Any
 
 from .errors import SpecError
 
-__all__ = ["NOT_REGULAR_HINT", "file_kind", "find_yaml_files", "open_regular", "require_regular", "scan_yaml_files"]
+__all__ = ["NOT_REGULAR_HINT", "file_kind", "find_yaml_files", "open_regular", "require_regular", "scan_yaml_files",
+           "yaml_kind"]
 
 #: the hint of every "not a regular file" refusal
 NOT_REGULAR_HINT = "ethimon reads files only, not pipes, devices or standard input; save it to a file first"
@@ -125,6 +127,34 @@ def open_regular(path: str | os.PathLike, mode: str = "rb", *, what: str = "file
         raise
 
 
+#: which command reads each kind of ethimon YAML file (named when a folder's file is passed over)
+_READER = {"spec": "ethimon lint / verify", "scenario": "ethimon check", "mapping": "ethimon replay --map"}
+_TOP_KEY = re.compile(rb"^([A-Za-z_][A-Za-z0-9_-]*)[ \t]*:", re.M)
+_KIND_PEEK = 256 * 1024  # a spec's, scenario's or mapping's top-level keys are near its start
+
+
+def yaml_kind(path: str | os.PathLike) -> str | None:
+    """What an ethimon YAML file is, from its top-level keys (no YAML parse, nothing run):
+    ``"scenario"`` (it names a ``spec:``), ``"mapping"`` (a ``rate_hz:`` and no obligations,
+    risk or safe pose), ``"spec"`` (``obligations:``, ``risk:``, ``safe_pose:`` or ``on_fault:``),
+    or ``None`` when it cannot be told (unreadable, or none of those keys): the caller then reads
+    it as the kind it expects, and that reader gives the located error."""
+    try:
+        with open_regular(path, "rb", what="file") as fh:
+            head = fh.read(_KIND_PEEK)
+    except (OSError, SpecError):
+        return None
+    keys = {m.group(1).decode("ascii") for m in _TOP_KEY.finditer(head)}
+    if "spec" in keys:
+        return "scenario"
+    spec_keys = {"obligations", "risk", "safe_pose", "on_fault"} & keys
+    if "rate_hz" in keys and not spec_keys:
+        return "mapping"
+    if spec_keys:
+        return "spec"
+    return None
+
+
 def scan_yaml_files(paths: Iterable[str], *, what: str = "scenario",
                     command: str = "ethimon check") -> list[tuple[str, str | None]]:
     """Expand files and folders into ``(path, reason)`` pairs, in order, without opening any file: the one
@@ -132,7 +162,10 @@ def scan_yaml_files(paths: Iterable[str], *, what: str = "scenario",
 
     ``reason`` is ``None`` for a file to read; for a FIFO, socket or device
     found in a folder (never opened: a FIFO would block) it says why it is
-    passed over. A path named in ``paths`` must be a regular file or a folder.
+    passed over, and so for a file in a folder that is plainly another kind of
+    ethimon file (:func:`yaml_kind`: a spec in a folder of scenarios, a scenario or
+    a mapping among specs), which is named with the command that reads it. A path
+    named in ``paths`` must be a regular file or a folder, and is always read as ``what``.
 
     Raises:
         SpecError: a path that does not exist or is not a regular file or folder,
@@ -152,7 +185,14 @@ def scan_yaml_files(paths: Iterable[str], *, what: str = "scenario",
                         kind = file_kind(full)
                     except OSError:  # a broken link or no permission: reading it gives the clean error
                         kind = None
-                    found.append((full, None if kind is None else f"{kind}, not a regular file: not read"))
+                    if kind is not None:
+                        found.append((full, f"{kind}, not a regular file: not read"))
+                        continue
+                    other = yaml_kind(full) if what in _READER else None
+                    if other is not None and other != what:
+                        found.append((full, f"{_a(other)} file, not {_a(what)}: {_READER[other]} reads it"))
+                    else:
+                        found.append((full, None))
             if not found:
                 raise SpecError(f"no {what} files (*.yaml, *.yml) in this folder", path=p,
                                 hint=f"point {command} at {what} files or a folder that holds them")

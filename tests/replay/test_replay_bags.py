@@ -147,7 +147,7 @@ def test_samples_between_cycles_are_an_error_unless_latest_is_asked(tmp_path, fm
     msgs = [(ns(i * 0.05), "/d", "f64", 0.2 if i == 7 else 2.0) for i in range(20)]
     bag = write(bag_path(tmp_path, fmt), fmt, msgs)
     with pytest.raises(BagError, match=r"9 of 20 samples on /d fall between two cycles .* faster than the "
-                                       r"cycles.*rate_hz to 20.*samples: latest"):
+                                       r"cycles.*samples: latest.*rate_hz to 20"):
         replay_bag(bag, spec_d(), map_d(), p=P)
     res = replay_bag(bag, spec_d(), map_d(extra="samples: latest\n"), p=P)
     assert res.passed and res.signals["d"]["judged"] == 11
@@ -361,15 +361,17 @@ def test_missing_first_cycle_does_not_latch_the_bag_and_latches_are_reported(tmp
     write(tmp_path / "c", "mcap", msgs2)
     res2 = replay_bag(tmp_path / "c", spec_m, m)
     assert res2.check("oa").cycles == 1 and res2.override_cycles == 200
-    (lt,) = res2.latches
-    assert lt["after"] == "oa" and lt["cycles"] == 199 and lt["until_end"] and lt["from_cycle"] == 101
+    (lt,) = res2.latches  # the override run: from the violation to the end, held by oa's manual latch
+    assert lt["cause"] == "oa" and lt["cycles"] == 200 and lt["until_end"] and lt["from_cycle"] == 100
+    assert lt["held_by"] == ["oa"] and "acknowledgement" in lt["released_by"]["oa"]
     (tmp_path / "spec.yaml").write_text(SPEC_AB.replace("require: a >= 1}", "require: a >= 1, release: manual}"))
     (tmp_path / "map.yaml").write_text("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.05\nrisk: none\nsignals:\n"
                                        "  a: {topic: /a}\n  b: {topic: /b}\n")
     r = run_cli("replay", str(tmp_path / "c"), "--spec", str(tmp_path / "spec.yaml"), "--map",
                 str(tmp_path / "map.yaml"))
-    assert "latched: the override was held 199 cycles (1.990 s) from t = 1.010 s (cycle 101) after oa, until " \
-           "the end of the bag" in r.stderr
+    assert ("override from t = 1.000 s (cycle 100) for 200 cycles (2.000 s), begun by oa; held at its end by the "
+            "latch of oa (oa: released by an operator's acknowledgement (release: manual)), and lasted to the end of "
+            "the bag") in r.stderr
 
 
 # ----------------------------------------------------------------------------- row: ±inf and out of range

@@ -134,10 +134,13 @@ def cmd_replay(args: argparse.Namespace) -> int:
                 problems.append(line)
             elif status != "PASS":
                 notes.append(f"{bag}: {c['id']}: {status}: {c['detail']}")
-        for lt in rec.get("latches", [])[:5]:
-            end = "until the end of the bag" if lt["until_end"] else "then released"
-            problems.append(f"{bag}: latched: the override was held {lt['cycles']} cycles ({lt['seconds']:.3f} s) "
-                            f"from t = {lt['t_s']:.3f} s (cycle {lt['from_cycle']}) after {lt['after']}, {end}")
+        problems.extend(_run_lines(bag, rec))
+        for task in rec.get("tasks", []):
+            if "outcome" in task:
+                text = task["text"] if len(task["text"]) <= 80 else task["text"][:77] + "..."
+                r_e = "-" if task.get("r_e") is None else f"{task['r_e']:.3f}"
+                at = "" if task.get("t_s") is None else f" at t = {task['t_s']:.3f} s"
+                notes.append(f"{bag}: task{at}: {text!r}: R_e {r_e}: {task['outcome']}")
         if rec.get("started", {}).get("note"):
             notes.append(f"{bag}: {rec['started']['note']}")
         for w in rec.get("warnings", []):
@@ -171,6 +174,47 @@ def cmd_replay(args: argparse.Namespace) -> int:
                                       dash_is_stdout=False):
         rc = 2
     return rc
+
+
+#: how many override runs the text lists per bag (the JSON lists more; the one to the end always shows)
+SHOWN_RUNS = 10
+
+
+def _run_lines(bag: str, rec: dict) -> list[str]:
+    """The override of one bag as a person reads it: the cycle total, every run (or the first
+    :data:`SHOWN_RUNS`, "... N more" and the one that lasts to the end of the bag), why each began,
+    which latch held it and how that latch is released."""
+    runs = rec.get("latches", [])
+    n_over, n = rec.get("override_cycles", 0), rec["cycles"]
+    if not n_over:
+        return []
+    total = rec.get("override_runs", len(runs))
+    lines = [f"{bag}: override on {n_over:,} of {n:,} cycles ({100.0 * n_over / max(n, 1):.1f} %), "
+             f"in {total:,} run{'s' if total != 1 else ''}"]
+    shown = runs[:SHOWN_RUNS]
+    last = runs[-1] if runs and runs[-1]["until_end"] else None
+    for run in shown:
+        lines.append(_run_line(bag, run))
+    hidden = total - len(shown) - (1 if last is not None and last not in shown else 0)
+    if hidden > 0:
+        lines.append(f"{bag}: ... {hidden:,} more override run{'s' if hidden != 1 else ''} (--json lists up to "
+                     f"{len(runs):,})")
+    if last is not None and last not in shown:
+        lines.append(_run_line(bag, last))
+    return lines
+
+
+def _run_line(bag: str, run: dict) -> str:
+    held = run.get("held_by") or []
+    how = "; ".join(f"{h}: released {run['released_by'].get(h) or 'by its release rule'}" for h in held)
+    end = {"end_of_bag": "and lasted to the end of the bag",
+           "fresh_start": "then every input had been seen and the monitor started fresh"}.get(
+        run.get("ended", "end_of_bag" if run["until_end"] else ""), "then the arm was released")
+    text = (f"{bag}: override from t = {run['t_s']:.3f} s (cycle {run['from_cycle']}) for {run['cycles']:,} cycles "
+            f"({run['seconds']:.3f} s), begun by {run['cause']}")
+    if held:
+        text += f"; held at its end by the latch{'es' if len(held) != 1 else ''} of {', '.join(held)} ({how})"
+    return f"{text}, {end}"
 
 
 def _print_inputs(rec: dict, out) -> None:

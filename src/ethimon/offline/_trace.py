@@ -108,6 +108,10 @@ class OfflineResult:
         self._replayer: Monitor | None = None  # replays a segment up to an internal fault
         self._last_fault: np.ndarray | None = None
         self._plan: Plan | None = None  # the plan checked (set by check_trace)
+        #: per rule (obligation ids, "risk", "fault"): bool[n], its latch holds the override at that cycle
+        #: (vector method); the step method records ``Monitor.latched_rules`` where it changes instead
+        self._holding: dict[str, np.ndarray] = {}
+        self._holding_changes: dict[int, tuple[str, ...]] | None = None
 
     def _monitor(self, margins: bool = False) -> Monitor:
         return Monitor(self._plan if self._plan is not None else self.spec, margins=margins,
@@ -159,6 +163,18 @@ class OfflineResult:
                     raise RuntimeError(f"offline checker bug: cycle {t} should be an internal fault")
             self._faults[t] = got
         return got
+
+    def holding_at(self, t: int) -> tuple[str, ...]:
+        """The rules whose latch holds the override at cycle ``t`` (``Monitor.latched_rules`` after
+        that cycle's step): obligation ids in spec order, then ``"risk"``, ``"fault"`` and the tier
+        rules; empty where the override is off."""
+        t = int(t)
+        if not self.override[t]:
+            return ()
+        if self._holding_changes is not None:
+            keys = [c for c in self._holding_changes if c <= t]
+            return self._holding_changes[max(keys)] if keys else ()
+        return tuple(name for name, active in self._holding.items() if active[t])
 
     def decision(self, t: int) -> Decision:
         """The :class:`~ethimon.Decision` the monitor returns at cycle ``t`` of this trace."""
@@ -397,8 +413,14 @@ def _step_all(res: OfflineResult, inp: Inputs, margins: bool) -> None:
     m = res._monitor(margins)
     risk = np.full(inp.n, np.nan)
     tiers = res._tier_rows
+    res._holding_changes = changes = {}
+    held: tuple[str, ...] = ()
     for t in range(inp.n):
         d = m.step(row(inp, t) if tiers is None else {**row(inp, t), **tiers[t]})
+        if d.override or held:
+            now = m.latched_rules if d.override else ()
+            if now != held:
+                changes[t] = held = now
         res.override[t] = d.override
         res.response[t] = d.response.severity
         res.latched[t] = d.latched
@@ -497,21 +519,21 @@ def _latch(res: OfflineResult, plan, inp: Inputs) -> None:
     fault = res.fault
     res.risk_violated = inp.risk_ok & (np.where(inp.risk_ok, inp.risk, -np.inf) >= tau)
     fired_valid = np.zeros(n, bool)  # Decision.violations is not empty on a valid cycle
-    rules = []  # (fires, severity, manual, hold, extra reset or None)
+    rules = []  # (name, fires, severity, manual, hold, extra reset or None)
     for k, ob in enumerate(plan.obligations):  # releases, holds and severities: resolved in the plan
         col = res.violated[:, k]
         fired_valid |= col
-        rules.append((col, ob.response.severity, ob.manual, ob.release_hold, None))
+        rules.append((ob.id, col, ob.response.severity, ob.manual, ob.release_hold, None))
     below = ~fault & inp.risk_ok & (np.where(inp.risk_ok, inp.risk, np.inf) < plan.release_cut)
     fired_valid |= res.risk_violated
     rr, fr = plan.risk_rule, plan.fault_rule
-    rules.append((res.risk_violated, rr.severity, rr.manual, rr.hold, ~below))
-    rules.append((fault, fr.severity, fr.manual, fr.hold, None))
+    rules.append(("risk", res.risk_violated, rr.severity, rr.manual, rr.hold, ~below))
+    rules.append(("fault", fault, fr.severity, fr.manual, fr.hold, None))
     fired_valid &= ~fault
     level = np.zeros(n, np.int8)
     manual_active = np.zeros(n, bool)
     manual_waiting = np.zeros(n, bool)  # a latched manual rule whose count has not reached its hold
-    for fire, sev, manual, hold, extra in rules:
+    for name, fire, sev, manual, hold, extra in rules:
         fires = np.flatnonzero(fire)
         if not len(fires):
             continue
@@ -535,6 +557,7 @@ def _latch(res: OfflineResult, plan, inp: Inputs) -> None:
             mark[starts] += 1
             mark[released] -= 1
             active = np.cumsum(mark[:n]) > 0
+        res._holding[name] = active
         np.maximum(level, np.where(active, np.int8(sev), np.int8(0)), out=level)
     res.override = level > 0
     res.response = level

@@ -144,12 +144,21 @@ def _judge_counts(data: BagData, mapping: Mapping, grid: np.ndarray, idxs: dict[
         else:
             why = (f"the topic (a message every {med / 1e6:.2f} ms) is faster than the cycles "
                    f"({period / 1e6:.2f} ms)")
+        jitter = med >= 0.5 * period and cnt <= max(1, n // 10)
+        if jitter:  # an ordinary recording: a few samples a cycle apart land in one cycle
+            why = (f"which is a recorder's ordinary jitter (a message every {med / 1e6:.1f} ms against cycles of "
+                   f"{period / 1e6:.1f} ms, so now and then two land in one cycle)")
+            hint = ("write 'samples: latest' in the mapping (for this signal or all): each cycle then judges the "
+                    "latest sample, as the live monitor does, and the samples in between are counted in the report")
+        else:
+            hint = (f"write 'samples: latest' to judge the latest sample each cycle, as the live monitor does; or "
+                    f"raise rate_hz{'' if need > 10 * float(mapping.rate_hz) else f' to {math.ceil(need):g}'} so "
+                    "each sample gets a cycle; or check the recorder's clock (a log time that jumps back puts "
+                    "samples out of order)")
         raise BagError(
             f"signal {name!r}: {cnt:,} of {n:,} samples on {s.topic} fall between two cycles behind a newer "
             f"sample (first at t = {t_first:.3f} s), {why}; the monitor would never judge them", data.path,
-            hint=f"raise rate_hz to {math.ceil(need):g} so each sample gets a cycle, check the recorder's clock "
-                 "(a log time that jumps back puts samples out of order), or write 'samples: latest' to judge the "
-                 "latest sample each cycle, as the monitor does online")
+            hint=hint)
     return out, before
 
 

@@ -156,7 +156,9 @@ class Mapping(BaseModel):
         "first_message", description="first cycle: at the first mapped message (inputs not yet seen are "
         "missing: fail closed), or once every mapped input has been seen")
     signals: dict[str, SignalMap] = Field(
-        description="spec signal (or 'p_unsafe' / 'risk') → where it comes from", min_length=1)
+        default_factory=dict, description="spec signal (or 'p_unsafe' / 'risk') → where it comes from; may be "
+        "left out only when a task topic is mapped (a text-only bag against a spec with no signals, such as the "
+        "shipped governor)")
     task: TaskMap | None = Field(None, description="optional: the task-text topic scored by the risk estimator")
     ros2: Ros2Map = Field(default_factory=Ros2Map, description="live node settings (ethimon ros2)")
     risk: Literal["none"] | None = Field(
@@ -182,6 +184,9 @@ class Mapping(BaseModel):
 
     @model_validator(mode="after")
     def _check(self) -> "Mapping":
+        if not self.signals and self.task is None:
+            raise ValueError("map at least one signal, or a task topic ('task: {topic: /task}') for a bag that "
+                             "holds only task texts")
         risky = [n for n in self.signals if n in RISK_INPUTS]
         if len(risky) > 1:
             raise ValueError(f"map one risk input, not {' and '.join(risky)}")

@@ -44,10 +44,16 @@ def _join(a: CycleResults, b: CycleResults, s: int) -> CycleResults:
     def faults_at(k: int) -> tuple:
         return fa(k) if k < s else fb(k - s)
 
+    ha, hb = a.holding_at, b.holding_at
+
+    def holding_at(k: int) -> tuple:
+        return ha(k) if k < s else hb(k - s)
+
     cat = np.concatenate
     return CycleResults(a.ids, cat([a.override, b.override]), cat([a.severity, b.severity]),
                         cat([a.violated, b.violated]), cat([a.margins, b.margins]), cat([a.risk, b.risk]),
-                        cat([a.fault, b.fault]), cat([a.latched, b.latched]), faults, b.engine, faults_at)
+                        cat([a.fault, b.fault]), cat([a.latched, b.latched]), faults, b.engine, faults_at,
+                        None, holding_at)
 
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
@@ -88,25 +94,90 @@ def _worst(values: np.ndarray, violated: np.ndarray) -> tuple[float | None, int]
     return (float(known.min()) if known.size else None), 0
 
 
-def _latches(tr: CycleResults, grid: np.ndarray, rate_hz: float, limit: int = 20) -> list[dict[str, Any]]:
-    """Runs of latched cycles (the override held after its cause), with what latched and for how long."""
-    lat = tr.latched.astype(np.int8)
-    if not lat.any():
-        return []
-    edges = np.flatnonzero(np.diff(np.concatenate([[0], lat, [0]])))
-    out = []
+#: how many override runs a replay result lists (the one to the end of the bag is always among them)
+MAX_RUNS = 200
+
+
+def _release_words(spec: Spec) -> dict[str, str]:
+    """How each rule's latch is released, in a person's words (the spec's release policy)."""
+    from ..compiler import plan_of
+    plan = plan_of(spec)
+    out = {}
+    for ob in plan.obligations:
+        out[ob.id] = ("by an operator's acknowledgement (release: manual)" if ob.manual else
+                      f"by itself after {ob.release_hold} cycles of holding")
+    rr, fr = plan.risk_rule, plan.fault_rule
+    out["risk"] = ("by an operator's acknowledgement (release: manual)" if rr.manual else
+                   f"by itself after {rr.hold} cycles of R_e < τ − δ = {plan.release_cut:g}")
+    out["fault"] = ("by an operator's acknowledgement (on_fault release: manual)" if fr.manual else
+                    f"by itself after {fr.hold} cycles without a fault")
+    out["confirm"] = "by a person's confirmation, or once the text leaves the confirm band"
+    out["judge"] = "once the judge's unsafe verdict no longer stands (a new text), or by acknowledgement"
+    return out
+
+
+def _override_runs(tr: CycleResults, grid: np.ndarray, rate_hz: float, spec: Spec, fresh: int = 0,
+                   limit: int = MAX_RUNS) -> tuple[list[dict[str, Any]], int]:
+    """Every run of override cycles: when it began and why, how long it lasted, whether it lasted
+    to the end of the bag, and which latch held it at its last cycle (the latch that keeps the arm
+    stopped, not the last rule that fired). At most ``limit`` runs are listed (the one that lasts to
+    the end of the bag always is); the second value is how many runs there are in all. ``ended`` is
+    ``"end_of_bag"``, ``"fresh_start"`` (the start-up cycles before every input was seen, which a fresh
+    monitor follows at cycle ``fresh``) or ``"released"``."""
+    ov = tr.override.astype(np.int8)
+    if not ov.any():
+        return [], 0
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], ov, [0]])))
+    pairs = list(zip(edges[0::2].tolist(), edges[1::2].tolist()))
+    total = len(pairs)
+    if total > limit:
+        pairs = pairs[:limit - 1] + [pairs[-1]]
+    words = _release_words(spec)
     t0 = int(grid[0])
-    for a, b in zip(edges[0::2], edges[1::2]):
-        if len(out) >= limit:
-            break
-        trig = a - 1 if a > 0 else a
-        why = [tr.ids[j] for j in np.flatnonzero(tr.violated[trig])]
-        if tr.fault[trig]:
-            why.append("inputs (" + "; ".join(str(f) for f in tr.faults_at(trig))[:200] + ")")
+    out = []
+    for a, b in pairs:
+        why = [tr.ids[j] for j in np.flatnonzero(tr.violated[a])]
+        if tr.fault[a]:
+            why.append("inputs (" + "; ".join(str(f) for f in tr.faults_at(a))[:200] + ")")
+        held = list(tr.holding_at(b - 1))
         out.append({"from_cycle": int(a), "cycles": int(b - a), "seconds": round((b - a) / rate_hz, 9),
                     "t_s": round((int(grid[a]) - t0) / 1e9, 9), "until_end": bool(b == grid.size),
-                    "after": ", ".join(why) or "an earlier override"})
-    return out
+                    "ended": ("end_of_bag" if b == grid.size else "fresh_start" if b == fresh > 0 else "released"),
+                    "cause": ", ".join(why) or "a latch from before",
+                    "held_by": held, "released_by": {h: words.get(h, "") for h in held}})
+    return out, total
+
+
+def _task_outcomes(rs: Any, tr: CycleResults, grid: np.ndarray, spec: Spec) -> None:
+    """Each task text's R_e and outcome, as the monitor judged it in the first cycle that read it."""
+    rows = rs.codes.get("_task_row")
+    if rows is None or not rs.tasks:
+        return
+    t0 = int(grid[0])
+    col = {oid: j for j, oid in enumerate(tr.ids)}
+    for j, task in enumerate(rs.tasks):
+        hit = np.flatnonzero(rows == j)
+        if not hit.size:
+            task.update(r_e=None, outcome="never read: a newer text replaced it before the next cycle", cycle=None)
+            continue
+        k = int(hit[0])
+        r = float(tr.risk[k]) if tr.risk[k] == tr.risk[k] else None
+        v = tr.violated[k]
+        if r is None:
+            outcome = "no estimate: fails closed (" + (task.get("error") or "no usable probabilities") + ")"
+        elif v[col["risk"]]:
+            outcome = f"stopped: R_e ≥ τ = {float(spec.risk.threshold):g}"
+        elif "judge" in col and v[col["judge"]]:
+            outcome = "stopped by the judge's unsafe verdict"
+        elif "confirm" in col and v[col["confirm"]]:
+            outcome = (f"held for a person's confirmation: τ_confirm = {float(spec.risk.confirm_threshold):g} ≤ R_e "
+                       f"< τ = {float(spec.risk.threshold):g}")
+        else:
+            held = ", ".join(tr.holding_at(k)) if tr.override[k] else ""
+            outcome = ("executes (below the risk tiers)" if not held else
+                       f"below the risk tiers, but the arm is still held by the latch of {held}")
+        task.update(r_e=None if r is None else round(r, 6), outcome=outcome, cycle=k,
+                    t_s=round((int(grid[k]) - t0) / 1e9, 9))
 
 
 def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | None = None,
@@ -200,13 +271,15 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
         tp["judged"] = min(tp["judged"], sg["judged"])
         tp["signals"].append(name)
     n_over = int(tr.override.sum())
+    _task_outcomes(rs, tr, grid, spec)
+    runs, n_runs = _override_runs(tr, grid, float(mapping.rate_hz), spec, s0)
     res = BagReplay(data.path, data.storage, float(mapping.rate_hz), n, t0, int(grid[-1]), checks, n_over,
                     int(np.argmax(tr.override)) if n_over else None, signals, rs.tasks, tr.engine,
-                    _latches(tr, grid, float(mapping.rate_hz)), rs.warnings,
+                    runs, rs.warnings,
                     {"cycle": s0, "t_s": round((int(grid[s0]) - t0) / 1e9, 9), "note": (
                         f"every input seen from cycle {s0}: the monitor starts fresh there (the {s0} cycle"
                         f"{'s' if s0 != 1 else ''} before fail closed but latch nothing after)") if s0 else ""},
-                    topics)
+                    topics, override_runs=n_runs)
     if keep_trace:
         res.trace, res.grid, res.columns = tr, grid, rs.columns
     if audit is not None:
@@ -228,7 +301,7 @@ def _reads_risk(spec: Spec) -> set[str]:
     return out
 
 
-def replay_bag(bag: str | os.PathLike, spec: Spec, mapping: Mapping | str | os.PathLike, *,
+def replay_bag(bag: str | os.PathLike, spec: Spec | str | os.PathLike, mapping: Mapping | str | os.PathLike, *,
                score: Scorer | None = None, p: Sequence[float] | None = None, audit: Any = None,
                keep_trace: bool = False, engine: str = "auto",
                on_progress: Callable[[int, int], None] | None = None) -> BagReplay:
@@ -236,7 +309,7 @@ def replay_bag(bag: str | os.PathLike, spec: Spec, mapping: Mapping | str | os.P
 
     Args:
         bag: a ROS 2 bag folder (sqlite3 or MCAP storage), a ``.mcap``/``.db3`` file, or a ROS 1 ``.bag``.
-        spec: a compiled spec (:func:`ethimon.load_spec`).
+        spec: a compiled spec (:func:`ethimon.load_spec`) or the path of a spec file.
         mapping: a :class:`Mapping` or the path of a mapping file.
         score: scores a task text (text → class probabilities); default: the spec's estimator,
             loaded when the first task text arrives.
@@ -256,8 +329,13 @@ def replay_bag(bag: str | os.PathLike, spec: Spec, mapping: Mapping | str | os.P
     """
     if not isinstance(mapping, Mapping):
         mapping = load_mapping(mapping)
+    if isinstance(spec, (str, os.PathLike)):
+        from ..compiler import plan_of
+        from ..language import parse_spec_file
+        spec = parse_spec_file(spec)
+        plan_of(spec)  # compiled now, as ethimon.load_spec does: its errors surface here
     if not isinstance(spec, Spec):
-        raise SpecError(f"replay_bag needs a loaded spec (ethimon.load_spec), got {type(spec).__name__}")
+        raise SpecError(f"replay_bag needs a spec (a path, or ethimon.load_spec's result), got {type(spec).__name__}")
     check_against_spec(mapping, spec, risk_given=p is not None)
     data = read_bag(bag, mapping, on_progress=on_progress)
     return replay_data(data, spec, mapping, score=score, p=p, audit=audit, keep_trace=keep_trace, engine=engine)

@@ -68,6 +68,8 @@ class BagReplay:
     signals: dict[str, dict[str, Any]] = field(default_factory=dict)
     tasks: list[dict[str, Any]] = field(default_factory=list)
     engine: str = "Monitor.step"
+    #: the override runs (at most ``replay.MAX_RUNS`` of them, the one to the end of the bag always):
+    #: start, length, cause, ``until_end`` and the latch that held each at its last cycle (``held_by``)
     latches: list[dict[str, Any]] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
     started: dict[str, Any] = field(default_factory=dict)
@@ -75,6 +77,7 @@ class BagReplay:
     trace: CycleResults | None = field(default=None, repr=False)
     grid: np.ndarray | None = field(default=None, repr=False)
     columns: dict[str, np.ndarray] | None = field(default=None, repr=False)
+    override_runs: int = 0  # how many override runs there are in all (``latches`` may list fewer)
 
     @property
     def passed(self) -> bool:
@@ -93,6 +96,7 @@ class BagReplay:
                 "rate_hz": self.rate_hz, "cycles": self.cycles, "start_ns": self.start_ns,
                 "end_ns": self.end_ns, "duration_s": (self.end_ns - self.start_ns) / 1e9,
                 "override_cycles": self.override_cycles, "first_override_cycle": self.first_override,
+                "override_runs": self.override_runs,
                 "checks": [c.as_dict() for c in self.checks], "signals": self.signals, "tasks": self.tasks,
                 "topics": self.topics, "latches": self.latches, "warnings": self.warnings, "started": self.started,
                 "engine": self.engine}

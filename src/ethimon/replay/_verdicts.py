@@ -54,6 +54,19 @@ class CycleResults:
     faults: dict[int, tuple]
     engine: str = "Monitor.step"
     _faults_at: Any = None
+    #: the step engine: ``Monitor.latched_rules`` at each cycle where it changed (``holding_at`` reads it)
+    holding: dict[int, tuple] | None = None
+    _holding_at: Any = None
+
+    def holding_at(self, k: int) -> tuple:
+        """The rules whose latch holds the override at cycle ``k`` (``Monitor.latched_rules``): the
+        latch that keeps the arm stopped, which is not always the rule that fired last."""
+        if not self.override[k]:
+            return ()
+        if self._holding_at is not None:
+            return tuple(self._holding_at(k))
+        keys = [c for c in (self.holding or {}) if c <= k]
+        return self.holding[max(keys)] if keys else ()
 
     def faults_at(self, k: int) -> tuple:
         """The monitor's fault reasons of cycle ``k`` (empty if it did not fail closed)."""
@@ -124,7 +137,7 @@ def _offline(check_trace: Any, spec: Spec, columns: dict[str, np.ndarray], n: in
     margins = off.margins if off.margins is not None else np.full((n, len(off.obligation_ids)), math.nan)
     return CycleResults(ids, off.override.copy(), off.response.astype(np.int8), violated, margins,
                         np.asarray(off.risk, dtype=np.float64), off.fault.copy(), off.latched.copy(), {},
-                        f"ethimon.offline.check_trace ({off.method})", off.faults_at)
+                        f"ethimon.offline.check_trace ({off.method})", off.faults_at, None, off.holding_at)
 
 
 def _tier_ids(spec: Spec) -> tuple[str, ...]:
@@ -163,6 +176,8 @@ def _step(spec: Spec, columns: dict[str, np.ndarray], n: int, risk_key: str) -> 
     tcol = columns.get("task_id") if tiers else None
     tlist = list(tcol) if tcol is not None else None
     step = mon.step
+    holding: dict[int, tuple] = {}
+    held: tuple = ()
     for k in range(n):
         inp = {}
         for name, lst in sig:
@@ -195,4 +210,8 @@ def _step(spec: Spec, columns: dict[str, np.ndarray], n: int, risk_key: str) -> 
         else:
             last = ()
         latched[k] = d.latched
-    return CycleResults(ids, override, severity, violated, margins, risk, fault, latched, faults)
+        if d.override or held:
+            now = mon.latched_rules if d.override else ()
+            if now != held:
+                holding[k] = held = now
+    return CycleResults(ids, override, severity, violated, margins, risk, fault, latched, faults, holding=holding)

@@ -389,7 +389,7 @@ class ScenarioSession:
 
 
 def _skipped(path: str, reason: str) -> CheckOutcome:
-    return CheckOutcome(path, path, "SKIP", "-", "skipped: not a regular file",
+    return CheckOutcome(path, path, "SKIP", "-", "skipped: " + reason.split(",")[0].split(":")[0],
                         messages=[f"{path}: skipped: {reason}"],
                         record={"name": path, "path": path, "passed": None, "skipped": reason})
 
