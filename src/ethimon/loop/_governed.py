@@ -43,6 +43,7 @@ from __future__ import annotations
 import math
 import threading
 import time
+from collections import deque
 from collections.abc import Callable, Mapping
 from typing import Any
 
@@ -52,7 +53,7 @@ from ..runtime import Decision, Fault, Monitor
 from ..language import Spec
 from ._acknowledge import _Acknowledging
 from ._process import ProcessEstimator
-from ._reload import ReloadResult, _Reloading, _verify_smt
+from ._reload import ReloadResult, _Reloading, _verify_smt, history_len
 from ._source import AsyncJudgeSource, AsyncRiskSource, RiskReading
 from ._stats import LoopStats
 from ._watchdog import Watchdog
@@ -231,7 +232,8 @@ class GovernedLoop(_Acknowledging, _Reloading):
         #: the signals not seen yet since the start (awaited: a pending hold, see _await_signals)
         self._signal_names = tuple(monitor.spec.signals)
         self._unseen = set(self._signal_names)
-        self._latch_t: dict[int, float] = {}  # monitor cycle -> wall time, for cycles that set a latch
+        self._latch_t: dict[int, float] = {}
+        self._history: deque = deque(maxlen=history_len(monitor.plan))  # the last cycles' inputs  # monitor cycle -> wall time, for cycles that set a latch
         #: why acknowledgements cannot reach this loop's monitor (``None``: they can); a node without
         #: authentication sets it (``holding()`` then says that only a person at the loop can release)
         self.acknowledge_refused: str | None = None
@@ -362,6 +364,7 @@ class GovernedLoop(_Acknowledging, _Reloading):
         if self._unseen and "pending_s" not in inputs and not self._gone(inputs):
             inputs["pending_s"] = 0.0  # a signal not seen since the start: awaited, no limit
         d = m.step(inputs)
+        self._history.append(inputs)  # a reload rebuilds the new monitor's temporal history from these
         self._last_inputs = inputs
         if self._stall_reason is not None:
             reasons.append(self._stall_reason)

@@ -75,6 +75,12 @@ class _Latches:
         return tuple(out)
 
     @property
+    def history_cycles(self) -> int:
+        """How many of the last cycles the temporal history spans (since the start, a :meth:`reset` or a
+        fault cycle, which restarts it)."""
+        return self._cycle - self._hist0
+
+    @property
     def pending_responses(self) -> tuple[str, ...]:
         """The obligations whose bounded response is due: ``when`` fired, ``require`` not met yet,
         ``within_cycles`` not yet passed (a fresh monitor would forget the deadline)."""
