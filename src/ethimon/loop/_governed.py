@@ -125,9 +125,9 @@ class GovernedLoop(_Acknowledging, _Reloading):
         >>> loop = GovernedLoop(ethimon.Monitor(spec), risk=src, period_s=1.0)
         >>> loop.cycle({}).override
         False
-        >>> src.set_text("new task")      # no estimate for it yet: fail closed
-        >>> loop.cycle({}).faults[-1]
-        Fault('estimator', 'no risk estimate yet for the current task text')
+        >>> src.set_text("new task")      # no estimate for it yet: the pending hold (stop 2)
+        >>> d = loop.cycle({}); d.response, d.violations, d.faults
+        (<Response.STOP_2: 'stop_2'>, ('pending',), ())
     """
 
     def __init__(self, monitor: Monitor | Spec, *, signals: Callable[[], Mapping[str, Any]] | None = None,
