@@ -205,3 +205,52 @@ def test_a_reload_accepting_what_the_old_spec_overrides_on_is_refused(pair, data
     loop = GovernedLoop(ethimon.Monitor(old), period_s=0.001, max_risk_age_s=None)
     res = loop.reload(new)
     assert not res.ok and "weakens monitoring" in res.error
+
+
+# -- issue 31: a reload keeps the temporal history -------------------------------------------------
+
+def _calm_frame(draw) -> dict:
+    """A frame inside most ranges and at a low risk (few faults: a latch at the swap is rarer)."""
+    return {"x": draw(st.sampled_from([1.5, 2.5, 4.5, 5.5, 7.0])), "y": draw(st.sampled_from([1.5, 2.0, 3.5, 4.5])),
+            "b": draw(st.booleans()), "g": draw(st.sampled_from([1.0, 5.5])),
+            "p_unsafe": draw(st.sampled_from([0.0, 0.1])), "risk_age_s": 0.0}
+
+
+@st.composite
+def _same_spec_and_trace(draw):
+    doc = draw(base_doc())
+    spec = _load(doc)
+    assume(spec is not None)
+    trace = [_calm_frame(draw) for _ in range(draw(st.integers(2, 14)))]
+    return doc, spec, trace, draw(st.integers(1, len(trace) - 1))
+
+
+def _decisions(spec, trace, reload_at=None, again=None):
+    loop = GovernedLoop(ethimon.Monitor(spec, margins=False), period_s=1.0, max_risk_age_s=None,
+                        clock=lambda: 0.0)
+    out, res, latched = [], None, ()
+    for t, f in enumerate(trace):
+        if t == reload_at:
+            latched = loop.monitor.latched_rules
+            res = loop.reload(again)
+        out.append(loop.cycle(f))
+    return out, res, latched
+
+
+@pytest.mark.slow
+@settings(max_examples=150, deadline=None)
+@given(case=_same_spec_and_trace())
+def test_a_reload_of_the_same_spec_forgets_nothing(case):
+    """Reloading the same spec (a fresh copy of its text) at any cycle: the arm is never freer than had
+    the loop not reloaded; with nothing latched at the swap, every later decision is the same (the
+    temporal history, a held ``once``/``held``/``prev`` event or a running deadline, goes on)."""
+    doc, spec, trace, k = case
+    plain, _, _ = _decisions(spec, trace)
+    again = _load(doc)
+    got, res, latched = _decisions(spec, trace, k, again)
+    note(f"spec:\n{yaml.safe_dump(doc, sort_keys=False)}trace: {trace}; reload before cycle {k}: {res}")
+    for a, b in zip(plain[k:], got[k:]):
+        assert b.override or not a.override, "the reloaded loop let the arm move where the running one did not"
+        if not latched:
+            assert (a.override, a.response, a.violations, a.faults, a.cycle) == \
+                   (b.override, b.response, b.violations, b.faults, b.cycle)

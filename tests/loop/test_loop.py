@@ -294,7 +294,7 @@ def test_reload_swaps_between_cycles_and_is_recorded(tmp_path):
     clock.advance(0.001)
     d = loop.cycle(SAFE)
     assert res.applied.is_set() and loop.spec_sha256 == res.spec_sha256
-    assert d.override and d.violations == ("keep_away",) and d.cycle == 0  # fresh monitor
+    assert d.override and d.violations == ("keep_away",) and d.cycle == 1  # the count goes on (issue 31)
     log.close()
     recs = read_log(tmp_path / "r.jsonl")
     statuses = [r["status"] for r in recs if r["kind"] == "reload"]

@@ -215,3 +215,40 @@ def test_reload_at_the_swap_is_refused_when_a_response_became_due_meanwhile():
 def test_reload_with_nothing_due_applies():
     out, (res,), loop = _run(7)  # the deadline has passed (latched): carried as a latch
     assert res.wait_applied(0) and out[-1] is True
+
+
+# -- issue 31: a reload keeps the temporal history ------------------------------------------------
+
+_ONCE = """
+ethimon: 1
+name: once
+signals: {x: {range: [0, 10]}, y: {range: [0, 10]}}
+obligations:
+  - {id: o, require: "once(y > 4, 3) implies x < 6", response: stop_2}
+"""
+
+
+def test_a_reload_of_the_same_file_keeps_an_event_held_by_once(tmp_path):
+    path = tmp_path / "once.yaml"
+    path.write_text(_ONCE)
+    loop = GovernedLoop(ethimon.load_spec(path), period_s=1.0, deadline_s=60.0)
+    assert not loop.cycle({"x": 1.0, "y": 5.0, "p_unsafe": 0.0}).override  # the event
+    assert loop.reload(path).ok
+    d = loop.cycle({"x": 7.0, "y": 0.0, "p_unsafe": 0.0})  # swapped in before this cycle
+    assert loop.stats.reloads_applied == 1
+    assert d.override and d.violations == ("o",)  # the event one cycle ago is remembered
+    assert loop.monitor.cycle == 2
+
+
+def test_a_reload_that_cannot_carry_an_unbounded_window_is_refused_and_audited(tmp_path):
+    from ethimon.loop import _reload
+    text = _ONCE.replace('once(y > 4, 3)', 'since(y > 4, x > 8)')
+    loop = GovernedLoop(ethimon.load_spec_text(text), period_s=1.0, deadline_s=60.0)
+    loop._history = __import__("collections").deque(loop._history, maxlen=2)
+    for _ in range(3):
+        loop.cycle({"x": 1.0, "y": 5.0, "p_unsafe": 0.0})
+    res = loop.reload(ethimon.load_spec_text(text))
+    assert res.ok and not res.wait_applied(0.0)
+    loop.cycle({"x": 1.0, "y": 0.0, "p_unsafe": 0.0})
+    assert not res.ok and "temporal history" in res.error and loop.stats.reloads_rejected == 1
+    assert _reload.history_depth(loop.monitor.plan) is None

@@ -281,7 +281,7 @@ def test_step_stays_allocation_free_of_new_objects_per_rule_while_latched():
     m.step(ok(f=300.0, d=0.3))
     for _ in range(50):
         m.step(ok())
-    assert m._lat is lat and m._run is run and len(lat) == len(m.obligation_ids) + 4  # + risk, fault, judge, confirm
+    assert m._lat is lat and m._run is run and len(lat) == len(m.obligation_ids) + 5  # + risk, fault, judge, confirm, pending
 
 
 # -- verify and lint ------------------------------------------------------------------------------

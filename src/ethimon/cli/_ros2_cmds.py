@@ -108,11 +108,14 @@ def cmd_ros2(args: argparse.Namespace) -> int:
     doc = {"spec": spec.name, "domain_id": domain, "rate_hz": float(mapping.rate_hz), "cycles": stats.cycles,
            "override_cycles": stats.overrides, "fault_cycles": stats.fault_cycles,
            "deadline_misses": stats.deadline_misses, "stalls": stats.stalls, "max_late_ms": stats.max_late_s * 1e3,
-           "acknowledgements_refused": node.acks_refused}
+           "acknowledgements_refused": node.acks_refused, "pending_cycles": stats.pending_cycles,
+           "held_by": stats.held_by}
     if args.json and not emit_json(args.json, doc, "JSON summary"):
         return 2
     if not args.quiet and args.json != "-":
         print(f"ethimon ros2: {stats.cycles} cycles, {stats.overrides} with override, {stats.fault_cycles} with "
               f"faults, {stats.deadline_misses} deadline misses, {stats.stalls} stalls, max late "
               f"{stats.max_late_s * 1e3:.2f} ms")
+        print(f"ethimon ros2: {stats.pending_cycles} cycles held awaiting an input (start, new task text); "
+              + (f"at the end the arm was held by {stats.held_by}" if stats.held_by else "the arm was free at the end"))
     return 0

@@ -43,6 +43,7 @@ from __future__ import annotations
 import math
 import threading
 import time
+from collections import deque
 from collections.abc import Callable, Mapping
 from typing import Any
 
@@ -52,7 +53,7 @@ from ..runtime import Decision, Fault, Monitor
 from ..language import Spec
 from ._acknowledge import _Acknowledging
 from ._process import ProcessEstimator
-from ._reload import ReloadResult, _Reloading, _verify_smt
+from ._reload import ReloadResult, _Reloading, _verify_smt, history_len
 from ._source import AsyncJudgeSource, AsyncRiskSource, RiskReading
 from ._stats import LoopStats
 from ._watchdog import Watchdog
@@ -124,9 +125,9 @@ class GovernedLoop(_Acknowledging, _Reloading):
         >>> loop = GovernedLoop(ethimon.Monitor(spec), risk=src, period_s=1.0)
         >>> loop.cycle({}).override
         False
-        >>> src.set_text("new task")      # no estimate for it yet: fail closed
-        >>> loop.cycle({}).faults[-1]
-        Fault('estimator', 'no risk estimate yet for the current task text')
+        >>> src.set_text("new task")      # no estimate for it yet: the pending hold (stop 2)
+        >>> d = loop.cycle({}); d.response, d.violations, d.faults
+        (<Response.STOP_2: 'stop_2'>, ('pending',), ())
     """
 
     def __init__(self, monitor: Monitor | Spec, *, signals: Callable[[], Mapping[str, Any]] | None = None,
@@ -228,6 +229,14 @@ class GovernedLoop(_Acknowledging, _Reloading):
             if monitor.max_age_s is None and self._age_fallback is not None:
                 monitor.set_max_age(self._age_fallback)
         self._ids = monitor.obligation_ids
+        #: the signals not seen yet since the start (awaited: a pending hold, see _await_signals)
+        self._signal_names = tuple(monitor.spec.signals)
+        self._unseen = set(self._signal_names)
+        self._latch_t: dict[int, float] = {}
+        self._history: deque = deque(maxlen=history_len(monitor.plan))  # the last cycles' inputs  # monitor cycle -> wall time, for cycles that set a latch
+        #: why acknowledgements cannot reach this loop's monitor (``None``: they can); a node without
+        #: authentication sets it (``holding()`` then says that only a person at the loop can release)
+        self.acknowledge_refused: str | None = None
         self.watchdog: Watchdog | None = None
         if watchdog_s is not None:
             self.watchdog = Watchdog(watchdog_s, self._stalled)
@@ -246,6 +255,35 @@ class GovernedLoop(_Acknowledging, _Reloading):
     def spec(self) -> Spec:
         """The spec running now."""
         return self.monitor.spec
+
+    def holding(self, acknowledge_refused: str | None = None) -> list[dict]:
+        """What holds the arm now: :meth:`Monitor.holding <ethimon.Monitor.holding>` (one dict per latched
+        rule, the most severe first; empty when the arm is free), each with ``since_t_unix`` (the wall
+        time of the cycle it latched, ``None`` if not seen by this loop) and ``acknowledge_allowed``.
+
+        Args:
+            acknowledge_refused: why acknowledgements cannot reach this loop (e.g. a node without
+                authentication); default :attr:`acknowledge_refused`. Then a rule that needs one is
+                released by ``"person"`` (at the loop: an authenticated acknowledgement or a restart), and its
+                ``how`` says why.
+        """
+        refused = acknowledge_refused if acknowledge_refused is not None else self.acknowledge_refused
+        out = []
+        times = self._latch_t
+        for h in self.monitor.holding():
+            h["since_t_unix"] = times.get(h["since_cycle"])
+            h["acknowledge_allowed"] = bool(h["acknowledge"]) and not refused
+            if refused and h["release"] == "acknowledge":
+                h["release"] = "person"
+                h["how"] += f"; acknowledgements are refused here ({refused}): only a person at the loop releases it"
+            out.append(h)
+        return out
+
+    @property
+    def hold_text(self) -> str:
+        """:meth:`holding` in one line for a person ("" when the arm is free)."""
+        return "; ".join(f"{h['rule']} ({h['response']}) since cycle {h['since_cycle']}, released {h['how']}"
+                         for h in self.holding())
 
     # ------------------------------------------------------------------ one cycle
     def cycle(self, signals: Mapping[str, Any] | None = None) -> Decision:
@@ -310,16 +348,23 @@ class GovernedLoop(_Acknowledging, _Reloading):
                 reading = RiskReading(None, math.inf, f"risk source failed: {type(exc).__name__}: {exc}", 0)
             inputs.pop("risk", None)
             inputs.pop("p_unsafe", None)
+            inputs.pop("pending_s", None)  # the loop owns it: what it awaits
             if reading.fault is None:
                 inputs["p"] = reading.probs  # judged by the monitor (one rule for every risk input)
                 inputs["risk_age_s"] = reading.age_s  # judged by the monitor (one age limit)
             else:
                 inputs.pop("p", None)
                 inputs.pop("risk_age_s", None)
-                reasons.append(Fault("estimator", reading.fault))
+                if reading.pending_s is not None and not self._gone(inputs):
+                    inputs["pending_s"] = reading.pending_s  # awaited: the monitor holds (stop 2) or fails closed
+                else:
+                    reasons.append(Fault("estimator", reading.fault))
             if self.judge is not None or m.plan.risk.confirm_threshold is not None:
                 self._tier_inputs(inputs, text)
+        if self._unseen and "pending_s" not in inputs and not self._gone(inputs):
+            inputs["pending_s"] = 0.0  # a signal not seen since the start: awaited, no limit
         d = m.step(inputs)
+        self._history.append(inputs)  # a reload rebuilds the new monitor's temporal history from these
         self._last_inputs = inputs
         if self._stall_reason is not None:
             reasons.append(self._stall_reason)
@@ -343,13 +388,18 @@ class GovernedLoop(_Acknowledging, _Reloading):
             st.max_late_s = late
         if d.override:
             st.overrides += 1
+            if not d.faults and "pending" in d.violations:
+                st.pending_cycles += 1
+            if m._nlat:
+                self._note_latch(m, d.cycle)
         if d.faults:
             st.fault_cycles += 1
             stale = any(f.kind == "stale" for f in d.faults)
             if stale:
                 st.stale_overrides += 1
             # the reading faulted, or the monitor refused what it carried (stale, or p unusable: no R_e)
-            if reading is not None and (reading.fault is not None or stale or d.risk is None):
+            if reading is not None and ((reading.fault is not None and reading.pending_s is None)
+                                        or stale or d.risk is None):
                 st.risk_faults += 1
         # schedule the next slot; after an overrun, skip to the first grid slot not yet
         # past (no burst of catch-up cycles)
@@ -370,6 +420,28 @@ class GovernedLoop(_Acknowledging, _Reloading):
             except Exception as exc:  # noqa: BLE001 - recorded, and the next cycle overrides
                 self._stall_reason = Fault("callback", f"on_decision callback raised {type(exc).__name__}: {exc}"[:300])
         return d
+
+    def _gone(self, inputs: dict) -> bool:
+        """Whether a signal seen since the start is missing now (a fault, never a pending hold); a signal
+        not seen yet is awaited. Updates the signals seen (O(signals), only until all were seen or while
+        something is awaited)."""
+        unseen = self._unseen
+        if unseen:
+            for n in tuple(unseen):
+                if inputs.get(n) is not None:
+                    unseen.discard(n)
+        return any(inputs.get(n) is None for n in self._signal_names if n not in unseen)
+
+    def _note_latch(self, m: Monitor, cycle: int) -> None:
+        """The wall time of a cycle at which a latch was set (for :meth:`holding`)."""
+        times = self._latch_t
+        if cycle in times or cycle not in m._since:
+            return
+        if len(times) >= 64:
+            keep = set(m._since)
+            for c in [c for c in times if c not in keep]:
+                del times[c]
+        times[cycle] = time.time()
 
     def _tier_inputs(self, inputs: dict, text: str | None) -> None:
         """``task_id`` (the hash of ``text``, the task text this cycle's estimate is for) and the judge's
@@ -466,6 +538,10 @@ class GovernedLoop(_Acknowledging, _Reloading):
                     sleep(wait)
         finally:
             self._running = False
+            try:
+                self.stats.held_by = self.hold_text
+            except Exception as exc:  # noqa: BLE001 - a summary never hides the loop's own ending
+                self.stats.held_by = f"? ({type(exc).__name__})"
             if self.watchdog is not None:
                 self.watchdog.stop()
             if self._acks:

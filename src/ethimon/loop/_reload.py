@@ -6,10 +6,13 @@ from __future__ import annotations
 
 import os
 import threading
+from collections import deque
 from concurrent.futures import Future
 from dataclasses import dataclass, field
 
 from .._api import load_spec
+from ..compiler import Plan
+from ..language._expr import TEMPORAL, Call, walk  # the names and windows a reloaded obligation reads
 from ..errors import EthimonError
 from ..runtime import Monitor
 from ..language import Spec
@@ -68,6 +71,44 @@ def _due_refusal(due: tuple[str, ...]) -> str:
             "require is not met yet, within_cycles running" for o in due) + "); a new monitor starts with a "
             "fresh history and would forget the deadline. The running spec stays; reload once it is met or "
             "has fired")
+
+
+#: most recorded cycles a loop keeps to rebuild a reloaded monitor's temporal history
+HISTORY_CAP = 4096
+
+
+def history_depth(plan: Plan) -> int | None:
+    """How many of the last cycles determine the temporal state of ``plan``'s monitor (an upper bound: the
+    windows of every temporal operator of an obligation added up, its ``within_cycles``, one more for
+    ``prev``); ``None``: unbounded (an operator without a window)."""
+    most = 0
+    for ob in plan.obligations:
+        d = 1 + (ob.within_cycles + 1 if ob.within_cycles is not None else 0)
+        for root in (ob.when, ob.require):
+            for node in walk(root) if root is not None else ():
+                if isinstance(node, Call) and node.func in TEMPORAL:
+                    if node.func == "prev":
+                        d += 1
+                        continue
+                    w = plan.windows.get(id(node))
+                    if w is None:
+                        return None
+                    d += int(w) + 1
+        most = max(most, d)
+    return most
+
+
+def history_len(plan: Plan) -> int:
+    """The recorded cycles a loop keeps for ``plan`` (at least 64, at most :data:`HISTORY_CAP`)."""
+    d = history_depth(plan)
+    return HISTORY_CAP if d is None else min(HISTORY_CAP, max(64, d + 1))
+
+
+def _history_refusal(held: int, kept: int, need: int | None) -> str:
+    return (f"reload refused: the running monitor's temporal history spans {held} cycles and {kept} are "
+            f"recorded, but the new spec's windows need {'all of them (a window without a bound)' if need is None else need}: "
+            "an event held in a window would be forgotten. The running spec stays; reload after a fault or "
+            "reset cleared the history, or bound the window")
 
 
 def _verify_smt(spec: Spec) -> None:
@@ -173,6 +214,26 @@ class _Reloading:
         threading.Thread(target=work, name="ethimon-reload", daemon=True).start()
         return fut
 
+    def _carry_history(self, old: Monitor, new: Monitor) -> str:
+        """Rebuild ``new``'s temporal history: step it through the recorded inputs of the cycles that make
+        up ``old``'s history (as if it had run them), then release what those cycles latched (the running
+        latches are carried next) and continue ``old``'s cycle count. '' when done, else why it cannot be."""
+        held = old._cycle - old._hist0  # cycles since the running monitor's history last restarted
+        buf = self._history
+        need = history_depth(new.plan)
+        k = min(held, len(buf))
+        if k < held and (need is None or need > k):
+            return _history_refusal(held, k, need)
+        if need is not None:
+            k = min(k, need)
+        for inputs in list(buf)[len(buf) - k:] if k else ():
+            new.step(inputs)
+        new.release()
+        h = new._cycle - new._hist0
+        new._cycle = old._cycle
+        new._hist0 = new._cycle - h
+        return ""
+
     def _apply_reload(self) -> None:
         with self._reload_lock:
             pending, self._pending = self._pending, None
@@ -183,17 +244,27 @@ class _Reloading:
         latched = old.latched_rules
         try:
             cannot = unmapped_latches(old.spec, new.spec, latched)
-            if not cannot:
-                new.carry_latches(latched)  # same id, same response, same release: the latch goes on
         except Exception as exc:  # noqa: BLE001 - a latch that cannot be carried keeps the old spec
             cannot = [f"carrying the latches raised {type(exc).__name__}: {exc}"]
         try:
             due = () if cannot else old.pending_responses
         except Exception as exc:  # noqa: BLE001 - cannot tell: keep the old spec
             due = (f"? ({type(exc).__name__}: {exc})",)
+        if not cannot and not due:
+            try:
+                why = self._carry_history(old, new)
+                if why:
+                    cannot = [why]
+                else:
+                    new.carry_latches(latched)  # same id, same response, same release: the latch goes on
+                    for name in latched:  # since the cycle it latched in the running monitor
+                        new._since[new._names.index(name)] = old._since[old._names.index(name)]
+            except Exception as exc:  # noqa: BLE001 - what cannot be carried keeps the old spec
+                cannot = [f"carrying the history and latches raised {type(exc).__name__}: {exc}"]
         if cannot or due:
             res.ok = False
-            res.error = (_latch_refusal(cannot) if cannot else _due_refusal(due))[:4000]
+            res.error = ((cannot[0] if cannot[0].startswith("reload refused: the running monitor's temporal")
+                          else _latch_refusal(cannot)) if cannot else _due_refusal(due))[:4000]
             self.stats.reloads_rejected += 1
             self._log("reload", status="rejected", stage="swap", source=label, spec_sha256=res.spec_sha256,
                       error=res.error, running_spec_sha256=self.spec_sha256, latched=list(latched),
@@ -201,6 +272,7 @@ class _Reloading:
             res.settled.set()
             return
         self.monitor = new
+        self._history = deque(self._history, maxlen=history_len(new.plan))
         old_hash, self.spec_sha256 = self.spec_sha256, res.spec_sha256
         self._ids = new.obligation_ids
         self._state_key = None

@@ -26,12 +26,17 @@ class RiskReading(NamedTuple):
         fault: why the reading must not be trusted (raised, NaN, hung, dead, no
             estimate yet), or ``None``.
         count: how many estimates have been published (any text).
+        pending_s: while the estimate is only awaited (no task text yet, or none yet for the current
+            text), the seconds waited for it (``0.0`` while there is no text: nothing to wait for);
+            ``None`` otherwise. The monitor holds the arm (the pending hold, stop 2) while it is within
+            the estimate's age limit and fails closed past it.
     """
 
     probs: tuple[float, ...] | None
     age_s: float
     fault: str | None
     count: int
+    pending_s: float | None = None
 
 
 def _as_floats(out: Any) -> tuple[tuple[float, ...] | None, str | None]:
@@ -89,6 +94,7 @@ class AsyncRiskSource:
         self._clock = clock
         self._text = text
         self._text_gen = 0
+        self._text_t = clock()  # when the current text was set: its estimate is awaited from then
         # (probs, stamp, fault, text_gen, count): replaced as one object, read without locks
         self._state: tuple = (None, None, None, -1, 0)
         self._busy: tuple | None = None  # (worker gen, start time) while an inference runs
@@ -130,6 +136,7 @@ class AsyncRiskSource:
     def set_text(self, text: str | None) -> None:
         """Score a new task text; until its first estimate, readings carry a fault."""
         with self._lock:
+            self._text_t = self._clock()
             self._text = text
             self._text_gen += 1
 
@@ -154,9 +161,10 @@ class AsyncRiskSource:
         elif self._thread is not None and not self._thread.is_alive() and not self._stop.is_set():
             fault = "risk estimator thread died"
         elif self._text is None:
-            fault = "no task text to score"
+            return RiskReading(None, math.inf, "no task text to score", count, 0.0)
         elif fault is None and (probs is None or tgen != self._text_gen):
-            fault = "no risk estimate yet for the current task text"
+            return RiskReading(None, math.inf, "no risk estimate yet for the current task text", count,
+                               max(0.0, now - self._text_t))
         if fault is not None:
             return RiskReading(None, math.inf, fault, count)
         return RiskReading(probs, age, None, count)

@@ -107,15 +107,17 @@ def _finite(x: Any) -> Any:
     return x
 
 
-def decision_json(d: Decision, ids: tuple[str, ...], *, t_unix: float | None = None) -> str:
-    """The JSON text published on ``/ethimon/decision`` for one decision (strict JSON: no NaN/inf)."""
+def decision_json(d: Decision, ids: tuple[str, ...], *, t_unix: float | None = None,
+                  hold: list | None = None) -> str:
+    """The JSON text published on ``/ethimon/decision`` for one decision (strict JSON: no NaN/inf);
+    ``hold``: what holds the arm (:meth:`GovernedLoop.holding <ethimon.loop.GovernedLoop.holding>`)."""
     margins = {oid: _finite(float(m)) for oid, m in zip(ids, d.margins)} if d.margins else {}
     return json.dumps({
         "cycle": d.cycle, "t_unix": t_unix if t_unix is not None else time.time(),
         "override": bool(d.override), "response": d.response.value, "violations": list(d.violations),
         "faults": [{"kind": f.kind, "subject": f.subject, "message": f.message} for f in d.faults],
         "margins": margins, "risk": _finite(d.risk) if d.risk is not None else None,
-        "latched": bool(d.latched)}, separators=(",", ":"), allow_nan=False)
+        "latched": bool(d.latched), "hold": hold or []}, separators=(",", ":"), allow_nan=False)
 
 
 class Ros2Monitor:
@@ -371,7 +373,10 @@ class Ros2Monitor:
 
     def _publish(self, d: Decision) -> None:
         self._dds.write_override(d.override)
-        self._dds.write_decision(decision_json(d, self._ids))
+        self._dds.write_decision(decision_json(d, self._ids, hold=self.loop.holding(
+            None if self.secure or self.mapping.ros2.allow_unauthenticated_acknowledge is not None else
+            "unauthenticated: no DDS Security, the mapping's ros2.allow_unauthenticated_acknowledge is not set")
+            if d.override else None))
         if self._user_on_decision is not None:
             self._user_on_decision(d)
 

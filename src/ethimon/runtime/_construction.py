@@ -4,12 +4,17 @@ tuples, one latch per rule, the tiers, the risk formula's weights and the age li
 from __future__ import annotations
 
 import math
+import re
 
 from ..compiler import Plan, stateless_slots
 from ..compiler._closures import build_machine  # the compiler's closures: runtime is their one caller
 from ..compiler._risk_formula import risk_range
+from ..language import Response
 from ._calls import _all_margins, _tuple_of_calls
 from ._fault import Fault
+
+
+_READS_RISK = re.compile(r"\brisk\b")
 
 
 class _Construction:
@@ -60,16 +65,24 @@ class _Construction:
         # _lat[k]: the rule's severity while latched, else 0;
         # _run[k]: consecutive cycles its release condition has held (-1: it fired this cycle)
         n = len(plan.obligations)
-        self._ri, self._fi, self._ji, self._ci, self._nsrc = n, n + 1, n + 2, n + 3, n + 4
-        self._names = tuple(ob.id for ob in plan.obligations) + ("risk", "fault", "judge", "confirm")
+        # ... and the pending hold (stop 2: an input awaited after the start or a new task text, see
+        # Monitor.step's ``pending_s``), released by itself on the first cycle with every input usable
+        self._ri, self._fi, self._ji, self._ci, self._pi, self._nsrc = n, n + 1, n + 2, n + 3, n + 4, n + 5
+        self._names = tuple(ob.id for ob in plan.obligations) + ("risk", "fault", "judge", "confirm", "pending")
         # the confirm latch is released automatically once the band no longer holds the text (the
         # judge said safe, R_e left the band) or at once by acknowledge(): the confirmation itself
         rules = plan.rules()  # obligations, risk, fault, judge, confirm: the order above
-        self._holds = tuple(rule.hold for rule in rules)
-        self._manual = tuple(rule.manual for rule in rules)
-        self._sevs = tuple(rule.severity for rule in rules)
-        self._lat = [0] * (n + 4)
-        self._run = [0] * (n + 4)
+        self._holds = tuple(rule.hold for rule in rules) + (1,)
+        self._manual = tuple(rule.manual for rule in rules) + (False,)
+        self._sevs = tuple(rule.severity for rule in rules) + (Response.STOP_2.severity,)
+        self._since = [0] * (n + 5)  # the cycle at which each latch was set
+        self._lat = [0] * (n + 5)
+        self._run = [0] * (n + 5)
+        # a pending cycle with every signal usable keeps the temporal history when no obligation reads R_e
+        # (the word ``risk`` in no condition; a false positive only takes the fault path's evaluation)
+        self._risk_free = not any(_READS_RISK.search(t) for ob in plan.obligations
+                                  for t in (ob.when_text or "", ob.require_text))
+        self._hist0 = 0  # the cycle from which the temporal history runs (set by a reset)
         # the tiers (risk.confirm_threshold, risk.judge): off for specs without them
         self._tc = None if r.confirm_threshold is None else float(r.confirm_threshold)
         j = r.judge

@@ -7,6 +7,7 @@ from ..language import SEVERITY_ORDER
 from ._calls import _EMPTY
 from ._decision import Decision
 from ._fault import Fault
+from ._inputs import as_number
 
 _RESPONSES = SEVERITY_ORDER  # severity -> Response
 _EXTERNAL = Fault("external", "external fault")
@@ -50,13 +51,14 @@ class _FailClosed:
         return Decision(True, _RESPONSES[sev], decision.violations, decision.margins, decision.risk,
                         decision.cycle, decision.latched, decision.faults + reasons)
 
-    def _latch_fault(self) -> int:
-        """Latch the fault rule; every release count restarts (the cycle is not a clean one).
-        Returns the most severe latched response."""
+    def _latch_fault(self, k: int | None = None) -> int:
+        """Latch the fault rule (or rule ``k``: the pending hold); every release count restarts (the cycle
+        is not a clean one). Returns the most severe latched response."""
         lat, run = self._lat, self._run
-        fi = self._fi
+        fi = self._fi if k is None else k
         if not lat[fi]:
-            lat[fi] = self._fault_sev
+            lat[fi] = self._fault_sev if k is None else self._sevs[k]
+            self._since[fi] = self._cycle - 1
             self._nlat += 1
         sev = 0
         for k in range(self._nsrc):
@@ -65,18 +67,69 @@ class _FailClosed:
                 sev = lat[k]
         return sev
 
+    def _pending(self, cycle: int, faults: list, bad: list | None, pend, r: float | None) -> Decision:
+        """A cycle whose inputs are awaited (``pending_s``): the pending hold, or the fault it becomes.
+
+        It is a pending hold (stop 2, no fault, released by itself on the first cycle with every input
+        usable) only while every fault is a ``missing`` input (a signal, the risk input or its age) and the
+        wait ``pending_s`` is a number of seconds within the age limit of the risk estimate; past the
+        limit, without a limit, or with any other fault the cycle fails closed as before.
+        """
+        w = as_number(pend)
+        limit = self._max_age
+        if w is None or w < 0.0 or limit is None or any(f.kind != "missing" for f in faults):
+            if w is None or w < 0.0:
+                faults.append(Fault("invalid", f"pending_s={pend!r} is not a number of seconds >= 0", "pending_s"))
+            return self._fault(cycle, tuple(faults), r, bad)
+        if w > limit:
+            faults.append(Fault("estimator", f"inputs still missing {w:.3f} s after the start or the new task "
+                                f"text, more than max_age_s {limit:g}: " + "; ".join(f.message for f in faults),
+                                "pending_s"))
+            return self._fault(cycle, tuple(faults), r, bad)
+        self._confirmed = False  # a confirmation is for a text whose R_e was seen in the band
+        rs = self._rslot
+        if not self._risk_free or any(s != rs for s in bad):
+            return self._fault(cycle, _EMPTY, None, bad, latch=self._pi)
+        # every signal usable and no condition reads R_e: judge them all, the temporal history goes on
+        lat, run, sevs = self._lat, self._run, self._sevs
+        try:
+            self._ucall()
+            vs = self._vcall()
+            margins = self._mcall() if self._margins_on else _EMPTY
+        except Exception as exc:  # fail closed, as step does
+            return self._fault(cycle, (Fault("internal", f"internal error: {type(exc).__name__}: {exc}"),), None)
+        found = [oid for (fn, oid, sv, i), v in zip(self._obs, vs) if v]
+        found.append("pending")
+        for (fn, oid, sv, i), v in zip(self._obs, vs):
+            if v:
+                if not lat[i]:
+                    lat[i] = sevs[i]
+                    self._since[i] = cycle
+                    self._nlat += 1
+                run[i] = -1
+        pi = self._pi
+        if not lat[pi]:
+            lat[pi] = sevs[pi]
+            self._since[pi] = cycle
+            self._nlat += 1
+        run[pi] = -1
+        sev, awaiting = self._release_pass(False)  # no R_e: the risk rule's count restarts
+        return Decision(True, _RESPONSES[sev], tuple(found), margins, None, cycle, False, _EMPTY, awaiting)
+
     def _fault(self, cycle: int, reasons: tuple[Fault, ...], r: float | None,
-               bad: list[int] | None = None) -> Decision:
+               bad: list[int] | None = None, latch: int | None = None) -> Decision:
         """Fail closed: override with the spec's fault response; history is invalid.
 
         With ``bad`` (the slots of the unusable inputs), the stateless obligations
         whose inputs are all valid are still evaluated, so a more severe response
         they demand (e.g. a stop 0 on a contact force) is not hidden by the fault.
+        ``latch``: the rule latched instead of the fault rule (the pending hold; no fault then).
         """
         try:
             self._m.reset()
         except Exception:  # pragma: no cover
             pass
+        self._hist0 = cycle + 1  # the temporal history restarts after this cycle
         self._confirmed = False  # a fault cycle ends a confirmation: the next band cycle asks again
         found: list[str] = []
         lat = self._lat
@@ -94,13 +147,17 @@ class _FailClosed:
                         found.append(oid)
                         if not lat[i]:
                             lat[i] = s
+                            self._since[i] = cycle
                             self._nlat += 1
         if r is not None and r >= self._tau:
             found.append("risk")
             if not lat[self._ri]:
                 lat[self._ri] = self._risk_sev
+                self._since[self._ri] = cycle
                 self._nlat += 1
+        if latch is not None:
+            found.append(self._names[latch])
         violations = tuple(found) if found else _EMPTY
-        sev = self._latch_fault()
+        sev = self._latch_fault(latch)
         margins = self._nan_margins if self._margins_on else _EMPTY
         return Decision(True, _RESPONSES[sev], violations, margins, r, cycle, False, reasons)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ..language import SEVERITY_ORDER
 from ._decision import Acknowledgement
 
 _NO_TASK = object()  # acknowledge() without a task_id: confirm the last cycle's text
@@ -24,6 +25,60 @@ class _Latches:
     def latched_rules(self) -> tuple[str, ...]:
         """The rules whose latch holds the override now: obligation ids, ``"risk"``, ``"fault"``."""
         return tuple(name for name, s in zip(self._names, self._lat) if s)
+
+    def holding(self) -> tuple[dict, ...]:
+        """What holds the override now: one JSON-ready dict per latched rule, the most severe first
+        (empty when nothing is latched). O(rules); nothing is computed while nothing is latched.
+
+        Each dict: ``rule`` (an obligation id, ``"risk"``, ``"fault"``, ``"judge"``, ``"confirm"`` or
+        ``"pending"``), ``response``, ``since_cycle`` (the cycle it latched), ``release`` (how it is
+        released: ``"auto"`` after ``hold_cycles`` clean cycles in a row, ``"estimate"``: by itself once
+        the awaited inputs arrive, ``"acknowledge"``: an operator's :meth:`acknowledge` once its
+        condition has held ``hold_cycles`` cycles, ``"confirm"``: an acknowledgement confirms the text, or
+        it releases by itself once the band no longer holds it), ``hold_cycles``, ``held_cycles`` (its
+        count so far), ``acknowledge`` (whether :meth:`acknowledge` releases it) and ``how`` (one line
+        for a person).
+
+        Example:
+            >>> import ethimon
+            >>> m = ethimon.Monitor(ethimon.load_spec_text("{ethimon: 1, name: demo}"))
+            >>> _ = m.step({})  # no risk input: a fault
+            >>> [(h["rule"], h["release"], h["acknowledge"]) for h in m.holding()]
+            [('fault', 'acknowledge', True)]
+        """
+        if not self._nlat:
+            return ()
+        lat, run, holds, manual, names, since = self._lat, self._run, self._holds, self._manual, self._names, self._since
+        out = []
+        for k in range(self._nsrc):
+            s = lat[k]
+            if not s:
+                continue
+            n, c = holds[k], max(run[k], 0)
+            if k == self._pi:
+                how, text = "estimate", ("by itself on the first cycle with every awaited input usable (the task "
+                                         "text's risk estimate, a signal not seen since the start)")
+            elif k == self._ci:
+                how, text = "confirm", ("an acknowledgement confirms the text in the band; or by itself once the "
+                                        "band no longer holds it (the judge said safe, R_e left the band)")
+            elif manual[k]:
+                how, text = "acknowledge", (f"an acknowledgement once its condition has held {n} cycles in a row "
+                                            f"({c} of {n} now)")
+            else:
+                how, text = "auto", f"by itself after {n} clean cycles in a row ({c} of {n} now)"
+            out.append({"rule": names[k], "response": SEVERITY_ORDER[s].value, "since_cycle": since[k],
+                        "release": how, "hold_cycles": n, "held_cycles": c,
+                        "acknowledge": bool(manual[k]) or k == self._ci, "how": text, "_sev": s})
+        out.sort(key=lambda h: -h["_sev"])
+        for h in out:
+            del h["_sev"]
+        return tuple(out)
+
+    @property
+    def history_cycles(self) -> int:
+        """How many of the last cycles the temporal history spans (since the start, a :meth:`reset` or a
+        fault cycle, which restarts it)."""
+        return self._cycle - self._hist0
 
     @property
     def pending_responses(self) -> tuple[str, ...]:
@@ -47,6 +102,7 @@ class _Latches:
             k = idx[n]
             if not self._lat[k]:
                 self._lat[k] = self._sevs[k]
+                self._since[k] = self._cycle
                 self._nlat += 1
             self._run[k] = 0
 
@@ -61,6 +117,7 @@ class _Latches:
         """Start a fresh trace: cycle 0, no latch, empty temporal history."""
         self._m.reset()
         self._cycle = 0
+        self._hist0 = 0
         self._clear()
 
     def release(self) -> None:

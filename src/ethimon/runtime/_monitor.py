@@ -87,7 +87,7 @@ class Monitor(_Construction, _Latches, _FailClosed):
                  "_max_age", "_age_missing", "_cycle", "_margins_on", "_stateless",
                  "_lat", "_run", "_sevs", "_holds", "_manual", "_names", "_nlat", "_ri", "_fi", "_nsrc",
                  "_ji", "_ci", "_tiers", "_judge_on", "_tc", "_jsafe", "_junsafe", "_confirmed", "_ctask",
-                 "_last_task", "_fsig", "_mcall", "_p2", "_ucall", "_vcall")
+                 "_last_task", "_fsig", "_mcall", "_p2", "_ucall", "_vcall", "_pi", "_since", "_risk_free", "_hist0")
 
     def __init__(self, plan: Plan | Spec, *, margins: bool = True, max_age_s: float | None = None) -> None:
         self._build(plan_of(plan), margins, max_age_s)  # runtime/_construction.py
@@ -207,6 +207,9 @@ class Monitor(_Construction, _Latches, _FailClosed):
                         bad = bad or []
                         jp = None
             if faults is not None:
+                pend = get("pending_s")
+                if pend is not None:  # inputs awaited after the start or a new task text (runtime/_failing.py)
+                    return self._pending(cycle, faults, bad, pend, r)
                 return self._fault(cycle, tuple(faults), r, bad)
             vals[self._rslot] = r
             self._ucall()
@@ -241,6 +244,7 @@ class Monitor(_Construction, _Latches, _FailClosed):
                 for i in hits:
                     if not lat[i]:
                         lat[i] = sevs[i]
+                        self._since[i] = cycle
                         self._nlat += 1
                     run[i] = -1
             margins = _EMPTY
