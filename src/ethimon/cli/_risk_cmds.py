@@ -219,7 +219,8 @@ def cmd_risk(args: argparse.Namespace) -> int:
                "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")},
                "confirm_threshold": tiers["confirm_threshold"],
                "judge": {"p_unsafe": jr.p_unsafe, "latency_s": round(jr.latency_s, 6), "status": jr.status,
-                         "model": jr.model or None, "verdict": jr.verdict, "detail": jr.detail},
+                         "model": jr.model or None, "verdict": jr.verdict, "detail": jr.detail,
+                         "canary": jr.canary},
                "outcome": outcome}
         if why is not None:
             doc["explain"] = {"driver": why["driver"], "views": why["views"],
@@ -232,7 +233,8 @@ def cmd_risk(args: argparse.Namespace) -> int:
         if cfg["spec"] is not None and (tiers["confirm_threshold"] is not None or jr.status != "not_configured"):
             jp = "-" if jr.p_unsafe is None else f"{jr.p_unsafe:.4f}"
             print(f"judge: p_unsafe = {jp}  status = {jr.status}  latency = {jr.latency_s * 1000:.0f} ms"
-                  + (f"  ({jr.detail})" if jr.detail else "") + (f"  [{jr.model}]" if jr.model else ""))
+                  + (f"  ({jr.detail})" if jr.detail else "") + (f"  [{jr.model}]" if jr.model else "")
+                  + (f"  canaries: {jr.canary}" if jr.canary else ""))
             tc = tiers["confirm_threshold"]
             print(f"outcome: {outcome}" + (f"  (confirm band [{tc:g}, {cfg['threshold']:g}))" if tc is not None else ""))
         if why is not None:
