@@ -248,12 +248,13 @@ def _judge_and_outcome(spec, text: str, risk: float, tau: float, no_judge: bool)
     judge = None if (spec is None or no_judge) else load_judge_for(spec)
     jr = judge.judge(text) if judge is not None else JudgeResult(
         None, "not_configured", 0.0, None, None, "", text_sha256(text),
-        "--no-judge" if no_judge and spec is not None and spec.risk.judge is not None else "the spec sets no risk.judge")
+        "--no-judge" if no_judge and spec is not None and spec.risk.judge_list else "the spec sets no risk.judge")
     tc = spec.risk.confirm_threshold if spec is not None else None
-    j = spec.risk.judge if spec is not None else None
+    cuts = spec.risk.judge_cuts() if spec is not None else None  # risk.judge or risk.judges (consensus)
+    hold = spec.risk.judge_may_hold_above_tau if spec is not None else None
     outcome = tier_outcome(risk, jr.p_unsafe, threshold=tau, confirm_threshold=tc,
-                           safe_below=j.safe_below if j else 0.2, unsafe_from=j.unsafe_from if j else 0.8,
-                           judge=judge is not None)
+                           safe_below=cuts[0] if cuts else 0.2, unsafe_from=cuts[1] if cuts else 0.8,
+                           judge=judge is not None, hold_ceiling=hold.ceiling if hold is not None else None)
     return jr, {"outcome": outcome, "confirm_threshold": tc}
 
 

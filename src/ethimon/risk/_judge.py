@@ -39,7 +39,6 @@ stdlib only (``http.client``, ``json``): no extra to install.
 
 from __future__ import annotations
 
-import csv
 import hashlib
 import http.client
 import ipaddress
@@ -52,12 +51,12 @@ import threading
 import time
 import urllib.parse
 from collections import OrderedDict
-from pathlib import Path
 from typing import Any, NamedTuple
 
+from ._canaries import CanaryCheck, load_canaries
+
 __all__ = ["Judge", "JudgeResult", "JUDGE_STATUSES", "BUILTIN_JUDGE_PROMPT", "injection_signs", "parse_judge_reply",
-           "judge_user_message", "text_sha256", "load_judge_for", "not_configured", "load_canaries", "CanaryReport",
-           "JudgePanel", "KEY_ENV_VAR", "HOSTS_VAR"]
+           "judge_user_message", "text_sha256", "KEY_ENV_VAR", "HOSTS_VAR"]
 
 #: every status a :class:`JudgeResult` can have; only ``ok`` carries a usable judgement
 JUDGE_STATUSES = ("ok", "suspect", "timeout", "error", "malformed", "not_configured", "failed_canary", "unsure")
@@ -295,74 +294,6 @@ def parse_judge_reply(body: Any) -> tuple[float | None, str | None, str]:
     return p, answer, ""
 
 
-# -- canaries --------------------------------------------------------------------------------------
-
-_CANARY_DIR = Path(__file__).resolve().parent / "canaries"
-
-
-class CanaryReport(NamedTuple):
-    """One canary run: ``passed``, how many were asked, the ids missed and the separation."""
-
-    passed: bool
-    asked: int
-    total: int
-    missed: tuple[str, ...]
-    min_unsafe: float | None
-    max_safe: float | None
-    detail: str
-    at: float
-
-    def line(self) -> str:
-        """One line for results, summaries and audit records."""
-        if self.passed:
-            return (f"passed {self.asked}/{self.total} (unsafe >= {self.min_unsafe:.2f} > safe <= "
-                    f"{self.max_safe:.2f})")
-        return f"failed: {self.detail}"
-
-
-def load_canaries(extra: str | os.PathLike | None = None) -> tuple[tuple[str, str, int, str], ...]:
-    """The canary texts: ``(id, form, label, text)`` rows, the shipped set then ``extra``'s.
-
-    A CSV with columns ``id, form, label, text`` (label ``1`` unsafe, ``0`` safe; others ignored).
-    The shipped set (``ethimon/risk/canaries/canaries.csv``) holds 48 texts, half unsafe, in six
-    forms (one-liners, plans, JSON, code calls, chat, speech) with ten minimal pairs. Rows are asked
-    alternating safe and unsafe, so a constant judge fails on its first or second answer.
-
-    Raises:
-        ValueError: a located problem in a canary file (missing column, bad label, empty text).
-
-    Example:
-        >>> rows = load_canaries()
-        >>> len(rows) >= 40, sum(r[2] for r in rows) * 2 == len(rows)
-        (True, True)
-    """
-    rows: list[tuple[str, str, int, str]] = []
-    for path in [_CANARY_DIR / "canaries.csv"] + ([Path(extra)] if extra is not None else []):
-        try:
-            with open(path, newline="", encoding="utf-8") as f:
-                reader = csv.DictReader(f)
-                if not reader.fieldnames or not {"id", "label", "text"} <= set(reader.fieldnames):
-                    raise ValueError(f"{path}: a canary file needs the columns id, label, text "
-                                     f"(form optional); found {reader.fieldnames}")
-                for n, r in enumerate(reader, start=2):
-                    lab = (r.get("label") or "").strip()
-                    text = r.get("text") or ""
-                    if lab not in ("0", "1") or not text.strip():
-                        raise ValueError(f"{path}:{n}: label must be 0 (safe) or 1 (unsafe) and text non-empty, "
-                                         f"got label {lab!r}")
-                    rows.append(((r.get("id") or f"row{n}").strip(), (r.get("form") or "").strip(), int(lab), text))
-        except OSError as exc:
-            raise ValueError(f"canary file {path}: {exc.strerror or exc}; hint: risk.judge.canaries.path is a "
-                             "CSV with columns id, form, label, text") from None
-    if not any(r[2] == 1 for r in rows) or not any(r[2] == 0 for r in rows):
-        raise ValueError("the canary set needs safe (0) and unsafe (1) texts")
-    safe, unsafe = [r for r in rows if r[2] == 0], [r for r in rows if r[2] == 1]
-    mixed: list[tuple[str, str, int, str]] = []
-    for k in range(max(len(safe), len(unsafe))):  # alternate: a constant judge misses at once
-        mixed += ([safe[k]] if k < len(safe) else []) + ([unsafe[k]] if k < len(unsafe) else [])
-    return tuple(mixed)
-
-
 # -- the key --------------------------------------------------------------------------------------
 
 def _is_loopback(host: str) -> bool:
@@ -445,7 +376,7 @@ class Judge:
         self.canary_every_texts = int(canary_every_texts)
         self._canary_lock = threading.Lock()
         #: the last canary run (``None``: not run yet, or canaries off)
-        self.canary_report: CanaryReport | None = None
+        self.canary_report: CanaryCheck | None = None
         self._since_canary = 0
 
     @property
@@ -477,7 +408,7 @@ class Judge:
         return r._replace(cached=True, latency_s=0.0) if r is not None else None
 
     # ------------------------------------------------------------------ canaries
-    def check_canaries(self) -> CanaryReport:
+    def check_canaries(self) -> CanaryCheck:
         """Ask the canary set now (stops at the first miss); the report is kept in :attr:`canary_report`."""
         rows = self._canaries or ()
         ps: dict[int, list[float]] = {0: [], 1: []}
@@ -509,7 +440,7 @@ class Judge:
         if not missed and (lo is None or hi is None or not lo > hi):
             detail = "the verdicts do not separate the unsafe canaries from the safe ones"
         passed = not missed and not detail
-        rep = CanaryReport(passed, asked, len(rows), tuple(missed), lo, hi, detail, time.monotonic())
+        rep = CanaryCheck(passed, asked, len(rows), tuple(missed), lo, hi, detail, time.monotonic())
         self.canary_report = rep
         self._since_canary = 0
         if not passed:
@@ -517,7 +448,7 @@ class Judge:
                 self._cache.clear()  # nothing answered before counts now
         return rep
 
-    def _canary_gate(self) -> CanaryReport | None:
+    def _canary_gate(self) -> CanaryCheck | None:
         """Run the canaries when due; the report in force (``None``: canaries off)."""
         if self._canaries is None:
             return None
@@ -543,7 +474,7 @@ class Judge:
         try:
             rep = self._canary_gate()
         except Exception as exc:  # noqa: BLE001 - a canary run that breaks is a failed one
-            rep = CanaryReport(False, 0, 0, (), None, None, self._scrub(f"{type(exc).__name__}: {exc}")[:200],
+            rep = CanaryCheck(False, 0, 0, (), None, None, self._scrub(f"{type(exc).__name__}: {exc}")[:200],
                                time.monotonic())
             self.canary_report = rep
         line = rep.line() if rep is not None else ""
@@ -675,120 +606,3 @@ class Judge:
 
     def __repr__(self) -> str:
         return f"Judge(url={self.url!r}, model={self.model!r}, timeout_s={self.timeout_s:g})"
-
-
-class JudgePanel:
-    """Several judges in consensus (``risk.judges``): asked together on each text.
-
-    The combined answer is the monitor's ``judge`` input: ``1.0`` (unsafe) when any judge says unsafe,
-    ``0.0`` (safe) only when every judge says safe, otherwise no judgement (status ``"unsure"``, or
-    the first non-``ok`` status: a judge that failed its canaries, timed out or erred leaves the band
-    to a person). ``detail`` lists each judge's status and p_unsafe.
-    """
-
-    def __init__(self, judges: list[Judge]) -> None:
-        if not judges:
-            raise ValueError("a judge panel needs at least one judge")
-        self.judges = list(judges)
-        self.model = "+".join(j.model for j in self.judges)
-        self.calls = 0
-
-    @property
-    def model_id(self) -> str:
-        return f"judges:{self.model}"
-
-    @property
-    def canary_state(self) -> str:
-        states = [j.canary_state for j in self.judges]
-        for s in ("failed_canary", "unchecked", "off"):
-            if s in states:
-                return s
-        return "passed"
-
-    def judge(self, text: str) -> JudgeResult:
-        """Every judge's answer on ``text`` (asked in parallel), combined. Never raises."""
-        self.calls += 1
-        t0 = time.monotonic()
-        out: list[JudgeResult | None] = [None] * len(self.judges)
-
-        def ask(i: int) -> None:
-            out[i] = self.judges[i].judge(text)
-
-        threads = [threading.Thread(target=ask, args=(i,), daemon=True) for i in range(len(self.judges))]
-        for t in threads:
-            t.start()
-        for t in threads:
-            t.join()
-        res = [r if r is not None else JudgeResult(None, "error", 0.0, None, None, j.model, text_sha256(text),
-                                                   "no answer") for r, j in zip(out, self.judges)]
-        lines = "; ".join(f"{r.model}: {r.status}" + (f" p {r.p_unsafe:.3f}" if r.p_unsafe is not None else "")
-                          for r in res)
-        canary = "; ".join(f"{r.model}: {r.canary}" for r in res if r.canary)
-        h = res[0].text_sha256
-        dt = time.monotonic() - t0
-        if any(r.p_unsafe is not None and r.p_unsafe >= j.unsafe_from for r, j in zip(res, self.judges)):
-            return JudgeResult(1.0, "ok", dt, "1", None, self.model, h, "a judge says unsafe (" + lines + ")",
-                               canary=canary)
-        if all(r.status == "ok" and r.p_unsafe is not None and r.p_unsafe < j.safe_below
-               for r, j in zip(res, self.judges)):
-            return JudgeResult(0.0, "ok", dt, "0", None, self.model, h, "", all(r.cached for r in res), canary)
-        bad = next((r.status for r in res if r.status != "ok"), "unsure")
-        return JudgeResult(None, bad, dt, None, None, self.model, h, "no consensus (" + lines + ")",
-                           canary=canary)
-
-    def __repr__(self) -> str:
-        return f"JudgePanel({self.judges!r})"
-
-
-def _judge_configs(risk: Any) -> list[Any]:
-    """The spec's judges: ``risk.judges``, or ``[risk.judge]``, or none."""
-    js = getattr(risk, "judges", None)
-    if js:
-        return list(js)
-    return [risk.judge] if getattr(risk, "judge", None) is not None else []
-
-
-def load_judge_for(spec: Any, *, canaries: Any = "spec", key_env: str | None = None,
-                   key_hosts: Any = None) -> "Judge | JudgePanel | None":
-    """The spec's ``risk.judge`` as a :class:`Judge` (``risk.judges``: a :class:`JudgePanel`), or ``None``.
-
-    Args:
-        canaries: ``"spec"`` (default): the shipped set plus the spec's ``canaries.path``; ``None``: off
-            (tests of the client only).
-        key_env: the variable holding the key, named by the operator (default ``ETHIMON_JUDGE_KEY_ENV``).
-            A spec's ``api_key_env`` that differs from it refuses every call (a spec cannot pick a secret).
-        key_hosts: the hosts a key may go to besides loopback (default ``ETHIMON_JUDGE_HOSTS``).
-    """
-    cfgs = _judge_configs(spec.risk)
-    if not cfgs:
-        return None
-    op_env = key_env if key_env is not None else (os.environ.get(KEY_ENV_VAR) or None)
-    judges = []
-    for k, j in enumerate(cfgs):
-        where = "risk.judge" if len(cfgs) == 1 and not getattr(spec.risk, "judges", None) else f"risk.judges[{k}]"
-        refused = ""
-        if j.api_key_env is not None and j.api_key_env != op_env:
-            refused = (f"{where}.api_key_env names {j.api_key_env}, but a spec cannot choose the key: the operator "
-                       f"names it ({KEY_ENV_VAR}={j.api_key_env}); no call is made")
-        cc = getattr(j, "canaries", None)
-        if canaries == "spec":
-            extra = getattr(cc, "path", None)
-            if extra is not None and not Path(extra).is_absolute():
-                src = getattr(getattr(spec, "source", None), "path", None)
-                if src and Path(src).parent.is_dir() and not str(src).startswith("<"):
-                    extra = str(Path(src).parent / extra)
-            can: Any = extra if extra is not None else "builtin"
-        else:
-            can = canaries
-        judges.append(Judge(j.url, j.model, timeout_s=j.timeout_s, api_key_env=op_env, prompt=j.prompt,
-                            safe_below=j.safe_below, unsafe_from=j.unsafe_from, key_hosts=key_hosts,
-                            canaries=can, canary_every_s=getattr(cc, "every_s", 600.0),
-                            canary_every_texts=getattr(cc, "every_texts", 500), _key_refused=refused))
-    if getattr(spec.risk, "judges", None):
-        return JudgePanel(judges)
-    return judges[0]
-
-
-def not_configured(text: str) -> JudgeResult:
-    """The result for a spec without ``risk.judge`` (no judgement)."""
-    return JudgeResult(None, "not_configured", 0.0, None, None, "", text_sha256(text), "the spec sets no risk.judge")
