@@ -9,16 +9,27 @@ Models: ``p=<x>`` (answers the verdict token of x, logprobs ln x / ln(1-x)), ``p
 ``words`` (answers "0 (safe)"), ``echo`` (answers the task text), ``big`` (a 1 MiB body),
 ``drip`` (sends a byte every 0.2 s), ``mass`` (verdict tokens carry 10 %), ``contra`` (answer 0,
 logprobs say 1), ``fooled`` (a judge fully taken in by any text: answers 0, logprob 0),
-``nan`` (logprob NaN).
+``nan`` (logprob NaN), ``driphead`` (drips its status line and headers, a byte every 0.05 s),
+``slowfor=<word>`` (safe; sleeps 3 s first when the task text holds <word>), ``rounded`` (logprobs
+rounded as real servers round them: P(0) + P(1) = 1.0009), ``rounded-over`` (they sum to 1.14: refused),
+``coin`` (a fair coin per request), ``oracle:<model>`` (answers the shipped canaries right, p 0.01 / 0.99,
+and every other text as <model>: a capable judge that passes its canaries), ``badcanary:<id>:<model>``
+(as oracle, but answers canary <id> wrong).
 """
 
+import csv
 import json
 import math
+import random
 import sys
 import time
+from pathlib import Path
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 
 LOG = sys.argv[1] if len(sys.argv) > 1 else None
+_CANARIES = Path(__file__).resolve().parents[1] / "src" / "ethimon" / "risk" / "canaries" / "canaries.csv"
+with open(_CANARIES, newline="", encoding="utf-8") as _f:
+    CANARY = {r["text"]: (r["id"], int(r["label"])) for r in csv.DictReader(_f)}
 
 
 def _reply(content, logprobs=None):
@@ -58,6 +69,24 @@ class H(BaseHTTPRequestHandler):
                 f.write(json.dumps({"path": self.path, "headers": dict(self.headers), "body": body}) + "\n")
         model = str(body.get("model", ""))
         want_lp = bool(body.get("logprobs"))
+        if model.startswith(("oracle:", "badcanary:")):
+            wrong = model.split(":")[1] if model.startswith("badcanary:") else None
+            model = model.split(":", 2 if wrong else 1)[-1]
+            try:
+                text = json.loads(body["messages"][-1]["content"].split("\n")[1])
+            except (KeyError, IndexError, ValueError):
+                text = None
+            if text in CANARY:
+                cid, label = CANARY[text]
+                if cid == wrong:
+                    label = 1 - label
+                x = 0.99 if label else 0.01
+                tok = str(label)
+                lps = [(tok, math.log(max(x, 1 - x))), (str(1 - label), math.log(min(x, 1 - x)))]
+                return self._send(200, json.dumps(_reply(tok, lps if want_lp else None)).encode())
+        if model == "coin":
+            tok = random.choice("01")
+            return self._send(200, json.dumps(_reply(tok, [(tok, 0.0)] if want_lp else None)).encode())
         if model.startswith("p="):
             x = float(model[2:])
             tok = "1" if x >= 0.5 else "0"
@@ -100,6 +129,23 @@ class H(BaseHTTPRequestHandler):
             return self._send(200, json.dumps(_reply("0", [("1", math.log(0.9)), ("0", math.log(0.1))])).encode())
         if model == "fooled":
             return self._send(200, json.dumps(_reply("0", [("0", 0.0), ("1", -30.0)] if want_lp else None)).encode())
+        if model == "driphead":
+            head = (b"HTTP/1.1 200 OK\r\nContent-Type: application/json\r\nX-Padding: " + b"x" * 80 + b"\r\n")
+            for b in head:
+                self.wfile.write(bytes([b]))
+                self.wfile.flush()
+                time.sleep(0.05)
+            data = json.dumps(_reply("0")).encode()
+            self.wfile.write(b"Content-Length: " + str(len(data)).encode() + b"\r\n\r\n" + data)
+            return None
+        if model.startswith("slowfor="):
+            if model[8:] in body["messages"][-1]["content"]:
+                time.sleep(3.0)
+            return self._send(200, json.dumps(_reply("0", [("0", 0.0)] if want_lp else None)).encode())
+        if model == "rounded":
+            return self._send(200, json.dumps(_reply("0", [("0", 0.0), ("1", -7.0)])).encode())
+        if model == "rounded-over":
+            return self._send(200, json.dumps(_reply("0", [("0", 0.0), ("1", -2.0)])).encode())
         if model == "nan":
             return self._send(200, json.dumps(_reply("0", [("0", float("nan"))])).encode())
         return self._send(404, b'{"error": "unknown model"}')

@@ -48,7 +48,7 @@ def _loop(url, model, probs, tmp_path, text="carry the tray to the table"):
 
 
 def test_band_holds_until_the_judge_answers_safe(server, tmp_path):
-    loop, src, log = _loop(server, "p=0.05", BAND, tmp_path)
+    loop, src, log = _loop(server, "oracle:p=0.05", BAND, tmp_path)
     assert isinstance(loop.judge, AsyncJudgeSource)
     d = loop.cycle({})
     assert d.override and "confirm" in d.violations  # asked, not answered yet: the arm holds
@@ -61,12 +61,13 @@ def test_band_holds_until_the_judge_answers_safe(server, tmp_path):
     assert loop.judge.calls == 1  # once per distinct text
     log.close()
     recs = [r for r in read_log(log.path) if r["kind"] == "judge"]
-    assert len(recs) == 1 and recs[0]["status"] == "ok" and recs[0]["model"] == "p=0.05"
+    assert len(recs) == 1 and recs[0]["status"] == "ok" and recs[0]["model"] == "oracle:p=0.05"
     assert recs[0]["text_sha256"] == AsyncJudgeSource.key(src.text) and recs[0]["latency_s"] > 0
+    assert recs[0]["canary"].startswith("passed")
 
 
 def test_judge_error_leaves_the_band_to_a_person_and_the_confirmation_is_audited(server, tmp_path):
-    loop, src, log = _loop(server, "http500", BAND, tmp_path)
+    loop, src, log = _loop(server, "oracle:http500", BAND, tmp_path)
     loop.cycle({})
     assert wait_for(lambda: loop.judge.result(src.text) is not None)
     for _ in range(5):
@@ -86,7 +87,7 @@ def test_judge_error_leaves_the_band_to_a_person_and_the_confirmation_is_audited
 
 
 def test_judge_unsafe_below_the_band_stops(server, tmp_path):
-    loop, src, log = _loop(server, "p=0.95", LOW, tmp_path)
+    loop, src, log = _loop(server, "oracle:p=0.95", LOW, tmp_path)
     assert not loop.cycle({}).override  # below tau_confirm: executes while the judge is asked
     assert wait_for(lambda: loop.judge.result(src.text) is not None)
     d = loop.cycle({})
@@ -114,7 +115,7 @@ def test_api_key_never_reaches_the_audit_log(server, tmp_path, monkeypatch):
     src.poll_once()
     log = AuditLog(tmp_path / "k.jsonl")
     loop = GovernedLoop(_spec(server, "p=0.05"), risk=src, period_s=0.001, deadline_s=10.0, clock=clock, audit=log,
-                        judge=Judge(server, "p=0.05", api_key_env="ETHIMON_LOOP_KEY"))
+                        judge=Judge(server, "p=0.05", api_key_env="ETHIMON_LOOP_KEY", canaries=None))
     loop.cycle({})
     assert wait_for(lambda: loop.judge.result("t") is not None)
     for _ in range(3):
@@ -124,11 +125,11 @@ def test_api_key_never_reaches_the_audit_log(server, tmp_path, monkeypatch):
 
 
 def test_reload_with_another_judge_asks_the_new_one(server, tmp_path):
-    loop, src, log = _loop(server, "http500", BAND, tmp_path)
+    loop, src, log = _loop(server, "oracle:http500", BAND, tmp_path)
     loop.cycle({})
     assert wait_for(lambda: loop.judge.result(src.text) is not None)
     assert loop.cycle({}).violations == ("confirm",)
-    new = _spec(server, "p=0.05")
+    new = _spec(server, "oracle:p=0.05")
     # latches are carried by identity (issue 25): the band's latch is released by its judge's verdict,
     # so a spec with another judge cannot take it over while it holds; the running spec stays
     res = loop.reload(new, allow_weaker=True)  # a changed judge cannot be told
@@ -144,3 +145,33 @@ def test_reload_with_another_judge_asks_the_new_one(server, tmp_path):
         d = loop.cycle({})
     assert not d.override  # the new judge's safe verdict: no confirm hold
     log.close()
+
+
+def test_a_slow_judge_call_does_not_queue_other_texts(server):
+    """Issue 31.5: a judge call for text A that takes 3 s does not hold up text B's answer."""
+    src = AsyncJudgeSource(Judge(server, "slowfor=SLOWTEXT", timeout_s=5, canaries=None))
+    try:
+        src.ask("SLOWTEXT carry the tray")
+        src.ask("wipe the table")
+        assert wait_for(lambda: src.result("wipe the table") is not None, timeout=2.0)
+        assert src.result("SLOWTEXT carry the tray") is None  # still being asked
+        assert src.result("wipe the table").status == "ok"
+    finally:
+        src.stop(timeout=0.0)
+
+
+def test_a_key_with_a_newline_never_reaches_the_audit_log(server, tmp_path, monkeypatch):
+    monkeypatch.setenv("ETHIMON_LOOP_KEY", "sk-loop-newline\n")
+    clock = FakeClock()
+    src = AsyncRiskSource(ScriptedEstimator(BAND), text="t", clock=clock, start=False)
+    src.poll_once()
+    log = AuditLog(tmp_path / "n.jsonl")
+    loop = GovernedLoop(_spec(server, "p=0.05"), risk=src, period_s=0.001, deadline_s=10.0, clock=clock, audit=log,
+                        judge=Judge(server, "p=0.05", api_key_env="ETHIMON_LOOP_KEY", canaries=None))
+    loop.cycle({})
+    assert wait_for(lambda: loop.judge.result("t") is not None)
+    for _ in range(3):
+        assert loop.cycle({}).violations == ("confirm",)  # no judgement: the band holds
+    log.close()
+    text = (tmp_path / "n.jsonl").read_text()
+    assert "sk-loop-newline" not in text and "control character" in text

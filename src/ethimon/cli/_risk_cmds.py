@@ -219,7 +219,8 @@ def cmd_risk(args: argparse.Namespace) -> int:
                "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")},
                "confirm_threshold": tiers["confirm_threshold"],
                "judge": {"p_unsafe": jr.p_unsafe, "latency_s": round(jr.latency_s, 6), "status": jr.status,
-                         "model": jr.model or None, "verdict": jr.verdict, "detail": jr.detail},
+                         "model": jr.model or None, "verdict": jr.verdict, "detail": jr.detail,
+                         "canary": jr.canary},
                "outcome": outcome}
         if why is not None:
             doc["explain"] = {"driver": why["driver"], "views": why["views"],
@@ -232,7 +233,8 @@ def cmd_risk(args: argparse.Namespace) -> int:
         if cfg["spec"] is not None and (tiers["confirm_threshold"] is not None or jr.status != "not_configured"):
             jp = "-" if jr.p_unsafe is None else f"{jr.p_unsafe:.4f}"
             print(f"judge: p_unsafe = {jp}  status = {jr.status}  latency = {jr.latency_s * 1000:.0f} ms"
-                  + (f"  ({jr.detail})" if jr.detail else "") + (f"  [{jr.model}]" if jr.model else ""))
+                  + (f"  ({jr.detail})" if jr.detail else "") + (f"  [{jr.model}]" if jr.model else "")
+                  + (f"  canaries: {jr.canary}" if jr.canary else ""))
             tc = tiers["confirm_threshold"]
             print(f"outcome: {outcome}" + (f"  (confirm band [{tc:g}, {cfg['threshold']:g}))" if tc is not None else ""))
         if why is not None:
@@ -246,12 +248,13 @@ def _judge_and_outcome(spec, text: str, risk: float, tau: float, no_judge: bool)
     judge = None if (spec is None or no_judge) else load_judge_for(spec)
     jr = judge.judge(text) if judge is not None else JudgeResult(
         None, "not_configured", 0.0, None, None, "", text_sha256(text),
-        "--no-judge" if no_judge and spec is not None and spec.risk.judge is not None else "the spec sets no risk.judge")
+        "--no-judge" if no_judge and spec is not None and spec.risk.judge_list else "the spec sets no risk.judge")
     tc = spec.risk.confirm_threshold if spec is not None else None
-    j = spec.risk.judge if spec is not None else None
+    cuts = spec.risk.judge_cuts() if spec is not None else None  # risk.judge or risk.judges (consensus)
+    hold = spec.risk.judge_may_hold_above_tau if spec is not None else None
     outcome = tier_outcome(risk, jr.p_unsafe, threshold=tau, confirm_threshold=tc,
-                           safe_below=j.safe_below if j else 0.2, unsafe_from=j.unsafe_from if j else 0.8,
-                           judge=judge is not None)
+                           safe_below=cuts[0] if cuts else 0.2, unsafe_from=cuts[1] if cuts else 0.8,
+                           judge=judge is not None, hold_ceiling=hold.ceiling if hold is not None else None)
     return jr, {"outcome": outcome, "confirm_threshold": tc}
 
 

@@ -341,13 +341,17 @@ def judge_verdict(p_judge: float | None, safe_below: float, unsafe_from: float) 
 
 
 def tier_outcome(r_e: float, p_judge: float | None, *, threshold: float, confirm_threshold: float | None = None,
-                 safe_below: float = 0.2, unsafe_from: float = 0.8, judge: bool = True) -> str:
+                 safe_below: float = 0.2, unsafe_from: float = 0.8, judge: bool = True,
+                 hold_ceiling: float | None = None) -> str:
     """The tiered outcome of one task text, as the monitor decides it on its first cycle.
 
     * R_e ≥ τ: ``"stop"`` whatever the judge says;
     * an unsafe verdict: ``"stop"`` at any R_e (below τ the judge can only raise the risk);
     * τ_confirm ≤ R_e < τ: ``"execute"`` on a safe verdict, else (unsure, no judgement) ``"confirm"``;
     * below τ_confirm (or with no band): ``"execute"``.
+
+    ``hold_ceiling`` (``risk.judge_may_hold_above_tau.ceiling``): τ ≤ R_e < ceiling with a safe verdict is
+    ``"confirm"`` (a person releases it), never ``"execute"``.
 
     ``judge=False``: the spec has no judge; its p is ignored. A NaN/out-of-range p counts as no judgement
     here (the monitor fails closed on it as a bad input, which is at least as restrictive).
@@ -358,9 +362,9 @@ def tier_outcome(r_e: float, p_judge: float | None, *, threshold: float, confirm
         >>> tier_outcome(0.4, 0.05, threshold=0.5, confirm_threshold=0.3), tier_outcome(0.1, 0.9, threshold=0.5)
         ('execute', 'stop')
     """
-    if r_e >= threshold:
-        return "stop"
     v = judge_verdict(p_judge, safe_below, unsafe_from) if judge else None
+    if r_e >= threshold:
+        return "confirm" if (hold_ceiling is not None and r_e < hold_ceiling and v == "safe") else "stop"
     if v == "unsafe":
         return "stop"
     if confirm_threshold is not None and r_e >= confirm_threshold and v != "safe":

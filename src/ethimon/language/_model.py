@@ -24,6 +24,7 @@ from ._yaml import SourceMap
 
 __all__ = [
     "Response", "Signal", "Constant", "Release", "RuleRelease", "OnFault", "RiskConfig", "JudgeConfig",
+    "CanaryConfig", "HoldAboveTau",
     "Obligation",
     "SafePose", "Spec", "MANUAL_BY_DEFAULT",
     "FORMAT_VERSION", "RESERVED_INPUTS", "validation_to_spec_error", "IDENT",
@@ -194,6 +195,25 @@ class EstimatorConfig(BaseModel):
         "onnx: ONNX Runtime only (no torch in the process); torch: torch + transformers")
 
 
+class CanaryConfig(BaseModel):
+    """When a judge answers its canaries (``risk.judge.canaries``); the shipped set is always asked."""
+
+    model_config = _CFG
+    path: str | None = Field(None, min_length=1, description="a CSV (id, form, label, text) of the spec's own "
+                             "canaries, added to the shipped set; relative to the spec file")
+    every_s: FiniteFloat = Field(600.0, gt=0.0, le=86400.0, description="ask the canaries again after this many "
+                                 "seconds")
+    every_texts: int = Field(500, ge=1, le=1_000_000, description="ask the canaries again after this many texts")
+
+
+class HoldAboveTau(BaseModel):
+    """``risk.judge_may_hold_above_tau``: a safe verdict turns an R_e ≥ τ stop into a confirm hold."""
+
+    model_config = _CFG
+    ceiling: FiniteFloat = Field(description="only for τ <= R_e < ceiling; above it R_e stops whatever the "
+                                 "judge says (ceiling <= 1)")
+
+
 class JudgeConfig(BaseModel):
     """A second opinion on task texts (``risk.judge``): an OpenAI-compatible chat-completions server
     asked for a one-token verdict (see :mod:`ethimon.risk` ``Judge``). Its p_unsafe reaches the monitor
@@ -211,6 +231,8 @@ class JudgeConfig(BaseModel):
                                "built-in one; the task text is always sent as quoted data")
     safe_below: FiniteFloat = Field(0.2, ge=0.0, le=1.0, description="judge p_unsafe below this: safe")
     unsafe_from: FiniteFloat = Field(0.8, ge=0.0, le=1.0, description="judge p_unsafe from this on: unsafe")
+    canaries: CanaryConfig = Field(default_factory=CanaryConfig, description="{path, every_s, every_texts}: the "
+                                   "canary texts the judge must answer right before its verdicts count")
 
     @model_validator(mode="after")
     def _check(self) -> "JudgeConfig":
@@ -256,9 +278,31 @@ class RiskConfig(BaseModel):
         "(Monitor.acknowledge) or the judge decides; null (default): no confirm band")
     judge: JudgeConfig | None = Field(None, description="{url, model, timeout_s, api_key_env, prompt}: the "
                                       "judge tier (null: none; the confirm band is then a person's)")
+    judges: list[JudgeConfig] | None = Field(None, min_length=1, max_length=8, description="several judges in "
+                                             "consensus (instead of judge): in the band a text executes only if "
+                                             "every judge says safe; any unsafe verdict stops")
+    judge_may_hold_above_tau: HoldAboveTau | None = Field(
+        None, description="{ceiling}: a canary-passed judge's safe verdict turns an R_e >= τ stop into a confirm "
+        "hold (stop_2, released by a person), never into execute, and only for R_e < ceiling; null (default): off")
     allow: dict[Literal["threshold", "weights"], Annotated[str, Field(min_length=1)]] = Field(
         default_factory=dict, description="opt-outs, each with the reason: 'threshold' lets τ lie outside "
         "(0, 1], 'weights' lets α, β, γ be negative or all 0 (either can switch the risk rule off or on for good)")
+
+    @property
+    def judge_list(self) -> list[JudgeConfig]:
+        """The spec's judges: ``judges``, or ``[judge]``, or ``[]``."""
+        return list(self.judges) if self.judges else ([self.judge] if self.judge is not None else [])
+
+    def judge_cuts(self) -> tuple[float, float] | None:
+        """``(safe_below, unsafe_from)`` the monitor applies to its ``judge`` input (``None``: no judge).
+
+        One judge: its own. Several (``judges``): the input is their consensus (0.0 every judge safe, 1.0
+        any unsafe, null otherwise), read with the strictest cuts: the least ``safe_below`` and the
+        greatest ``unsafe_from``."""
+        js = self.judge_list
+        if not js:
+            return None
+        return min(j.safe_below for j in js), max(j.unsafe_from for j in js)
 
     @model_validator(mode="after")
     def _check(self) -> "RiskConfig":
@@ -270,6 +314,18 @@ class RiskConfig(BaseModel):
                     "R_e is a score in [0, 1] for the usual weights, so the risk rule would never fire")
             raise _LocError(f"risk.threshold τ = {tau} is outside (0, 1]: {what}", ("risk", "threshold"),
                             hint="set 0 < τ ≤ 1, or opt out with 'allow: {threshold: <reason>}' under risk:")
+        if self.judge is not None and self.judges:
+            raise _LocError("risk sets both judge and judges", ("risk", "judges"),
+                            hint="one judge: risk.judge; several in consensus: risk.judges (a list); not both")
+        hold = self.judge_may_hold_above_tau
+        if hold is not None:
+            if self.judge is None and not self.judges:
+                raise _LocError("risk.judge_may_hold_above_tau needs a judge (risk.judge or risk.judges)",
+                                ("risk", "judge_may_hold_above_tau"), hint="add risk.judge, or remove the option")
+            if not tau < hold.ceiling <= 1.0:
+                raise _LocError(f"risk.judge_may_hold_above_tau.ceiling {hold.ceiling} is not in (τ = {tau}, 1]: "
+                                "no R_e could be held", ("risk", "judge_may_hold_above_tau", "ceiling"),
+                                hint="e.g. ceiling: 0.8 with threshold 0.47")
         tc = self.confirm_threshold
         if tc is not None and not 0.0 <= tc < tau:
             raise _LocError(f"risk.confirm_threshold τ_confirm = {tc} is not in [0, τ = {tau}): the confirm band "

@@ -170,7 +170,7 @@ class GovernedLoop(_Acknowledging, _Reloading):
             if judge != "spec":
                 raise ValueError(f"judge={judge!r}; expected 'spec', None, a Judge or an AsyncJudgeSource")
             judge = None
-            if risk is not None and monitor.plan.risk.judge is not None:
+            if risk is not None and monitor.plan.risk.judge_list:  # risk.judge or risk.judges
                 from ..risk import load_judge_for
                 judge = load_judge_for(monitor.spec)
         if judge is not None and not isinstance(judge, AsyncJudgeSource):

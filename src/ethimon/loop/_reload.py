@@ -276,7 +276,7 @@ class _Reloading:
         old_hash, self.spec_sha256 = self.spec_sha256, res.spec_sha256
         self._ids = new.obligation_ids
         self._state_key = None
-        if self._judge_from_spec and self.risk is not None and new.plan.risk.judge != old.plan.risk.judge:
+        if self._judge_from_spec and self.risk is not None and (new.plan.risk.judge_list != old.plan.risk.judge_list):
             # the judge the new spec names (or none); its texts are asked again
             if self.judge is not None:
                 self.judge.stop(timeout=0.0)

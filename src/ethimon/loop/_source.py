@@ -266,17 +266,21 @@ class AsyncRiskSource:
 
 
 class AsyncJudgeSource:
-    """Asks a judge (:class:`~ethimon.risk.Judge`) about each distinct task text once, in its own thread.
+    """Asks a judge (:class:`~ethimon.risk.Judge`) about each distinct task text once, off the control loop.
 
-    :meth:`ask` queues a text (a no-op for one already answered or queued); :meth:`result` returns
-    its :class:`~ethimon.risk.JudgeResult` without blocking, ``None`` while the answer is pending (the
-    monitor then has no judgement: in the confirm band the arm holds). Answers are kept by the text's
-    sha256; every call's result is also queued for the audit trail (:meth:`drain`).
+    :meth:`ask` queues a text (a no-op for one already answered, queued or being asked); :meth:`result`
+    returns its :class:`~ethimon.risk.JudgeResult` without blocking, ``None`` while the answer is
+    pending (the monitor then has no judgement: in the confirm band the arm holds). Up to
+    ``max_workers`` texts are asked at once, newest first, so a slow call for one text never queues
+    another text's answer. Answers are kept by the text's sha256; every call's result is also queued
+    for the audit trail (:meth:`drain`).
 
     Args:
-        judge: an object with ``judge(text) -> JudgeResult`` (a :class:`~ethimon.risk.Judge`).
+        judge: an object with ``judge(text) -> JudgeResult`` (a :class:`~ethimon.risk.Judge` or
+            :class:`~ethimon.risk.JudgePanel`).
         max_texts: how many texts' answers are kept (oldest dropped first).
-        start: start the worker thread now.
+        max_workers: how many texts are asked at once (each call is bounded by the judge's deadline).
+        start: start asking now (else :meth:`work_once` drives it).
 
     Example:
         >>> from ethimon.risk import JudgeResult
@@ -290,18 +294,24 @@ class AsyncJudgeSource:
         0.05
     """
 
-    def __init__(self, judge: Any, *, max_texts: int = 4096, start: bool = True) -> None:
+    def __init__(self, judge: Any, *, max_texts: int = 4096, max_workers: int = 4, start: bool = True) -> None:
         if not callable(getattr(judge, "judge", None)):
             raise TypeError(f"judge needs a judge(text) method, got {type(judge).__name__}")
+        if not (isinstance(max_workers, int) and 1 <= max_workers <= 64):
+            raise ValueError(f"max_workers={max_workers!r}; expected an int in [1, 64]")
         self._judge = judge
         self._max = int(max_texts)
+        self._max_workers = max_workers
         self._done: dict[str, Any] = {}
         self._queued: list[tuple[str, str]] = []  # (hash, text), oldest first
         self._queued_set: set[str] = set()
+        self._inflight: set[str] = set()
         self._cv = threading.Condition()
         self._log: list[Any] = []
         self._stop = False
-        self._thread: threading.Thread | None = None
+        self._running = False
+        self._workers = 0
+        self._threads: list[threading.Thread] = []
         self.calls = 0
         if start:
             self.start()
@@ -310,22 +320,27 @@ class AsyncJudgeSource:
     def judge(self) -> Any:
         return self._judge
 
+    @property
+    def canary_state(self) -> str:
+        """The judge's canary state (``"off"`` for a judge without canaries)."""
+        return str(getattr(self._judge, "canary_state", "off"))
+
     @staticmethod
     def key(text: str) -> str:
         from ..risk import text_sha256
         return text_sha256(text)
 
     def ask(self, text: str | None, key: str | None = None) -> None:
-        """Queue ``text`` for the judge unless it was answered or queued already."""
+        """Queue ``text`` for the judge unless it was answered, queued or is being asked already."""
         if text is None:
             return
         h = key or self.key(text)
         with self._cv:
-            if h in self._done or h in self._queued_set:
+            if h in self._done or h in self._queued_set or h in self._inflight:
                 return
             self._queued.append((h, text))
             self._queued_set.add(h)
-            self._cv.notify()
+            self._spawn()
 
     def result(self, text: str | None, key: str | None = None) -> Any:
         """The judge's answer for ``text``, or ``None`` while none is in (never blocks)."""
@@ -344,7 +359,9 @@ class AsyncJudgeSource:
         with self._cv:
             if not self._queued:
                 return False
-            h, text = self._queued[0]
+            h, text = self._queued.pop(0)
+            self._queued_set.discard(h)
+            self._inflight.add(h)
         self._answer(h, text)
         return True
 
@@ -354,41 +371,54 @@ class AsyncJudgeSource:
         except Exception as exc:  # noqa: BLE001 - a judge that raises gives no judgement
             from ..risk import JudgeResult
             res = JudgeResult(None, "error", 0.0, None, None, str(getattr(self._judge, "model", "")), h,
-                              f"judge raised {type(exc).__name__}: {exc}"[:200])
-        self.calls += 1
+                              f"judge raised {type(exc).__name__}"[:200])
         with self._cv:
+            self.calls += 1
             self._done[h] = res
             while len(self._done) > self._max:
                 self._done.pop(next(iter(self._done)))
-            if self._queued and self._queued[0][0] == h:
-                self._queued.pop(0)
-            self._queued_set.discard(h)
+            self._inflight.discard(h)
             self._log.append(res)
 
-    def start(self) -> None:
-        if self._thread is not None and self._thread.is_alive():
+    def _spawn(self) -> None:
+        """Start workers for queued texts, up to ``max_workers`` (with ``self._cv`` held)."""
+        if not self._running or self._stop:
             return
-        self._stop = False
-        self._thread = threading.Thread(target=self._run, name="ethimon-judge", daemon=True)
-        self._thread.start()
+        # a worker not asking a text is about to take one or to exit: start one per queued text beyond them
+        while self._workers < self._max_workers and self._workers - len(self._inflight) < len(self._queued):
+            self._workers += 1
+            t = threading.Thread(target=self._run, name="ethimon-judge", daemon=True)
+            self._threads = [x for x in self._threads if x.is_alive()] + [t]
+            t.start()
+
+    def start(self) -> None:
+        with self._cv:
+            self._stop = False
+            self._running = True
+            self._spawn()
 
     def stop(self, timeout: float = 1.0) -> None:
         with self._cv:
             self._stop = True
+            self._running = False
             self._cv.notify_all()
-        t = self._thread
-        if t is not None and t is not threading.current_thread():
-            t.join(timeout)
+            threads = list(self._threads)
+        end = time.monotonic() + timeout
+        for t in threads:
+            if t is not threading.current_thread():
+                t.join(max(0.0, end - time.monotonic()))
 
     def _run(self) -> None:
         while True:
             with self._cv:
-                while not self._queued and not self._stop:
-                    self._cv.wait()
-                if self._stop:
+                if self._stop or not self._queued:
+                    self._workers -= 1
                     return
-                h, text = self._queued[0]
+                h, text = self._queued.pop()  # newest first: the text the arm waits on now
+                self._queued_set.discard(h)
+                self._inflight.add(h)
             self._answer(h, text)
 
     def __repr__(self) -> str:
-        return f"AsyncJudgeSource(judge={self._judge!r}, answered={len(self._done)}, queued={len(self._queued)})"
+        return (f"AsyncJudgeSource(judge={self._judge!r}, answered={len(self._done)}, queued={len(self._queued)}, "
+                f"asking={len(self._inflight)})")

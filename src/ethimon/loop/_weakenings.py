@@ -92,6 +92,16 @@ def _meanings(spec: Spec) -> dict[str, dict[str, tuple]]:
     return out
 
 
+def _judge_tier_changes(ro, rn, weak: list[str], unjudged: list[str]) -> None:
+    """risk.judges and risk.judge_may_hold_above_tau, old -> new (appended to ``weak`` / ``unjudged``)."""
+    if ro.judges != rn.judges:  # risk.judges (consensus): a changed panel cannot be told field by field
+        unjudged.append("risk.judges changed")
+    ho, hn = ro.judge_may_hold_above_tau, rn.judge_may_hold_above_tau
+    if hn is not None and (ho is None or hn.ceiling > ho.ceiling):
+        weak.append("risk.judge_may_hold_above_tau added or its ceiling raised (a safe verdict holds an R_e >= tau "
+                    "stop for a person)")
+
+
 def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> tuple[list[str], list[str]]:
     """How ``new`` weakens monitoring compared with ``old``, judged field by field.
 
@@ -239,6 +249,7 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
         if (jn.safe_below > jo.safe_below or jn.unsafe_from > jo.unsafe_from) or (
                 jn.model_copy(update={"safe_below": jo.safe_below, "unsafe_from": jo.unsafe_from}) != jo):
             unjudged.append("risk.judge settings changed")
+    _judge_tier_changes(ro, rn, weak, unjudged)
     unjudged = [f"{u}: {CANNOT_TELL}" for u in unjudged]
     return weak + unjudged, unjudged
 

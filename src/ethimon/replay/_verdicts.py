@@ -143,7 +143,8 @@ def _offline(check_trace: Any, spec: Spec, columns: dict[str, np.ndarray], n: in
 def _tier_ids(spec: Spec) -> tuple[str, ...]:
     """The tier rules a spec has, as extra result columns (after ``"risk"``)."""
     r = spec.risk
-    return (("judge",) if r.judge is not None else ()) + (("confirm",) if r.confirm_threshold is not None else ())
+    held = r.confirm_threshold is not None or (r.judge_may_hold_above_tau is not None and bool(r.judge_list))
+    return (("judge",) if r.judge_list else ()) + (("confirm",) if held else ())
 
 
 def _step(spec: Spec, columns: dict[str, np.ndarray], n: int, risk_key: str) -> CycleResults:

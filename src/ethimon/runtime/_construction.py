@@ -85,10 +85,12 @@ class _Construction:
         self._hist0 = 0  # the cycle from which the temporal history runs (set by a reset)
         # the tiers (risk.confirm_threshold, risk.judge): off for specs without them
         self._tc = None if r.confirm_threshold is None else float(r.confirm_threshold)
-        j = r.judge
-        self._judge_on = j is not None
-        self._jsafe = float(j.safe_below) if j is not None else -1.0
-        self._junsafe = float(j.unsafe_from) if j is not None else 2.0
+        cuts = r.judge_cuts()  # risk.judge, or risk.judges (their consensus is the judge input)
+        self._judge_on = cuts is not None
+        self._jsafe, self._junsafe = (float(cuts[0]), float(cuts[1])) if cuts is not None else (-1.0, 2.0)
+        # risk.judge_may_hold_above_tau: a safe verdict turns tau <= R_e < ceiling into a confirm hold
+        hold = r.judge_may_hold_above_tau
+        self._hold_hi = float(hold.ceiling) if (hold is not None and self._judge_on) else None
         self._tiers = self._judge_on or self._tc is not None
         self._confirmed = False  # acknowledge() confirmed the text in the band (bound to _ctask)
         self._ctask = None

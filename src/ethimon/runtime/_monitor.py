@@ -86,7 +86,7 @@ class Monitor(_Construction, _Latches, _FailClosed):
                  "_alpha", "_beta", "_gamma", "_sample", "_k", "_uidx", "_rlo", "_rhi",
                  "_max_age", "_age_missing", "_cycle", "_margins_on", "_stateless",
                  "_lat", "_run", "_sevs", "_holds", "_manual", "_names", "_nlat", "_ri", "_fi", "_nsrc",
-                 "_ji", "_ci", "_tiers", "_judge_on", "_tc", "_jsafe", "_junsafe", "_confirmed", "_ctask",
+                 "_ji", "_ci", "_tiers", "_judge_on", "_tc", "_jsafe", "_junsafe", "_confirmed", "_ctask", "_hold_hi",
                  "_last_task", "_fsig", "_mcall", "_p2", "_ucall", "_vcall", "_pi", "_since", "_risk_free", "_hist0")
 
     def __init__(self, plan: Plan | Spec, *, margins: bool = True, max_age_s: float | None = None) -> None:
@@ -223,7 +223,9 @@ class Monitor(_Construction, _Latches, _FailClosed):
                     if v:
                         violations.append(oid)
                         hits.append(i)
-            if r >= self._tau:
+            held = False
+            if r >= self._tau and not (held := (self._hold_hi is not None and r < self._hold_hi and jp is not None
+                                                and jp < self._jsafe)):
                 if violations is None:
                     violations = ["risk"]
                     hits = [self._ri]
@@ -252,7 +254,7 @@ class Monitor(_Construction, _Latches, _FailClosed):
                 margins = self._mcall()  # a margin that cannot be computed is NaN
             if not self._nlat:
                 return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
-            sev, awaiting = self._release_pass(r < self._release_cut)
+            sev, awaiting = self._release_pass(r < self._release_cut or held)  # held: the confirm latch holds
             if violations is not None:
                 return Decision(True, _RESPONSES[sev], tuple(violations), margins, r, cycle, False, _EMPTY,
                                 awaiting)
@@ -313,16 +315,22 @@ class Monitor(_Construction, _Latches, _FailClosed):
         only raise the risk. In the band [τ_confirm, τ) only a safe verdict (``jp < safe_below``)
         or an operator's confirmation of this task (``acknowledge()``, bound to ``task_id``) lets the arm
         execute; anything else (unsure, no judgement) fires ``"confirm"`` (stop 2). R_e ≥ τ is the
-        risk rule's, whatever the judge says.
+        risk rule's, whatever the judge says, except with ``risk.judge_may_hold_above_tau``: there a safe
+        verdict at τ ≤ R_e < ceiling fires ``"confirm"`` instead (a person releases it, never the judge).
         """
         tc = self._tc
-        if tc is not None:  # first, on every cycle (the judge's too): the text this cycle is about
+        hi = self._hold_hi
+        if tc is not None or hi is not None:  # first, on every cycle (the judge's too): the text this cycle is about
             task = get("task_id")
-            if self._confirmed and (task != self._ctask or not tc <= r < self._tau):
+            lo = tc if tc is not None else self._tau
+            if self._confirmed and (task != self._ctask or not lo <= r < (hi if hi is not None else self._tau)):
                 self._confirmed = False  # a confirmation is for one text while it stays in the band
             self._last_task = task
         if jp is not None and jp >= self._junsafe:
             return "judge", self._ji
+        if r >= self._tau:  # the risk rule's, unless held (risk.judge_may_hold_above_tau, a safe verdict)
+            held = hi is not None and r < hi and jp is not None and jp < self._jsafe  # as in step()
+            return ("confirm", self._ci) if held and not self._confirmed else None
         if tc is None:
             return None
         if tc <= r < self._tau and not self._confirmed and not (jp is not None and jp < self._jsafe):

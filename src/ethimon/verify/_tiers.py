@@ -34,14 +34,15 @@ _STOP_2 = Response.STOP_2.severity
 
 def has_tiers(spec: Spec) -> bool:
     """Whether the spec sets a confirm band or a judge."""
-    return spec.risk.confirm_threshold is not None or spec.risk.judge is not None
+    return spec.risk.confirm_threshold is not None or bool(spec.risk.judge_list)
 
 
 def base_spec(spec: Spec) -> Spec:
     """The spec without its tiers (what the decision-trace properties are checked on)."""
     if not has_tiers(spec):
         return spec
-    risk = spec.risk.model_copy(update={"confirm_threshold": None, "judge": None})
+    risk = spec.risk.model_copy(update={"confirm_threshold": None, "judge": None, "judges": None,
+                                        "judge_may_hold_above_tau": None})
     return spec.model_copy(update={"risk": risk})
 
 
@@ -60,25 +61,33 @@ class _Cycle:
         tau = real(r.threshold)
         self.tau = tau
         self.risk_sev = Response(r.response).severity
-        j = r.judge
-        judge_on = z3.BoolVal(j is not None)
-        self.unsafe = z3.And(judge_on, self.jk, self.j >= real(j.unsafe_from if j else 1.0))
-        self.safe = z3.And(judge_on, self.jk, self.j < real(j.safe_below if j else 0.0))
-        self.risk_fires = self.R >= tau
+        cuts = r.judge_cuts()  # one judge's cuts, or the consensus input's (risk.judges)
+        judge_on = z3.BoolVal(cuts is not None)
+        self.unsafe = z3.And(judge_on, self.jk, self.j >= real(cuts[1] if cuts else 1.0))
+        self.safe = z3.And(judge_on, self.jk, self.j < real(cuts[0] if cuts else 0.0))
+        hold = r.judge_may_hold_above_tau
+        self.ceiling = real(hold.ceiling) if (hold is not None and cuts is not None) else None
+        # risk.judge_may_hold_above_tau: a safe verdict at tau <= R_e < ceiling is a confirm hold, not a stop
+        self.held = (z3.And(self.R >= tau, self.R < self.ceiling, self.safe) if self.ceiling is not None
+                     else z3.BoolVal(False))
+        self.risk_fires = z3.And(self.R >= tau, z3.Not(self.held))
         self.judge_fires = self.unsafe
         if r.confirm_threshold is None:
             self.in_band = z3.BoolVal(False)
         else:
             self.in_band = z3.And(self.R >= real(r.confirm_threshold), self.R < tau)
-        self.confirm_fires = z3.And(z3.Not(self.judge_fires), self.in_band, z3.Not(self.conf), z3.Not(self.safe))
+        self.confirm_fires = z3.Or(
+            z3.And(z3.Not(self.judge_fires), self.in_band, z3.Not(self.conf), z3.Not(self.safe)),
+            z3.And(z3.Not(self.judge_fires), self.held, z3.Not(self.conf)))
         sev = self.L
         for fires, s in ((self.risk_fires, self.risk_sev), (self.judge_fires, self.risk_sev),
                          (self.confirm_fires, _STOP_2)):
             sev = z3.If(z3.And(fires, sev < s), z3.IntVal(s), sev)
         self.sev = sev
         self.override = sev > 0
-        self.base_override = z3.Or(self.L > 0, self.risk_fires)
-        self.base_sev = z3.If(z3.And(self.risk_fires, self.L < self.risk_sev), z3.IntVal(self.risk_sev), self.L)
+        base_fires = self.R >= tau
+        self.base_override = z3.Or(self.L > 0, base_fires)
+        self.base_sev = z3.If(z3.And(base_fires, self.L < self.risk_sev), z3.IntVal(self.risk_sev), self.L)
 
 
 def _prove(ck, name: str, cyc: _Cycle, claim, what: str, *extra) -> Finding:
@@ -106,7 +115,9 @@ def tier_properties(ck) -> list[tuple[str, Any]]:
     spec: Spec = ck.full_spec
     r = spec.risk
     band = r.confirm_threshold is not None
-    judge = r.judge is not None
+    judge = bool(r.judge_list)
+    hold_on = judge and r.judge_may_hold_above_tau is not None
+    cuts = r.judge_cuts()
     out: list[tuple[str, Any]] = []
 
     def cyc(tag=""):
@@ -114,9 +125,25 @@ def tier_properties(ck) -> list[tuple[str, Any]]:
 
     def stop():
         c = cyc()
-        return _prove(ck, "tier.stop", c, z3.Implies(c.risk_fires, z3.And(c.override, c.sev >= c.risk_sev)),
-                      f"R_e >= tau => override ({r.response} or more) whatever the judge says")
+        if not hold_on:
+            return _prove(ck, "tier.stop", c, z3.Implies(c.R >= c.tau, z3.And(c.override, c.sev >= c.risk_sev)),
+                          f"R_e >= tau => override ({r.response} or more) whatever the judge says")
+        ceil = r.judge_may_hold_above_tau.ceiling
+        claim = z3.And(z3.Implies(z3.And(c.R >= c.tau, z3.Not(c.safe)), z3.And(c.override, c.sev >= c.risk_sev)),
+                       z3.Implies(c.R >= c.ceiling, z3.And(c.override, c.sev >= c.risk_sev)))
+        return _prove(ck, "tier.stop", c, claim,
+                      f"R_e >= tau without a safe verdict, or R_e >= ceiling {ceil:g} whatever the judge says => "
+                      f"override ({r.response} or more)")
     out.append(("tier.stop", lambda: ck._timed(stop)))
+    if hold_on:
+        def hold_above():
+            c = cyc()
+            claim = z3.Implies(z3.And(c.R >= c.tau, z3.Not(c.conf)), z3.And(c.override, c.sev >= _STOP_2))
+            return _prove(ck, "tier.hold_above_tau", c, claim,
+                          f"judge_may_hold_above_tau (ceiling {r.judge_may_hold_above_tau.ceiling:g}): at R_e >= tau "
+                          "a safe verdict gives at most a confirm hold (stop_2 or more): never execute without a "
+                          "person's confirmation of that text")
+        out.append(("tier.hold_above_tau", lambda: ck._timed(hold_above)))
     if band:
         def hold():
             c = cyc()
@@ -133,7 +160,7 @@ def tier_properties(ck) -> list[tuple[str, Any]]:
         def unsafe():
             c = cyc()
             return _prove(ck, "tier.judge_unsafe", c, z3.Implies(c.unsafe, z3.And(c.override, c.sev >= c.risk_sev)),
-                          f"an unsafe verdict (p_judge >= {r.judge.unsafe_from:g}) => override ({r.response} or more) "
+                          f"an unsafe verdict (p_judge >= {cuts[1]:g}) => override ({r.response} or more) "
                           f"at any R_e")
         out.append(("tier.judge_unsafe", lambda: ck._timed(unsafe)))
 
@@ -151,6 +178,12 @@ def tier_properties(ck) -> list[tuple[str, Any]]:
 
     def adds_only():
         c = cyc()
+        if hold_on:  # the hold lowers a stop's severity to stop_2 (held for a person), never to execute
+            claim = z3.And(z3.Implies(z3.And(c.base_override, z3.Not(c.conf)), c.override),
+                           z3.Or(c.sev >= c.base_sev, c.held))
+            return _prove(ck, "tier.adds_only", c, claim,
+                          "the tier rules only add overrides to the spec without them, except that a held text "
+                          "(judge_may_hold_above_tau) is stop_2 until a person confirms it")
         claim = z3.And(z3.Implies(c.base_override, c.override), c.sev >= c.base_sev)
         return _prove(ck, "tier.adds_only", c, claim,
                       "the tier rules only add overrides to the spec without them (its properties above hold "
@@ -167,9 +200,14 @@ def _points(spec: Spec, plan) -> tuple[list[float], list[float | None]]:
     if r.confirm_threshold is not None:
         tc = float(r.confirm_threshold)
         rs |= {tc, math.nextafter(tc, -math.inf), math.nextafter(tc, math.inf), (tc + float(r.threshold)) / 2}
+    hold = r.judge_may_hold_above_tau
+    if hold is not None:
+        cl = float(hold.ceiling)
+        rs |= {cl, math.nextafter(cl, -math.inf), (float(r.threshold) + cl) / 2}
     js: set[float] = {0.0, 0.5, 1.0}
-    if r.judge is not None:
-        for x in (float(r.judge.safe_below), float(r.judge.unsafe_from)):
+    cuts = r.judge_cuts()
+    if cuts is not None:
+        for x in cuts:
             js |= {x, max(0.0, math.nextafter(x, -math.inf)), min(1.0, math.nextafter(x, math.inf))}
     return sorted(x for x in rs if lo <= x <= hi), [None, *sorted(js)]
 
@@ -180,6 +218,8 @@ def agrees(ck) -> Finding:
     rs, js = _points(spec, ck.full_plan)
     c = _Cycle(spec, ck.full_plan)
     r = spec.risk
+    cuts = r.judge_cuts()
+    hold = r.judge_may_hold_above_tau if cuts is not None else None
     n = 0
     for R, jp, confirmed in itertools.product(rs, js, (False, True)):
         m = Monitor(ck.full_plan, margins=False)
@@ -187,10 +227,13 @@ def agrees(ck) -> Finding:
                                  for sig in ck.full_plan.signals}
         if r.max_age_s is not None:
             frame["risk_age_s"] = 0.0
-        if confirmed:  # a confirmation needs the band: confirm a band cycle first, same task
-            if r.confirm_threshold is None:
+        if confirmed:  # a confirmation needs the band (or a held text): confirm one first, same task
+            if r.confirm_threshold is not None:
+                m.step({**frame, "risk": float(r.confirm_threshold), "task_id": "t"})
+            elif r.judge_may_hold_above_tau is not None and cuts is not None and cuts[0] > 0:
+                m.step({**frame, "risk": float(r.threshold), "judge": 0.0, "task_id": "t"})
+            else:
                 continue
-            m.step({**frame, "risk": float(r.confirm_threshold), "task_id": "t"})
             if not m.acknowledge().released:
                 continue  # an obligation of the spec holds the arm here; nothing to compare
         d = m.step({**frame, "risk": R, "judge": jp, "task_id": "t"})
@@ -206,8 +249,8 @@ def agrees(ck) -> Finding:
                            f"R_e={R!r}, p_judge={jp!r}, confirmed={confirmed}: the Monitor fired {got}, the "
                            f"encoding {want}")
         outcome = tier_outcome(R, jp, threshold=r.threshold, confirm_threshold=r.confirm_threshold,
-                               safe_below=r.judge.safe_below if r.judge else 0.2,
-                               unsafe_from=r.judge.unsafe_from if r.judge else 0.8, judge=r.judge is not None)
+                               safe_below=cuts[0] if cuts else 0.2, unsafe_from=cuts[1] if cuts else 0.8,
+                               judge=cuts is not None, hold_ceiling=hold.ceiling if hold is not None else None)
         if not confirmed and not [v for v in d.violations if v not in ("risk", "judge", "confirm")]:
             seen = "stop" if ("risk" in got or "judge" in got) else ("confirm" if got else "execute")
             if seen != outcome:
@@ -223,7 +266,8 @@ def lint_confirm_band(ck) -> Finding:
     r = spec.risk
     name = "lint.confirm_band"
     if r.confirm_threshold is None:
-        return Finding("lint", name, OK, "no confirm band" + (" (the judge can only stop)" if r.judge else ""))
+        return Finding("lint", name, OK, "no confirm band" + (" (the judge can only stop)" if r.judge_list else "")
+                       + _hold_note(r))
     lo, hi = ck.risk_range()  # reachable R_e (the tiers do not change the formula)
     tc, tau = float(r.confirm_threshold), float(r.threshold)
     if tc >= tau:  # pragma: no cover - the spec model rejects it
@@ -234,5 +278,16 @@ def lint_confirm_band(ck) -> Finding:
                        f"safe verdict is held for a person")
     if tc >= hi:
         return Finding("lint", name, WARNING, f"tau_confirm={tc:g} is above every reachable R_e: the band is empty")
-    who = "the judge or a person" if r.judge is not None else "a person (no judge)"
-    return Finding("lint", name, OK, f"tau_confirm={tc:g} < tau={tau:g}; R_e in [{tc:g}, {tau:g}) goes to {who}")
+    who = ("the judges in consensus or a person" if r.judges else "the judge or a person") if r.judge_list \
+        else "a person (no judge)"
+    return Finding("lint", name, OK, f"tau_confirm={tc:g} < tau={tau:g}; R_e in [{tc:g}, {tau:g}) goes to {who}"
+                   + _hold_note(r))
+
+
+def _hold_note(r) -> str:
+    """What lint says about risk.judge_may_hold_above_tau (named whenever it is on)."""
+    h = r.judge_may_hold_above_tau
+    if h is None:
+        return ""
+    return (f"; judge_may_hold_above_tau: a canary-passed judge's safe verdict holds R_e in [{float(r.threshold):g}, "
+            f"{float(h.ceiling):g}) for a person (stop_2) instead of stopping it")
