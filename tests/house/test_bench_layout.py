@@ -19,7 +19,7 @@ ROOT = Path(__file__).resolve().parents[2]
 BENCH = ROOT / "bench"
 CONCERNS = ("monitor", "risk", "sim", "verify")
 #: imported by the scripts, not run: no JSON of their own
-LIBRARIES = {"risk_data.py", "__init__.py"}
+LIBRARIES = {"risk_data.py", "_recorded_judge.py", "__init__.py"}
 DOCS = ["README.md", "bench/README.md", "verification/README.md", "src/ethimon/sim/README.md",
         "src/ethimon/risk/default_model/MODEL_CARD.md", "CHANGELOG.md",
         *sorted(str(p.relative_to(ROOT)) for p in (ROOT / "docs").glob("*.md"))]
