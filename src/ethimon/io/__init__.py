@@ -18,7 +18,7 @@ memory::
 
 from __future__ import annotations
 
-from ._channel import AckRequest, Channel, Frame, MemoryChannel, Sample
+from ._channel import TASK_TEXT, AckRequest, Channel, Frame, MemoryChannel, Sample
 from ._hold import MAX_CYCLES, MISSING, OK, STALE, Hold, cycle_grid, hold, judged
 from ._live import MAX_TEXT, LiveMonitor, Recording, decision_json, mapping_error
 from ._mapping import (FIELD_PATH, FUTURE_TOLERANCE_S, MSGTYPE, REDUCTIONS, RISK_INPUTS, ByName, Mapping, Ros2Map,
@@ -28,7 +28,7 @@ from ._values import follow, is_truth, numbers_of, rate_between, reduce_array, r
 
 __all__ = ["AckRequest", "ByName", "Channel", "FIELD_PATH", "FUTURE_TOLERANCE_S", "Frame", "Hold", "LiveMonitor",
            "MAX_CYCLES", "MAX_TEXT", "MISSING", "MSGTYPE", "Mapping", "MemoryChannel", "OK", "REDUCTIONS",
-           "RISK_INPUTS", "Recording", "Ros2Map", "STALE", "Sample", "SignalMap", "TaskMap", "bool_mismatch",
+           "RISK_INPUTS", "Recording", "Ros2Map", "STALE", "Sample", "SignalMap", "TASK_TEXT", "TaskMap", "bool_mismatch",
            "check_against_spec", "cycle_grid", "decision_json", "follow", "hold", "is_truth", "judged",
            "lint_mapping", "load_mapping", "load_mapping_text", "mapping_error", "mapping_json_schema",
            "msgtype_key", "numbers_of", "parse_field_path", "rate_between", "reduce_array", "reduce_value"]

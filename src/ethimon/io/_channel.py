@@ -13,7 +13,10 @@ from typing import Any, Protocol, runtime_checkable
 
 from ..runtime import Fault
 
-__all__ = ["AckRequest", "Channel", "Frame", "MemoryChannel", "Sample"]
+__all__ = ["TASK_TEXT", "AckRequest", "Channel", "Frame", "MemoryChannel", "Sample"]
+
+#: the ``signal`` of a :class:`Sample` that carries the task text (not a name a spec signal can have)
+TASK_TEXT = "<task>"
 
 
 class Frame(dict):
@@ -29,11 +32,12 @@ class Frame(dict):
 
 @dataclass(frozen=True)
 class Sample:
-    """One message's mapped field: ``topic`` it came on, ``value`` (the field, before any reduction; the task
-    text for the task topic), ``t_log`` (its receive time on the channel's ``now("log")`` clock) and
-    ``t_header`` (its ``header.stamp`` in Unix seconds, ``None`` without one)."""
+    """One mapped field of one message: the monitor input ``signal`` it feeds (:data:`TASK_TEXT` for the task
+    text), ``value`` (the field as the message holds it, before any reduction: the mapping's ``field`` path
+    followed, :func:`~ethimon.io.follow`), ``t_log`` (its receive time on the channel's ``now("log")`` clock)
+    and ``t_header`` (its ``header.stamp`` in Unix seconds, ``None`` without one)."""
 
-    topic: str
+    signal: str
     value: Any
     t_log: float
     t_header: float | None = None
@@ -62,7 +66,8 @@ class Channel(Protocol):
         """The time on ``"log"`` (the receive times' clock) or ``"header"`` (Unix seconds) now."""
 
     def take(self) -> Iterable[Sample]:
-        """The samples that arrived since the last call, in arrival order (mapped topics and the task topic)."""
+        """The samples that arrived since the last call, in arrival order (one per mapped signal a message
+        feeds, and the task text)."""
 
     def faults(self) -> tuple[Fault, ...]:
         """What the transport finds wrong now: a foreign writer on a read topic or on the override topic."""
@@ -102,10 +107,10 @@ class MemoryChannel:
             return float(self.clock())
         return time.time() if clock == "header" else time.monotonic()
 
-    def publish(self, topic: str, value: Any, t_log: float | None = None, t_header: float | None = None) -> None:
-        """A message on ``topic`` (received at ``t_log``: default now)."""
+    def publish(self, signal: str, value: Any, t_log: float | None = None, t_header: float | None = None) -> None:
+        """A value for ``signal`` (:data:`TASK_TEXT`: a task text) received at ``t_log`` (default: now)."""
         with self._lock:
-            self._q.append(Sample(topic, value, self.now("log") if t_log is None else t_log, t_header))
+            self._q.append(Sample(signal, value, self.now("log") if t_log is None else t_log, t_header))
 
     def request_ack(self, req: AckRequest) -> None:
         with self._lock:

@@ -123,9 +123,10 @@ class Hold:
                  bool_message: str | None = None) -> None:
         self.name, self.sm, self.limit, self.every = name, sm, limit_s, every
         self.tol, self.truth, self.bool_message = float(tolerance_s), truth, bool_message
-        self.off = float(sm.offset_s)
-        self.last: tuple[Any, float] | None = None  # (value, sample time)
-        self.prev: tuple[np.ndarray | None, float] | None = None  # derive: rate, the message before
+        self.off = int(round(sm.offset_s * 1e9))
+        # times are kept in integer nanoseconds, as replay keeps them: the same ages, the same rates
+        self.last: tuple[Any, int] | None = None  # (value, sample time in ns)
+        self.prev: tuple[np.ndarray | None, int] | None = None  # derive: rate, the message before
         self.read_yet = False
         self.received = self.judged = self.skipped = self.before = 0
         self._unread = False
@@ -135,7 +136,7 @@ class Hold:
     def put(self, value: Any, t: float, topic: str = "") -> None:
         """A sample arrived: ``value`` is the field's value (before reduction), ``t`` its time (receive time,
         or header stamp) in seconds; ``offset_s`` is added here."""
-        t = t + self.off
+        t = int(round(t * 1e9)) + self.off
         self.received += 1
         x: Any
         if self.sm.derive == "rate":
@@ -148,7 +149,7 @@ class Hold:
                 self._bad_note = f"{self.name}: 'derive: rate' of a bool field ({topic})"
             if prev is None:
                 return  # the first message gives no rate
-            x = rate_between(prev[0], arr, t - prev[1], self.sm)
+            x = rate_between(prev[0], arr, (t - prev[1]) / 1e9, self.sm)
         elif is_truth(value) and not isinstance(value, np.ndarray):
             if self.truth:
                 x = bool(value)
@@ -195,14 +196,15 @@ class Hold:
             self._unread = False
             self.judged += 1
         value, t = last
-        age = now - t
-        if -age > self.tol:
+        age_ns = int(round(now * 1e9)) - t
+        age = age_ns / 1e9
+        if -age_ns > self.tol * 1e9:
             faults.append(Fault("stale", f"{self.name}: the last {self.sm.topic} sample is stamped {-age:.3f} s in "
                                 f"the future (more than future_tolerance_s {self.tol:g}): its age cannot be judged "
                                 "(the robot's clock runs ahead of this one, or the stamp is forged; declare "
                                 "offset_s)", self.name))
             return None
-        if self.limit is not None and age > self.limit:
+        if self.limit is not None and age_ns > self.limit * 1e9:
             faults.append(Fault("stale", f"{self.name}: stale (last {self.sm.topic} message {age:.3f} s old, "
                                 f"max_age_s {self.limit:g})", self.name))
             return None
@@ -210,4 +212,4 @@ class Hold:
 
     def age(self, now: float) -> float | None:
         """Seconds since the held sample (0 for one stamped a little ahead); ``None`` before the first."""
-        return None if self.last is None else max(0.0, now - self.last[1])
+        return None if self.last is None else max(0.0, (int(round(now * 1e9)) - self.last[1]) / 1e9)

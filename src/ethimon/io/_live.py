@@ -20,7 +20,7 @@ from typing import Any
 
 from ..errors import SpecError
 from ..runtime import Decision, Fault
-from ._channel import AckRequest, Channel, Frame, Sample
+from ._channel import TASK_TEXT, AckRequest, Channel, Frame, Sample
 from ._hold import Hold
 from ._mapping import RISK_INPUTS, Mapping, bool_mismatch, check_against_spec
 
@@ -98,7 +98,6 @@ class LiveMonitor:
             raise ValueError("LiveMonitor is the loop's signal source: build the GovernedLoop without signals=")
         self.loop, self.mapping, self.channel = loop, mapping, channel
         self.holds: dict[str, Hold] = {}
-        self._by_topic: dict[str, list[Hold]] = {}
         for name, sm in mapping.signals.items():
             limit = mapping.limit_s(name)
             if limit is None and sm.stale:  # never stale by default, not by choice: a dead topic held forever
@@ -117,8 +116,6 @@ class LiveMonitor:
                      tolerance_s=mapping.future_tolerance_s, truth=sig is not None and sig.type == "bool",
                      bool_message=msg)
             self.holds[name] = h
-            self._by_topic.setdefault(sm.topic, []).append(h)
-        self._task_topic = mapping.task.topic if mapping.task is not None else None
         self._risk_hold = next((h for n, h in self.holds.items() if n in RISK_INPUTS), None)
         self._header = any(sm.time == "header" for sm in mapping.signals.values())
         self._ids = loop.monitor.obligation_ids
@@ -142,18 +139,20 @@ class LiveMonitor:
         for s in samples:
             if rec is not None:
                 rec.samples.append(s)
-            if s.topic == self._task_topic:
+            if s.signal == TASK_TEXT:
                 self._text(s.value)
                 continue
-            for h in self._by_topic.get(s.topic, ()):
-                if h.sm.time == "header":
-                    if s.t_header is None:
-                        faults.append(Fault("invalid", f"{h.name}: {s.topic} has no header.stamp, but the mapping "
-                                            "sets 'time: header'", h.name))
-                        continue
-                    h.put(s.value, s.t_header, s.topic)
-                else:
-                    h.put(s.value, s.t_log, s.topic)
+            h = self.holds.get(s.signal)
+            if h is None:
+                continue
+            if h.sm.time == "header":
+                if s.t_header is None:
+                    faults.append(Fault("invalid", f"{h.name}: {h.sm.topic} has no header.stamp, but the mapping "
+                                        "sets 'time: header'", h.name))
+                    continue
+                h.put(s.value, s.t_header, h.sm.topic)
+            else:
+                h.put(s.value, s.t_log, h.sm.topic)
         now = ch.now("log")
         wall = ch.now("header") if self._header else None
         if rec is not None:

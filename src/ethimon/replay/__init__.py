@@ -16,7 +16,10 @@ staleness limit per signal (a stale or missing input fails closed), and which
 topic carries the task text that the risk estimator scores (or ``risk: none``:
 the risk rule is then reported NOT CHECKED). :func:`list_topics` lists a bag's
 topics to write a mapping from; :func:`replay_paths` replays many bags as
-``ethimon replay`` does; :func:`write_mcap` writes the verdicts as MCAP topics. Bags are read with
+``ethimon replay`` does; :func:`write_mcap` writes the verdicts as MCAP topics; :func:`recorded_data`
+reads back what a live :class:`~ethimon.io.LiveMonitor` recorded. The mapping format, the hold and the
+value reduction are ``ethimon.io``'s (the live node reads a mapping the same way); ``Mapping``,
+``SignalMap``, ``load_mapping``, ``check_against_spec`` & co. stay importable from here. Bags are read with
 ``rosbags`` (``pip install 'ethimon[ros]'``), imported only when a bag is read:
 ``import ethimon`` and ``import ethimon.replay`` never import it.
 """
@@ -24,7 +27,7 @@ topics to write a mapping from; :func:`replay_paths` replays many bags as
 from __future__ import annotations
 
 from ._bag import BagData, BagError, read_bag
-from ._collect import Series
+from ._collect import Series, recorded_data
 from ._verdicts import CycleResults, check_columns
 from ._mapping import (Mapping, SignalMap, TaskMap, check_against_spec, lint_mapping, load_mapping,
                        load_mapping_text, mapping_json_schema)
@@ -40,4 +43,4 @@ from ._topics import TopicInfo, list_topics
 __all__ = ["BagData", "BagError", "BagReplay", "CheckResult", "CycleResults", "Mapping", "ReplayReport", "Series",
            "SignalMap", "TaskMap", "TaskScorer", "TopicInfo", "check_against_spec", "check_columns", "cycle_grid",
            "hold", "lint_mapping", "list_topics", "load_mapping", "load_mapping_text", "mapping_json_schema",
-           "read_bag", "replay_bag", "replay_data", "replay_paths", "resample", "write_mcap"]
+           "read_bag", "recorded_data", "replay_bag", "replay_data", "replay_paths", "resample", "write_mcap"]

@@ -266,3 +266,45 @@ class _Collector:
 
 
 #: a field the reader could not reach: an index past the end, a name not in the message's list
+
+
+@dataclass
+class _Stamp:
+    sec: int
+    nanosec: int
+
+
+@dataclass
+class _Header:
+    stamp: _Stamp
+
+
+@dataclass
+class _Recorded:
+    data: Any
+    header: Any = None
+
+
+def recorded_data(recording: Any, mapping: Any, path: str = "<recording>") -> Any:
+    """A live run's :class:`~ethimon.io.Recording` (every sample :class:`~ethimon.io.LiveMonitor` received)
+    as the :class:`BagData` a bag gives: replayed (:func:`~ethimon.replay.replay_data`), it is read by the
+    same rules as a bag (receive times as log time, header stamps as header time, ``offset_s``, ``derive``)."""
+    from ..io import MAX_TEXT, TASK_TEXT
+    from ._bag import BagData
+    series: dict[str, Series] = {}
+    for name, sm in mapping.signals.items():
+        c = _Collector(name, sm.model_copy(update={"field": "data"}), path)
+        msgtype = sm.type or "recorded"
+        for s in recording.samples:
+            if s.signal != name:
+                continue
+            hdr = None
+            if s.t_header is not None:
+                ns = int(round(s.t_header * 1e9))
+                hdr = _Header(_Stamp(ns // 1_000_000_000, ns % 1_000_000_000))
+            c.add(_Recorded(s.value, hdr), int(round(s.t_log * 1e9)), sm.topic, msgtype)
+        series[name] = c.series(sm.topic, msgtype)
+    texts = [(int(round(s.t_log * 1e9)), s.value[:MAX_TEXT]) for s in recording.samples
+             if s.signal == TASK_TEXT and isinstance(s.value, str)]
+    topics = {sm.topic: (sm.type or "recorded", series[n].read) for n, sm in mapping.signals.items()}
+    return BagData(path, "recording", series, texts, topics)
