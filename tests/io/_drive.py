@@ -43,7 +43,8 @@ def spec():
 
 
 def replay_of(samples, spec_, mapping):
-    rec = Recording(samples=list(samples))
+    """Replay a :class:`Recording` (or bare samples: as if each were taken at its own time)."""
+    rec = samples if isinstance(samples, Recording) else Recording(samples=list(samples))
     return replay_data(recorded_data(rec, mapping), spec_, mapping, keep_trace=True, engine="step")
 
 
@@ -79,7 +80,7 @@ def verdicts(samples, mapping_text=MAPPING):
     s0 = res.started["cycle"]
     decisions, live = live_on_grid(samples, sp, mapping, grid, s0)
     # the live run's own recording, replayed, is what is compared (the recording is what a robot keeps)
-    res2 = replay_of(live.recording.samples, sp, mapping)
+    res2 = replay_of(live.recording, sp, mapping)
     assert [int(x) for x in res2.grid] == grid
     tr, ids = res2.trace, res2.trace.ids
     rep = [(bool(tr.override[k]), int(tr.severity[k]), bool(tr.latched[k]), bool(tr.fault[k]),

@@ -91,20 +91,29 @@ def test_a_burst_is_refused_alike_under_samples_every():
 
 
 def test_a_header_stamp_in_the_future_is_a_fault_not_a_fresh_value():
-    # dist stamped 30 ms ahead of its arrival (within max_age_s 35.5 ms). Before: fresh for up to 2 x max_age_s.
+    # dist stamped 30 ms ahead of its arrival from t = 0.3 s (within max_age_s 35.5 ms, beyond the 5 ms
+    # tolerance). Before: fresh for up to 2 x max_age_s. Now a fault until its time has come, live and in
+    # the replay of the recording alike.
     samples = [s if s.signal != "dist" or s.t_log < 0.3 else S(s.t_log, "dist", s.value, s.t_log + 0.03)
                for s in _base()]
-    mapping = load_mapping_text(MAPPING)
-    from tests.io._drive import live_on_grid, replay_of
-    res = replay_of(_base(), spec(), mapping)
-    decisions, live = live_on_grid(samples, spec(), mapping, [int(x) for x in res.grid], res.started["cycle"])
-    late = [d for d in decisions if d.cycle >= 31]
-    assert late and all(d.override and any("future" in f.message for f in d.faults) for d in late)
-    early = [d for d in decisions if d.cycle < 25]
-    assert early and not any(d.override for d in early)
-    # a stamp within the tolerance is aged from its own time: the cycle after its limit, stale
-    h = live.holds["dist"]
-    h.put(1.0, 10.004)
+    liv, live, res = _same(samples)
+    assert not any(o for o, *_ in liv[:20])
+    assert sum(o and f for o, _, _, f, _ in liv[32:]) >= 10
+    assert "future" in res.as_dict()["checks"][-1]["detail"] or res.check("inputs").cycles >= 10
+
+
+def test_a_stamp_within_the_tolerance_waits_for_its_time_and_ages_from_it():
+    from ethimon.io import Hold
+    sm = load_mapping_text(MAPPING).signals["dist"]
+    h = Hold("dist", sm, 0.0355)
     fl: list = []
-    assert h.read(10.0, fl) == 1.0 and not fl
-    assert h.read(10.004 + 0.0355 + 0.0001, fl) is None and fl[0].kind == "stale"
+    h.put(1.0, 10.004, now=10.0)  # 4 ms ahead: not a fault, not yet a value
+    assert h.read(10.0, fl) is None and not fl
+    assert h.read(10.004, fl) == 1.0 and not fl
+    assert h.read(10.004 + 0.0355, fl) == 1.0
+    assert h.read(10.004 + 0.0356, fl) is None and fl[0].kind == "stale"
+    h.put(2.0, 20.1, now=20.0)  # 100 ms ahead: a fault, and no value, until its time
+    fl.clear()
+    assert h.read(20.0, fl) is None and "future" in fl[0].message
+    fl.clear()
+    assert h.read(20.1, fl) == 2.0 and not fl

@@ -73,12 +73,12 @@ def test_a_header_stamp_from_the_future_is_a_fault_not_a_value_that_never_ages()
     try:
         slot, risk = node.live.holds["joint_speed_max"], node.live.holds["p_unsafe"]  # the io holds
         risk.put(0.0, time.monotonic())
-        slot.put([0.5], time.time() + 100.0)
+        slot.put([0.5], time.time() + 100.0, now=time.time())  # as the node takes it
         frame = node.live.frame()
         assert "joint_speed_max" not in frame
         assert [(f.kind, f.subject) for f in frame.faults] == [("stale", "joint_speed_max")]
         assert "future" in frame.faults[0].message
-        slot.put([0.5], time.time() - 0.01)  # a fresh stamp is a value
+        slot.put([0.5], time.time(), now=time.time())  # a fresh stamp, newer than that take, is a value
         frame = node.live.frame()
         assert frame["joint_speed_max"] == 0.5 and not frame.faults
     finally:

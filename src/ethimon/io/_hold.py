@@ -13,9 +13,10 @@ online for a missing input.
 
 Live, :class:`Hold` does the same one sample at a time: a cycle at time ``t`` takes the last sample
 that arrived (its time: the receive time, or the header stamp plus ``offset_s``), *missing* before
-the first, *stale* when ``t - t_sample > max_age_s``. A sample time further ahead of ``t`` than the
-mapping's ``future_tolerance_s`` is a fault (its age cannot be judged; a stamp a little ahead is aged
-from its own time, never from the cycle's, so it is fresh for at most ``max_age_s + tolerance``). A
+the first, *stale* when ``t - t_sample > max_age_s``. A sample is held from the first cycle at or after
+its own time: a header stamp a little ahead of the cycle that took it waits for its time (never fresh
+longer than ``max_age_s`` after its stamp); one further ahead than the mapping's ``future_tolerance_s`` is a
+fault, and no value, until a sample whose time has come replaces it (its age cannot be judged). A
 sample that a newer one replaces before any cycle read it is never judged: with ``samples: every``
 that is a fault on the next cycle (replay refuses such a bag, for the same reason), with ``samples:
 latest`` it is counted. ``derive: rate`` takes the rate between consecutive messages at their own
@@ -25,6 +26,7 @@ times (:func:`~ethimon.io.rate_between`), the first message giving none, as repl
 from __future__ import annotations
 
 import math
+from collections import deque
 from typing import Any
 
 import numpy as np
@@ -99,14 +101,20 @@ def judged(times: np.ndarray, values: np.ndarray, idx: np.ndarray) -> np.ndarray
 
 
 class Hold:
-    """One mapped signal live: its samples as they arrive (:meth:`put`), read once per cycle (:meth:`read`).
+    """One mapped signal live: its samples as a cycle takes them (:meth:`put`), read once per cycle (:meth:`read`).
+
+    A sample is held from the first cycle at or after its own time (its receive time, or header stamp plus
+    ``offset_s``): a stamp a little ahead of the cycle that took it waits for its time (the sample before it
+    is still held, and ages); a stamp further ahead than ``tolerance_s`` is a fault (and no value) from the
+    cycle that took it until a sample whose time has come replaces it: its age cannot be judged. Times are
+    integer nanoseconds, as in replay.
 
     Args:
         name: the monitor input.
         sm: its mapping entry (reduction, ``derive``, ``offset_s``, ``samples``).
         limit_s: its staleness limit (``None``: never stale).
         every: ``samples: every`` (a sample replaced before a cycle read it is a fault).
-        tolerance_s: how far ahead of the reading clock a sample time may be.
+        tolerance_s: how far ahead of the cycle that takes it a sample time may be.
         truth: a bool input of the spec (a true/false value feeds it; anywhere else it is invalid).
         bool_message: the message for a true/false value on a number input (:func:`~ethimon.io.bool_mismatch`).
 
@@ -116,7 +124,7 @@ class Hold:
     """
 
     __slots__ = ("name", "sm", "limit", "every", "tol", "truth", "bool_message", "last", "read_yet", "prev",
-                 "received", "judged", "skipped", "before", "_unread", "_skip_note", "_bad_note", "off")
+                 "received", "judged", "skipped", "before", "_unread", "_skip_note", "_bad_note", "off", "pending")
 
     def __init__(self, name: str, sm: SignalMap, limit_s: float | None, *, every: bool = True,
                  tolerance_s: float = FUTURE_TOLERANCE_S, truth: bool = False,
@@ -124,18 +132,20 @@ class Hold:
         self.name, self.sm, self.limit, self.every = name, sm, limit_s, every
         self.tol, self.truth, self.bool_message = float(tolerance_s), truth, bool_message
         self.off = int(round(sm.offset_s * 1e9))
-        # times are kept in integer nanoseconds, as replay keeps them: the same ages, the same rates
         self.last: tuple[Any, int] | None = None  # (value, sample time in ns)
         self.prev: tuple[np.ndarray | None, int] | None = None  # derive: rate, the message before
+        #: samples taken whose time has not come yet: [value, time ns, stamped beyond the tolerance, taken at ns]
+        self.pending: deque[list] = deque()
         self.read_yet = False
         self.received = self.judged = self.skipped = self.before = 0
         self._unread = False
         self._skip_note: str | None = None
         self._bad_note: str | None = None
 
-    def put(self, value: Any, t: float, topic: str = "") -> None:
-        """A sample arrived: ``value`` is the field's value (before reduction), ``t`` its time (receive time,
-        or header stamp) in seconds; ``offset_s`` is added here."""
+    def put(self, value: Any, t: float, topic: str = "", *, now: float | None = None) -> None:
+        """A cycle took a sample: ``value`` is the field's value (before reduction), ``t`` its time (receive
+        time, or header stamp) in seconds, ``offset_s`` added here; ``now`` the taking cycle's time on the same
+        clock (default ``t``)."""
         t = int(round(t * 1e9)) + self.off
         self.received += 1
         x: Any
@@ -155,7 +165,8 @@ class Hold:
                 x = bool(value)
             else:
                 x = math.nan
-                self._bad_note = self.bool_message or f"signal {self.name!r}: {topic} gives true/false: a bool is not a number"
+                self._bad_note = self.bool_message or (f"signal {self.name!r}: {topic} gives true/false: a bool is "
+                                                       "not a number")
         else:
             try:
                 x = reduce_value(value, self.sm)
@@ -164,15 +175,19 @@ class Hold:
                 self._bad_note = f"{self.name}: {exc.message}"[:300]
             if self.truth and x == x:
                 x = bool(x)
+        c = t if now is None else int(round(now * 1e9))
+        self.pending.append([x, t, t - c > self.tol * 1e9, c])
+
+    def _hold(self, x: Any, t: int) -> None:
         last = self.last
         if last is not None and self._unread and not (last[1] == t and (last[0] == x or (last[0] != last[0]
                                                                                         and x != x))):
             if self.read_yet:
                 self.skipped += 1
                 if self.every and self._skip_note is None:
-                    self._skip_note = (f"signal {self.name!r}: a sample on {topic or self.sm.topic} was replaced by a "
-                                       "newer one before a cycle read it; the monitor would never judge it "
-                                       "('samples: every'; 'samples: latest' judges the latest each cycle)")
+                    self._skip_note = (f"signal {self.name!r}: a sample on {self.sm.topic} was replaced by a newer "
+                                       "one before a cycle read it; the monitor would never judge it ('samples: "
+                                       "every'; 'samples: latest' judges the latest each cycle)")
             else:
                 self.before += 1
         self.last = (x, t)
@@ -180,14 +195,36 @@ class Hold:
 
     def read(self, now: float, faults: list[Fault]) -> Any:
         """The value this cycle (at ``now``, the clock of the sample times) takes, or ``None`` when it has none
-        to give: missing (no fault added: the monitor names it), stale or stamped in the future (a fault added).
-        A value that cannot be formed is NaN (the monitor refuses it as invalid)."""
+        to give: missing (no fault added: the monitor names it), stale or stamped beyond the tolerance in the
+        future (a fault added). A value that cannot be formed is NaN (the monitor refuses it as invalid)."""
+        c = int(round(now * 1e9))
+        pend = self.pending
+        if pend and any(p[1] <= c for p in pend):  # every sample whose time has come, in the order taken
+            keep: deque[list] = deque()
+            for p in pend:
+                if p[1] <= c:
+                    self._hold(p[0], p[1])
+                else:
+                    keep.append(p)
+            self.pending = pend = keep
         if self._skip_note is not None:
             faults.append(Fault("signals", self._skip_note, self.name))
             self._skip_note = None
         if self._bad_note is not None:
             faults.append(Fault("invalid", self._bad_note, self.name))
             self._bad_note = None
+        # a sample stamped beyond the tolerance makes the input unusable from the cycle that took it until a
+        # sample whose time has come replaces it (what replay of the recording holds: see recorded_data)
+        held_t = self.last[1] if self.last is not None else None
+        ahead = next((p for p in reversed(pend) if p[2] and (held_t is None or p[3] > held_t)), None)
+        if ahead is not None:
+            faults.append(Fault("stale", f"{self.name}: a {self.sm.topic} sample is stamped {(ahead[1] - c) / 1e9:.3f} "
+                                f"s in the future (more than future_tolerance_s {self.tol:g} when it arrived): its "
+                                "age cannot be judged (the robot's clock runs ahead of this one, or the stamp is "
+                                "forged; declare offset_s)", self.name))
+            if self.last is not None:
+                self.read_yet = True
+            return None
         last = self.last
         if last is None:
             return None
@@ -196,20 +233,13 @@ class Hold:
             self._unread = False
             self.judged += 1
         value, t = last
-        age_ns = int(round(now * 1e9)) - t
-        age = age_ns / 1e9
-        if -age_ns > self.tol * 1e9:
-            faults.append(Fault("stale", f"{self.name}: the last {self.sm.topic} sample is stamped {-age:.3f} s in "
-                                f"the future (more than future_tolerance_s {self.tol:g}): its age cannot be judged "
-                                "(the robot's clock runs ahead of this one, or the stamp is forged; declare "
-                                "offset_s)", self.name))
-            return None
+        age_ns = c - t
         if self.limit is not None and age_ns > self.limit * 1e9:
-            faults.append(Fault("stale", f"{self.name}: stale (last {self.sm.topic} message {age:.3f} s old, "
+            faults.append(Fault("stale", f"{self.name}: stale (last {self.sm.topic} message {age_ns / 1e9:.3f} s old, "
                                 f"max_age_s {self.limit:g})", self.name))
             return None
         return value
 
     def age(self, now: float) -> float | None:
-        """Seconds since the held sample (0 for one stamped a little ahead); ``None`` before the first."""
+        """Seconds since the held sample; ``None`` before the first."""
         return None if self.last is None else max(0.0, (int(round(now * 1e9)) - self.last[1]) / 1e9)

@@ -60,11 +60,13 @@ def mapping_error(mapping: Mapping, message: str, loc: tuple, *, hint: str | Non
 
 @dataclass
 class Recording:
-    """What a live run received and when it judged: every sample (arrival order) and each cycle's time on
-    both clocks ``(log, header)``; replay reads it back (:func:`ethimon.replay.recorded_data`)."""
+    """What a live run received and when it judged: every sample (arrival order), the cycle that took each
+    (``taken``: an index into ``cycles``) and each cycle's time on both clocks ``(log, header)``; replay reads
+    it back (:func:`ethimon.replay.recorded_data`)."""
 
     samples: list[Sample] = field(default_factory=list)
     cycles: list[tuple[float, float | None]] = field(default_factory=list)
+    taken: list[int] = field(default_factory=list)
 
 
 class LiveMonitor:
@@ -136,9 +138,12 @@ class LiveMonitor:
             faults.append(Fault("signals", f"the channel failed to deliver samples: {type(exc).__name__}: {exc}"[:300]))
             samples = ()
         rec = self.recording
+        now = ch.now("log")
+        wall = ch.now("header") if self._header else None
         for s in samples:
             if rec is not None:
                 rec.samples.append(s)
+                rec.taken.append(len(rec.cycles))
             if s.signal == TASK_TEXT:
                 self._text(s.value)
                 continue
@@ -150,11 +155,9 @@ class LiveMonitor:
                     faults.append(Fault("invalid", f"{h.name}: {h.sm.topic} has no header.stamp, but the mapping "
                                         "sets 'time: header'", h.name))
                     continue
-                h.put(s.value, s.t_header, h.sm.topic)
+                h.put(s.value, s.t_header, h.sm.topic, now=wall)
             else:
                 h.put(s.value, s.t_log, h.sm.topic)
-        now = ch.now("log")
-        wall = ch.now("header") if self._header else None
         if rec is not None:
             rec.cycles.append((now, wall))
         frame = Frame()

@@ -288,20 +288,35 @@ class _Recorded:
 def recorded_data(recording: Any, mapping: Any, path: str = "<recording>") -> Any:
     """A live run's :class:`~ethimon.io.Recording` (every sample :class:`~ethimon.io.LiveMonitor` received)
     as the :class:`BagData` a bag gives: replayed (:func:`~ethimon.replay.replay_data`), it is read by the
-    same rules as a bag (receive times as log time, header stamps as header time, ``offset_s``, ``derive``)."""
+    same rules as a bag (receive times as log time, header stamps as header time, ``offset_s``, ``derive``).
+    A header stamp that was further than ``future_tolerance_s`` ahead of the cycle that took it (a fault live
+    until its time came) is an unusable sample at that cycle's time, then its value at its own time."""
     from ..io import MAX_TEXT, TASK_TEXT
     from ._bag import BagData
+
+    def header(t_s: float) -> _Header:
+        ns = int(round(t_s * 1e9))
+        return _Header(_Stamp(ns // 1_000_000_000, ns % 1_000_000_000))
+
+    taken, cycles = getattr(recording, "taken", []), getattr(recording, "cycles", [])
+    tol_ns = mapping.future_tolerance_s * 1e9
     series: dict[str, Series] = {}
     for name, sm in mapping.signals.items():
         c = _Collector(name, sm.model_copy(update={"field": "data"}), path)
         msgtype = sm.type or "recorded"
-        for s in recording.samples:
+        off = int(round(sm.offset_s * 1e9))
+        for i, s in enumerate(recording.samples):
             if s.signal != name:
                 continue
             hdr = None
             if s.t_header is not None:
-                ns = int(round(s.t_header * 1e9))
-                hdr = _Header(_Stamp(ns // 1_000_000_000, ns % 1_000_000_000))
+                hdr = header(s.t_header)
+                k = taken[i] if i < len(taken) else None
+                if sm.time == "header" and k is not None and k < len(cycles) and cycles[k][1] is not None:
+                    wall = cycles[k][1]
+                    if int(round(s.t_header * 1e9)) + off - int(round(wall * 1e9)) > tol_ns:
+                        c.add(_Recorded(math.nan, header(wall - sm.offset_s)), int(round(cycles[k][0] * 1e9)),
+                              sm.topic, msgtype)
             c.add(_Recorded(s.value, hdr), int(round(s.t_log * 1e9)), sm.topic, msgtype)
         series[name] = c.series(sm.topic, msgtype)
     texts = [(int(round(s.t_log * 1e9)), s.value[:MAX_TEXT]) for s in recording.samples
