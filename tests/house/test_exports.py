@@ -39,10 +39,11 @@ PUBLIC: dict[str, list[str]] = {
     "ethimon.loop": ["AsyncJudgeSource", "AsyncRiskSource", "CANNOT_TELL", "GovernedLoop", "LoopStats", "ProcessEstimator",
                      "ReloadResult", "RiskReading", "Watchdog", "weakenings"],
     "ethimon.offline": ["OfflineResult", "check_trace", "iter_rows"],
+    "ethimon.io": ["AckRequest", "ByName", "Channel", "FIELD_PATH", "FUTURE_TOLERANCE_S", "Frame", "Hold", "LiveMonitor", "MAX_CYCLES", "MAX_TEXT", "MISSING", "MSGTYPE", "Mapping", "MemoryChannel", "OK", "REDUCTIONS", "RISK_INPUTS", "Recording", "Ros2Map", "STALE", "Sample", "SignalMap", "TASK_TEXT", "TaskMap", "bool_mismatch", "check_against_spec", "cycle_grid", "decision_json", "follow", "hold", "is_truth", "judged", "lint_mapping", "load_mapping", "load_mapping_text", "mapping_error", "mapping_json_schema", "msgtype_key", "numbers_of", "parse_field_path", "rate_between", "reduce_array", "reduce_value"],
     "ethimon.replay": ["BagData", "BagError", "BagReplay", "CheckResult", "CycleResults", "Mapping", "ReplayReport",
                        "Series", "SignalMap", "TaskMap", "TaskScorer", "TopicInfo", "check_against_spec",
                        "check_columns", "cycle_grid", "hold", "lint_mapping", "list_topics", "load_mapping",
-                       "load_mapping_text", "mapping_json_schema", "read_bag", "replay_bag", "replay_data",
+                       "load_mapping_text", "mapping_json_schema", "read_bag", "recorded_data", "replay_bag", "replay_data",
                        "replay_paths", "resample", "write_mcap"],
     "ethimon.risk": ["DEFAULT_TAU", "ProbsEstimator", "RiskEstimate", "RiskEstimator", "RiskInferenceError",
                      "VARIANCE_MODES", "default_model_dir", "default_threads", "estimator_kwargs", "load_estimator",
@@ -116,9 +117,9 @@ INTERNAL_REACHES: dict[str, tuple[set[str], str]] = {
                    "which rules read R_e, NOT CHECKED under 'risk: none')"),
     "language._visit": ({"compiler", "offline", "testing", "verify"},
                     "ExprVisitor, the interpreter protocol the four back-ends implement"),
-    "language._load": ({"replay", "scenario"}, "the located YAML validation, for their own file formats"),
-    "language._yaml": ({"replay", "scenario"}, "the located YAML reader, for their own file formats"),
-    "language._model": ({"replay", "scenario", "verify"}, "field types and defaults (FiniteFloat, ACTIVE_RESPONSES, "
+    "language._load": ({"io", "replay", "scenario"}, "the located YAML validation, for their own file formats"),
+    "language._yaml": ({"io", "replay", "scenario"}, "the located YAML reader, for their own file formats"),
+    "language._model": ({"io", "replay", "scenario", "verify"}, "field types and defaults (FiniteFloat, ACTIVE_RESPONSES, "
                                                       "MANUAL_BY_DEFAULT, the located-error helper)"),
     "compiler._plan": ({"testing", "verify"}, "RISK_NAME, the name R_e has in a plan"),
     "compiler._closures": ({"runtime"}, "the closures the monitor runs"),
@@ -134,8 +135,6 @@ INTERNAL_REACHES: dict[str, tuple[set[str], str]] = {
     "sim._arm": ({"gym"}, "the Panda cell env drives the simulated arm directly"),
     "verify._policy": ({"_lint"}, "lint's release-policy warnings (no z3)"),
     "replay._record": ({"cli", "fleet"}, "one bag's record, shared by the serial loop and the Ray workers"),
-    "replay._values": ({"ros2"}, "reduce_value: live samples become numbers exactly as a bag's do"),
-    "replay._mapping": ({"ros2"}, "RISK_INPUTS and parse_field_path of the one mapping format"),
     "scenario._session": ({"fleet"}, "the skipped-file rows of a check report"),
 }
 

@@ -12,7 +12,8 @@ own modules are always allowed):
     audit, risk, sim,       beside each other above runtime: none imports another
       verify, testing       (testing: ReferenceMonitor, the test oracle)
     scenario                scenario files (may carry a sim block, may score text with risk)
-    offline, replay         recorded data checked offline (replay may use offline)
+    io                      the mapping, the hold, the value reduction, Channel and LiveMonitor (the seam)
+    offline, replay         recorded data checked offline (replay may use offline and io)
     fleet                   many scenario files / bags on Ray (ray imported lazily)
     gym                     Gymnasium: the monitor as a shield, the sim cell as an env
     loop                    GovernedLoop: runtime + audit + risk + verify (SMT gate on reload)
@@ -52,14 +53,15 @@ ALLOWED: dict[str, set[str]] = {
     "testing": _BESIDE,
     "scenario": _BESIDE | {"sim", "risk"},
     "offline": _BESIDE | {"audit", "risk"},
-    "replay": _BESIDE | {"audit", "risk", "offline"},
-    "fleet": _BESIDE | {"audit", "risk", "sim", "scenario", "replay", "offline"},
+    "io": _BESIDE,
+    "replay": _BESIDE | {"audit", "risk", "offline", "io"},
+    "fleet": _BESIDE | {"audit", "risk", "sim", "scenario", "replay", "offline", "io"},
     "gym": _BESIDE | {"sim", "risk", "audit"},
     "loop": _BESIDE | {"audit", "risk", "verify"},
-    "_lint": _BESIDE | {"verify", "scenario", "replay"},
-    "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop"},
-    "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop"},
-    "cli": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop",
+    "_lint": _BESIDE | {"verify", "scenario", "replay", "io"},
+    "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop", "io"},
+    "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io"},
+    "cli": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io",
                       "fleet", "ros2", "ethimon", "_lint"},
 }
 
