@@ -126,6 +126,23 @@ DEFAULT_TAU = 0.576
 DEFAULT_TAU_CONFIRM = 0.299
 
 
+def model_tau_warnings(spec: Any) -> list[str]:
+    """``ethimon lint``: a spec that writes a ``risk:`` block and loads the shipped model (no
+    ``risk.estimator.model``) but another τ pair than the model card's (``DEFAULT_TAU``,
+    ``DEFAULT_TAU_CONFIRM``). A spec without a confirm band is not warned about for that (binary
+    governors are a choice); one that sets a band elsewhere, or another τ, is."""
+    if "risk" not in getattr(spec, "model_fields_set", ()) or spec.risk.estimator.model is not None:
+        return []
+    r = spec.risk
+    tc = r.confirm_threshold
+    if r.threshold == DEFAULT_TAU and (tc is None or tc == DEFAULT_TAU_CONFIRM):
+        return []
+    have = f"tau {r.threshold:g}" + (f", tau_confirm {tc:g}" if tc is not None else "")
+    return [f"risk: {have} differs from the shipped model's pair (tau {DEFAULT_TAU:g}, tau_confirm "
+            f"{DEFAULT_TAU_CONFIRM:g}; MODEL_CARD.md), which this spec loads (no risk.estimator.model): "
+            "the outcome figures of the model card do not hold at another pair"]
+
+
 def check_default_manifest(d: Path) -> None:
     """Refuse a shipped default model whose manifest is not the one this code pins."""
     import hashlib
