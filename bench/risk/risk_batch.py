@@ -4,7 +4,7 @@ Scores the frozen test slices of writers w13-w21 (540 rows, one text per row, mi
 the CLI's batch mode in-process, with the shipped model and the default backend, and prints a
 table and a JSON object (texts/s, the load average before and after, machine facts).
 
-    PYTHONPATH=src python bench/risk/risk_batch.py [--rows N] [--json out.json]
+    python -m bench.risk.risk_batch [--rows N] [--json bench/results/risk/risk_batch.json]
 """
 
 from __future__ import annotations
@@ -16,13 +16,12 @@ import glob
 import io
 import json
 import os
-import sys
 import time
 from pathlib import Path
 
+from bench._machine import loadavg, machine_facts
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT))
-from bench._machine import loadavg, machine_facts  # noqa: E402
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -56,7 +56,7 @@ ALLOWED: dict[str, set[str]] = {
     "fleet": _BESIDE | {"audit", "risk", "sim", "scenario", "replay", "offline"},
     "gym": _BESIDE | {"sim", "risk", "audit"},
     "loop": _BESIDE | {"audit", "risk", "verify"},
-    "_lint": _BESIDE | {"verify", "scenario", "replay"},
+    "_lint": _BESIDE | {"verify", "scenario", "replay", "risk"},
     "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop"},
     "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop"},
     "cli": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop",

@@ -118,23 +118,18 @@ DEFAULT_MANIFEST_SHA256 = "2fb9a23c13c368ea220cc2e06c42e02a848c78193857a46d07087
 #: use it without ``--spec``, and the shipped specs write it as their ``risk.threshold``.
 #: (A spec that writes no threshold gets the spec language's default, 0.5.)
 DEFAULT_TAU = 0.576
-#: τ_confirm of the shipped default model (MODEL_CARD.md: the largest value leaving <= 10 % of the
-#: unsafe validation rows below it, same rows as τ): R_e in [τ_confirm, τ) holds the arm for a person.
-#: The shipped governor (specs/governor.yaml) writes it as ``risk.confirm_threshold``; ``ethimon risk``
-#: without ``--spec`` uses this pair; ``ethimon lint`` warns on a spec that loads the shipped model
-#: with another pair.
+#: τ_confirm of the shipped default model (MODEL_CARD.md; specs/governor.yaml's risk.confirm_threshold):
+#: ``ethimon risk`` without ``--spec`` uses this pair; ``ethimon lint`` warns on a spec that loads the
+#: shipped model with another.
 DEFAULT_TAU_CONFIRM = 0.299
 
 
 def model_tau_warnings(spec: Any) -> list[str]:
-    """``ethimon lint``: a spec that writes a ``risk:`` block and loads the shipped model (no
-    ``risk.estimator.model``) but another τ pair than the model card's (``DEFAULT_TAU``,
-    ``DEFAULT_TAU_CONFIRM``). A spec without a confirm band is not warned about for that (binary
-    governors are a choice); one that sets a band elsewhere, or another τ, is."""
+    """``ethimon lint``: a spec with a ``risk:`` block that loads the shipped model at another τ (or
+    a confirm band at another τ_confirm) than the model card's pair; no band at all is a choice."""
     if "risk" not in getattr(spec, "model_fields_set", ()) or spec.risk.estimator.model is not None:
         return []
-    r = spec.risk
-    tc = r.confirm_threshold
+    r, tc = spec.risk, spec.risk.confirm_threshold
     if r.threshold == DEFAULT_TAU and (tc is None or tc == DEFAULT_TAU_CONFIRM):
         return []
     have = f"tau {r.threshold:g}" + (f", tau_confirm {tc:g}" if tc is not None else "")
@@ -500,9 +495,8 @@ class RiskEstimator:
 
 
 def _flatten(wins: list[list[list[int]]]) -> tuple[list[list[int]], list[list[int]]]:
-    """Every view's windows in one list, and per view the indices of its windows."""
     seqs: list[list[int]] = []
-    owner: list[list[int]] = []
+    owner: list[list[int]] = []  # per view, the indices of its windows in seqs
     for w in wins:
         if not w:
             raise RiskInferenceError("a view encoded to no token sequence")

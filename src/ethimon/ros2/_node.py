@@ -394,7 +394,7 @@ class Ros2Monitor:
         if sub.task:
             text = _follow(msg, parse_field_path(self.mapping.task.field))
             if isinstance(text, str) and self.loop.risk is not None:
-                text = text[:MAX_TEXT]
+                # never cut: the estimator reads it in full or refuses it (a fault; issue 31 item 4)
                 if text != self.loop.risk.text:
                     self.loop.risk.set_text(text)
             return
