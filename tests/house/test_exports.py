@@ -132,6 +132,9 @@ INTERNAL_REACHES: dict[str, tuple[set[str], str]] = {
     "risk._recipe": ({"cli"}, "the CLI is the training/evaluation front end"),
     "risk._train": ({"cli"}, "the CLI is the training/evaluation front end"),
     "risk._export": ({"cli"}, "the CLI is the training/evaluation front end (ethimon export)"),
+    "risk._estimator": ({"cli", "_lint"}, "the shipped model's tau pair (DEFAULT_TAU_CONFIRM, model_tau_warnings): "
+                                         "ethimon risk's tiers without --spec, ethimon lint's pair warning"),
+    "risk._reading": ({"cli"}, "check_length: ethimon risk's batch mode refuses an over-long line alone"),
     "sim._arm": ({"gym"}, "the Panda cell env drives the simulated arm directly"),
     "verify._policy": ({"_lint"}, "lint's release-policy warnings (no z3)"),
     "replay._record": ({"cli", "fleet"}, "one bag's record, shared by the serial loop and the Ray workers"),

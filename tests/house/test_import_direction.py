@@ -58,7 +58,7 @@ ALLOWED: dict[str, set[str]] = {
     "fleet": _BESIDE | {"audit", "risk", "sim", "scenario", "replay", "offline", "io"},
     "gym": _BESIDE | {"sim", "risk", "audit"},
     "loop": _BESIDE | {"audit", "risk", "verify"},
-    "_lint": _BESIDE | {"verify", "scenario", "replay", "io"},
+    "_lint": _BESIDE | {"verify", "scenario", "replay", "io", "risk"},
     "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop", "io"},
     "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io"},
     "cli": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io",

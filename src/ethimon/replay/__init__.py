@@ -100,7 +100,7 @@ def recorded_data(recording: Any, mapping: Any, path: str = "<recording>") -> An
                               sm.topic, msgtype)
             c.add(_Recorded(s.value, hdr), int(round(s.t_log * 1e9)), sm.topic, msgtype)
         series[name] = c.series(sm.topic, msgtype)
-    texts = [(int(round(s.t_log * 1e9)), s.value[:MAX_TEXT]) for s in recording.samples
+    texts = [(int(round(s.t_log * 1e9)), s.value) for s in recording.samples
              if s.signal == TASK_TEXT and isinstance(s.value, str)]
     topics = {sm.topic: (sm.type or "recorded", series[n].read) for n, sm in mapping.signals.items()}
     return BagData(path, "recording", series, texts, topics)

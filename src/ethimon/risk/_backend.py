@@ -242,6 +242,24 @@ def encode_views(tokenizer, views: list[tuple[str, str]], max_length: int,
     return out
 
 
+def encode_view_windows(tokenizer, views: list[tuple[str, str]], max_length: int,
+                        truncation: str = "head_tail") -> list[list[list[int]]]:
+    """Per ``(context, focus)`` view, the sequences that read it in full (``_reading.pair_windows``):
+    the ids of :func:`encode_views` while the focus fits, else overlapping windows of the focus."""
+    from ._reading import pair_windows
+    if not views:
+        return []
+    prefix, suffix = _special_wrap(tokenizer)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ctx = tokenizer([c for c, _f in views], add_special_tokens=False, truncation=False,
+                        verbose=False)["input_ids"]
+        foc = tokenizer([f for _c, f in views], add_special_tokens=False, truncation=False,
+                        verbose=False)["input_ids"]
+    return [pair_windows(prefix, suffix, c if cs else [], f, max_length, truncation)
+            for (cs, _f), c, f in zip(views, ctx, foc)]
+
+
 _WRAP: dict[int, tuple[list[int], list[int]]] = {}
 
 

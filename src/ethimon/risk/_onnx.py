@@ -124,6 +124,17 @@ class FastTokenizer:
                 out[i] = pair_ids(self.prefix, self.suffix, c.ids, f.ids, max_length, truncation)
         return out
 
+    def encode_view_windows(self, views: list[tuple[str, str]], max_length: int,
+                            truncation: str) -> list[list[list[int]]]:
+        """As ``_backend.encode_view_windows``: per view, the sequences that read it in full."""
+        from ._reading import pair_windows
+        if not views:
+            return []
+        ctx = self._tok.encode_batch([c for c, _f in views], add_special_tokens=False)
+        foc = self._tok.encode_batch([f for _c, f in views], add_special_tokens=False)
+        return [pair_windows(self.prefix, self.suffix, c.ids if cs else [], f.ids, max_length, truncation)
+                for (cs, _f), c, f in zip(views, ctx, foc)]
+
 
 # ---------------------------------------------------------------- loading
 @dataclass
