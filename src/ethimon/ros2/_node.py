@@ -45,6 +45,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from ..audit import bounded
 from ..errors import DependencyNotInstalled, Ros2Error, SpecError
 from ..loop import AsyncRiskSource, GovernedLoop, LoopStats, ProcessEstimator
 from ..replay import Mapping, SignalMap, check_against_spec, load_mapping
@@ -439,14 +440,15 @@ class Ros2Monitor:
     def _refuse_ack(self, operator: str | None, reason: str, sender: str, message: str) -> None:
         self.acks_refused += 1
         audit = self.loop.audit
+        operator, reason = bounded(operator, 200), bounded(reason, 256)  # a sender's payload, bounded (issue 31)
         if audit is not None:
             try:
                 audit.append("acknowledge", operator=operator, reason=reason, released=False, rules=[],
                              message=message, via=ACK_TOPIC, sender=sender, cycle=self.loop.monitor.cycle)
             except Exception:  # noqa: BLE001
                 pass
-        self._dds.write_ack_result(json.dumps({"operator": operator, "released": False, "rules": [],
-                                               "message": message}))
+        self._dds.write_ack_result(json.dumps({"operator": operator if isinstance(operator, str) else operator["head"],
+                                               "released": False, "rules": [], "message": message}))
 
     def _ack_worker(self) -> None:
         while True:
