@@ -36,6 +36,16 @@ def _finite(x: Any) -> Any:
     return x
 
 
+def _bounded(value: Any, limit: int) -> Any:
+    """A sender's string, bounded for the audit log (as ``ethimon.audit.bounded``): its head, length and sha256."""
+    if isinstance(value, str) and len(value) > limit:
+        import hashlib
+        data = value.encode("utf-8", "surrogatepass")
+        return {"head": value[:limit], "chars": len(value), "bytes": len(data),
+                "sha256": hashlib.sha256(data).hexdigest()}
+    return value
+
+
 def decision_json(d: Decision, ids: tuple[str, ...], *, t_unix: float | None = None,
                   hold: list | None = None) -> str:
     """The JSON text published as the decision of one cycle (strict JSON: no NaN/inf); ``hold``: what
@@ -235,13 +245,15 @@ class LiveMonitor:
     def _refuse(self, operator: str | None, reason: str, sender: str, message: str) -> dict[str, Any]:
         self.acks_refused += 1
         audit = self.loop.audit
+        operator, reason = _bounded(operator, 200), _bounded(reason, 256)  # a sender's payload (issue 31)
         if audit is not None:
             try:
-                audit.append("acknowledge", operator=operator, reason=reason[:2000], released=False, rules=[],
+                audit.append("acknowledge", operator=operator, reason=reason, released=False, rules=[],
                              message=message[:300], sender=sender[:300], cycle=self.loop.monitor.cycle)
             except Exception:  # noqa: BLE001
                 pass
-        return {"operator": operator, "released": False, "rules": [], "message": message}
+        return {"operator": operator if not isinstance(operator, dict) else operator["head"], "released": False,
+                "rules": [], "message": message}
 
     @property
     def skipped(self) -> dict[str, int]:
