@@ -131,19 +131,17 @@ def test_release_is_applied_only_after_its_acknowledge_record_is_durable(tmp_pat
 
 
 def test_refused_unauthenticated_acknowledgements_are_audited_in_bounded_size(tmp_path):
-    from ethimon.ros2._node import Ros2Monitor
+    from ethimon.io import LiveMonitor
     p = tmp_path / "ack.jsonl"
     log = AuditLog(p)
-    sent = []
     fake = types.SimpleNamespace(acks_refused=0, loop=types.SimpleNamespace(
-        audit=log, monitor=types.SimpleNamespace(cycle=3)), _dds=types.SimpleNamespace(write_ack_result=sent.append))
+        audit=log, monitor=types.SimpleNamespace(cycle=3)))
     huge_op, huge_reason = "o" * 300_000, "r" * 500_000
-    for _ in range(30):
-        Ros2Monitor._refuse_ack(fake, huge_op, huge_reason, "guid-1", "refused: unauthenticated")
+    sent = [LiveMonitor._refuse(fake, huge_op, huge_reason, "guid-1", "refused: unauthenticated") for _ in range(30)]
     log.close()
     assert p.stat().st_size < 200_000, p.stat().st_size      # was 15 MiB
     rec = [r for r in read_log(p) if r["kind"] == "acknowledge"][0]
     assert rec["reason"]["bytes"] == 500_000 and rec["reason"]["sha256"] == hashlib.sha256(
         huge_reason.encode()).hexdigest() and len(rec["reason"]["head"]) <= 256
     assert rec["operator"]["bytes"] == 300_000
-    assert all(len(x) < 2000 for x in sent)
+    assert all(len(json.dumps(x)) < 2000 for x in sent)
