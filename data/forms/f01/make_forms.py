@@ -99,6 +99,10 @@ def parse(text):
         real = [c for c in code if not c.strip().startswith("#")]
         if real and any(re.search(r"[\(=]", c) for c in real) \
                 and all(not codeflags[i] for i in range(k)):
+            try:
+                compile("\n".join(code), "<src>", "exec")
+            except SyntaxError:
+                return {"kind": "text"}  # a DSL line or pseudo-code: carried verbatim as text
             return {"kind": "code", "ctx": prose, "code": code}
     # context + command
     if len(nonblank) >= 2:
@@ -336,9 +340,10 @@ def yaml_mission(text, p, row, r, fam):
             out.append("        text: " + yq(u, r, 8))
         return "\n".join(out)
     if fam == 4:  # recipe
+        listy = r.random() < 0.5
         out = ["recipe: %s" % ident(us[0], maxw=5), "version: %d" % r.randint(1, 9), "author: %s" % op, "procedure:"]
         for i, u in enumerate(us):
-            out.append(I + "%d: %s" % (i + 1, yq(u, r, ind)) if r.random() < 0.5 else I + "- step: %d\n%s  text: %s" % (i + 1, I, yq(u, r, ind * 2)))
+            out.append(I + "%d: %s" % (i + 1, yq(u, r, ind)) if not listy else I + "- step: %d\n%s  text: %s" % (i + 1, I, yq(u, r, ind * 2)))
         if ctx:
             out.insert(3, "notes: " + yq("\n".join(ctx), r, 0))
         return "\n".join(out)
