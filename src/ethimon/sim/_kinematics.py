@@ -1,5 +1,6 @@
 """The kinematics of :class:`~._arm.ArmSim` and the probes the controllers plan with: IK/FK, the
-hazard axis, a route's clearances, link points, a step away from the people."""
+hazard axis, a route's clearances, link points, a step away from the people; the gravity load of
+arm + payload that the brakes must hold."""
 
 from __future__ import annotations
 
@@ -8,7 +9,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ._cell import (ARM_JOINTS, EE_LINK, HAND_LINK, HOME_JOINTS_RAD, _DOWN_RPY, _NO_HUMAN_M)
+from .._robot import PAYLOAD_OFFSET_M, brake_problem, gravity_torque
+from ._cell import (ARM_JOINTS, EE_LINK, FLANGE_LINK, HAND_LINK, HOME_JOINTS_RAD, _DOWN_RPY, _NO_HUMAN_M)
 
 __all__ = ["_Kinematics"]
 
@@ -212,3 +214,31 @@ class _Kinematics:
         if n < 1e-6:
             return None
         return np.array([x[0] + step_m * d[0] / n, x[1] + step_m * d[1] / n, x[2] + 0.1])
+
+    # ------------------------------------------------------------ gravity (issue 32)
+
+    def payload(self) -> tuple[float, tuple[float, float, float]]:
+        """The held object as a payload: ``(mass kg, its centre of mass in the flange frame m)``;
+        ``(0, grasp point)`` when nothing is held."""
+        if self.held is None:
+            return 0.0, PAYLOAD_OFFSET_M
+        p, cid = self._p, self.cid
+        st = p.getLinkState(self.robot, FLANGE_LINK, computeForwardKinematics=1, physicsClientId=cid)
+        inv_pos, inv_orn = p.invertTransform(st[4], st[5])  # the flange's URDF frame
+        pos, _ = p.getBasePositionAndOrientation(self.objects[self.held], physicsClientId=cid)
+        rel, _ = p.multiplyTransforms(inv_pos, inv_orn, pos, (0.0, 0.0, 0.0, 1.0))
+        return float(self.object_specs[self.held].mass_kg), (float(rel[0]), float(rel[1]), float(rel[2]))
+
+    def gravity_load(self, q: Sequence[float] | None = None) -> np.ndarray:
+        """The torque (N·m) each joint must hold against gravity now: arm + held payload
+        (:func:`ethimon._robot.gravity_torque`, the URDF's masses; equal to PyBullet's inverse
+        dynamics at rest)."""
+        q = self.joint_state()[0] if q is None else q
+        m, off = self.payload()
+        return np.asarray(gravity_torque(q, m, off))
+
+    def brake_problem_now(self) -> str | None:
+        """``None`` when every brake holds arm + payload where the arm is; else why not."""
+        q, _ = self.joint_state()
+        m, off = self.payload()
+        return brake_problem(q, m, off, holding_n_m=tuple(self.brake_torque))

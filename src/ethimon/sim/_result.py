@@ -119,6 +119,10 @@ class SimResult:
         max_past_limit_mrad: the furthest any joint went past its rated position limit (mrad,
             every physics step of the run; 0 = never outside).
         acknowledgements: ``(t_s, accepted, message)`` for every operator acknowledgement.
+        brake_log: ``(t_s, what)`` for every power-off: the brakes' check of arm + payload, and a
+            refused power-off's reason (issue 32); ``brakes_escalated``: any was refused.
+        max_travel_unpowered_rad, max_drop_unpowered_m: the furthest any joint travelled, and the
+            grasp point fell, from where they were at a power-off, while unpowered.
         task_resumes: how often the task resumed after a response.
         min_response_s: the shortest time a response drove the arm before the task resumed
             (``None``: the task never resumed).
@@ -162,6 +166,10 @@ class SimResult:
     human_overshoot_m: float | None = None
     acknowledgements: tuple[tuple[float, bool, str], ...] = ()
     max_past_limit_mrad: float = 0.0
+    brake_log: tuple[tuple[float, str], ...] = ()
+    brakes_escalated: bool = False
+    max_travel_unpowered_rad: float = 0.0
+    max_drop_unpowered_m: float = 0.0
     task_resumes: int = 0
     min_response_s: float | None = None
 
@@ -272,6 +280,12 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
             and r.human_overshoot_m > ex.max_human_overshoot_m + 1e-9:
         out.append(f"sim: a person went {r.human_overshoot_m:.3f} m past its last waypoint, expected "
                    f"at most {ex.max_human_overshoot_m:g} m")
+    if ex.max_drop_after_power_off_m is not None and r.max_drop_unpowered_m > ex.max_drop_after_power_off_m:
+        out.append(f"sim: after power-off the grasp point fell {r.max_drop_unpowered_m:.3f} m, expected "
+                   f"at most {ex.max_drop_after_power_off_m:g} m")
+    if ex.brakes_escalated is not None and r.brakes_escalated != ex.brakes_escalated:
+        out.append(f"sim: brakes_escalated {r.brakes_escalated}, expected {ex.brakes_escalated}"
+                   + (f" ({r.brake_log[-1][1]})" if r.brake_log else ""))
     if ex.max_past_limit_mrad is not None and r.max_past_limit_mrad > ex.max_past_limit_mrad + 1e-9:
         out.append(f"sim: a joint went {r.max_past_limit_mrad:.2f} mrad past its rated position limit, "
                    f"expected at most {ex.max_past_limit_mrad:g} mrad")

@@ -419,6 +419,9 @@ def _summarize(res: SimResult, arm: GovernedArm, sim: ArmSim, people: _PeopleWat
     res.max_human_speed_ratio, res.human_overshoot_m = people.result()
     res.acknowledgements = tuple(ack_log)
     res.max_past_limit_mrad = round(1000.0 * sim.max_past_limit_rad, 4)
+    res.brake_log, res.brakes_escalated = tuple(sim.brake_log), any("refused" in w for _, w in sim.brake_log)
+    res.max_travel_unpowered_rad = round(sim.max_travel_unpowered_rad, 5)
+    res.max_drop_unpowered_m = round(sim.max_drop_unpowered_m, 5)
     res.fired = tuple(fired)
     res.sim_time_s = round(sim.time_s, 6)
     res.realtime_factor = res.sim_time_s / loop_wall if loop_wall > 0 else math.inf
