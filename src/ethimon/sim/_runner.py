@@ -280,6 +280,17 @@ def _collect(res: SimResult, rec: CycleRecord, near_m: float, dt: float) -> None
                 res.retreat_max_link_speed_near_human_m_s or 0.0, rec.link_speed_max_m_s)
 
 
+def _swing(res: SimResult, sim: ArmSim, axis0: dict[str, float]) -> None:
+    """Per person: how far a held hazard's axis has turned toward them below its angle at the
+    first override (``axis0``, filled at the first call), the worst cycle so far."""
+    ang = sim.hazard_axis_angles_deg(each=True)
+    if not ang:
+        return
+    for n, a in ang[0].items():
+        a0 = axis0.setdefault(n, a)
+        res.hazard_axis_min_swing_deg[n] = round(max(res.hazard_axis_min_swing_deg.get(n, 0.0), a0 - a), 2)
+
+
 class _PeopleWatch:
     """How honestly the people followed their scripts: measured speed (true positions, cycle
     to cycle) over the script's fastest, and overshoot past the last waypoint."""
@@ -412,8 +423,9 @@ def _summarize(res: SimResult, arm: GovernedArm, sim: ArmSim, people: _PeopleWat
     res.route = sp.route if sp is not None else None
     res.dropped = tuple(sim.dropped)
     res.task_stopped = arm.task_stopped
-    ang = sim.hazard_axis_angles_deg()
-    res.hazard_axis_angle_end_deg = round(ang[0], 2) if ang else None
+    ang = sim.hazard_axis_angles_deg(each=True)
+    res.hazard_axis_angles_end_deg = {n: round(a, 2) for n, a in ang[0].items()} if ang else {}
+    res.hazard_axis_angle_end_deg = min(res.hazard_axis_angles_end_deg.values()) if ang else None
     res.wrist_turn_rad = round(sp.wrist_turn_rad, 4) if sp is not None else None
     res.object_end_z_m = {n: round(z, 4) for n, z in sim.object_z().items()}
     res.max_human_speed_ratio, res.human_overshoot_m = people.result()
@@ -488,6 +500,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         people = _PeopleWatch(sim)
         ack_log: list[tuple[float, bool, str]] = []
         resp_since: float | None = None
+        axis0: dict[str, float] = {}  # each person's hazard-axis angle at the first override
         for _ in range(n_cycles):
             while acks and sim.time_s >= acks[0] - 1e-9:  # the operator's acknowledgement
                 acks.pop(0)
@@ -525,6 +538,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
                 fired.setdefault(v, None)
             if rec.faults:
                 res.fault_cycles += 1
+            if res.first_override_cycle is not None or rec.override:
+                _swing(res, sim, axis0)
             if rec.override:
                 if res.first_override_cycle is None:
                     res.first_override_cycle = rec.cycle
