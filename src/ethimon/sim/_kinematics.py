@@ -79,11 +79,14 @@ class _Kinematics:
         hs = p.getLinkState(self.robot, HAND_LINK, computeForwardKinematics=1, physicsClientId=cid)
         return p.multiplyTransforms(hs[0], hs[1], *self._held_rel)
 
-    def hazard_axis_angles_deg(self, qs: Sequence[Sequence[float]] | None = None) -> list[float] | None:
+    def hazard_axis_angles_deg(self, qs: Sequence[Sequence[float]] | None = None, *,
+                               each: bool = False) -> list | None:
         """Angle (deg) between the held object's declared ``hazard_axis`` and the direction from
-        the object's centre to the nearest person (the nearest point of their capsule axis), at
-        each configuration in ``qs`` (default: now; state restored afterwards). 180 = pointed
-        straight away. ``None`` when no object with a ``hazard_axis`` is held or there is nobody.
+        the object's centre to each person (the nearest point of their capsule axis), the worst
+        (smallest) over every person present (issue 32: every person counts, not only the
+        nearest), at each configuration in ``qs`` (default: now; state restored afterwards).
+        180 = pointed straight away. ``each=True``: per configuration a dict person -> angle.
+        ``None`` when no object with a ``hazard_axis`` is held or there is nobody.
         """
         if self.held is None or not self.humans:
             return None
@@ -96,24 +99,21 @@ class _Kinematics:
         for hb in self.humans.values():
             c = self.human_position(hb.spec.name)
             r, h = hb.spec.radius_m, hb.spec.height_m
-            people.append((c, max(h / 2 - r, 0.0)))
+            people.append((hb.spec.name, c, max(h / 2 - r, 0.0)))
 
-        def angle() -> float:
+        def angle():
             pos, orn = self._held_pose_for_hand()
             pos = np.asarray(pos)
             rot = np.asarray(p.getMatrixFromQuaternion(orn)).reshape(3, 3)
             a = rot @ a_obj
-            best, to = math.inf, None
-            for c, half in people:
+            per = {}
+            for name, c, half in people:
                 z = min(max(pos[2], c[2] - half), c[2] + half)
                 v = np.array([c[0], c[1], z]) - pos
                 d = float(np.linalg.norm(v))
-                if d < best:
-                    best, to = d, v
-            if to is None or best < 1e-9:
-                return 0.0
-            cos = float(np.dot(a, to) / best)
-            return math.degrees(math.acos(min(1.0, max(-1.0, cos))))
+                cos = float(np.dot(a, v) / d) if d > 1e-9 else 1.0
+                per[name] = math.degrees(math.acos(min(1.0, max(-1.0, cos))))
+            return per if each else min(per.values())
 
         if qs is None:
             return [angle()]

@@ -318,7 +318,7 @@ class SimExpect(_Model):
         "(power removed from a gripper that is not self-locking, or pulled out beyond its friction)")
     min_hazard_axis_angle_deg: float | None = Field(
         None, ge=0.0, le=180.0, description="at the end of the run, the angle between a held "
-        "object's hazard_axis and the direction from it to the nearest person is at least this "
+        "object's hazard_axis and the direction from it to every person (the worst-placed) is at least this "
         "(over 90: pointed away)")
     max_human_speed_ratio: float | None = Field(
         None, gt=0.0, description="every person's measured horizontal speed at most this many "

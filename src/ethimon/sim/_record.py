@@ -371,10 +371,12 @@ class Recorder:
         if sim.humans:  # each person's speed now (a walking person is the reason to re-plan)
             lines.append(("people: " + ", ".join(f"{n} {self._person_speed(n, rec.t_s):.2f} m/s"
                                                  for n in sim.humans))[:90])
-        angles = sim.hazard_axis_angles_deg() if hasattr(sim, "hazard_axis_angles_deg") else None
-        if angles:
+        per = sim.hazard_axis_angles_deg(each=True) if hasattr(sim, "hazard_axis_angles_deg") else None
+        if per:  # every person counts: the worst-placed one (issue 32)
+            who = min(per[0], key=per[0].get)
+            angles = [per[0][who]]
             lines.append(f"{sim.held} {sim.object_specs[sim.held].hazard or 'hazard'} axis: "
-                         f"{angles[0]:.0f} deg from the nearest person"
+                         f"{angles[0]:.0f} deg from {who}" + (" (worst of all)" if len(per[0]) > 1 else "")
                          + ("  (pointed away)" if angles[0] >= 90 else "  (TOWARD them)"))
         if rec.faults:
             lines.append(f"fault: {rec.faults[0]}"[:90])

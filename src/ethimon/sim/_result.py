@@ -110,7 +110,12 @@ class SimResult:
             ``slipped``: pulled out beyond the fingers' friction).
         object_end_z_m: height of every object's centre at the end of the run.
         hazard_axis_angle_end_deg: at the end, the angle between the held object's declared
-            ``hazard_axis`` and the direction to the nearest person (``None``: none held/declared).
+            ``hazard_axis`` and the direction to the worst-placed person: the smallest over every
+            person present, not only the nearest (``None``: none held/declared).
+        hazard_axis_angles_end_deg: the same angle per person at the end (``{}``: none).
+        hazard_axis_min_swing_deg: per person, how far (deg) the axis turned toward them below
+            the angle it had at the first override, at the worst cycle from then on (0: never;
+            ``{}``: none held/declared).
         max_human_speed_ratio: the largest measured horizontal speed of a person (from its true
             position, cycle to cycle) over the fastest speed its waypoints script (``None``: no
             moving person).
@@ -159,6 +164,8 @@ class SimResult:
     min_hazard_distance_after_override_m: float | None = None
     dropped: tuple[tuple[str, float, str], ...] = ()
     hazard_axis_angle_end_deg: float | None = None
+    hazard_axis_angles_end_deg: dict[str, float] = field(default_factory=dict)
+    hazard_axis_min_swing_deg: dict[str, float] = field(default_factory=dict)
     wrist_turn_rad: float | None = None
     task_stopped: str | None = None
     object_end_z_m: dict[str, float] = field(default_factory=dict)
@@ -269,9 +276,11 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
             out.append("sim: expected a held object with a hazard_axis and a person at the end "
                        "(min_hazard_axis_angle_deg), found none")
         elif a < ex.min_hazard_axis_angle_deg - 1e-9:
+            who = min(r.hazard_axis_angles_end_deg, key=r.hazard_axis_angles_end_deg.get,
+                      default="a person")
             out.append(f"sim: at the end the held object's hazard axis is {a:.1f} deg from the "
-                       f"direction to the nearest person, expected at least "
-                       f"{ex.min_hazard_axis_angle_deg:g} deg (pointed away)")
+                       f"direction to {who} (the worst-placed person; every person counts), expected "
+                       f"at least {ex.min_hazard_axis_angle_deg:g} deg (pointed away)")
     if ex.max_human_speed_ratio is not None and r.max_human_speed_ratio is not None \
             and r.max_human_speed_ratio > ex.max_human_speed_ratio + 1e-9:
         out.append(f"sim: a person moved at {r.max_human_speed_ratio:.2f} x the fastest speed its "

@@ -2,7 +2,8 @@
 the monitor runs as written (τ outside the reachable R_e, R_e not monotone, a latch that never
 releases, release policies, vacuous or contradictory obligations, unbounded signals, the fault
 latch shorter than a window, a safe pose outside the Panda's rated range, a stop 0/1 the brakes
-cannot hold with the rated payload, the confirm band)."""
+cannot hold with the rated payload, a retreat uncapped
+near people, the confirm band)."""
 
 from __future__ import annotations
 
@@ -39,7 +40,8 @@ class Lints(CheckBase):
                 ("lint.vacuous", self.lint_vacuous), ("lint.contradiction", self.lint_contradictions),
                 ("lint.unbounded", self.lint_unbounded), ("lint.fault_gap", self.lint_fault_gap),
                 ("lint.safe_pose_range", self.lint_safe_pose_range),
-                ("lint.brakes", lambda: [self._timed(self.lint_brakes)])] + (
+                ("lint.brakes", lambda: [self._timed(self.lint_brakes)]),
+                ("lint.retreat_uncapped", self.lint_retreat_uncapped)] + (
                     [("lint.confirm_band", lambda: [self._timed(lambda: lint_confirm_band(self))])]
                     if has_tiers(self.full_spec) else [])
 
