@@ -386,6 +386,35 @@ class Lints(CheckBase):
         return [Finding("lint", name, WARNING, f"{where}{problem} (an error for 'ethimon lint' and "
                         "'check --sim'; FCI 'Limits for Panda')")]
 
+    def lint_retreat_uncapped(self) -> list[Finding]:
+        """A spec that can send the arm to its safe pose but states no near-human speed rule
+        (``when: human_distance < D``, ``require: ee_speed <= V``) leaves the retreat uncapped
+        near people on a real cell (issue 32 item 5: a governor-only cell's fold passed a helper
+        with a link at 0.41 m/s). The simulation caps it at its own 0.25 m/s within 1.5 m
+        (``ethimon.sim._rules.RETREAT_NEAR_HUMAN_DEFAULT``); the pattern is the one the sim reads."""
+        import re
+        name = "lint.retreat_uncapped"
+        spec = self.spec
+        num = r"([A-Za-z_][A-Za-z0-9_]*|[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)"
+        when = (re.compile(rf"^\s*human_distance\s*<=?\s*{num}\s*$"),
+                re.compile(rf"^\s*{num}\s*>=?\s*human_distance\s*$"))
+        req = re.compile(rf"^\s*ee_speed\s*<=?\s*{num}\s*$")
+        obs = list(getattr(spec, "obligations", ()) or ())
+        capped = [ob.id for ob in obs if any(w.match(getattr(ob, "when", None) or "") for w in when)
+                  and req.match(getattr(ob, "require", "") or "")]
+        if capped:
+            return [Finding("lint", name, OK, f"retreats near people are capped by {capped[0]!r}")]
+        resp = [str(getattr(getattr(spec, "risk", None), "response", "") or "")]
+        resp += [str(getattr(ob, "response", "") or "") for ob in obs]
+        resp.append(str(getattr(spec, "on_fault", "") or ""))
+        if not any(r.endswith("safe_pose") for r in resp):
+            return [Finding("lint", name, OK, "no response sends the arm to its safe pose")]
+        return [Finding("lint", name, WARNING,
+                        "a response sends the arm to its safe pose but no rule caps its speed near people "
+                        "(when: human_distance < D, require: ee_speed <= V): on a real cell the retreat "
+                        "moves at the safe pose's joint speed past anyone beside it; the simulation caps "
+                        "it at its own 0.25 m/s within 1.5 m. Add such a rule (cobot_cell's slow_near_human)")]
+
     def lint_brakes(self) -> Finding:
         """A stop 0/1 cuts motor power and leaves the arm to its brakes: over a grid of poses (the
         spec's safe pose and joints 2-6 across their rated ranges, where gravity loads the joints),
