@@ -15,7 +15,8 @@ own modules are always allowed):
     offline, replay         recorded data checked offline (replay may use offline)
     fleet                   many scenario files / bags on Ray (ray imported lazily)
     gym                     Gymnasium: the monitor as a shield, the sim cell as an env
-    loop                    GovernedLoop: runtime + audit + risk + verify (SMT gate on reload)
+    view                    the verdict channels (MCAP and the live Foxglove server): reads decisions as values
+    loop                    GovernedLoop: runtime + audit + risk + verify (SMT gate on reload) + view
     _lint                   ethimon lint as a library: load, compile, release policies, a mapping
     ethimon (root)          the public names
     cli                     the command line, on top
@@ -46,21 +47,22 @@ ALLOWED: dict[str, set[str]] = {
     "spec": _LANGUAGE | {"_api"},
     "runtime": _COMPILED,
     "audit": _BESIDE,
+    "view": _BESIDE,
     "risk": _BESIDE,
     "sim": _BESIDE,
     "verify": _BESIDE,
     "testing": _BESIDE,
     "scenario": _BESIDE | {"sim", "risk"},
     "offline": _BESIDE | {"audit", "risk"},
-    "replay": _BESIDE | {"audit", "risk", "offline"},
+    "replay": _BESIDE | {"audit", "risk", "offline", "view"},
     "fleet": _BESIDE | {"audit", "risk", "sim", "scenario", "replay", "offline"},
     "gym": _BESIDE | {"sim", "risk", "audit"},
-    "loop": _BESIDE | {"audit", "risk", "verify"},
+    "loop": _BESIDE | {"audit", "risk", "verify", "view"},
     "_lint": _BESIDE | {"verify", "scenario", "replay"},
-    "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop"},
+    "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop", "view"},
     "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop"},
     "cli": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop",
-                      "fleet", "ros2", "ethimon", "_lint"},
+                      "fleet", "ros2", "ethimon", "_lint", "view"},
 }
 
 

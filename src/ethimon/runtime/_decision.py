@@ -69,8 +69,9 @@ class Decision:
     @property
     def latched_rules(self) -> tuple[str, ...]:
         """The rules whose latch holds the override after this cycle, by name (see the class doc)."""
-        if self._lat is not None:
-            self._rules = tuple(compress(self._names, self._lat))
+        lat = self._lat  # read once: a viewer's thread may resolve it at the same time
+        if lat is not None:
+            self._rules = tuple(compress(self._names, lat))
             self._lat = None
         return self._rules
 
