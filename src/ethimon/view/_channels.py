@@ -140,14 +140,23 @@ class VerdictChannels:
         get = values.get
         return [(INPUTS + name, {"value": num(get(name))}) for name in self.inputs]
 
+    def messages(self, cycle: int, override: bool, response: str, violations: Sequence[str], fault: bool,
+                 latched: bool, held: Sequence[str], margins: Sequence[float], r: float | None,
+                 judge: float | None, inputs: Mapping[str, Any], awaiting_release: bool = False,
+                 ids: Sequence[str] | None = None) -> list[tuple[str, dict]]:
+        """The messages of one cycle but its faults (decision, margins, risk, then the inputs):
+        ``held`` the rules whose latch holds the override, ``inputs`` the values the monitor read."""
+        return [(DECISION, self.decision(cycle, override, response, violations, fault, latched, held,
+                                         awaiting_release)),
+                (MARGINS, self.margins(margins, ids)),
+                (RISK, self.risk(r, held, judge))] + self.input_values(inputs)
+
     def of_decision(self, d: Any, inputs: Mapping[str, Any]) -> list[tuple[str, dict]]:
         """Every message of one live cycle: ``d`` a :class:`~ethimon.runtime.Decision`, ``inputs`` the
         values the monitor read (the judge's verdict, if any, under ``"judge"``). Live, the faults
         message is sent every cycle (a viewer that joins late sees them at once)."""
-        held = d.latched_rules
-        out = [(DECISION, self.decision(d.cycle, d.override, d.response.value, d.violations, bool(d.faults),
-                                        d.latched, held, d.awaiting_release)),
-               (MARGINS, self.margins(d.margins, d.ids)),
-               (RISK, self.risk(d.risk, held, inputs.get("judge"))),
-               (FAULTS, self.faults(d.faults))]
-        return out + self.input_values(inputs)
+        out = self.messages(d.cycle, d.override, d.response.value, d.violations, bool(d.faults), d.latched,
+                            d.latched_rules, d.margins, d.risk, inputs.get("judge"), inputs, d.awaiting_release,
+                            d.ids)
+        out.insert(3, (FAULTS, self.faults(d.faults)))
+        return out

@@ -78,8 +78,20 @@ class FoxgloveView:
         self.channels = channels
         self.host, port = parse_address(address)
         self._ctx = foxglove.Context()
+        #: channel subscriptions made by clients so far (:meth:`wait_subscribed`)
+        self.subscriptions = 0
+        self._subscribed = threading.Condition()
+        view = self
+
+        class _Listener:
+            def on_subscribe(self, client: Any, channel: Any) -> None:
+                with view._subscribed:
+                    view.subscriptions += 1
+                    view._subscribed.notify_all()
+
         try:
-            self._server = foxglove.start_server(name=name, host=self.host, port=port, context=self._ctx)
+            self._server = foxglove.start_server(name=name, host=self.host, port=port, context=self._ctx,
+                                                 server_listener=_Listener())
         except RuntimeError as exc:  # the SDK reports a bind failure as a RuntimeError
             raise OSError(f"cannot serve Foxglove on {self.host}:{port}: {exc}") from None
         self.port: int = int(self._server.port)
@@ -98,6 +110,12 @@ class FoxgloveView:
         self.error: str | None = None
         self._worker = threading.Thread(target=self._run, name="ethimon-foxglove", daemon=True)
         self._worker.start()
+
+    def wait_subscribed(self, count: int = 1, timeout: float | None = None) -> bool:
+        """Wait until clients have made ``count`` channel subscriptions (at most ``timeout`` s; ``None``:
+        no limit); whether they have. What is published before a client subscribes reaches no one."""
+        with self._subscribed:
+            return self._subscribed.wait_for(lambda: self.subscriptions >= count, timeout)
 
     @property
     def url(self) -> str:
