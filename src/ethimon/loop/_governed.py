@@ -497,7 +497,7 @@ class GovernedLoop(_Acknowledging, _Reloading):
         ok = self._log("decision", event=event, loop_cycle=self.stats.cycles - 1, cycle=d.cycle,
                        override=d.override, response=d.response.value, violations=list(d.violations),
                        faults=[f.message for f in d.faults], fault_kinds=[f.kind for f in d.faults],
-                       latched=d.latched, risk=d.risk,
+                       latched=d.latched, latched_rules=list(d.latched_rules), risk=d.risk,
                        margins=dict(zip(self._ids, d.margins)) if d.margins else {},
                        inputs=inputs, risk_age_s=reading.age_s if reading is not None else None,
                        spec_sha256=self.spec_sha256,

@@ -117,7 +117,8 @@ def decision_json(d: Decision, ids: tuple[str, ...], *, t_unix: float | None = N
         "override": bool(d.override), "response": d.response.value, "violations": list(d.violations),
         "faults": [{"kind": f.kind, "subject": f.subject, "message": f.message} for f in d.faults],
         "margins": margins, "risk": _finite(d.risk) if d.risk is not None else None,
-        "latched": bool(d.latched), "hold": hold or []}, separators=(",", ":"), allow_nan=False)
+        "latched": bool(d.latched), "latched_rules": list(d.latched_rules), "hold": hold or []},
+        separators=(",", ":"), allow_nan=False)
 
 
 class Ros2Monitor:
@@ -210,6 +211,8 @@ class Ros2Monitor:
             self._dds = _Dds(self, config if config is not None else cyclone_config(
                 interface=interface, peers=tuple(peers), multicast=multicast, enclave=enclave))
         except BaseException:
+            if getattr(self, "loop", None) is not None:
+                self.loop.stop()  # a Foxglove view it started gives its port back
             self._ack_q.put(None)
             if risk is not None:
                 risk.stop()
