@@ -120,7 +120,8 @@ def serve_verdicts(res: Any, view: Any, spec: Spec, *, speed: float = 1.0,
     """Serve the per-cycle verdicts of ``res`` (``keep_trace=True``) to a live view (a
     :class:`~ethimon.view.FoxgloveView`, or any object with ``put_messages(messages, t_ns)``), paced
     on the bag's timeline: ``speed`` 1 is the bag's own pace, 2 twice as fast, 0 as fast as the view
-    takes them. Returns the number of cycles served."""
+    takes them (a replay is no control loop: then it waits for the view's queue to drain every 256
+    cycles, so nothing is dropped). Returns the number of cycles served."""
     if not (isinstance(speed, (int, float)) and speed >= 0 and speed == speed and speed != float("inf")):
         raise ValueError(f"speed={speed!r}; expected a number >= 0 (0: no pacing)")
     _, cycles = verdict_messages(res, spec)
@@ -133,6 +134,10 @@ def serve_verdicts(res: Any, view: Any, spec: Spec, *, speed: float = 1.0,
             wait = start + (t - t0) / 1e9 / speed - clock()
             if wait > 0:
                 sleep(wait)
+        elif n % 256 == 255:
+            flush = getattr(view, "flush", None)
+            if flush is not None:
+                flush()
         view.put_messages(msgs, t)
         n += 1
     return n
