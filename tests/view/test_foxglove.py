@@ -38,25 +38,14 @@ TOPICS = [DECISION, MARGINS, RISK, FAULTS, INPUTS + "human_distance", INPUTS + "
 
 
 def _watch(loop: GovernedLoop, client: FoxgloveClient) -> None:
-    """Cycle until the subscription is live (the server takes the subscribe in its own time): bounded."""
+    """Subscribe to every topic and wait (bounded) until the server has taken the subscriptions."""
     client.handshake(set(TOPICS))
     client.subscribe(TOPICS)
-    for _ in range(200):
-        loop.cycle(OK)
-        loop.foxglove.flush()
-        try:
-            client.ws.recv(timeout=0.02)  # any message data frame: subscribed
-            break
-        except TimeoutError:
-            continue
-    else:
-        pytest.fail("no message reached the subscribed client")
+    assert loop.foxglove.wait_subscribed(len(TOPICS), timeout=5.0)
+    loop.cycle(OK)  # one clean cycle first: every channel delivers
     loop.foxglove.flush()
-    while True:  # drain what is in flight
-        try:
-            client.ws.recv(timeout=0.05)
-        except TimeoutError:
-            break
+    m = _cycle(client)
+    assert not m[DECISION]["override"] and m[DECISION]["latched_rules"] == []
 
 
 def _cycle(client: FoxgloveClient) -> dict[str, dict]:
@@ -64,7 +53,6 @@ def _cycle(client: FoxgloveClient) -> dict[str, dict]:
     return {topic: obj for topic, _, obj in client.messages(len(TOPICS))}
 
 
-@pytest.mark.slow
 def test_a_protocol_client_sees_named_margins_risk_and_the_latch() -> None:
     loop = GovernedLoop(ethimon.load_spec_text(SPEC), foxglove=0, period_s=1.0)
     client = FoxgloveClient(loop.foxglove.url)
@@ -155,3 +143,13 @@ def test_address(text, want) -> None:
 def test_a_bad_address_is_refused_with_the_form(text) -> None:
     with pytest.raises(ValueError, match=r"\[HOST:\]PORT"):
         parse_address(text)
+
+
+@pytest.mark.slow  # a fresh interpreter
+def test_no_foxglove_import_until_a_view_starts() -> None:
+    import subprocess
+    import sys
+    code = ("import sys, ethimon, ethimon.view, ethimon.loop, ethimon.replay, ethimon.cli\n"
+            "print(sorted(m for m in ('foxglove', 'websockets') if m in sys.modules))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0 and r.stdout.strip() == "[]", r.stderr
