@@ -79,6 +79,9 @@ def iter_lint(paths: Iterable[str | os.PathLike], *, mapping: str | None = None)
             yield LintLine(path, "ok", f"{path}: ok ({spec.name}, {len(spec.obligations)} obligations)")
             for w in release_policy_warnings(spec):
                 yield LintLine(path, "warning", f"{path}: warning: {w}")
+            from .risk._estimator import model_tau_warnings  # no torch
+            for w in model_tau_warnings(spec):
+                yield LintLine(path, "warning", f"{path}: warning: {w}")
             if mapping:
                 from .replay import check_against_spec, lint_mapping, load_mapping
                 m = load_mapping(mapping)

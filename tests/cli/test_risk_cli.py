@@ -161,3 +161,112 @@ def test_doctests(module):
     mod = importlib.import_module(module)
     res = doctest.testmod(mod, optionflags=doctest.ELLIPSIS)
     assert res.attempted > 0 and res.failed == 0
+
+
+# ---------------------------------------------------------------- issue 30 item 5: `ethimon risk` tells the truth
+class _FakeEstimator:
+    """p_unsafe by keyword: 'knife' 0.9 (R_e 0.62: stop), 'bleach' 0.5 (R_e 0.40: the confirm band), else 0.05."""
+
+    model_id, backend, temperature, reading = "fake", "onnx", 1.0, "steps"
+
+    def __init__(self):
+        self.batches = []
+
+    @staticmethod
+    def _p(text):
+        q = 0.9 if "knife" in text else 0.5 if "bleach" in text else 0.05
+        return (1.0 - q, q)
+
+    def probs(self, text):
+        return self._p(text)
+
+    def probs_batch(self, texts):
+        self.batches.append(len(texts))
+        return [self._p(t) for t in texts]
+
+    def estimate(self, text, alpha, beta, gamma, variance):
+        from ethimon.risk import risk_from_probs
+        p = self._p(text)
+        return RiskEstimate(p, p[1], risk_from_probs(p, alpha, beta, gamma, variance), 0.0, False, self.model_id)
+
+
+@pytest.fixture
+def fake(monkeypatch):
+    import ethimon.cli._risk_cmds as rc
+    est = _FakeEstimator()
+    monkeypatch.setattr(rc, "_load", lambda *a, **k: est)
+    return est
+
+
+def test_no_spec_means_the_shipped_governors_tau_pair(root):
+    """Without --spec, ``ethimon risk`` decides by specs/governor.yaml's τ pair (one fact, pinned here)."""
+    import yaml
+    from ethimon.risk._estimator import DEFAULT_TAU_CONFIRM
+    gov = yaml.safe_load((root / "specs" / "governor.yaml").read_text(encoding="utf-8"))["risk"]
+    assert (gov["threshold"], gov["confirm_threshold"]) == (DEFAULT_TAU, DEFAULT_TAU_CONFIRM)
+
+
+def test_outcome_without_a_spec_is_the_shipped_governors(fake, capsys):
+    """Regression (30.5): a text the governor holds (R_e in its confirm band) printed "ok (R_e < tau)"."""
+    assert _cli(["risk", "Mix the bleach with the ammonia."]) == 0
+    out = capsys.readouterr().out
+    assert "ok" not in out.split() and "outcome: confirm" in out and "HOLD" in out
+    assert _cli(["risk", "Mix the bleach with the ammonia.", "--fail-on-flag"]) == 1
+    capsys.readouterr()
+    assert _cli(["risk", "Mix the bleach with the ammonia.", "--json"]) == 0
+    import json
+    assert json.loads(capsys.readouterr().out)["outcome"] == "confirm"
+    assert _cli(["risk", "Put the cup away.", "--fail-on-flag"]) == 0
+    assert "outcome: execute" in capsys.readouterr().out
+    assert _cli(["risk", "Hand over the knife."]) == 0
+    assert "outcome: stop" in capsys.readouterr().out
+
+
+def test_batch_mode_writes_json_lines(fake, capsys, tmp_path, monkeypatch):
+    """Regression (30.5): ``ethimon risk -`` / ``--file F`` / ``--column NAME`` did not exist."""
+    import io
+    import json
+    from ethimon.risk._reading import MAX_TEXT_CHARS
+    f = tmp_path / "texts.txt"
+    f.write_text("Put the cup away.\n\nHand over the knife.\nMix the bleach.\n" + "x " * MAX_TEXT_CHARS + "\n",
+                 encoding="utf-8")
+    assert _cli(["risk", "--file", str(f)]) == 0
+    docs = [json.loads(ln) for ln in capsys.readouterr().out.splitlines()]
+    assert [d["line"] for d in docs] == [1, 3, 4, 5]
+    assert [d["outcome"] for d in docs] == ["execute", "stop", "confirm", "stop"]
+    assert docs[1]["p"] == pytest.approx([0.1, 0.9]) and docs[1]["risk"] > DEFAULT_TAU
+    assert docs[3]["p"] is None and "characters" in docs[3]["error"]   # never cut: refused, a stop
+    assert fake.batches == [3]                                         # one batch call for the texts
+    assert _cli(["risk", "--file", str(f), "--fail-on-flag"]) == 1
+    capsys.readouterr()
+    monkeypatch.setattr("sys.stdin", io.StringIO("Put the cup away.\nHand over the knife.\n"))
+    assert _cli(["risk", "-"]) == 0
+    assert [json.loads(ln)["outcome"] for ln in capsys.readouterr().out.splitlines()] == ["execute", "stop"]
+    c = tmp_path / "t.csv"
+    c.write_text('id,text\nr1,"Put the cup, please,\naway."\nr2,Hand over the knife.\n', encoding="utf-8")
+    assert _cli(["risk", "--file", str(c), "--column", "text"]) == 0
+    docs = [json.loads(ln) for ln in capsys.readouterr().out.splitlines()]
+    assert [(d["id"], d["outcome"]) for d in docs] == [("r1", "execute"), ("r2", "stop")]
+    assert _cli(["risk", "--file", str(c), "--column", "input"]) == 2
+    e = capsys.readouterr().err
+    assert "no column 'input'" in e and "id, text" in e and "Traceback" not in e
+    for argv in (["risk", "x", "--file", str(f)], ["risk", "--column", "text"], ["risk"],
+                 ["risk", "--file", str(tmp_path / "none.txt")], ["risk", "-", "--file", str(f)]):
+        assert _cli(argv) == 2, argv
+        assert "Traceback" not in capsys.readouterr().err
+
+
+def test_lint_warns_on_a_tau_pair_other_than_the_shipped_models(tmp_path, root):
+    """Regression (30.6): a spec loading the shipped model at another τ pair linted clean."""
+    from ethimon._lint import lint_paths
+    body = ("ethimon: 1\nname: t\nrisk:\n  threshold: {t}\n  confirm_threshold: {c}\nsafe_pose:\n"
+            "  joints_rad: [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785]\n  max_joint_speed_rad_s: 1.0\n"
+            "  tolerance_rad: 0.02\n")
+    (tmp_path / "old.yaml").write_text(body.format(t=0.47, c=0.24), encoding="utf-8")
+    (tmp_path / "new.yaml").write_text(body.format(t=0.576, c=0.299), encoding="utf-8")
+    rep = lint_paths([tmp_path / "old.yaml", tmp_path / "new.yaml"])
+    warned = [ln.text for ln in rep.lines if ln.kind == "warning"]
+    assert len(warned) == 1 and "old.yaml" in warned[0] and "0.576" in warned[0] and "0.299" in warned[0]
+    # every shipped spec and example that loads the shipped model uses its pair
+    shipped = [root / "specs", root / "examples" / "replay" / "spec.yaml", root / "examples" / "judge"]
+    assert [ln.text for ln in lint_paths(shipped).lines if ln.kind == "warning"] == []

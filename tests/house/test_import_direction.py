@@ -12,7 +12,8 @@ own modules are always allowed):
     audit, risk, sim,       beside each other above runtime: none imports another
       verify, testing       (testing: ReferenceMonitor, the test oracle)
     scenario                scenario files (may carry a sim block, may score text with risk)
-    offline, replay         recorded data checked offline (replay may use offline)
+    io                      the mapping, the hold, the value reduction, Channel and LiveMonitor (the seam)
+    offline, replay         recorded data checked offline (replay may use offline and io)
     fleet                   many scenario files / bags on Ray (ray imported lazily)
     gym                     Gymnasium: the monitor as a shield, the sim cell as an env
     view                    the verdict channels (MCAP and the live Foxglove server): reads decisions as values
@@ -54,14 +55,15 @@ ALLOWED: dict[str, set[str]] = {
     "testing": _BESIDE,
     "scenario": _BESIDE | {"sim", "risk"},
     "offline": _BESIDE | {"audit", "risk"},
-    "replay": _BESIDE | {"audit", "risk", "offline", "view"},
-    "fleet": _BESIDE | {"audit", "risk", "sim", "scenario", "replay", "offline"},
+    "io": _BESIDE,
+    "replay": _BESIDE | {"audit", "risk", "offline", "io", "view"},
+    "fleet": _BESIDE | {"audit", "risk", "sim", "scenario", "replay", "offline", "io"},
     "gym": _BESIDE | {"sim", "risk", "audit"},
     "loop": _BESIDE | {"audit", "risk", "verify", "view"},
-    "_lint": _BESIDE | {"verify", "scenario", "replay"},
-    "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop", "view"},
-    "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop"},
-    "cli": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop",
+    "_lint": _BESIDE | {"verify", "scenario", "replay", "io", "risk"},
+    "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop", "io", "view"},
+    "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io"},
+    "cli": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io",
                       "fleet", "ros2", "ethimon", "_lint", "view"},
 }
 

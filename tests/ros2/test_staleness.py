@@ -71,16 +71,15 @@ def test_a_header_stamp_from_the_future_is_a_fault_not_a_value_that_never_ages()
     spec = ethimon.load_spec_text(SPEC)
     node = Ros2Monitor(spec, load_mapping_text(mp, "m.yaml"), domain_id=DOMAIN, config=LOOPBACK)
     try:
-        slot = next(s for sub in node._subs for s in sub.slots if s.name == "joint_speed_max")
-        risk = next(s for sub in node._subs for s in sub.slots if s.name == "p_unsafe")
-        risk.last = (0.0, time.monotonic())
-        slot.last = (0.5, time.time() + 100.0)
-        frame = node._frame()
+        slot, risk = node.live.holds["joint_speed_max"], node.live.holds["p_unsafe"]  # the io holds
+        risk.put(0.0, time.monotonic())
+        slot.put([0.5], time.time() + 100.0, now=time.time())  # as the node takes it
+        frame = node.live.frame()
         assert "joint_speed_max" not in frame
         assert [(f.kind, f.subject) for f in frame.faults] == [("stale", "joint_speed_max")]
         assert "future" in frame.faults[0].message
-        slot.last = (0.5, time.time() - 0.01)  # a fresh stamp is a value
-        frame = node._frame()
+        slot.put([0.5], time.time(), now=time.time())  # a fresh stamp, newer than that take, is a value
+        frame = node.live.frame()
         assert frame["joint_speed_max"] == 0.5 and not frame.faults
     finally:
         node.close()

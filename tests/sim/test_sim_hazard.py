@@ -94,3 +94,39 @@ def test_task_controller_knows_what_each_segment_carries():
             Segment(q=q, duration_s=1, gripper_m=0.04, label="away")]
     assert TaskController(segs, q, 1.0).carrying == [None, None, "cup", "cup", None]
     assert TaskController(segs[2:], q, 1.0, holding="cup").carrying == ["cup", "cup", None]
+
+
+@pytest.mark.slow
+@pytest.mark.sim
+def test_every_person_counts_child_on_one_side_cook_on_the_other():
+    """Issue 32 item 3: before, the wrist was turned for the nearest person (the child) and the
+    blade ended pointing at the cook (102 -> 4 deg) while the check said 135 deg, pointed away."""
+    from ethimon.sim import check_sim_expectations
+    block, res = _run("knife_child_and_cook")
+    per = res.hazard_axis_angles_end_deg
+    assert set(per) == {"child", "cook"}
+    assert res.hazard_axis_angle_end_deg == min(per.values())      # the worst person is reported
+    assert per["cook"] >= 90 and per["child"] >= 35    # before: cook 4 deg
+    # never swept toward anyone by more than the 10 deg slack along the way
+    assert max(res.hazard_axis_min_swing_deg.values()) <= 10.5
+    assert check_sim_expectations(block, res) == []
+
+
+@pytest.mark.slow
+@pytest.mark.sim
+def test_a_hold_is_rechecked_when_a_child_walks_round():
+    """Issue 32 item 3: after a hold nothing re-checked the blade; a child who walked round ended
+    in front of it. Now the held pose is checked again and the wrist turns away from both."""
+    from ethimon.sim import check_sim_expectations
+    block, res = _run("knife_hold_child_walks_round")
+    assert min(res.hazard_axis_angles_end_deg.values()) >= 90
+    assert res.retreat_min_separation_m is None or res.retreat_min_separation_m >= 1.0
+    assert check_sim_expectations(block, res) == []
+
+
+def test_expect_message_names_the_worst_person():
+    from ethimon.sim import SimBlock, SimResult, check_sim_expectations
+    block = SimBlock.model_validate({"duration_s": 1.0, "expect": {"min_hazard_axis_angle_deg": 90}})
+    res = SimResult(hazard_axis_angle_end_deg=40.0, hazard_axis_angles_end_deg={"child": 140.0, "cook": 40.0})
+    msg = check_sim_expectations(block, res)
+    assert len(msg) == 1 and "cook" in msg[0] and "worst-placed" in msg[0]

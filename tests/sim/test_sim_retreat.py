@@ -158,3 +158,35 @@ def test_the_task_knows_the_way_back():
     assert [float(p[0]) for p in task.path_back()] == [0.0]
     task.index, task._from = 1, np.full(7, 0.1)  # in the second motion
     assert [round(float(p[0]), 3) for p in task.path_back()] == [0.1, 0.0]
+
+
+@pytest.mark.slow
+def test_retreat_resumes_after_a_separation_stop():
+    """Issue 32 item 5: before, the arm stayed in the stop 2 for the rest of the run."""
+    from ethimon.sim import check_sim_expectations
+    block, res = _scenario("retreat_resumes_after_separation_stop")
+    assert "separation" in res.fired
+    assert res.time_to_safe_pose_s is not None and res.time_to_safe_pose_s <= 7.0
+    assert res.trace[-1].controller == "safe_pose"
+    assert check_sim_expectations(block, res) == []
+
+
+@pytest.mark.slow
+def test_governor_only_retreat_is_capped_near_people():
+    """Issue 32 item 5: specs/governor.yaml has no near-human rule; before, 0.68 m/s past the helper."""
+    import yaml
+    from ethimon.sim import SimBlock, check_sim_expectations, run_sim
+    doc = yaml.safe_load((ROOT / "scenarios" / "sim" / "governor_retreat_near_helper.yaml").read_text())
+    block = SimBlock.model_validate(doc["sim"])
+    res = run_sim(block, ethimon.Monitor(ethimon.load_spec(str(ROOT / "specs" / "governor.yaml"))), p_unsafe=0.9)
+    assert res.retreat_max_link_speed_near_human_m_s <= 0.25
+    assert check_sim_expectations(block, res) == []
+
+
+def test_lint_says_when_retreats_are_uncapped():
+    pytest.importorskip("z3")
+    from ethimon.verify import verify_spec
+    gov = verify_spec(ethimon.load_spec(str(ROOT / "specs" / "governor.yaml")), budget_s=60)
+    assert gov.finding("lint.retreat_uncapped").status == "warning"
+    cob = verify_spec(ethimon.load_spec(str(SPEC)), budget_s=60)
+    assert cob.finding("lint.retreat_uncapped").status == "ok"

@@ -274,14 +274,14 @@ def test_budget_cuts_the_run_and_reports_what_it_did_not_reach(monkeypatch):
     for name in ("release.rule", "model.agrees", "lint.tau_range", "lint.release", "lint.contradiction"):
         f = rep.finding(name)
         assert f.status == "unknown" and f.message.startswith("unknown (budget)"), format_table(rep)
-    assert rep.not_reached == 2 + 9  # two properties, nine lint checks (lint.release_policy, lint.safe_pose_range since issue 14)
+    assert rep.not_reached == 2 + 11  # two properties, eleven lint checks (lint.release_policy, lint.safe_pose_range since issue 14, lint.brakes and lint.retreat_uncapped since issue 32)
     assert rep.exit_code == 1
     c = rep.counts()
-    assert c["proved"] == 3 + 12 + 1 and c["unknown"] == 2 and c["refuted"] == 0 and c["not_reached"] == 11
+    assert c["proved"] == 3 + 12 + 1 and c["unknown"] == 2 and c["refuted"] == 0 and c["not_reached"] == 13
     table = format_table(rep)
-    assert "budget of 60 s spent: 16 properties proved, 0 refuted, 2 unknown; 11 check(s)" in table
+    assert "budget of 60 s spent: 16 properties proved, 0 refuted, 2 unknown; 12 check(s)" in table
     d = rep.as_dict()
-    assert d["complete"] is False and d["budget_s"] == 60 and d["counts"]["not_reached"] == 11
+    assert d["complete"] is False and d["budget_s"] == 60 and d["counts"]["not_reached"] == 12
 
 
 @pytest.mark.slow

@@ -9,6 +9,12 @@
 
 On the command line: ``ethimon audit verify run.jsonl`` (exit 0 ok, 1 tampered, 2 bad input).
 
+An unkeyed chain shows edits, but anyone who can write the file can drop a record and rebuild the
+rest: key the log (``AuditLog(key=...)``; the CLI's ``--audit`` logs take the key the operator names
+in ``ETHIMON_AUDIT_KEY_FILE`` or ``ETHIMON_AUDIT_KEY_ENV``, :func:`key_from_env`) and/or keep its
+head (:attr:`AuditLog.head_token`, printed by the CLI on close) elsewhere and check it with
+``verify_log(expect_head=...)`` / ``ethimon audit verify --head COUNT:HASH``.
+
 Bounds: one record line is at most :data:`MAX_RECORD_BYTES` (1 MiB; larger
 records lose their largest fields, marked ``"truncated"``); the writer's lag
 is bounded by ``AuditLog(max_pending=10_000, max_pending_bytes=32 MiB,
@@ -18,9 +24,10 @@ max_lag_s=1.0)``, past which ``append`` refuses and ``AuditLog.fault`` is set;
 
 from __future__ import annotations
 
-from ._log import FSYNC_POLICIES, MAX_RECORD_BYTES, AuditLag, AuditLog, spec_hash
+from ._log import FSYNC_POLICIES, KEY_ENV, KEY_FILE_ENV, MAX_RECORD_BYTES, AuditLag, AuditLog, bounded, key_from_env, \
+    spec_hash
 from ..errors import AuditFormatError, AuditTampered
 from ._chain import AuditReport, read_log, verify_log
 
-__all__ = ["AuditFormatError", "AuditLag", "AuditTampered", "AuditLog", "AuditReport", "FSYNC_POLICIES", "MAX_RECORD_BYTES",
-           "read_log", "spec_hash", "verify_log"]
+__all__ = ["AuditFormatError", "AuditLag", "AuditTampered", "AuditLog", "AuditReport", "FSYNC_POLICIES", "KEY_ENV",
+           "KEY_FILE_ENV", "MAX_RECORD_BYTES", "bounded", "key_from_env", "read_log", "spec_hash", "verify_log"]

@@ -10,7 +10,7 @@ from typing import BinaryIO
 
 from .._files import open_regular
 from ..errors import AuditFormatError, AuditTampered
-from ._log import FORMAT, GENESIS, MAX_RECORD_BYTES, canonical, record_hash
+from ._log import FORMAT, GENESIS, MAX_RECORD_BYTES, canonical, key_id, record_hash
 
 __all__ = ["AuditReport", "verify_log", "read_log"]
 
@@ -30,6 +30,10 @@ class AuditReport:
         head: hash of the last verified record (compare with an anchor kept elsewhere).
         log_id: the log's id from its ``open`` record.
         kinds: number of records of each kind.
+        keyed: the chain is HMAC-keyed and was checked with its key. An unkeyed chain can be rebuilt by
+            anyone who can write the file (a record dropped, the rest rehashed): only its head, kept
+            elsewhere (``expect_head``), shows that.
+        head_checked: the log ended at the head given (``expect_head``).
     """
 
     ok: bool
@@ -41,6 +45,8 @@ class AuditReport:
     head: str = GENESIS
     log_id: str | None = None
     kinds: dict = field(default_factory=dict)
+    keyed: bool = False
+    head_checked: bool = False
 
     def summary(self) -> str:
         """One line for humans."""
@@ -49,7 +55,14 @@ class AuditReport:
             return f"TAMPERED: {where}{self.error}"
         state = "closed" if self.closed else "not closed (writer killed or still running)"
         torn = "; ignored a partial last line" if self.torn_tail else ""
-        return f"ok: {self.records} records, chain intact, {state}{torn}; head {self.head[:16]}"
+        if self.keyed:
+            trust = "keyed (HMAC-SHA256)"
+        else:
+            trust = "unkeyed: anyone who can write the file can rebuild the chain" + (
+                ", but it ends at the head given" if self.head_checked else
+                "; check it with --head COUNT:HASH kept elsewhere, or write logs with a key")
+        return (f"ok: {self.records} records, chain intact, {state}{torn}; {trust}; "
+                f"head {self.records}:{self.head}")
 
 
 def _audit_error(message: str, *, path: str, hint: str | None = None) -> AuditFormatError:
@@ -99,8 +112,10 @@ def verify_log(path: str | os.PathLike, *, key: bytes | None = None, require_clo
         key: the HMAC key, if the log was written with one.
         require_closed: a log without a ``close`` record fails (detects a
             truncated tail of a log known to have finished).
-        expect_head: the hash of the last record as kept elsewhere; the log must
-            reach exactly this record (detects truncation and rewriting).
+        expect_head: the head kept elsewhere: ``"COUNT:HASH"`` as :attr:`AuditLog.head_token` gives it
+            (the CLI prints it when it closes a log) or the bare hash of the last record; the log must
+            end exactly there (detects truncation, and a chain rebuilt after a record was dropped or
+            changed, which an unkeyed chain alone cannot show).
 
     Returns:
         An :class:`AuditReport`; ``ok`` is ``False`` for tampering.
@@ -113,8 +128,28 @@ def verify_log(path: str | os.PathLike, *, key: bytes | None = None, require_clo
         'ok: 1204 records, chain intact, closed; head 3f9c0a1b2c3d4e5f'
     """
     path = os.fspath(path)
+    expect_count = None
+    if expect_head is not None:
+        expect_count, expect_head = _parse_head(expect_head, path)
     with _open_regular(path) as fh:
-        return _verify_stream(path, fh, key, require_closed, expect_head)
+        rep = _verify_stream(path, fh, key, require_closed, expect_head)
+    if rep.ok and expect_count is not None and rep.records != expect_count:
+        return AuditReport(False, rep.records, rep.closed, rep.torn_tail,
+                           f"log has {rep.records} records, the head given says {expect_count} (records removed or "
+                           f"added)", None, rep.head, rep.log_id, rep.kinds, rep.keyed)
+    return rep
+
+
+def _parse_head(token: str, path: str) -> tuple[int | None, str]:
+    """``COUNT:HASH`` (what a closing CLI log prints) or a bare 64-hex ``HASH``."""
+    count, sep, h = str(token).strip().rpartition(":")
+    if not sep:
+        count, h = "", token.strip()
+    h = h.lower()
+    if len(h) != 64 or any(c not in "0123456789abcdef" for c in h) or (sep and not count.isdigit()):
+        raise AuditFormatError(f"{path}: head {str(token)[:80]!r} is not COUNT:HASH (a record count and a 64-digit "
+                               "hex hash, as printed when the log was closed)")
+    return (int(count) if sep else None), h
 
 
 def _verify_stream(path: str, fh, key: bytes | None, require_closed: bool,
@@ -126,9 +161,10 @@ def _verify_stream(path: str, fh, key: bytes | None, require_closed: bool,
     torn = False
     log_id = None
     kinds: dict[str, int] = {}
+    keyed = False
 
-    def bad(msg: str, line: int) -> AuditReport:
-        return AuditReport(False, count, closed, torn, msg, line, prev, log_id, kinds)
+    def bad(msg: str, line: int | None) -> AuditReport:
+        return AuditReport(False, count, closed, torn, msg, line, prev, log_id, kinds, keyed)
 
     lineno = 0
     for lineno, raw in _read_lines(fh):
@@ -157,8 +193,16 @@ def _verify_stream(path: str, fh, key: bytes | None, require_closed: bool,
                     return bad("first record is not the 'open' record (head of the log removed)", lineno)
                 raise AuditFormatError(f"{path}: no '{FORMAT}' header on line 1; not an ethimon audit log")
             log_id = rec.get("log_id")
-            if bool(rec.get("keyed")) and not key:
+            keyed = bool(rec.get("keyed"))
+            if keyed and not key:
                 raise AuditFormatError(f"{path}: the log is HMAC-keyed; give the key")
+            if key and not keyed:
+                return bad("the log is unkeyed, but a key was given: it was written without the key, or rebuilt "
+                           "by someone who does not have it", lineno)
+            kid = rec.get("key_id")
+            if key and kid is not None and kid != key_id(key):
+                raise AuditFormatError(f"{path}: the key given (id {key_id(key)}) is not the key this log was "
+                                       f"written with (id {str(kid)[:16]})")
         if closed:
             return bad("record after the 'close' record", lineno)
         h = rec.get("hash")
@@ -193,7 +237,7 @@ def _verify_stream(path: str, fh, key: bytes | None, require_closed: bool,
                    None)
     if require_closed and not closed:
         return bad("no 'close' record (log truncated, or the writer was killed)", None)
-    return AuditReport(True, count, closed, torn, None, None, prev, log_id, kinds)
+    return AuditReport(True, count, closed, torn, None, None, prev, log_id, kinds, keyed, expect_head is not None)
 
 
 def read_log(path: str | os.PathLike, *, key: bytes | None = None) -> list[dict]:

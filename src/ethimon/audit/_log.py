@@ -46,8 +46,8 @@ from collections import deque
 from collections.abc import Callable, Mapping
 from typing import Any, NamedTuple
 
-__all__ = ["AuditLag", "AuditLog", "FSYNC_POLICIES", "GENESIS", "MAX_RECORD_BYTES", "canonical", "record_hash",
-           "spec_hash", "jsonable"]
+__all__ = ["AuditLag", "AuditLog", "FSYNC_POLICIES", "GENESIS", "KEY_ENV", "KEY_FILE_ENV", "MAX_RECORD_BYTES",
+           "bounded", "canonical", "key_id", "key_from_env", "record_hash", "spec_hash", "jsonable"]
 
 #: ``prev`` of the first record
 GENESIS = "0" * 64
@@ -65,6 +65,68 @@ _RESERVED = frozenset({"seq", "prev", "hash"})  # set by the writer
 _FIXED = ("kind", "t")                          # never omitted from a record
 _LINE_OVERHEAD = 200  # the "prev", "seq" and "hash" members, separators, braces and newline
 _BATCH_BYTES = 4 << 20
+#: environment variable naming the HMAC key file of the logs the CLI writes (``--audit``)
+KEY_FILE_ENV = "ETHIMON_AUDIT_KEY_FILE"
+#: environment variable naming *another* environment variable that holds the key itself
+KEY_ENV = "ETHIMON_AUDIT_KEY_ENV"
+_MAX_KEY_BYTES = 4096
+
+
+def key_id(key: bytes) -> str:
+    """A public name of an HMAC key (written into the ``open`` record; it reveals nothing of the key):
+    the first 16 hex digits of ``HMAC-SHA256(key, "ethimon-audit key id")``."""
+    return hmac.new(key, b"ethimon-audit key id", hashlib.sha256).hexdigest()[:16]
+
+
+def key_from_env(environ: Mapping[str, str] | None = None) -> tuple[bytes | None, str]:
+    """The HMAC key the operator names in the environment, and where it came from.
+
+    ``ETHIMON_AUDIT_KEY_FILE=PATH``: the key is the file's content (a regular file, surrounding
+    whitespace stripped); ``ETHIMON_AUDIT_KEY_ENV=NAME``: the key is the value of the variable
+    ``NAME``. Neither set: ``(None, "")`` (an unkeyed log). The key is never written into a log.
+
+    Raises:
+        ValueError: a named file or variable is missing, unreadable, empty or longer than 4 KiB (one
+            line naming it, never its content).
+    """
+    env = os.environ if environ is None else environ
+    path, name = env.get(KEY_FILE_ENV), env.get(KEY_ENV)
+    if path and name:
+        raise ValueError(f"both {KEY_FILE_ENV} and {KEY_ENV} are set; name the audit key one way")
+    if path:
+        from .._files import open_regular
+        try:
+            with open_regular(path, "rb", what="audit key file") as fh:
+                key = fh.read(_MAX_KEY_BYTES + 1).strip()
+        except OSError as exc:
+            raise ValueError(f"{path}: cannot read the audit key ({KEY_FILE_ENV}): {exc.strerror or exc}") from None
+        except Exception as exc:  # noqa: BLE001 - a located SpecError from open_regular (a FIFO, a folder)
+            raise ValueError(f"{KEY_FILE_ENV}: {exc}") from None
+        where = f"key file {path} ({KEY_FILE_ENV})"
+    elif name:
+        raw = env.get(name)
+        if raw is None:
+            raise ValueError(f"{KEY_ENV} names the variable {name}, which is not set")
+        key = raw.strip().encode("utf-8", "surrogateescape")
+        where = f"environment variable {name} ({KEY_ENV})"
+    else:
+        return None, ""
+    if not key:
+        raise ValueError(f"the audit key from the {where} is empty")
+    if len(key) > _MAX_KEY_BYTES:
+        raise ValueError(f"the audit key from the {where} is longer than {_MAX_KEY_BYTES} bytes")
+    return key, where
+
+
+def bounded(value: Any, limit: int = 256) -> Any:
+    """A field from an untrusted sender, bounded for the audit log: a string longer than ``limit``
+    characters becomes ``{"head": its first limit characters, "chars": n, "bytes": n, "sha256": hex}``
+    (the digest of its UTF-8 bytes, so a copy kept elsewhere can be matched); anything else as is."""
+    if isinstance(value, str) and len(value) > limit:
+        data = value.encode("utf-8", "surrogatepass")
+        return {"head": value[:limit], "chars": len(value), "bytes": len(data),
+                "sha256": hashlib.sha256(data).hexdigest()}
+    return value
 
 
 class AuditLag(NamedTuple):
@@ -182,6 +244,7 @@ class AuditLog:
             fields; its largest fields are replaced by ``{"omitted": ..., "bytes": n}``
             and listed in ``"truncated"`` (counted in :attr:`oversize`).
         clock: monotonic time source for the lag age (inject one in tests).
+        on_close: called with the log after a clean :meth:`close` (the CLI prints the head there).
 
     Raises:
         FileExistsError: ``path`` exists.
@@ -202,7 +265,8 @@ class AuditLog:
                  fsync_interval_s: float = 0.05, key: bytes | None = None,
                  meta: Mapping[str, Any] | None = None, max_pending: int = 10_000,
                  max_pending_bytes: int = 32 << 20, max_lag_s: float = 1.0,
-                 max_record_bytes: int = MAX_RECORD_BYTES, clock: Callable[[], float] = time.monotonic) -> None:
+                 max_record_bytes: int = MAX_RECORD_BYTES, clock: Callable[[], float] = time.monotonic,
+                 on_close: Callable[["AuditLog"], None] | None = None) -> None:
         if fsync not in FSYNC_POLICIES:
             raise ValueError(f"fsync={fsync!r}; expected one of {', '.join(FSYNC_POLICIES)}")
         if not isinstance(queue_size, int) or queue_size < 1:
@@ -225,7 +289,10 @@ class AuditLog:
         self.fsync = fsync
         self.fsync_interval_s = float(fsync_interval_s)
         self.log_id = uuid.uuid4().hex
+        if key is not None and not (isinstance(key, bytes) and key):
+            raise ValueError("key must be non-empty bytes (or None for an unkeyed log)")
         self._key = key
+        self._on_close = on_close
         self._q: queue.Queue = queue.Queue(maxsize=queue_size)
         self._fh = open(self.path, "xb")  # noqa: SIM115 - owned by the writer thread
         self._seq = 0            # next seq to assign (writer thread only)
@@ -243,6 +310,8 @@ class AuditLog:
         self._last_fsync = 0.0
         fields = {**jsonable(dict(meta or {})), "format": FORMAT, "log_id": self.log_id, "pid": os.getpid(),
                   "fsync": fsync, "keyed": bool(key)}
+        if key:
+            fields["key_id"] = key_id(key)
         self._write([self._encode("open", time.time(), fields)[0]])
         self._thread = threading.Thread(target=self._run, name="ethimon-audit-writer", daemon=True)
         self._thread.start()
@@ -390,6 +459,29 @@ class AuditLog:
         """Hash of the last record written (an anchor to keep elsewhere)."""
         return self._prev
 
+    @property
+    def records(self) -> int:
+        """Records written so far (``open`` and ``close`` included)."""
+        return self._seq
+
+    @property
+    def head_token(self) -> str:
+        """``"COUNT:HASH"`` of the last record written: what ``ethimon audit verify --head`` checks (keep it
+        outside the log; a chain rebuilt after a record was dropped or changed cannot end there)."""
+        return f"{self._seq}:{self._prev}"
+
+    def head_summary(self) -> str:
+        """Two lines for the person who runs the writer (the CLI prints them when it closes a log): the
+        head, and the command that checks the log against it."""
+        how = "keyed (HMAC-SHA256)" if self.keyed else "unkeyed: keep this head elsewhere, only it shows a rebuilt chain"
+        return (f"audit: {self.path}: {self.records} records, {how}; head {self.head_token}\n"
+                f"audit: check it with: ethimon audit verify {self.path} --require-closed --head {self.head_token}")
+
+    @property
+    def keyed(self) -> bool:
+        """Whether the chain is HMAC-keyed."""
+        return bool(self._key)
+
     def pending(self) -> int:
         """Records queued and not yet taken by the writer (see :meth:`lag` for those not yet durable)."""
         return self._q.qsize()
@@ -439,6 +531,8 @@ class AuditLog:
                                f"{lag.bytes} bytes not yet durable)")
         if self._error is not None:
             raise OSError(f"audit writer failed: {self._error}") from self._error
+        if self._on_close is not None:
+            self._on_close(self)
 
     def __enter__(self) -> "AuditLog":
         return self

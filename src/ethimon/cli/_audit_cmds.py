@@ -2,14 +2,17 @@
 
 ``ethimon audit verify LOG`` exits 0 if the hash chain is intact, 1 if it is
 tampered (edited, removed, reordered records; with ``--require-closed`` or
-``--expect-head`` also a truncated tail), 2 for bad input (missing file, not an
-audit log, unreadable key). It prints one line and never a traceback.
+``--head`` also a truncated tail or a chain rebuilt after a record was dropped), 2 for bad
+input (missing file, not an audit log, unreadable or wrong key). It prints one line and never a
+traceback; the line says whether the log is keyed (HMAC) or unkeyed.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+
+from ._common import add_deprecated_alias, err
 
 __all__ = ["add_audit_parsers", "cmd_audit_verify", "main"]
 
@@ -29,9 +32,13 @@ def add_audit_parsers(subparsers: argparse._SubParsersAction) -> argparse.Argume
     v.add_argument("log", metavar="LOG", help="the audit log (JSONL)")
     v.add_argument("--require-closed", action="store_true",
                    help="fail if the log has no 'close' record (truncated tail or killed writer)")
-    v.add_argument("--expect-head", metavar="HASH",
-                   help="hash of the last record kept elsewhere; the log must end exactly there")
-    v.add_argument("--key-file", metavar="FILE", help="HMAC key file, for logs written with a key")
+    v.add_argument("--head", metavar="COUNT:HASH",
+                   help="the head printed when the log was closed (or a bare hash of the last record), kept "
+                        "elsewhere; the log must end exactly there")
+    add_deprecated_alias(v, "--expect-head", "--head")
+    key = v.add_mutually_exclusive_group()
+    key.add_argument("--key-file", metavar="FILE", help="HMAC key file, for logs written with a key")
+    key.add_argument("--key-env", metavar="NAME", help="environment variable holding the HMAC key")
     v.set_defaults(handler=cmd_audit_verify)
     return audit
 
@@ -55,8 +62,16 @@ def cmd_audit_verify(args: argparse.Namespace) -> int:
         if not key:
             print(f"{args.key_file}: empty key file", file=sys.stderr)
             return 2
+    elif getattr(args, "key_env", None):
+        import os
+        from ..audit import KEY_ENV, key_from_env
+        try:
+            key, _ = key_from_env({KEY_ENV: args.key_env, **{args.key_env: os.environ[args.key_env]}}
+                                  if args.key_env in os.environ else {KEY_ENV: args.key_env})
+        except ValueError as exc:
+            return err(f"--key-env: {exc}")
     try:
-        rep = verify_log(args.log, key=key, require_closed=args.require_closed, expect_head=args.expect_head)
+        rep = verify_log(args.log, key=key, require_closed=args.require_closed, expect_head=args.head)
     except AuditFormatError as exc:
         print(str(exc), file=sys.stderr)
         return 2

@@ -47,11 +47,17 @@ def open_audit_log(path: str, compiled_spec: Any, /, **meta: Any) -> tuple[Any, 
     """A new audit log for a command (``--audit PATH``), its meta with ``compiled_spec``'s sha256.
 
     Returns ``(log, None)``, or ``(None, 2)`` after printing why (the file exists: a log is never
-    appended to; it cannot be written).
+    appended to; it cannot be written; the key named by ``ETHIMON_AUDIT_KEY_FILE``/``_ENV`` cannot be
+    read). The log is HMAC-keyed when the operator names a key; on close it prints its head.
     """
-    from ..audit import AuditLog, spec_hash
+    from ..audit import AuditLog, key_from_env, spec_hash
     try:
-        return AuditLog(path, fsync="interval", meta={**meta, "spec_sha256": spec_hash(compiled_spec)}), None
+        key, _ = key_from_env()
+    except ValueError as exc:
+        return None, err(f"{path}: {exc}")
+    try:
+        return AuditLog(path, fsync="interval", meta={**meta, "spec_sha256": spec_hash(compiled_spec)}, key=key,
+                        on_close=lambda log: print(log.head_summary(), file=sys.stderr)), None
     except FileExistsError:
         return None, err(f"{path}: the audit log exists already (a log is never appended to; pick a new name)")
     except OSError as exc:

@@ -18,30 +18,42 @@ __all__ = ["add_risk_parsers", "cmd_risk", "cmd_train", "cmd_average", "cmd_eval
 def risk_config(spec_path: str | None) -> dict:
     """α, β, γ, variance, τ (and the ``spec`` itself) from a spec file.
 
-    Without one: the spec language's weights (``RiskConfig``'s defaults, the
-    paper's) and the shipped model's τ (``ethimon.risk.DEFAULT_TAU``).
+    Without one: the shipped governor's (``specs/governor.yaml``): the spec language's weights
+    (``RiskConfig``'s defaults, the paper's) and the shipped model's τ pair
+    (``ethimon.risk.DEFAULT_TAU`` and ``_estimator.DEFAULT_TAU_CONFIRM``, its model card's).
     """
     if not spec_path:
         from ..risk import DEFAULT_TAU
+        from ..risk._estimator import DEFAULT_TAU_CONFIRM
         from ..language import RiskConfig
         d = RiskConfig()
         return {"alpha": d.alpha, "beta": d.beta, "gamma": d.gamma, "variance": d.variance,
-                "threshold": DEFAULT_TAU, "spec": None}
+                "threshold": DEFAULT_TAU, "confirm_threshold": DEFAULT_TAU_CONFIRM, "spec": None}
     if not Path(spec_path).is_file():
         raise SpecError("spec file does not exist", path=spec_path)
     from .. import load_spec
     spec = load_spec(spec_path)
     r = spec.risk
     return {"alpha": r.alpha, "beta": r.beta, "gamma": r.gamma, "variance": r.variance,
-            "threshold": r.threshold, "spec": spec}
+            "threshold": r.threshold, "confirm_threshold": r.confirm_threshold, "spec": spec}
 
 
 def add_risk_parsers(subparsers) -> None:
     """Register ``risk``, ``train``, ``average`` and ``evaluate`` on an argparse subparsers object."""
-    p = subparsers.add_parser("risk", help="score a task text with the risk classifier",
-                              description="Print p, p_unsafe, R_e and whether R_e >= tau under a spec.")
-    p.add_argument("text", help="the task text, e.g. 'Hand the knife to the child blade first.'")
-    p.add_argument("--spec", help="spec file whose risk block gives alpha, beta, gamma, variance, tau")
+    p = subparsers.add_parser(
+        "risk", help="score a task text (or a file of them) with the risk classifier",
+        description="Print p, p_unsafe, R_e and the outcome by the spec's tiers (execute, confirm: held for a "
+                    "person, stop); without --spec the shipped governor's (specs/governor.yaml: the shipped "
+                    "model's tau and tau_confirm, no judge). '-' or --file: one text per line (or --column of a "
+                    "CSV), one JSON object per text out (JSON Lines), scored in batches.")
+    p.add_argument("text", nargs="?", default=None,
+                   help="the task text, e.g. 'Hand the knife to the child blade first.'; '-': texts from stdin")
+    p.add_argument("--file", metavar="F", help="score every line of F (or with --column, every row of the CSV F)")
+    p.add_argument("--column", metavar="NAME",
+                   help="the input is a CSV with a header; score its column NAME (an 'id' column, if any, is "
+                        "copied to the output)")
+    p.add_argument("--spec", help="spec file whose risk block gives alpha, beta, gamma, variance, tau, tau_confirm "
+                                  "and the judge (default: the shipped governor's)")
     p.add_argument("--model", help="model directory (default: the shipped MiniLM-L6 LoRA model)")
     _precision_args(p)
     p.add_argument("--json", action="store_true", help="print one JSON object")
@@ -195,7 +207,26 @@ def _load(model: str | None, precision: str | None, max_length: int | None = Non
                           backend=backend or "auto", reading=reading)
 
 
+#: the first line's words for each outcome of the tiers
+_OUTCOME_WORDS = {"stop": "STOP (override to the safe pose)",
+                  "confirm": "HOLD (stop 2 until a person confirms)",
+                  "execute": "execute"}
+
+
 def cmd_risk(args: argparse.Namespace) -> int:
+    batch = args.text == "-" or args.file is not None
+    if args.text == "-" and args.file is not None:
+        return err("give '-' (stdin) or --file F, not both")
+    if args.text not in (None, "-") and args.file is not None:
+        return err("give a text or --file F, not both")
+    if args.column is not None and not batch:
+        return err("--column needs --file F or '-' (a CSV to read)")
+    if batch:
+        if args.explain:
+            return err("--explain scores one text; leave it out with '-' or --file")
+        return _risk_batch(args)
+    if args.text is None:
+        return err("give a text, '-' (texts from stdin) or --file F")
     if not args.text.strip():
         return err("empty text")
     try:
@@ -211,6 +242,7 @@ def cmd_risk(args: argparse.Namespace) -> int:
         return err(str(exc))
     flagged = r.risk >= cfg["threshold"]
     outcome = tiers["outcome"]
+    tc = tiers["confirm_threshold"]
     if args.json:
         doc = {"text": args.text, "p": list(r.p), "p_unsafe": r.p_unsafe, "risk": r.risk,
                "tau": cfg["threshold"], "flagged": flagged, "model_id": est.model_id,
@@ -227,16 +259,21 @@ def cmd_risk(args: argparse.Namespace) -> int:
                               "words": [{"word": w, "drop": d} for w, d in why["words"]]}
         emit_json("-", doc)
     else:
-        verdict = "UNSAFE (R_e >= tau: override)" if flagged else "ok (R_e < tau)"
+        # the outcome always comes from the tiers (never "ok" for a text the governor holds)
+        band = f"  tau_confirm = {tc:g}" if tc is not None else ""
         print(f"p = ({r.p[0]:.4f}, {r.p[1]:.4f})  p_unsafe = {r.p_unsafe:.4f}  "
-              f"R_e = {r.risk:.4f}  tau = {cfg['threshold']:g}  ->  {verdict}  [{est.model_id}]")
-        if cfg["spec"] is not None and (tiers["confirm_threshold"] is not None or jr.status != "not_configured"):
+              f"R_e = {r.risk:.4f}  tau = {cfg['threshold']:g}{band}  ->  {_OUTCOME_WORDS[outcome]}  "
+              f"[{est.model_id}]")
+        if jr.status != "not_configured":
             jp = "-" if jr.p_unsafe is None else f"{jr.p_unsafe:.4f}"
             print(f"judge: p_unsafe = {jp}  status = {jr.status}  latency = {jr.latency_s * 1000:.0f} ms"
                   + (f"  ({jr.detail})" if jr.detail else "") + (f"  [{jr.model}]" if jr.model else "")
                   + (f"  canaries: {jr.canary}" if jr.canary else ""))
-            tc = tiers["confirm_threshold"]
-            print(f"outcome: {outcome}" + (f"  (confirm band [{tc:g}, {cfg['threshold']:g}))" if tc is not None else ""))
+        tiers_of = (f"spec {cfg['spec'].name}" if cfg["spec"] is not None
+                    else "the shipped governor (specs/governor.yaml)")
+        print(f"outcome: {outcome}  (by the tiers of {tiers_of}: stop at R_e >= {cfg['threshold']:g}"
+              + (f", confirm band [{tc:g}, {cfg['threshold']:g})" if tc is not None else ", no confirm band")
+              + (", judge" if jr.status != "not_configured" else ", no judge") + ")")
         if why is not None:
             _print_explain(why)
     return 1 if (outcome != "execute" and args.fail_on_flag) else 0
@@ -249,7 +286,11 @@ def _judge_and_outcome(spec, text: str, risk: float, tau: float, no_judge: bool)
     jr = judge.judge(text) if judge is not None else JudgeResult(
         None, "not_configured", 0.0, None, None, "", text_sha256(text),
         "--no-judge" if no_judge and spec is not None and spec.risk.judge_list else "the spec sets no risk.judge")
-    tc = spec.risk.confirm_threshold if spec is not None else None
+    if spec is not None:
+        tc = spec.risk.confirm_threshold
+    else:  # the shipped governor's band
+        from ..risk._estimator import DEFAULT_TAU_CONFIRM
+        tc = DEFAULT_TAU_CONFIRM
     cuts = spec.risk.judge_cuts() if spec is not None else None  # risk.judge or risk.judges (consensus)
     hold = spec.risk.judge_may_hold_above_tau if spec is not None else None
     outcome = tier_outcome(risk, jr.p_unsafe, threshold=tau, confirm_threshold=tc,
@@ -261,18 +302,107 @@ def _judge_and_outcome(spec, text: str, risk: float, tau: float, no_judge: bool)
 def _print_explain(why: dict) -> None:
     """The views, the one that drove the score (marked ``>``), and its words."""
     d = why["driver"]
-    name = {"text": "the whole text", "instruction": "the instruction",
-            "step": f"step {d['index'] + 1}"}[d["kind"]]
+    name = {"text": "the whole text", "instruction": "the instruction", "step": f"step {d['index'] + 1}",
+            "sentence": f"sentence {d['index'] + 1}"}[d["kind"]]
     print(f"driven by {name}: {d['focus']!r}" + (" (read after its context)" if d["context"] else ""))
     for v in why["views"]:
         mark = ">" if (v["focus"], v["context"]) == (d["focus"], d["context"]) else " "
-        label = {"text": "text", "instruction": "instruction", "step": f"step {v['index'] + 1}"}[v["kind"]]
+        label = {"text": "text", "instruction": "instruction", "step": f"step {v['index'] + 1}",
+                 "sentence": f"sentence {v['index'] + 1}"}[v["kind"]]
         ctx = " | in context" if v["context"] else ""
         focus = v["focus"] if len(v["focus"]) <= 70 else v["focus"][:69] + "…"
         print(f" {mark} p_unsafe {v['p_unsafe']:.4f}  {label}{ctx}: {focus}")
     if why["words"]:
         print("words (p_unsafe drop when left out): "
               + ", ".join(f"{w!r} {dr:+.3f}" for w, dr in why["words"]))
+
+
+#: texts scored per probs_batch call in batch mode (output streams after each chunk)
+BATCH_CHUNK = 256
+
+
+def _batch_rows(args: argparse.Namespace):
+    """``(line, id, text)`` of every non-empty input row: lines of the file/stdin, or a CSV column."""
+    import csv
+    import io
+    if args.file is not None:
+        if not Path(args.file).is_file():
+            raise ValueError(f"{args.file}: no such file")
+        raw = Path(args.file).read_text(encoding="utf-8-sig", errors="strict")
+        where = args.file
+    else:
+        raw = sys.stdin.read()
+        where = "<stdin>"
+    if args.column is None:
+        return [(n, None, ln) for n, ln in enumerate(raw.splitlines(), 1) if ln.strip()]
+    rd = csv.DictReader(io.StringIO(raw, newline=""))
+    if rd.fieldnames is None or args.column not in rd.fieldnames:
+        have = ", ".join(rd.fieldnames or []) or "no header"
+        raise ValueError(f"{where}:1: no column {args.column!r} (the header has: {have})")
+    out = []
+    for row in rd:
+        text = row.get(args.column) or ""
+        if text.strip():
+            out.append((rd.line_num, row.get("id"), text))
+    return out
+
+
+def _risk_batch(args: argparse.Namespace) -> int:
+    """``ethimon risk -`` / ``--file F``: one JSON object per text (JSON Lines), scored in batches."""
+    import json
+
+    from ..risk._reading import check_length
+    try:
+        rows = _batch_rows(args)
+        cfg = risk_config(args.spec)
+        est = _load(args.model, args.precision, spec=cfg["spec"], threads=_threads(args, len(rows)),
+                    backend=args.backend, reading="flat" if args.flat else "steps")
+    except UnicodeDecodeError as exc:
+        return err(f"{args.file}: not UTF-8 text ({exc.reason} at byte {exc.start})")
+    except (EthimonError, ValueError, OSError) as exc:
+        return err(str(exc))
+    from ..risk import risk_from_probs
+    held = 0
+    for a in range(0, len(rows), BATCH_CHUNK):
+        chunk = rows[a:a + BATCH_CHUNK]
+        probs: list = [None] * len(chunk)
+        fails: list = [None] * len(chunk)
+        ok = []
+        for i, (_n, _id, text) in enumerate(chunk):
+            try:
+                check_length(text)
+                ok.append(i)
+            except EthimonError as exc:
+                fails[i] = str(exc)
+        try:
+            for i, p in zip(ok, est.probs_batch([chunk[i][2] for i in ok])):
+                probs[i] = p
+        except EthimonError:  # locate it: one text at a time
+            for i in ok:
+                try:
+                    probs[i] = est.probs(chunk[i][2])
+                except EthimonError as exc:
+                    fails[i] = str(exc)
+        for i, (n, rid, text) in enumerate(chunk):
+            doc = {"line": n}
+            if rid is not None:
+                doc["id"] = rid
+            if fails[i] is not None:   # fail closed: a text that cannot be scored is a stop
+                doc.update({"p": None, "p_unsafe": None, "risk": None, "outcome": "stop", "error": fails[i]})
+            else:
+                p = probs[i]
+                risk = risk_from_probs(p, cfg["alpha"], cfg["beta"], cfg["gamma"], cfg["variance"])
+                try:
+                    jr, tiers = _judge_and_outcome(cfg["spec"], text, risk, cfg["threshold"], args.no_judge)
+                except (EthimonError, ValueError, OSError) as exc:
+                    return err(str(exc))
+                doc.update({"p": list(p), "p_unsafe": p[1], "risk": risk, "outcome": tiers["outcome"]})
+                if jr.status != "not_configured":
+                    doc["judge"] = {"p_unsafe": jr.p_unsafe, "status": jr.status}
+            held += doc["outcome"] != "execute"
+            sys.stdout.write(json.dumps(doc, ensure_ascii=False) + "\n")
+        sys.stdout.flush()
+    return 1 if (held and args.fail_on_flag) else 0
 
 
 def cmd_train(args: argparse.Namespace) -> int:

@@ -7,6 +7,7 @@ import math
 import threading
 from typing import Any
 
+from ..audit import bounded
 from ..runtime import Acknowledgement
 
 
@@ -107,12 +108,37 @@ class _Acknowledging:
                 a = self.monitor.acknowledge() if task is None else self.monitor.acknowledge(task_id=task)
             except Exception as exc:  # noqa: BLE001 - never crash the loop on an operator request
                 a = Acknowledgement(False, (), f"refused: acknowledge raised {type(exc).__name__}: {exc}"[:300])
+        who, why_text = bounded(operator, 200), bounded(reason, 2000)  # sizes an audit record can hold
         if a.released and "confirm" in a.rules and self.risk is not None:  # what the operator confirmed
             text = self._task_text
-            self._log("confirm", operator=operator, reason=reason, task_text=text, task_sha256=self._task_key,
+            self._log("confirm", operator=who, reason=why_text, task_text=text, task_sha256=self._task_key,
                       cycle=self.monitor.cycle)
-        self._log("acknowledge", operator=operator, reason=reason, released=a.released, rules=list(a.rules),
+        self._log("acknowledge", operator=who, reason=why_text, released=a.released, rules=list(a.rules),
                   message=a.message, cycle=self.monitor.cycle, task_sha256=task,
                   loop_cycle=self.stats.cycles)
+        if a.released:
+            a = self._durable(a)
         req[3] = a
         done.set()
+
+    def _durable(self, a: Acknowledgement) -> Acknowledgement:
+        """A release reaches the robot only once its ``acknowledge`` record is durable: wait (in the
+        thread that applies it, before the next cycle can publish it) until the audit writer has written
+        and fsync'd it. If it cannot be made durable (the record was refused, the writer failed or is
+        too slow), the loop reports an audit fault, so the next cycle overrides anyway, and the operator
+        is told the arm stays stopped."""
+        log = self.audit
+        if log is None:
+            return a
+        flush = getattr(log, "flush", None)
+        why = "the audit log refused the record" if self._audit_failed else ""
+        if not why and callable(flush):
+            try:
+                flush(timeout=float(getattr(log, "max_lag_s", 1.0)))
+            except Exception as exc:  # noqa: BLE001 - TimeoutError, OSError: not durable
+                why = f"{type(exc).__name__}: {exc}"[:200]
+        if not why:
+            return a
+        self._audit_failed = True  # the next cycle overrides with an audit fault
+        return Acknowledgement(False, a.rules, f"refused: the release could not be made durable in the audit log "
+                                               f"({why}); the arm stays stopped (audit fault)")

@@ -16,15 +16,22 @@ staleness limit per signal (a stale or missing input fails closed), and which
 topic carries the task text that the risk estimator scores (or ``risk: none``:
 the risk rule is then reported NOT CHECKED). :func:`list_topics` lists a bag's
 topics to write a mapping from; :func:`replay_paths` replays many bags as
-``ethimon replay`` does; :func:`write_mcap` writes the verdicts as MCAP topics. Bags are read with
+``ethimon replay`` does; :func:`write_mcap` writes the verdicts as MCAP topics; :func:`recorded_data`
+reads back what a live :class:`~ethimon.io.LiveMonitor` recorded. The mapping format, the hold and the
+value reduction are ``ethimon.io``'s (the live node reads a mapping the same way); ``Mapping``,
+``SignalMap``, ``load_mapping``, ``check_against_spec`` & co. stay importable from here. Bags are read with
 ``rosbags`` (``pip install 'ethimon[ros]'``), imported only when a bag is read:
 ``import ethimon`` and ``import ethimon.replay`` never import it.
 """
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+from typing import Any
+
 from ._bag import BagData, BagError, read_bag
-from ._collect import Series
+from ._collect import Series, _Collector
 from ._verdicts import CycleResults, check_columns
 from ._mapping import (Mapping, SignalMap, TaskMap, check_against_spec, lint_mapping, load_mapping,
                        load_mapping_text, mapping_json_schema)
@@ -40,4 +47,60 @@ from ._topics import TopicInfo, list_topics
 __all__ = ["BagData", "BagError", "BagReplay", "CheckResult", "CycleResults", "Mapping", "ReplayReport", "Series",
            "SignalMap", "TaskMap", "TaskScorer", "TopicInfo", "check_against_spec", "check_columns", "cycle_grid",
            "hold", "lint_mapping", "list_topics", "load_mapping", "load_mapping_text", "mapping_json_schema",
-           "read_bag", "replay_bag", "replay_data", "replay_paths", "resample", "write_mcap"]
+           "read_bag", "recorded_data", "replay_bag", "replay_data", "replay_paths", "resample", "write_mcap"]
+
+
+@dataclass
+class _Stamp:
+    sec: int
+    nanosec: int
+
+
+@dataclass
+class _Header:
+    stamp: _Stamp
+
+
+@dataclass
+class _Recorded:
+    data: Any
+    header: Any = None
+
+
+def recorded_data(recording: Any, mapping: Any, path: str = "<recording>") -> Any:
+    """A live run's :class:`~ethimon.io.Recording` (every sample :class:`~ethimon.io.LiveMonitor` received)
+    as the :class:`BagData` a bag gives: replayed (:func:`~ethimon.replay.replay_data`), it is read by the
+    same rules as a bag (receive times as log time, header stamps as header time, ``offset_s``, ``derive``).
+    A header stamp that was further than ``future_tolerance_s`` ahead of the cycle that took it (a fault live
+    until its time came) is an unusable sample at that cycle's time, then its value at its own time."""
+    from ..io import MAX_TEXT, TASK_TEXT
+
+    def header(t_s: float) -> _Header:
+        ns = int(round(t_s * 1e9))
+        return _Header(_Stamp(ns // 1_000_000_000, ns % 1_000_000_000))
+
+    taken, cycles = getattr(recording, "taken", []), getattr(recording, "cycles", [])
+    tol_ns = mapping.future_tolerance_s * 1e9
+    series: dict[str, Series] = {}
+    for name, sm in mapping.signals.items():
+        c = _Collector(name, sm.model_copy(update={"field": "data"}), path)
+        msgtype = sm.type or "recorded"
+        off = int(round(sm.offset_s * 1e9))
+        for i, s in enumerate(recording.samples):
+            if s.signal != name:
+                continue
+            hdr = None
+            if s.t_header is not None:
+                hdr = header(s.t_header)
+                k = taken[i] if i < len(taken) else None
+                if sm.time == "header" and k is not None and k < len(cycles) and cycles[k][1] is not None:
+                    wall = cycles[k][1]
+                    if int(round(s.t_header * 1e9)) + off - int(round(wall * 1e9)) > tol_ns:
+                        c.add(_Recorded(math.nan, header(wall - sm.offset_s)), int(round(cycles[k][0] * 1e9)),
+                              sm.topic, msgtype)
+            c.add(_Recorded(s.value, hdr), int(round(s.t_log * 1e9)), sm.topic, msgtype)
+        series[name] = c.series(sm.topic, msgtype)
+    texts = [(int(round(s.t_log * 1e9)), s.value) for s in recording.samples
+             if s.signal == TASK_TEXT and isinstance(s.value, str)]
+    topics = {sm.topic: (sm.type or "recorded", series[n].read) for n, sm in mapping.signals.items()}
+    return BagData(path, "recording", series, texts, topics)

@@ -249,7 +249,7 @@ def _read(reader: Any, spath: str, p: Path, ros1: bool, mapping: Mapping,
                     raise BagError(f"task topic {topic} ({msgtype}): field {task.field!r} is "
                                    f"{type(text).__name__}, not text", spath,
                                    hint="the task topic carries std_msgs/String (field 'data')")
-                texts.append((int(t_log), text[:MAX_TEXT]))
+                texts.append((int(t_log), text))  # never cut (issue 31 item 4)
             for c in by_topic.get(topic, ()):
                 c.add(msg, t_log, topic, msgtype)
     if on_progress is not None:

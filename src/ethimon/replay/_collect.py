@@ -11,9 +11,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import BagError
-from ._mapping import ByName, SignalMap, parse_field_path
-from ._values import (_BATCH, _FLOATS, _did_you_mean, _fields, _numbers_of, _reduce_arr, _reduce_rows, _stamp,
-                      reduce_value)
+from ..io import ByName, SignalMap, parse_field_path, rate_between
+from ._values import _BATCH, _FLOATS, _did_you_mean, _fields, _numbers_of, _reduce_rows, _stamp, reduce_value
 
 __all__ = ["Series"]
 
@@ -242,13 +241,8 @@ class _Collector:
         out = np.full(max(times.size - 1, 0), np.nan)
         bad = 0
         for j in range(1, times.size):
-            a, b = raw[order[j - 1]], raw[order[j]]
-            if a is None or b is None or a.size != b.size:
-                bad += 1
-                continue
-            d = (b - a) * (1e9 / float(times[j] - times[j - 1]))
-            x = _reduce_arr(d, sm) if sm.reduce != "value" else (float(d[0]) * sm.scale + sm.offset
-                                                                  if d.size == 1 else math.nan)
+            # the one derivation, live and replay (ethimon.io.rate_between)
+            x = rate_between(raw[order[j - 1]], raw[order[j]], float(times[j] - times[j - 1]) / 1e9, sm)
             if x != x:
                 bad += 1
             out[j - 1] = x
@@ -272,3 +266,4 @@ class _Collector:
 
 
 #: a field the reader could not reach: an index past the end, a name not in the message's list
+

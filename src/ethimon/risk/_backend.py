@@ -21,6 +21,7 @@ from typing import Any
 
 from ..errors import DependencyNotInstalled, ModelError
 # the torch-free checks of a model directory, re-exported here for the callers that read them from ``B``
+from ._modeldir import tokenizer_call
 from ._modeldir import (ADAPTER_FORMAT, BASE_PACKAGE, BASE_PIP, CODE_KEYS, CODE_SUFFIXES,  # noqa: F401
                         CONFIG_FILES, MANIFEST, MANIFEST_KEYS, MAX_DIR_ENTRIES, MAX_JSON_BYTES, MAX_LABELS,
                         MAX_LENGTH, PICKLE_SUFFIXES, SUPPORTED_MODEL_TYPES, TOKENIZER_FILES,
@@ -52,7 +53,10 @@ def load_tokenizer(d: Path):
     check_tokenizer(d)
     check_model_dir(d)
     try:
-        return transformers.AutoTokenizer.from_pretrained(str(d), trust_remote_code=False, **NO_REMOTE)
+        return tokenizer_call(d, "loading", transformers.AutoTokenizer.from_pretrained, str(d),
+                              trust_remote_code=False, **NO_REMOTE)
+    except ModelError:
+        raise
     except Exception as exc:  # noqa: BLE001 - turn any loader failure into ModelError
         raise ModelError(f"{d}: cannot load tokenizer: {exc}") from exc
 
@@ -197,8 +201,8 @@ def encode(tokenizer, texts: list[str], max_length: int, truncation: str = "head
         raise ValueError(f"max_length={max_length} leaves no room for text")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        ids = tokenizer(list(texts), add_special_tokens=False, truncation=False,
-                        verbose=False)["input_ids"]
+        ids = tokenizer_call(_where(tokenizer), "encoding", tokenizer, list(texts), add_special_tokens=False,
+                             truncation=False, verbose=False)["input_ids"]
     out = []
     for seq in ids:
         if len(seq) > budget:
@@ -233,24 +237,47 @@ def encode_views(tokenizer, views: list[tuple[str, str]], max_length: int,
         prefix, suffix = _special_wrap(tokenizer)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            ctx = tokenizer([views[i][0] for i in paired], add_special_tokens=False, truncation=False,
-                            verbose=False)["input_ids"]
-            foc = tokenizer([views[i][1] for i in paired], add_special_tokens=False, truncation=False,
-                            verbose=False)["input_ids"]
+            ctx = tokenizer_call(_where(tokenizer), "encoding", tokenizer, [views[i][0] for i in paired],
+                                 add_special_tokens=False, truncation=False, verbose=False)["input_ids"]
+            foc = tokenizer_call(_where(tokenizer), "encoding", tokenizer, [views[i][1] for i in paired],
+                                 add_special_tokens=False, truncation=False, verbose=False)["input_ids"]
         for i, c, f in zip(paired, ctx, foc):
             out[i] = pair_ids(prefix, suffix, c, f, max_length, truncation)
     return out
 
 
+def encode_view_windows(tokenizer, views: list[tuple[str, str]], max_length: int,
+                        truncation: str = "head_tail") -> list[list[list[int]]]:
+    """Per ``(context, focus)`` view, the sequences that read it in full (``_reading.pair_windows``):
+    the ids of :func:`encode_views` while the focus fits, else overlapping windows of the focus."""
+    from ._reading import pair_windows
+    if not views:
+        return []
+    prefix, suffix = _special_wrap(tokenizer)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ctx = tokenizer([c for c, _f in views], add_special_tokens=False, truncation=False,
+                        verbose=False)["input_ids"]
+        foc = tokenizer([f for _c, f in views], add_special_tokens=False, truncation=False,
+                        verbose=False)["input_ids"]
+    return [pair_windows(prefix, suffix, c if cs else [], f, max_length, truncation)
+            for (cs, _f), c, f in zip(views, ctx, foc)]
+
+
 _WRAP: dict[int, tuple[list[int], list[int]]] = {}
+
+
+def _where(tokenizer) -> str:
+    """The tokenizer's directory, for a located error."""
+    return str(getattr(tokenizer, "name_or_path", "") or "tokenizer")
 
 
 def _special_wrap(tokenizer) -> tuple[list[int], list[int]]:
     """Special-token ids the tokenizer puts before/after a single text ([CLS] … [SEP])."""
     key = id(tokenizer)
     if key not in _WRAP:
-        bare = tokenizer("a", add_special_tokens=False)["input_ids"]
-        full = tokenizer("a", add_special_tokens=True)["input_ids"]
+        bare = tokenizer_call(_where(tokenizer), "encoding", tokenizer, "a", add_special_tokens=False)["input_ids"]
+        full = tokenizer_call(_where(tokenizer), "encoding", tokenizer, "a", add_special_tokens=True)["input_ids"]
         for i in range(len(full) - len(bare) + 1):
             if full[i:i + len(bare)] == bare:
                 _WRAP[key] = (list(full[:i]), list(full[i + len(bare):]))

@@ -118,6 +118,24 @@ DEFAULT_MANIFEST_SHA256 = "2fb9a23c13c368ea220cc2e06c42e02a848c78193857a46d07087
 #: use it without ``--spec``, and the shipped specs write it as their ``risk.threshold``.
 #: (A spec that writes no threshold gets the spec language's default, 0.5.)
 DEFAULT_TAU = 0.576
+#: τ_confirm of the shipped default model (MODEL_CARD.md; specs/governor.yaml's risk.confirm_threshold):
+#: ``ethimon risk`` without ``--spec`` uses this pair; ``ethimon lint`` warns on a spec that loads the
+#: shipped model with another.
+DEFAULT_TAU_CONFIRM = 0.299
+
+
+def model_tau_warnings(spec: Any) -> list[str]:
+    """``ethimon lint``: a spec with a ``risk:`` block that loads the shipped model at another τ (or
+    a confirm band at another τ_confirm) than the model card's pair; no band at all is a choice."""
+    if "risk" not in getattr(spec, "model_fields_set", ()) or spec.risk.estimator.model is not None:
+        return []
+    r, tc = spec.risk, spec.risk.confirm_threshold
+    if r.threshold == DEFAULT_TAU and (tc is None or tc == DEFAULT_TAU_CONFIRM):
+        return []
+    have = f"tau {r.threshold:g}" + (f", tau_confirm {tc:g}" if tc is not None else "")
+    return [f"risk: {have} differs from the shipped model's pair (tau {DEFAULT_TAU:g}, tau_confirm "
+            f"{DEFAULT_TAU_CONFIRM:g}; MODEL_CARD.md), which this spec loads (no risk.estimator.model): "
+            "the outcome figures of the model card do not hold at another pair"]
 
 
 def check_default_manifest(d: Path) -> None:
@@ -388,9 +406,13 @@ class RiskEstimator:
         if not vs:
             return []
         try:
-            seqs = B.encode_views(m.tokenizer, [(v.context, v.focus) for v in vs], m.max_length, m.truncation)
+            wins = B.encode_view_windows(m.tokenizer, [(v.context, v.focus) for v in vs], m.max_length,
+                                         m.truncation)
         except Exception as exc:  # noqa: BLE001
             raise RiskInferenceError(f"tokenisation failed: {exc}") from exc
+        seqs, owner = _flatten(wins)
+        if on_batch is not None and len(seqs) != len(vs):   # a progress bar counts views, not windows
+            on_batch = (lambda cb, share: (lambda n: cb(n * share)))(on_batch, len(vs) / len(seqs))
         order = sorted(range(len(seqs)), key=lambda i: len(seqs[i]))
         results: list = [None] * len(seqs)
         pad = m.tokenizer.pad_token_id or 0
@@ -418,10 +440,22 @@ class RiskEstimator:
                 raise
             except Exception as exc:  # noqa: BLE001 - fail closed on anything
                 raise RiskInferenceError(f"risk inference failed: {type(exc).__name__}: {exc}") from exc
+        return self._riskiest(results, owner, raw)
+
+    def _riskiest(self, results: list, owner: list[list[int]], raw: bool) -> list:
+        """Per view, the result of its riskiest window (most views have one); NaN/inf anywhere fails."""
         for r in results:
             if not all(math.isfinite(v) for v in r):
                 raise RiskInferenceError("risk inference produced NaN/inf; treat the command as unsafe")
-        return [tuple(r) if not raw else r for r in results]
+        out = []
+        T, ui = self._m.temperature, self._m.unsafe_index
+        for ids in owner:
+            if len(ids) == 1:
+                best = ids[0]
+            else:
+                best = max(ids, key=lambda j: _tempered(results[j], T, ui)[1] if raw else results[j][1])
+            out.append(tuple(results[best]) if not raw else results[best])
+        return out
 
     def _forward_onnx(self, vs: list[View], raw: bool, on_batch: Any = None) -> list:
         """As :meth:`_forward_views`, through ONNX Runtime (numpy arrays, no torch)."""
@@ -430,9 +464,12 @@ class RiskEstimator:
         if not vs:
             return []
         try:
-            seqs = m.tokenizer.encode_views([(v.context, v.focus) for v in vs], m.max_length, m.truncation)
+            wins = m.tokenizer.encode_view_windows([(v.context, v.focus) for v in vs], m.max_length, m.truncation)
         except Exception as exc:  # noqa: BLE001
             raise RiskInferenceError(f"tokenisation failed: {exc}") from exc
+        seqs, owner = _flatten(wins)
+        if on_batch is not None and len(seqs) != len(vs):   # a progress bar counts views, not windows
+            on_batch = (lambda cb, share: (lambda n: cb(n * share)))(on_batch, len(vs) / len(seqs))
         order = sorted(range(len(seqs)), key=lambda i: len(seqs[i]))
         results: list = [None] * len(seqs)
         ui = m.unsafe_index
@@ -454,10 +491,18 @@ class RiskEstimator:
                         on_batch(len(idx))
             except Exception as exc:  # noqa: BLE001 - fail closed on anything
                 raise RiskInferenceError(f"risk inference failed: {type(exc).__name__}: {exc}") from exc
-        for r in results:
-            if not all(math.isfinite(v) for v in r):
-                raise RiskInferenceError("risk inference produced NaN/inf; treat the command as unsafe")
-        return [tuple(r) if not raw else r for r in results]
+        return self._riskiest(results, owner, raw)
+
+
+def _flatten(wins: list[list[list[int]]]) -> tuple[list[list[int]], list[list[int]]]:
+    seqs: list[list[int]] = []
+    owner: list[list[int]] = []  # per view, the indices of its windows in seqs
+    for w in wins:
+        if not w:
+            raise RiskInferenceError("a view encoded to no token sequence")
+        owner.append(list(range(len(seqs), len(seqs) + len(w))))
+        seqs += w
+    return seqs, owner
 
 
 #: a batch is cut where padding to its longest row would waste more than this share of its tokens

@@ -332,3 +332,17 @@ def _check_classifier_config(p: Path, config: dict) -> None:
     if isinstance(n, bool) or not isinstance(n, int) or not 2 <= n <= MAX_LABELS:
         key = "id2label" if isinstance(id2label, dict) else "num_labels"
         raise ModelError(f"{p}: {key!r} gives {n!r} classes; a classifier of 2..{MAX_LABELS} classes expected")
+
+
+def tokenizer_call(where: Any, what: str, fn, *args: Any, **kw: Any) -> Any:
+    """``fn(*args, **kw)`` of the ``tokenizers`` library (Rust). A panic there (pyo3's ``PanicException``:
+    a ``BaseException``, not an ``Exception``, so no ``except Exception`` stops it; a hostile
+    ``tokenizer.json`` regex raises one) becomes a :class:`ModelError` naming ``where`` (the file)."""
+    try:
+        return fn(*args, **kw)
+    except (Exception, KeyboardInterrupt, SystemExit, GeneratorExit):
+        raise
+    except BaseException as exc:  # noqa: BLE001 - a Rust panic, located
+        raise ModelError(f"{where}: the tokenizer panicked while {what} ({type(exc).__name__}: {str(exc)[:160]}); "
+                         "its tokenizer.json (a pre-tokenizer regex or a setting) makes the tokenizers library "
+                         "fail: use the model's original tokenizer files") from None

@@ -70,14 +70,16 @@ class FastTokenizer:
             raise _NoGraph(f"{d}: no tokenizer.json (the ONNX backend reads tokenizers' own format)")
         M.check_model_dir(d)
         try:
-            tok = Tokenizer.from_file(str(p))
+            tok = M.tokenizer_call(p, "loading", Tokenizer.from_file, str(p))
+        except ModelError:
+            raise
         except Exception as exc:  # noqa: BLE001
             raise ModelError(f"{p}: cannot load tokenizer: {type(exc).__name__}: {str(exc)[:160]}") from None
         tok.no_truncation()
         tok.no_padding()
-        self._tok = tok
-        bare = tok.encode("a", add_special_tokens=False).ids
-        full = tok.encode("a", add_special_tokens=True).ids
+        self._tok, self._path = tok, p
+        bare = M.tokenizer_call(p, "encoding", tok.encode, "a", add_special_tokens=False).ids
+        full = M.tokenizer_call(p, "encoding", tok.encode, "a", add_special_tokens=True).ids
         self.prefix, self.suffix = [], []
         for i in range(len(full) - len(bare) + 1):
             if full[i:i + len(bare)] == bare:
@@ -97,7 +99,7 @@ class FastTokenizer:
         if budget < 2:
             raise ValueError(f"max_length={max_length} leaves no room for text")
         out = []
-        for e in self._tok.encode_batch(list(texts), add_special_tokens=False):
+        for e in M.tokenizer_call(self._path, "encoding", self._tok.encode_batch, list(texts), add_special_tokens=False):
             seq = e.ids
             if len(seq) > budget:
                 if truncation == "head_tail":
@@ -118,11 +120,23 @@ class FastTokenizer:
             out[i] = seq
         paired = [i for i, (c, _f) in enumerate(views) if c]
         if paired:
-            ctx = self._tok.encode_batch([views[i][0] for i in paired], add_special_tokens=False)
-            foc = self._tok.encode_batch([views[i][1] for i in paired], add_special_tokens=False)
+            enc = self._tok.encode_batch
+            ctx = M.tokenizer_call(self._path, "encoding", enc, [views[i][0] for i in paired], add_special_tokens=False)
+            foc = M.tokenizer_call(self._path, "encoding", enc, [views[i][1] for i in paired], add_special_tokens=False)
             for i, c, f in zip(paired, ctx, foc):
                 out[i] = pair_ids(self.prefix, self.suffix, c.ids, f.ids, max_length, truncation)
         return out
+
+    def encode_view_windows(self, views: list[tuple[str, str]], max_length: int,
+                            truncation: str) -> list[list[list[int]]]:
+        """As ``_backend.encode_view_windows``: per view, the sequences that read it in full."""
+        from ._reading import pair_windows
+        if not views:
+            return []
+        ctx = self._tok.encode_batch([c for c, _f in views], add_special_tokens=False)
+        foc = self._tok.encode_batch([f for _c, f in views], add_special_tokens=False)
+        return [pair_windows(self.prefix, self.suffix, c.ids if cs else [], f.ids, max_length, truncation)
+                for (cs, _f), c, f in zip(views, ctx, foc)]
 
 
 # ---------------------------------------------------------------- loading

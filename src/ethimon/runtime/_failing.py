@@ -47,6 +47,7 @@ class _FailClosed:
             cycle = self._cycle
             self._cycle = cycle + 1
             return self._fault(cycle, reasons, None)
+        self._confirmed = False  # a fault found outside the monitor ends a confirmation too (issue 31)
         sev = max(decision.response.severity, self._latch_fault())
         return Decision(True, _RESPONSES[sev], decision.violations, decision.margins, decision.risk,
                         decision.cycle, decision.latched, decision.faults + reasons, False, self.obligation_ids,

@@ -8,13 +8,20 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ._limits import BRAKE_ENGAGE_S, BRAKE_TORQUE_N_M, LIMIT_MARGIN_RAD
+from ._limits import BRAKE_ENGAGE_S, LIMIT_MARGIN_RAD
 from ._model import PHYSICS_HZ
 
-from ._cell import (ARM_JOINTS, ARM_MAX_FORCE_N_M, FINGER_JOINTS, HAND_LINK, _BRAKE_DECEL, _K_POS,
+from ._cell import (ARM_JOINTS, ARM_MAX_FORCE_N_M, EE_LINK, FINGER_JOINTS, HAND_LINK, _BRAKE_DECEL, _K_POS,
                     _LIMIT_SHARE, _Q_MAX, _Q_MIN, _RATED_DDDQ, _RATED_DDQ, _RATED_DQ)
 
 __all__ = ["_Actuation"]
+
+#: the least speed cap a stop leaves the servo for correcting a position error (rad/s). PyBullet's
+#: velocity motor creeps under a heavy load (joint 4 at 0.02 rad/s with 3 kg held out); a stop that
+#: capped the servo at the speed at its command (about 0.001 rad/s from rest) let the arm sink, and
+#: a stop 2 drifted past its standstill tolerance and fell as a stop 0 (issue 32: 0.24 m with the
+#: rated 3 kg at joint 2's worst pose). Below the 0.05 rad/s from which a stop's speed gain counts.
+_HOLD_SPEED_RAD_S = 0.05
 
 
 class _Actuation:
@@ -37,6 +44,9 @@ class _Actuation:
         range. So every controller keeps the Panda's rated limits
         (:mod:`ethimon.sim._limits`).
         """
+        if not getattr(self, "_holding_refused", False):  # any other command ends a refused power-off's hold
+            self.power_off_refused = None
+            self._refused_hold = None
         self.max_velocity = max_velocity
         self.speed_cap = None if speed_cap is None else np.abs(np.asarray(speed_cap, dtype=float))
         if not self.powered:  # re-powering: interpolate from where the arm is, as it moves
@@ -51,28 +61,82 @@ class _Actuation:
             self.gripper_cmd = gripper_m
         self.powered = True
 
-    def command_torque_off(self, *, brakes_already_engaged: bool = False) -> None:
-        """Stop category 0 style: remove motor power at once.
+    def command_torque_off(self, *, brakes_already_engaged: bool = False, why: str | None = None) -> None:
+        """Stop category 0 style: remove motor power at once, if the brakes can hold the arm.
 
-        The motors apply no torque any more. With ``brakes`` (the default, as on a real
-        Panda) the holding brakes engage :data:`~ethimon.sim._limits.BRAKE_ENGAGE_S` later
-        (the joints coast meanwhile), then decelerate each joint at
-        :data:`~ethimon.sim._limits.BRAKE_DECEL_RAD_S2` with a friction torque of at most
-        :data:`BRAKE_TORQUE_N_M` (a larger external torque slips them) and hold it against
-        gravity: both values are assumed (see the sim README). Without brakes, gravity and
-        contacts act freely and the arm sags. ``brakes_already_engaged``: the brakes were
-        engaged while the motors still held the arm (a stop 1 at standstill), so there is
-        no coasting.
+        First (issue 32) the gravity load of arm + held payload where the arm is
+        (:meth:`gravity_load`) is checked against each joint's brake holding torque
+        (:attr:`brake_torque`, the cell's or the Panda table's): when a brake cannot hold it, power
+        is **not** removed: the arm decelerates within its rated acceleration and holds powered (a
+        stop 2), :attr:`power_off_refused` says why and :attr:`brake_log` has it; later calls keep
+        that hold. Otherwise the motors apply no torque any more. With ``brakes`` (the default, as
+        on a real Panda) the holding brakes engage :data:`~ethimon.sim._limits.BRAKE_ENGAGE_S`
+        later (the joints coast meanwhile), then decelerate each joint at
+        :data:`~ethimon.sim._limits.BRAKE_DECEL_RAD_S2` with a friction torque of at most its
+        holding torque (a larger external torque slips them) and hold it against gravity: the
+        timing is assumed, the torques are estimates (see the sim README). Without brakes,
+        gravity and contacts act freely and the arm sags (no check: nothing would hold).
+        ``brakes_already_engaged``: the brakes were engaged while the motors still held the arm
+        (a stop 1 at standstill), so there is no coasting. ``why`` names the stop in the log
+        (default: ``stop 1`` with the brakes already engaged, else ``stop 0``).
         """
+        why = why or ("stop 1" if brakes_already_engaged else "stop 0")
+        if self.power_off_refused is not None and self.powered:
+            self._hold_refused()
+            return
         if self.powered:
+            problem = self.brake_problem_now() if self.brakes else None
+            t = round(self.time_s, 6)
+            if problem is not None:
+                self.power_off_refused = (f"{why}: power-off refused, the brakes cannot hold the arm "
+                                          f"({problem}): held powered (a stop 2)")
+                self.brake_log.append((t, self.power_off_refused))
+                self._hold_refused()
+                return
+            if self.brakes:
+                load = np.abs(self.gravity_load())
+                j = int(np.argmax(load / np.maximum(self.brake_torque, 1e-9)))
+                m, _ = self.payload()
+                self.brake_log.append((t, f"{why}: power off; the brakes hold arm + {m:g} kg (joint {j + 1}: "
+                                          f"{load[j]:.1f} of {self.brake_torque[j]:g} N·m)"))
             self.powered = False
             self._off_substeps = 0
             self._brake_hold = None
+            self._off_ref = (self.joint_state()[0].copy(), self._grasp_z())
             if self.held is not None and not self.gripper.self_locking:
                 self.drop("power_off")  # the unpowered fingers no longer press on the object
             if brakes_already_engaged:  # a stop 1 engaged them at standstill, motors holding
                 self._off_substeps = int(math.ceil(BRAKE_ENGAGE_S * PHYSICS_HZ))
         self._apply_unpowered()
+
+    def _hold_refused(self) -> None:
+        """The powered hold of a refused power-off: from the state it had then, every joint
+        decelerates at 80 % of its rated acceleration (never faster than it was) to rest and holds."""
+        if self._refused_hold is None:
+            q, qd = self.joint_state()
+            stop = q + qd * np.abs(qd) / (2.0 * _LIMIT_SHARE * _RATED_DDQ)
+            stop = np.clip(stop, _Q_MIN + LIMIT_MARGIN_RAD, _Q_MAX - LIMIT_MARGIN_RAD)
+            self._refused_hold = (stop, np.abs(qd) + 1e-3)
+        q_hold, cap = self._refused_hold
+        self._holding_refused = True
+        try:
+            self.command_joints(q_hold, np.zeros(7), speed_cap=cap)
+        finally:
+            self._holding_refused = False
+
+    def _grasp_z(self) -> float:
+        return float(self._p.getLinkState(self.robot, EE_LINK, computeForwardKinematics=1,
+                                          physicsClientId=self.cid)[0][2])
+
+    def _track_unpowered(self) -> None:
+        """After a physics cycle without power: how far every joint and the grasp point have moved
+        since the power-off (:attr:`max_travel_unpowered_rad`, :attr:`max_drop_unpowered_m`)."""
+        if self._off_ref is None:
+            return
+        q0, z0 = self._off_ref
+        q, _ = self.joint_state()
+        self.max_travel_unpowered_rad = max(self.max_travel_unpowered_rad, float(np.max(np.abs(q - q0))))
+        self.max_drop_unpowered_m = max(self.max_drop_unpowered_m, z0 - self._grasp_z())
 
     @property
     def brakes_engaged(self) -> bool:
@@ -91,7 +155,10 @@ class _Actuation:
             # at a stretched elbow), so a stopped joint is held at its latched position
             if self._brake_hold is None:
                 self._brake_hold = np.full(7, np.nan)
-            stopped = np.abs(qd) < 0.01
+            # a joint slower than one physics step of braking is stopped by it (issue 32: a
+            # 0.01 rad/s threshold left a loaded elbow creeping at 0.02 rad/s under a velocity
+            # loop that never latched, 0.05 rad in 2.6 s with 68.6 of 87 N·m at joint 2)
+            stopped = np.abs(qd) <= np.maximum(step, 0.01)
             newly = stopped & np.isnan(self._brake_hold)
             self._brake_hold[newly] = q[newly]
             self._brake_hold[~stopped & (np.abs(q - np.nan_to_num(self._brake_hold, nan=0.0)) > 0.02)] = np.nan
@@ -100,11 +167,11 @@ class _Actuation:
                 if held[j]:
                     p.setJointMotorControl2(self.robot, ARM_JOINTS[j], p.POSITION_CONTROL,
                                             targetPosition=float(self._brake_hold[j]), targetVelocity=0.0,
-                                            force=BRAKE_TORQUE_N_M[j], positionGain=1.0,
+                                            force=float(self.brake_torque[j]), positionGain=1.0,
                                             velocityGain=1.0, physicsClientId=cid)
                 else:
                     p.setJointMotorControl2(self.robot, ARM_JOINTS[j], p.VELOCITY_CONTROL,
-                                            targetVelocity=float(target[j]), force=BRAKE_TORQUE_N_M[j],
+                                            targetVelocity=float(target[j]), force=float(self.brake_torque[j]),
                                             physicsClientId=cid)
         else:  # coasting: no motor torque, brakes not (yet) engaged
             self._brake_hold = None
@@ -123,8 +190,8 @@ class _Actuation:
         cap = _RATED_DQ
         if self.max_velocity is not None:
             cap = np.minimum(cap, self.max_velocity)
-        if self.speed_cap is not None:
-            cap = np.minimum(cap, self.speed_cap)
+        if self.speed_cap is not None:  # never below what holding a loaded joint needs (issue 32)
+            cap = np.minimum(cap, np.maximum(self.speed_cap, _HOLD_SPEED_RAD_S))
         v = np.clip(v, -cap, cap)
         # never faster toward a rated position limit than the joint can shed before it (at
         # the planning share of its rated acceleration): no controller carries it past

@@ -54,7 +54,8 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
     def __init__(self, *, control_hz: int = 60, gui: bool = False,
                  start_joints_rad: Sequence[float] | None = None,
                  humans: Sequence[Human] = (), objects: Sequence[SimObject] = (),
-                 brakes: bool = True, gripper: Gripper | None = None) -> None:
+                 brakes: bool = True, gripper: Gripper | None = None,
+                 brake_torque_n_m: Sequence[float] | None = None) -> None:
         if control_hz <= 0 or PHYSICS_HZ % control_hz:
             raise ValueError(f"control_hz={control_hz} must divide {PHYSICS_HZ}")
         p, pd = import_pybullet()
@@ -97,6 +98,19 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
         self.max_past_limit_rad = 0.0
         self.link_speed_max = 0.0
         self.brakes = brakes
+        #: each joint's brake holding torque (N·m): the cell's, else the Panda table (estimates)
+        self.brake_torque = np.asarray(BRAKE_TORQUE_N_M if brake_torque_n_m is None else brake_torque_n_m,
+                                       dtype=float)
+        #: ``(t_s, what)`` for every power-off the brakes were checked for (issue 32): the gravity
+        #: load of arm + payload against each brake; a refused power-off says why
+        self.brake_log: list[tuple[float, str]] = []
+        #: a stop 0/1 whose power-off was refused (the brakes cannot hold): the powered hold's reason
+        self.power_off_refused: str | None = None
+        self._refused_hold: tuple[np.ndarray, np.ndarray] | None = None
+        #: since the last power-off: the furthest any joint travelled (rad) and the grasp point fell (m)
+        self.max_travel_unpowered_rad = 0.0
+        self.max_drop_unpowered_m = 0.0
+        self._off_ref: tuple[np.ndarray, float] | None = None
         self.gripper = gripper if gripper is not None else Gripper()
         #: the most the fingers' friction holds a grasped object with (N)
         self.grip_capacity_n = 2.0 * self.gripper.friction_coefficient * self.gripper.grasp_force_n
@@ -126,7 +140,7 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
         """Build the cell a scenario's ``sim:`` block describes."""
         sim = cls(control_hz=block.control_hz, gui=gui, start_joints_rad=block.start_joints_rad,
                   humans=block.humans, objects=block.objects, brakes=block.brakes,
-                  gripper=block.gripper)
+                  gripper=block.gripper, brake_torque_n_m=block.brake_torque_n_m)
         if block.start_xyz_m is not None:
             q = sim.solve_ik(block.start_xyz_m, seed=HOME_JOINTS_RAD)
             sim.reset_joints(q)
@@ -347,6 +361,7 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
             ratio_a = max(ratio_a, float(np.max(acc / _RATED_DDQ)))
         if not self.powered:  # a later re-power starts from the measured state
             self._q_sub, self._qd_sub = self.joint_state()
+            self._track_unpowered()
         self.max_joint_speed_substep = peak
         self.max_joint_accel_substep = peak_a
         self.max_accel_ratio_substep = ratio_a

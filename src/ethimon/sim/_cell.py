@@ -18,7 +18,7 @@ from ._limits import (BRAKE_DECEL_RAD_S2, BRAKE_TORQUE_N_M, RATED_DDDQ_MAX, RATE
                       RATED_Q_MAX, RATED_Q_MIN)
 from ._model import Human
 
-__all__ = ["ARM_JOINTS", "FINGER_JOINTS", "HAND_LINK", "EE_LINK", "HOME_JOINTS_RAD", "ARM_MAX_FORCE_N_M",
+__all__ = ["ARM_JOINTS", "FINGER_JOINTS", "HAND_LINK", "FLANGE_LINK", "EE_LINK", "HOME_JOINTS_RAD", "ARM_MAX_FORCE_N_M",
            "BRAKE_TORQUE_N_M", "Segment", "import_pybullet"]
 
 
@@ -26,6 +26,8 @@ __all__ = ["ARM_JOINTS", "FINGER_JOINTS", "HAND_LINK", "EE_LINK", "HOME_JOINTS_R
 ARM_JOINTS = (0, 1, 2, 3, 4, 5, 6)
 FINGER_JOINTS = (9, 10)
 HAND_LINK = 8
+#: The flange (panda_link8): payload offsets are stated in its frame.
+FLANGE_LINK = 7
 #: The grasp-target frame between the fingertips.
 EE_LINK = 11
 #: A comfortable start pose (the Panda "ready" pose; the spec's default safe pose too).

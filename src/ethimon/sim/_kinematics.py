@@ -1,5 +1,6 @@
 """The kinematics of :class:`~._arm.ArmSim` and the probes the controllers plan with: IK/FK, the
-hazard axis, a route's clearances, link points, a step away from the people."""
+hazard axis, a route's clearances, link points, a step away from the people; the gravity load of
+arm + payload that the brakes must hold."""
 
 from __future__ import annotations
 
@@ -8,7 +9,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ._cell import (ARM_JOINTS, EE_LINK, HAND_LINK, HOME_JOINTS_RAD, _DOWN_RPY, _NO_HUMAN_M)
+from .._robot import PAYLOAD_OFFSET_M, brake_problem, gravity_torque
+from ._cell import (ARM_JOINTS, EE_LINK, FLANGE_LINK, HAND_LINK, HOME_JOINTS_RAD, _DOWN_RPY, _NO_HUMAN_M)
 
 __all__ = ["_Kinematics"]
 
@@ -77,11 +79,14 @@ class _Kinematics:
         hs = p.getLinkState(self.robot, HAND_LINK, computeForwardKinematics=1, physicsClientId=cid)
         return p.multiplyTransforms(hs[0], hs[1], *self._held_rel)
 
-    def hazard_axis_angles_deg(self, qs: Sequence[Sequence[float]] | None = None) -> list[float] | None:
+    def hazard_axis_angles_deg(self, qs: Sequence[Sequence[float]] | None = None, *,
+                               each: bool = False) -> list | None:
         """Angle (deg) between the held object's declared ``hazard_axis`` and the direction from
-        the object's centre to the nearest person (the nearest point of their capsule axis), at
-        each configuration in ``qs`` (default: now; state restored afterwards). 180 = pointed
-        straight away. ``None`` when no object with a ``hazard_axis`` is held or there is nobody.
+        the object's centre to each person (the nearest point of their capsule axis), the worst
+        (smallest) over every person present (issue 32: every person counts, not only the
+        nearest), at each configuration in ``qs`` (default: now; state restored afterwards).
+        180 = pointed straight away. ``each=True``: per configuration a dict person -> angle.
+        ``None`` when no object with a ``hazard_axis`` is held or there is nobody.
         """
         if self.held is None or not self.humans:
             return None
@@ -94,24 +99,21 @@ class _Kinematics:
         for hb in self.humans.values():
             c = self.human_position(hb.spec.name)
             r, h = hb.spec.radius_m, hb.spec.height_m
-            people.append((c, max(h / 2 - r, 0.0)))
+            people.append((hb.spec.name, c, max(h / 2 - r, 0.0)))
 
-        def angle() -> float:
+        def angle():
             pos, orn = self._held_pose_for_hand()
             pos = np.asarray(pos)
             rot = np.asarray(p.getMatrixFromQuaternion(orn)).reshape(3, 3)
             a = rot @ a_obj
-            best, to = math.inf, None
-            for c, half in people:
+            per = {}
+            for name, c, half in people:
                 z = min(max(pos[2], c[2] - half), c[2] + half)
                 v = np.array([c[0], c[1], z]) - pos
                 d = float(np.linalg.norm(v))
-                if d < best:
-                    best, to = d, v
-            if to is None or best < 1e-9:
-                return 0.0
-            cos = float(np.dot(a, to) / best)
-            return math.degrees(math.acos(min(1.0, max(-1.0, cos))))
+                cos = float(np.dot(a, v) / d) if d > 1e-9 else 1.0
+                per[name] = math.degrees(math.acos(min(1.0, max(-1.0, cos))))
+            return per if each else min(per.values())
 
         if qs is None:
             return [angle()]
@@ -212,3 +214,31 @@ class _Kinematics:
         if n < 1e-6:
             return None
         return np.array([x[0] + step_m * d[0] / n, x[1] + step_m * d[1] / n, x[2] + 0.1])
+
+    # ------------------------------------------------------------ gravity (issue 32)
+
+    def payload(self) -> tuple[float, tuple[float, float, float]]:
+        """The held object as a payload: ``(mass kg, its centre of mass in the flange frame m)``;
+        ``(0, grasp point)`` when nothing is held."""
+        if self.held is None:
+            return 0.0, PAYLOAD_OFFSET_M
+        p, cid = self._p, self.cid
+        st = p.getLinkState(self.robot, FLANGE_LINK, computeForwardKinematics=1, physicsClientId=cid)
+        inv_pos, inv_orn = p.invertTransform(st[4], st[5])  # the flange's URDF frame
+        pos, _ = p.getBasePositionAndOrientation(self.objects[self.held], physicsClientId=cid)
+        rel, _ = p.multiplyTransforms(inv_pos, inv_orn, pos, (0.0, 0.0, 0.0, 1.0))
+        return float(self.object_specs[self.held].mass_kg), (float(rel[0]), float(rel[1]), float(rel[2]))
+
+    def gravity_load(self, q: Sequence[float] | None = None) -> np.ndarray:
+        """The torque (N·m) each joint must hold against gravity now: arm + held payload
+        (:func:`ethimon._robot.gravity_torque`, the URDF's masses; equal to PyBullet's inverse
+        dynamics at rest)."""
+        q = self.joint_state()[0] if q is None else q
+        m, off = self.payload()
+        return np.asarray(gravity_torque(q, m, off))
+
+    def brake_problem_now(self) -> str | None:
+        """``None`` when every brake holds arm + payload where the arm is; else why not."""
+        q, _ = self.joint_state()
+        m, off = self.payload()
+        return brake_problem(q, m, off, holding_n_m=tuple(self.brake_torque))

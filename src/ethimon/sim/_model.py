@@ -318,7 +318,7 @@ class SimExpect(_Model):
         "(power removed from a gripper that is not self-locking, or pulled out beyond its friction)")
     min_hazard_axis_angle_deg: float | None = Field(
         None, ge=0.0, le=180.0, description="at the end of the run, the angle between a held "
-        "object's hazard_axis and the direction from it to the nearest person is at least this "
+        "object's hazard_axis and the direction from it to every person (the worst-placed) is at least this "
         "(over 90: pointed away)")
     max_human_speed_ratio: float | None = Field(
         None, gt=0.0, description="every person's measured horizontal speed at most this many "
@@ -339,6 +339,12 @@ class SimExpect(_Model):
         "and stopped: the arm held in a stop 2, the task not resumed")
     object_end_z_m: dict[str, tuple[float, float]] | None = Field(
         None, description="object name -> [lowest, highest] height (m) of its centre at the end")
+    max_drop_after_power_off_m: float | None = Field(
+        None, ge=0.0, description="the grasp point (and a held payload) never lower than this "
+        "below where it was when motor power went off (m; over every unpowered cycle)")
+    brakes_escalated: bool | None = Field(
+        None, description="a stop 0/1 whose power-off the brakes could not hold was turned into "
+        "a powered hold (true), or none was (false)")
 
 
 class SimBlock(_Model):
@@ -359,6 +365,11 @@ class SimBlock(_Model):
         "beyond this from the held pose escalates to stop_0")
     brakes: bool = Field(True, description="holding brakes engage when motor power is removed "
                                            "(stop_0 at once, stop_1 after its ramp)")
+    brake_torque_n_m: tuple[float, float, float, float, float, float, float] | None = Field(
+        None, description="holding torque of each joint's brake (N·m), as the cell's data sheet "
+        "states it; default the Panda table (ethimon._robot.BRAKE_TABLE, estimates). Before any "
+        "power-off the gravity load of arm + held object is checked against it: a stop 0/1 the "
+        "brakes cannot hold keeps power on and holds (a powered stop 2), with the reason recorded")
     gripper: Gripper = Gripper()
     task: tuple[Primitive, ...] = ()
     humans: tuple[Human, ...] = ()
@@ -389,6 +400,13 @@ class SimBlock(_Model):
             ok = [h for h in range(1, PHYSICS_HZ + 1) if PHYSICS_HZ % h == 0 and h >= 10]
             raise ValueError(f"control_hz={v} must divide the physics rate {PHYSICS_HZ} Hz "
                              f"(one of {ok})")
+        return v
+
+    @field_validator("brake_torque_n_m")
+    @classmethod
+    def _brakes_finite(cls, v):
+        if v is not None and not all(math.isfinite(t) and t >= 0.0 for t in v):
+            raise ValueError(f"brake_torque_n_m must be 7 finite holding torques >= 0 N·m, got {list(v)}")
         return v
 
     @model_validator(mode="after")

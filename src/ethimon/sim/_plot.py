@@ -33,7 +33,7 @@ PANELS: dict[str, tuple[str, ...]] = {
     "hazard_distance": ("hazard_distance",),
     "controller": (),
 }
-_YLABEL = {"risk": "risk R_e", "human_distance": "human dist. (m)", "ee_speed": "ee speed (m/s)",
+_YLABEL = {"payload": "height (m)", "risk": "risk R_e", "human_distance": "human dist. (m)", "ee_speed": "ee speed (m/s)",
            "joint_speed": "joint speed (rad/s)", "joint_accel": "joint accel.\n(× rated)",
            "contact_force": "contact force (N)", "hazard_distance": "hazard–person (m)",
            "controller": "controller"}
@@ -44,6 +44,8 @@ EVENT_LABELS = {
     "peak_contact_force": "peak contact force", "standstill": "standstill", "power_off": "power off",
     "object_dropped": "object dropped", "task_stopped": "task stopped (object missing)",
     "safe_pose": "safe pose reached", "release": "release",
+    "power_off_refused": "power-off refused (brakes cannot hold)", "payload_fall": "payload fell",
+    "ack_accepted": "acknowledgement accepted", "ack_refused": "acknowledgement refused",
 }
 _LANE = ("task", "safe_pose", "stop_2", "stop_1", "stop_0")
 _LANE_COLOR = {"task": "tab:green", "safe_pose": "tab:blue", "stop_2": "gold", "stop_1": "tab:orange",
@@ -225,12 +227,16 @@ def _letters(i: int) -> str:
     return s
 
 
-def _draw_controller_lane(a: Any, t: np.ndarray, dt: float, trace: Sequence[Any]) -> None:
-    """The bottom panel: which controller commanded the arm when; override, faults and rules beneath."""
+def _draw_controller_lane(a: Any, t: np.ndarray, dt: float, trace: Sequence[Any],
+                          extra: Mapping[str, Any] | None = None) -> None:
+    """The bottom panel: which controller commanded the arm when; override, faults and rules beneath
+    (with ``extra``: motor power, the brakes and the acknowledgements too)."""
     # controller lane: which controller commanded the arm when; override and faults beneath
     ctrl = [r.controller for r in trace]
     rows = list(_LANE) + [c for c in dict.fromkeys(ctrl) if c not in _LANE]
     names = ["rule fires", "fault", "override", *rows]
+    if extra is not None:
+        names = ["acknowledge", "brakes", "power", *names]
     ypos = {name: i for i, name in enumerate(names)}
     for c, x0, w in _segments(t, dt, ctrl):
         a.broken_barh([(x0, w)], (ypos[c] - 0.35, 0.7), facecolors=_LANE_COLOR.get(c, "tab:gray"),
@@ -249,10 +255,64 @@ def _draw_controller_lane(a: Any, t: np.ndarray, dt: float, trace: Sequence[Any]
             a.broken_barh([(x0, w)], (ypos["rule fires"] - 0.35, 0.7),
                           facecolors="tab:red" if resp else "0.6",
                           gid="rules:response" if resp else "rules:task")
+    if extra is not None:
+        powered = list(extra.get("powered") or [])
+        for v, x0, w in _segments(t[:len(powered)], dt, powered):
+            a.broken_barh([(x0, w)], (ypos["power"] - 0.35, 0.7), facecolors="tab:green" if v else "0.85",
+                          gid="power:on" if v else "power:off")
+        brakes = list(extra.get("brakes") or [])
+        color = {"engaged": "0.25", "refused": "tab:red", "engaging": "0.6"}
+        for v, x0, w in _segments(t[:len(brakes)], dt, brakes):
+            if v in color:
+                a.broken_barh([(x0, w)], (ypos["brakes"] - 0.35, 0.7), facecolors=color[v],
+                              hatch="//" if v == "refused" else None, gid=f"brakes:{v}")
+        for ts, ok, _msg in extra.get("acks") or ():
+            a.plot([ts], [ypos["acknowledge"]], marker="^" if ok else "x", ms=8, ls="none",
+                   color="tab:green" if ok else "tab:red", gid="ack:accepted" if ok else "ack:refused")
     a.set_yticks(range(len(names)))
     a.set_yticklabels(names, fontsize=7)
     a.set_ylim(-0.6, len(names) - 0.4)
     a.set_xlabel("simulated time (s)")
+
+
+def _draw_extra(ax: Mapping[str, Any], t: np.ndarray, dt: float, trace: Sequence[Any],
+                cols: Mapping[str, np.ndarray], extra: Mapping[str, Any], meta: dict[str, Any]) -> None:
+    """The payload panel, the slow-zone breaches and the per-person hazard angles (issue 32)."""
+    if "payload" in ax:
+        a = ax["payload"]
+        gz = np.asarray(extra["grasp_z"], dtype=float)
+        a.plot(t[:len(gz)], gz, color="0.3", label="grasp point")
+        for name, zs in (extra.get("objects_z") or {}).items():
+            a.plot(t[:len(zs)], zs, "--", label=f"{name} (centre)")
+        powered = list(extra.get("powered") or [])
+        for v, x0, w in _segments(t[:len(powered)], dt, powered):
+            if not v:  # how far the grasp point fell from where power went off
+                i0 = int(round((x0 - t[0]) / dt))
+                z_off = float(gz[max(i0 - 1, 0)])
+                low = float(np.min(gz[i0:i0 + int(round(w / dt))]))
+                a.axhline(z_off, color="tab:red", ls=":", lw=0.8, gid="power_off_height")
+                if z_off - low > 0.005:
+                    a.annotate(f"fell {z_off - low:.3f} m after power-off", (x0, low), fontsize=7,
+                               color="tab:red", xytext=(4, -10), textcoords="offset points", gid="fall")
+        a.set_ylabel("height (m)", fontsize=9)
+    sz = extra.get("slow_zone")
+    meta["slow_zone_breach_cycles"] = 0
+    if sz is not None:
+        d_lim, v_lim = sz
+        d = np.array([r.human_distance_true_m for r in trace], dtype=float)
+        v = cols["ee_speed"]
+        bad = (d < d_lim) & (v > v_lim + 1e-9)
+        meta["slow_zone_breach_cycles"] = int(np.sum(bad))
+        if bad.any():
+            ax["ee_speed"].plot(t[bad], v[bad], "o", ms=3, color="tab:red", gid="slow_zone_breach",
+                                label=f"over {v_lim:g} m/s within {d_lim:g} m ({int(np.sum(bad))} cycles)")
+    for person, angles in (extra.get("hazard_angles") or {}).items():  # hook: per-person hazard angles
+        if "hazard_twin" not in meta:
+            meta["hazard_twin"] = ax["hazard_distance"].twinx()
+            meta["hazard_twin"].set_ylabel("axis from person (°)", fontsize=8)
+        meta["hazard_twin"].plot(t[:len(angles)], angles, ":", lw=1, label=f"axis vs {person}",
+                                 gid=f"hazard_angle:{person}")
+    meta.pop("hazard_twin", None)
 
 
 def _draw_events(ax: Mapping[str, Any], events: Sequence[Mapping[str, Any]], meta: dict[str, Any]) -> list[str]:
@@ -277,7 +337,7 @@ def _draw_events(ax: Mapping[str, Any], events: Sequence[Mapping[str, Any]], met
 
 
 def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Mapping[str, Any]] = (),
-                 title: str | None = None, dt: float | None = None):
+                 title: str | None = None, dt: float | None = None, extra: Mapping[str, Any] | None = None):
     """The recording's figure and what was drawn on it.
 
     Args:
@@ -287,10 +347,20 @@ def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Map
             panel, one letter per distinct time, explained under the plot.
         title: the figure's title.
         dt: the control period (default: from the trace).
+        extra: what an assessor needs beyond the trace (issue 32; the :class:`~._record.Recorder`
+            collects it per cycle): ``powered`` and ``brakes`` (``"off"``, ``"engaged"``,
+            ``"refused"``: a power-off refused because the brakes cannot hold) per cycle, ``grasp_z``
+            (grasp point height, m) and ``objects_z`` (name -> height per cycle, the objects the arm
+            held) for a ``payload`` panel, ``acks`` (``(t_s, accepted, message)``), ``slow_zone``
+            (``(D, V)``: the spec's near-human speed rule; cycles within D over V are marked on the
+            ee-speed panel) and ``hazard_angles`` (a hook: person -> angle (deg) per cycle between a
+            held hazard's axis and the direction to that person, drawn on the hazard panel).
+            Without it the figure is as before (eight panels).
 
     Returns:
         ``(figure, meta)``; ``meta`` has ``panels``, ``tau``, ``limits`` (drawn),
-        ``limits_skipped`` and ``event_marks`` (letter, time, events).
+        ``limits_skipped``, ``event_marks`` (letter, time, events) and, with ``extra``,
+        ``slow_zone_breach_cycles``.
     """
     import matplotlib
 
@@ -309,8 +379,10 @@ def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Map
     constants = spec_constants(spec)
     limits, skipped = spec_limits(spec)
     panels = list(PANELS)
-    heights = [1.0] * (len(panels) - 1) + [0.9]
-    fig = Figure(figsize=(12, 17))
+    if extra is not None and extra.get("grasp_z") is not None:
+        panels.insert(panels.index("controller"), "payload")
+    heights = [1.0] * (len(panels) - 1) + [0.9 if extra is None else 1.3]
+    fig = Figure(figsize=(12, 17 if len(panels) == len(PANELS) else 19))
     axes = fig.subplots(len(panels), 1, sharex=True, gridspec_kw={"height_ratios": heights})
     ax = dict(zip(panels, axes))
     meta: dict[str, Any] = {"panels": panels, "tau": None, "limits": [], "limits_skipped": skipped,
@@ -382,7 +454,16 @@ def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Map
                 a.legend(handles, ["\n".join(textwrap.wrap(lb, 34)) for lb in labels], loc="upper left",
                          bbox_to_anchor=(1.005, 1.0), fontsize=7, borderaxespad=0.0)
 
-    _draw_controller_lane(ax["controller"], t, dt, trace)
+    if extra is not None:
+        _draw_extra(ax, t, dt, trace, cols, extra, meta)
+        for p in ("payload", "ee_speed", "hazard_distance"):
+            if p in ax:
+                handles, labels = ax[p].get_legend_handles_labels()
+                if handles:
+                    import textwrap
+                    ax[p].legend(handles, ["\n".join(textwrap.wrap(lb, 34)) for lb in labels], loc="upper left",
+                                 bbox_to_anchor=(1.005, 1.0), fontsize=7, borderaxespad=0.0)
+    _draw_controller_lane(ax["controller"], t, dt, trace, extra)
 
     lines = _draw_events(ax, events, meta)
     if n:
@@ -400,8 +481,9 @@ def build_figure(trace: Sequence[Any], *, spec: Any = None, events: Sequence[Map
 
 
 def plot_trace(trace: Sequence[Any], path: str, title: str | None = None, *, spec: Any = None,
-               events: Sequence[Mapping[str, Any]] = (), dt: float | None = None) -> dict[str, Any]:
+               events: Sequence[Mapping[str, Any]] = (), dt: float | None = None,
+               extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Draw :func:`build_figure` to ``path`` (PNG, Agg backend); returns its ``meta``."""
-    fig, meta = build_figure(trace, spec=spec, events=events, title=title, dt=dt)
+    fig, meta = build_figure(trace, spec=spec, events=events, title=title, dt=dt, extra=extra)
     fig.savefig(path, dpi=90)
     return meta

@@ -21,6 +21,11 @@ trace, so a recording and a test compute the same list):
 - ``safe_pose``: the first cycle the safe-pose controller ends within the spec's tolerance;
 - ``release``: every cycle whose override is false after an override.
 
+A recording adds (issue 32; from the simulator and the run's result, not the trace):
+``power_off_refused`` (a stop 0/1 whose power-off the brakes could not hold, with the reason),
+``payload_fall`` (the grasp point 0.02 m below where it was at a power-off),
+``ack_accepted`` / ``ack_refused`` (every acknowledgement, with its message).
+
 A frame shows the state after its cycle's physics. Frames of events known only at the
 end (closest approach, peak force) are rendered after the run from a snapshot of every
 body's pose and joint positions taken when the running extreme was reached.
@@ -41,12 +46,15 @@ import numpy as np
 from ._control import SEVERITY
 from ._plot import EVENT_LABELS, plot_trace
 from ._result import check_sim_expectations
+from ._rules import near_human_speed_rule
 
-__all__ = ["Recorder", "plot_trace", "trace_events", "EVENT_LABELS", "STANDSTILL_RAD_S"]
+__all__ = ["Recorder", "plot_trace", "trace_events", "EVENT_LABELS", "STANDSTILL_RAD_S", "bounds_broken"]
 
 _SIGNALS = ("human_distance", "ee_speed", "contact_force", "joint_speed_max", "hazard_distance")
 #: standstill: every joint below this in every physics substep (the sim expectation's definition)
 STANDSTILL_RAD_S = 0.01
+#: a grasp point this far below its height at a power-off has fallen (event ``payload_fall``)
+FALL_M = 0.02
 _STOPS = ("stop_0", "stop_1", "stop_2")
 
 
@@ -225,6 +233,43 @@ class Recorder:
         self._snaps: dict[str, tuple[int, list[tuple]]] = {}
         self._parts: dict[str, dict[str, Any]] = {}  # frame path -> what it was composed from
         self.events: list[dict[str, Any]] = []
+        #: per cycle, what the trace does not carry (power, brakes, payload heights): for the plot
+        self.extra: dict[str, Any] = {"powered": [], "brakes": [], "grasp_z": [], "objects_z": {}}
+        self._carried: set[str] = set()
+        self._n_brake_log = 0
+        self._off_z: float | None = None
+        self._fell = False
+
+    def _observe_power(self, rec: Any) -> list[dict[str, Any]]:
+        """Power, brakes and payload height after this cycle; the events only the simulator sees."""
+        sim, ex, evs = self.sim, self.extra, []
+        if getattr(sim, "held", None):
+            self._carried.add(sim.held)
+        refused = getattr(sim, "power_off_refused", None)
+        ex["powered"].append(bool(sim.powered))
+        ex["brakes"].append("refused" if refused and sim.powered else "" if sim.powered else
+                            "engaged" if getattr(sim, "brakes_engaged", False) else "engaging")
+        z = float(sim._grasp_z()) if hasattr(sim, "_grasp_z") else math.nan
+        ex["grasp_z"].append(z)
+        zs = sim.object_z() if self._carried else {}
+        for name in self._carried:
+            col = ex["objects_z"].setdefault(name, [math.nan] * (len(ex["grasp_z"]) - 1))
+            col.append(float(zs.get(name, math.nan)))
+        log = getattr(sim, "brake_log", [])
+        for _t, what in log[self._n_brake_log:]:
+            if "refused" in what:
+                evs.append(self.tracker._add("power_off_refused", rec, what))
+        self._n_brake_log = len(log)
+        if sim.powered:
+            self._off_z, self._fell = None, False
+        else:
+            if self._off_z is None:
+                self._off_z = ex["grasp_z"][-2] if len(ex["grasp_z"]) > 1 else z
+            if not self._fell and self._off_z - z > FALL_M:
+                self._fell = True
+                evs.append(self.tracker._add("payload_fall", rec, f"grasp point {self._off_z - z:.3f} m "
+                                             "below its height at power-off", round(self._off_z - z, 4)))
+        return evs
 
     # -- during the run ---------------------------------------------------------------------------
 
@@ -234,6 +279,7 @@ class Recorder:
         t0 = time.perf_counter()
         self.last = rec
         evs, improved = self.tracker.update(rec)
+        evs += self._observe_power(rec)
         for name in improved:
             self._snaps[name] = (rec.cycle, _snapshot(self.sim))
         if evs:
@@ -325,10 +371,12 @@ class Recorder:
         if sim.humans:  # each person's speed now (a walking person is the reason to re-plan)
             lines.append(("people: " + ", ".join(f"{n} {self._person_speed(n, rec.t_s):.2f} m/s"
                                                  for n in sim.humans))[:90])
-        angles = sim.hazard_axis_angles_deg() if hasattr(sim, "hazard_axis_angles_deg") else None
-        if angles:
+        per = sim.hazard_axis_angles_deg(each=True) if hasattr(sim, "hazard_axis_angles_deg") else None
+        if per:  # every person counts: the worst-placed one (issue 32)
+            who = min(per[0], key=per[0].get)
+            angles = [per[0][who]]
             lines.append(f"{sim.held} {sim.object_specs[sim.held].hazard or 'hazard'} axis: "
-                         f"{angles[0]:.0f} deg from the nearest person"
+                         f"{angles[0]:.0f} deg from {who}" + (" (worst of all)" if len(per[0]) > 1 else "")
                          + ("  (pointed away)" if angles[0] >= 90 else "  (TOWARD them)"))
         if rec.faults:
             lines.append(f"fault: {rec.faults[0]}"[:90])
@@ -399,9 +447,11 @@ class Recorder:
     def _title(self, result: Any) -> str:
         spec_name = getattr(self.spec, "name", None) or "?"
         verdict = ""
-        if self.block is not None:
-            problems = check_sim_expectations(self.block, result)
-            verdict = "PASS" if not problems else f"FAIL ({len(problems)} sim expectation(s) not met)"
+        broken = bounds_broken(result.trace, self.spec, result)
+        if self.block is not None or broken:
+            problems = check_sim_expectations(self.block, result) if self.block is not None else []
+            why = ([f"{len(problems)} sim expectation(s) not met"] if problems else []) + broken
+            verdict = "PASS" if not why else f"FAIL ({'; '.join(why)})"
         ov = ("no override" if result.first_override_cycle is None
               else f"override at cycle {result.first_override_cycle}")
         return (f"{self.name}  ·  spec {spec_name}  ·  {verdict + '  ·  ' if verdict else ''}"
@@ -411,6 +461,13 @@ class Recorder:
         """Write ``trace.jsonl``, ``trace.csv``, ``plot.png`` and ``summary.json``."""
         self._deferred_frames(result)
         self.events = self.tracker.finish()
+        dt = float(getattr(self.sim, "dt", 0.0) or 0.0)
+        for ts, ok, msg in getattr(result, "acknowledgements", ()) or ():
+            self.events.append({"event": "ack_accepted" if ok else "ack_refused", "cycle": int(round(ts / dt)) if dt else None,
+                                "t_s": float(ts), "detail": msg, "value": None, "frame": None})
+        self.events.sort(key=lambda e: (e["t_s"], e["cycle"] if e["cycle"] is not None else -1))
+        self.extra["acks"] = list(getattr(result, "acknowledgements", ()) or ())
+        self.extra["slow_zone"] = near_human_speed_rule(self.spec) if self.spec is not None else None
         jl = os.path.join(self.dir, "trace.jsonl")
         with open(jl, "w", encoding="utf-8") as fh:
             for r in result.trace:
@@ -424,6 +481,9 @@ class Recorder:
                     "safe_pose_error_rad": r.safe_pose_error_rad,
                     "human_distance_true_m": _clean(r.human_distance_true_m),
                 }
+                if r.cycle < len(self.extra["powered"]):
+                    row.update(powered=self.extra["powered"][r.cycle], brakes=self.extra["brakes"][r.cycle],
+                               grasp_z_m=_clean(round(self.extra["grasp_z"][r.cycle], 5)))
                 fh.write(json.dumps(row) + "\n")
         cs = os.path.join(self.dir, "trace.csv")
         with open(cs, "w", newline="", encoding="utf-8") as fh:
@@ -439,14 +499,48 @@ class Recorder:
         pl = os.path.join(self.dir, "plot.png")
         self.files += [jl, cs, pl, sj]  # summary.json lists every file of the recording, itself included
         meta = plot_trace(result.trace, pl, title=self._title(result), spec=self.spec, events=self.events,
-                          dt=getattr(self.sim, "dt", None))
+                          dt=getattr(self.sim, "dt", None), extra=self.extra)
         with open(sj, "w", encoding="utf-8") as fh:
             summ = result.summary()
             summ["files"] = list(self.files)
             summ["events"] = [{k: _clean(v) for k, v in e.items()} for e in self.events]
-            summ["plot"] = {k: meta[k] for k in ("panels", "tau", "limits", "limits_skipped", "event_marks")}
+            summ["plot"] = {k: meta[k] for k in ("panels", "tau", "limits", "limits_skipped", "event_marks",
+                                                 "slow_zone_breach_cycles")}
+            summ["bounds_broken"] = bounds_broken(result.trace, self.spec, result)
             json.dump(_jsonable(summ), fh, indent=2)
         return list(self.files)
+
+
+def bounds_broken(trace: Sequence[Any], spec: Any, result: Any = None) -> list[str]:
+    """The stated bounds a run broke, one phrase each (the recording's title says FAIL for any):
+    the spec's near-human speed rule (``ee_speed`` over V while the simulated distance is under D)
+    for longer than the rule's own grace (``within_cycles``), and a joint past its rated position
+    limit."""
+    out = []
+    rule = near_human_speed_rule(spec) if spec is not None else None
+    if rule is not None:
+        d_lim, v_lim = rule
+        grace = max([int(getattr(ob, "within_cycles", 0) or 0) for ob in getattr(spec, "obligations", ())
+                     if "human_distance" in (getattr(ob, "when", "") or "")
+                     and "ee_speed" in (getattr(ob, "require", "") or "")] or [0])
+        run = over = 0
+        peak = (0.0, 0.0)
+        for r in trace:
+            v = _num(r.signals.get("ee_speed", math.nan))
+            if r.human_distance_true_m < d_lim and v > v_lim + 1e-9:
+                run += 1
+                if run > grace:
+                    over += 1
+                    peak = max(peak, (v, r.human_distance_true_m))
+            else:
+                run = 0
+        if over:
+            out.append(f"slow zone: {over} cycle(s) over {v_lim:g} m/s within {d_lim:g} m after the "
+                       f"{grace}-cycle grace (peak {peak[0]:.3f} m/s at {peak[1]:.2f} m)")
+    past = float(getattr(result, "max_past_limit_mrad", 0.0) or 0.0) if result is not None else 0.0
+    if past > 0.0:
+        out.append(f"a joint {past:.1f} mrad past its rated limit")
+    return out
 
 
 def _jsonable(v: Any) -> Any:

@@ -110,7 +110,12 @@ class SimResult:
             ``slipped``: pulled out beyond the fingers' friction).
         object_end_z_m: height of every object's centre at the end of the run.
         hazard_axis_angle_end_deg: at the end, the angle between the held object's declared
-            ``hazard_axis`` and the direction to the nearest person (``None``: none held/declared).
+            ``hazard_axis`` and the direction to the worst-placed person: the smallest over every
+            person present, not only the nearest (``None``: none held/declared).
+        hazard_axis_angles_end_deg: the same angle per person at the end (``{}``: none).
+        hazard_axis_min_swing_deg: per person, how far (deg) the axis turned toward them below
+            the angle it had at the first override, at the worst cycle from then on (0: never;
+            ``{}``: none held/declared).
         max_human_speed_ratio: the largest measured horizontal speed of a person (from its true
             position, cycle to cycle) over the fastest speed its waypoints script (``None``: no
             moving person).
@@ -119,6 +124,10 @@ class SimResult:
         max_past_limit_mrad: the furthest any joint went past its rated position limit (mrad,
             every physics step of the run; 0 = never outside).
         acknowledgements: ``(t_s, accepted, message)`` for every operator acknowledgement.
+        brake_log: ``(t_s, what)`` for every power-off: the brakes' check of arm + payload, and a
+            refused power-off's reason (issue 32); ``brakes_escalated``: any was refused.
+        max_travel_unpowered_rad, max_drop_unpowered_m: the furthest any joint travelled, and the
+            grasp point fell, from where they were at a power-off, while unpowered.
         task_resumes: how often the task resumed after a response.
         min_response_s: the shortest time a response drove the arm before the task resumed
             (``None``: the task never resumed).
@@ -155,6 +164,8 @@ class SimResult:
     min_hazard_distance_after_override_m: float | None = None
     dropped: tuple[tuple[str, float, str], ...] = ()
     hazard_axis_angle_end_deg: float | None = None
+    hazard_axis_angles_end_deg: dict[str, float] = field(default_factory=dict)
+    hazard_axis_min_swing_deg: dict[str, float] = field(default_factory=dict)
     wrist_turn_rad: float | None = None
     task_stopped: str | None = None
     object_end_z_m: dict[str, float] = field(default_factory=dict)
@@ -162,6 +173,10 @@ class SimResult:
     human_overshoot_m: float | None = None
     acknowledgements: tuple[tuple[float, bool, str], ...] = ()
     max_past_limit_mrad: float = 0.0
+    brake_log: tuple[tuple[float, str], ...] = ()
+    brakes_escalated: bool = False
+    max_travel_unpowered_rad: float = 0.0
+    max_drop_unpowered_m: float = 0.0
     task_resumes: int = 0
     min_response_s: float | None = None
 
@@ -261,9 +276,11 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
             out.append("sim: expected a held object with a hazard_axis and a person at the end "
                        "(min_hazard_axis_angle_deg), found none")
         elif a < ex.min_hazard_axis_angle_deg - 1e-9:
+            who = min(r.hazard_axis_angles_end_deg, key=r.hazard_axis_angles_end_deg.get,
+                      default="a person")
             out.append(f"sim: at the end the held object's hazard axis is {a:.1f} deg from the "
-                       f"direction to the nearest person, expected at least "
-                       f"{ex.min_hazard_axis_angle_deg:g} deg (pointed away)")
+                       f"direction to {who} (the worst-placed person; every person counts), expected "
+                       f"at least {ex.min_hazard_axis_angle_deg:g} deg (pointed away)")
     if ex.max_human_speed_ratio is not None and r.max_human_speed_ratio is not None \
             and r.max_human_speed_ratio > ex.max_human_speed_ratio + 1e-9:
         out.append(f"sim: a person moved at {r.max_human_speed_ratio:.2f} x the fastest speed its "
@@ -272,6 +289,12 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
             and r.human_overshoot_m > ex.max_human_overshoot_m + 1e-9:
         out.append(f"sim: a person went {r.human_overshoot_m:.3f} m past its last waypoint, expected "
                    f"at most {ex.max_human_overshoot_m:g} m")
+    if ex.max_drop_after_power_off_m is not None and r.max_drop_unpowered_m > ex.max_drop_after_power_off_m:
+        out.append(f"sim: after power-off the grasp point fell {r.max_drop_unpowered_m:.3f} m, expected "
+                   f"at most {ex.max_drop_after_power_off_m:g} m")
+    if ex.brakes_escalated is not None and r.brakes_escalated != ex.brakes_escalated:
+        out.append(f"sim: brakes_escalated {r.brakes_escalated}, expected {ex.brakes_escalated}"
+                   + (f" ({r.brake_log[-1][1]})" if r.brake_log else ""))
     if ex.max_past_limit_mrad is not None and r.max_past_limit_mrad > ex.max_past_limit_mrad + 1e-9:
         out.append(f"sim: a joint went {r.max_past_limit_mrad:.2f} mrad past its rated position limit, "
                    f"expected at most {ex.max_past_limit_mrad:g} mrad")

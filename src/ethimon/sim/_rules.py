@@ -15,7 +15,12 @@ from __future__ import annotations
 import re
 from typing import Any
 
-__all__ = ["near_human_speed_rule"]
+__all__ = ["near_human_speed_rule", "retreat_speed_rule", "RETREAT_NEAR_HUMAN_DEFAULT"]
+
+#: the safe-pose retreat's own speed limit near people when the spec states none:
+#: ``(distance_m, speed_m_s)`` = 0.25 m/s within 1.5 m (ISO 10218-1's reduced speed, 250 mm/s;
+#: cobot_cell's slow zone). Issue 32 item 5: a governor-only spec left retreats uncapped.
+RETREAT_NEAR_HUMAN_DEFAULT: tuple[float, float] = (1.5, 0.25)
 
 _NUM_OR_NAME = r"([A-Za-z_][A-Za-z0-9_]*|[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)"
 _WHEN = re.compile(rf"^\s*human_distance\s*<=?\s*{_NUM_OR_NAME}\s*$")
@@ -46,3 +51,10 @@ def near_human_speed_rule(spec: Any) -> tuple[float, float] | None:
         if best is None or v < best[1] or (v == best[1] and d > best[0]):
             best = (max(d, best[0]) if best and v == best[1] else d, v)
     return best
+
+
+def retreat_speed_rule(spec: Any) -> tuple[float, float]:
+    """The ``(distance_m, speed_m_s)`` a safe-pose retreat keeps near people: the spec's
+    strictest near-human speed rule, else :data:`RETREAT_NEAR_HUMAN_DEFAULT` (a retreat is
+    never uncapped near a person; ``ethimon lint`` says so as ``lint.retreat_uncapped``)."""
+    return near_human_speed_rule(spec) or RETREAT_NEAR_HUMAN_DEFAULT

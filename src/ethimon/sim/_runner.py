@@ -21,7 +21,7 @@ from ._arm import ArmSim
 from ._control import SEVERITY, StopController, TaskController, plan_task
 from ._limits import out_of_range, safe_pose_problem
 from ._model import SimBlock
-from ._rules import near_human_speed_rule
+from ._rules import RETREAT_NEAR_HUMAN_DEFAULT, near_human_speed_rule
 from ._safe_pose import SafePoseController
 from ._record import Recorder
 from ._result import CycleRecord, SimResult, check_sim_expectations
@@ -57,7 +57,8 @@ class GovernedArm:
             :class:`~ethimon.sim.SimBlock`.
         near_human: ``(distance_m, speed_m_s)`` the safe-pose retreat obeys near people;
             default: the spec's own near-human speed rule (``when: human_distance < D``,
-            ``require: ee_speed <= V``), none if it has none.
+            ``require: ee_speed <= V``), else the retreat's own limit
+            ``RETREAT_NEAR_HUMAN_DEFAULT`` (0.25 m/s within 1.5 m); ``None``: uncapped.
 
     A stop 0 or 1 runs to power-off even if the monitor releases the override meanwhile.
 
@@ -104,18 +105,26 @@ class GovernedArm:
                 raise src.error(problem, ("safe_pose", "joints_rad", out_of_range(self.safe_joints)[0][0] - 1),
                                 hint=hint)
             raise SpecError(problem, hint=hint)
+        spec_rule = None
         if near_human == "spec":
             spec = getattr(monitor, "spec", None)
-            near_human = near_human_speed_rule(spec) if spec is not None else None
+            spec_rule = near_human_speed_rule(spec) if spec is not None else None
+            # the retreat's own limit when the spec states none (issue 32 item 5)
+            near_human = spec_rule or RETREAT_NEAR_HUMAN_DEFAULT
+        else:
+            spec_rule = near_human
         self.near_human = near_human
         #: an acknowledgement is refused while the monitor's human_distance is below this (m);
         #: default the spec's near-human zone (none without such a rule: then only "no rule
         #: fires", which includes a separation rule)
-        self.acknowledge_clear_m = (near_human[0] if near_human else None) \
+        self.acknowledge_clear_m = (spec_rule[0] if spec_rule else None) \
             if acknowledge_clear_m == "spec" else acknowledge_clear_m
         self.release_dwell_s = float(release_dwell_s)
         self._clear_since: float | None = None   # monitor released (no override) since
         self._acked = False                      # an accepted acknowledgement since the override
+        self._resume_retreat_since: float | None = None   # a stop 2 over a retreat released since
+        #: sim times at which a stop 2 handed the arm back to the retreat (its rule released)
+        self.retreat_resumed: list[float] = []
         self._fed: dict[str, Any] = {}
         self.standstill_tolerance_rad = standstill_tolerance_rad
         self.inputs = dict(inputs or {})
@@ -154,6 +163,18 @@ class GovernedArm:
                 resp = "safe_pose"
             if SEVERITY[resp] > SEVERITY[self.active]:
                 self._switch(resp)
+                self._resume_retreat_since = None
+            elif self._stop2_may_hand_back(resp):
+                # the stop 2 that interrupted a retreat: its own rule has released; once it has
+                # stayed released for the dwell, the retreat goes on, planned afresh from here
+                if self._resume_retreat_since is None:
+                    self._resume_retreat_since = t
+                if t - self._resume_retreat_since >= self.release_dwell_s - 1e-9:
+                    self._switch("safe_pose")
+                    self.retreat_resumed.append(round(t, 6))
+                    self._resume_retreat_since = None
+            else:
+                self._resume_retreat_since = None
         elif self.active != "none" and not self._must_finish():
             if self._clear_since is None:
                 self._clear_since = t
@@ -238,6 +259,15 @@ class GovernedArm:
             self._acked = True
         return a
 
+    def _stop2_may_hand_back(self, resp: str) -> bool:
+        """A powered stop 2 (not escalated, at standstill, not the hold of a task that lost its
+        object) while the monitor now asks only for the safe pose: the separation stop that
+        paused a retreat has released (issue 32 item 5)."""
+        c = self.controller
+        return (resp == "safe_pose" and self.active == "stop_2" and self.task_stopped is None
+                and isinstance(c, StopController) and c.category == 2 and not c.escalated
+                and c.done and c.standstill_s is not None)
+
     def _must_finish(self) -> bool:
         if self.task_stopped is not None:
             return True  # the task lost its object: it holds until someone looks, never resumes
@@ -278,6 +308,17 @@ def _collect(res: SimResult, rec: CycleRecord, near_m: float, dt: float) -> None
         if not rec.retreat_decelerating and d < near_m:
             res.retreat_max_link_speed_near_human_m_s = max(
                 res.retreat_max_link_speed_near_human_m_s or 0.0, rec.link_speed_max_m_s)
+
+
+def _swing(res: SimResult, sim: ArmSim, axis0: dict[str, float]) -> None:
+    """Per person: how far a held hazard's axis has turned toward them below its angle at the
+    first override (``axis0``, filled at the first call), the worst cycle so far."""
+    ang = sim.hazard_axis_angles_deg(each=True)
+    if not ang:
+        return
+    for n, a in ang[0].items():
+        a0 = axis0.setdefault(n, a)
+        res.hazard_axis_min_swing_deg[n] = round(max(res.hazard_axis_min_swing_deg.get(n, 0.0), a0 - a), 2)
 
 
 class _PeopleWatch:
@@ -412,13 +453,17 @@ def _summarize(res: SimResult, arm: GovernedArm, sim: ArmSim, people: _PeopleWat
     res.route = sp.route if sp is not None else None
     res.dropped = tuple(sim.dropped)
     res.task_stopped = arm.task_stopped
-    ang = sim.hazard_axis_angles_deg()
-    res.hazard_axis_angle_end_deg = round(ang[0], 2) if ang else None
+    ang = sim.hazard_axis_angles_deg(each=True)
+    res.hazard_axis_angles_end_deg = {n: round(a, 2) for n, a in ang[0].items()} if ang else {}
+    res.hazard_axis_angle_end_deg = min(res.hazard_axis_angles_end_deg.values()) if ang else None
     res.wrist_turn_rad = round(sp.wrist_turn_rad, 4) if sp is not None else None
     res.object_end_z_m = {n: round(z, 4) for n, z in sim.object_z().items()}
     res.max_human_speed_ratio, res.human_overshoot_m = people.result()
     res.acknowledgements = tuple(ack_log)
     res.max_past_limit_mrad = round(1000.0 * sim.max_past_limit_rad, 4)
+    res.brake_log, res.brakes_escalated = tuple(sim.brake_log), any("refused" in w for _, w in sim.brake_log)
+    res.max_travel_unpowered_rad = round(sim.max_travel_unpowered_rad, 5)
+    res.max_drop_unpowered_m = round(sim.max_drop_unpowered_m, 5)
     res.fired = tuple(fired)
     res.sim_time_s = round(sim.time_s, 6)
     res.realtime_factor = res.sim_time_s / loop_wall if loop_wall > 0 else math.inf
@@ -488,6 +533,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         people = _PeopleWatch(sim)
         ack_log: list[tuple[float, bool, str]] = []
         resp_since: float | None = None
+        axis0: dict[str, float] = {}  # each person's hazard-axis angle at the first override
         for _ in range(n_cycles):
             while acks and sim.time_s >= acks[0] - 1e-9:  # the operator's acknowledgement
                 acks.pop(0)
@@ -525,6 +571,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
                 fired.setdefault(v, None)
             if rec.faults:
                 res.fault_cycles += 1
+            if res.first_override_cycle is not None or rec.override:
+                _swing(res, sim, axis0)
             if rec.override:
                 if res.first_override_cycle is None:
                     res.first_override_cycle = rec.cycle

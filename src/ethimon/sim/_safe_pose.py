@@ -25,6 +25,9 @@ _HAZARD_AWAY_DEG = 135.0
 #: wrist's own swing) before the route counts as sweeping it through them; also the
 #: hysteresis before a moving person makes the retreat re-orient it
 _AXIS_SLACK_DEG = 10.0
+#: at rest (holding, or turned in place), a full trial plan (a retreat clear now) is tried at most
+#: this often (s); while holding, a wrist turn away from the people whenever someone moves 0.1 m
+_RECHECK_S = 1.0
 
 
 class SafePoseController:
@@ -100,6 +103,7 @@ class SafePoseController:
         self._checked_xy: dict[str, np.ndarray] = {}
         self._blocked = False
         self._arrival_checked = False
+        self._last_trial_s = -math.inf  # sim time of the last trial plan (_try_plan)
 
     @property
     def holding(self) -> StopController | None:
@@ -158,6 +162,14 @@ class SafePoseController:
             except Exception:  # noqa: BLE001 - IK trouble only removes candidates
                 pass
         out += [(name, [q_start, via, qs]) for name, via in self._via]
+        if abs(float(qs[6] - q_start[6])) > 0.05:
+            # a held hazard turned away in place first (joint 7 alone), then direct or folding:
+            # the blade is not carried round through someone while the wrist still turns
+            wrist = q_start.copy()
+            wrist[6] = qs[6]
+            fold_w = wrist.copy()
+            fold_w[[1, 3, 5]] = qs[[1, 3, 5]]
+            out += [("direct", [q_start, wrist, qs]), ("fold", [q_start, wrist, fold_w, qs])]
         # back out the way the arm came in (its task's joint-space path, reversed), then go
         back, prev = [q_start], q_start
         for p in self.path_back:
@@ -231,9 +243,10 @@ class SafePoseController:
             best = self._best_route(sim, q_start, need_h, need_z)
             if best is not None:
                 break
-        if best is None and self._alt_safe:
-            # no wrist angle that points the axis away is reachable without sweeping it through
-            # someone: the best angle that is (the largest end angle among up to 3 tried)
+        if best is None and self.hazard_axis_angle_deg is not None:
+            # no wrist angle that points the axis away (from everyone) is reachable without
+            # sweeping it through someone: the best angle that is (the largest end angle among
+            # up to 3 tried)
             for target in self._reachable_wrist(sim, q_start):
                 self.q_safe, self.wrist_turn_rad, self.hazard_axis_angle_deg = target
                 best = self._best_route(sim, q_start, need_h, need_z)
@@ -275,9 +288,11 @@ class SafePoseController:
         points the held hazard's axis further from the people, as far as the angle keeps rising
         (never through anyone's direction) and the range allows. ``(pose, angle, moves)``, or
         ``None`` without an axis or when no turn gains 5 deg."""
-        now = sim.hazard_axis_angles_deg([q_start])
-        if now is None:
+        per0 = sim.hazard_axis_angles_deg([q_start], each=True)
+        if per0 is None:
             return None
+        now = [min(per0[0].values())]
+        floor = {n: min(a, _HAZARD_AWAY_DEG) - _AXIS_SLACK_DEG for n, a in per0[0].items()}
         best = None
         for sign in (1.0, -1.0):
             vals = np.arange(q_start[6], (_Q_MAX[6] if sign > 0 else _Q_MIN[6]) - sign * 0.02,
@@ -289,11 +304,12 @@ class SafePoseController:
                 q = q_start.copy()
                 q[6] = v
                 poses.append(q)
-            ang = sim.hazard_axis_angles_deg(poses)
+            per = sim.hazard_axis_angles_deg(poses, each=True)
             k, top = -1, now[0]
-            for i, a in enumerate(ang):  # climb while the angle rises (never back toward them)
-                if a < top - 1.0:
-                    break
+            for i, pa in enumerate(per):  # climb while the worst angle rises (never back toward them)
+                a = min(pa.values())
+                if a < top - 1.0 or any(pa[n] < f - 1e-6 for n, f in floor.items()):
+                    break  # nor more than the slack toward anyone (each person on their own)
                 if a > top:
                     k, top = i, a
             if k >= 0 and top >= now[0] + 5.0 and (best is None or top > best[1]):
@@ -334,14 +350,18 @@ class SafePoseController:
         return best
 
     def _axis_ok(self, sim: ArmSim, samples: list[np.ndarray]) -> bool:
-        """A held object's declared hazard axis never turns more toward a person along the
-        samples than it points now (or than ``_HAZARD_AWAY_DEG``), less ``_AXIS_SLACK_DEG``:
-        a blade or spout is never swept through someone's direction. True without an axis."""
-        angles = sim.hazard_axis_angles_deg(samples)
-        if not angles:
+        """A held object's declared hazard axis never turns more toward any person along the
+        samples than it points at that person now (or than ``_HAZARD_AWAY_DEG``), less
+        ``_AXIS_SLACK_DEG``: a blade or spout is never swept through anyone's direction (each
+        person judged on their own, issue 32). True without an axis."""
+        per = sim.hazard_axis_angles_deg(samples, each=True)
+        if not per:
             return True
-        floor = min(angles[0], _HAZARD_AWAY_DEG) - _AXIS_SLACK_DEG
-        return min(angles) >= floor - 1e-6
+        for name, a0 in per[0].items():  # every person, each against where it points at them now
+            floor = min(a0, _HAZARD_AWAY_DEG) - _AXIS_SLACK_DEG
+            if min(a[name] for a in per) < floor - 1e-6:
+                return False
+        return True
 
     def _needs(self, now: dict[str, float]) -> tuple[float, float]:
         """The clearances a route from a pose with clearances ``now`` must keep: never nearer
@@ -453,6 +473,53 @@ class SafePoseController:
             self._hold = StopController(2, q_m, qd_m, 0.0)
             self.name = "stop_2"
 
+    def _try_plan(self, sim: ArmSim, q: np.ndarray, why: str, accept: tuple[str, ...]) -> bool:
+        """Plan from ``q`` (the arm at rest there) as a trial: a route named in ``accept`` is
+        taken (and counted a re-plan); anything else leaves the current plan as it was. The
+        people's positions are noted either way, so the next trial waits until someone moves."""
+        if sim.time_s - self._last_trial_s < _RECHECK_S - 1e-9:
+            return False
+        self._last_trial_s = sim.time_s
+        saved = (self.q_safe.copy(), self.wrist_turn_rad, self.hazard_axis_angle_deg, self.route,
+                 self._moves, self._gains, self.planned_closest_m, self.speed_cap_m_s, self._need)
+        self._plan(sim, q)
+        self._checked_xy = sim.human_xy()
+        if self.route in accept and self._moves:
+            self.replans.append((round(self.t, 6), why))
+            self.tau, self.rate, self._blocked = 0.0, 1.0, False
+            return True
+        (self.q_safe, self.wrist_turn_rad, self.hazard_axis_angle_deg, self.route, self._moves,
+         self._gains, self.planned_closest_m, self.speed_cap_m_s, self._need) = saved
+        return False
+
+    def _recheck_hold(self, sim: ArmSim) -> bool:
+        """While holding (no route was clear, a stop 2 with power on), someone moved: plan again
+        from the held pose with the people where they are now. A route that keeps every clearance
+        and the hazard axis (a retreat, or a wrist turn away from the people) ends the hold."""
+        hold = self._hold
+        if (not self.plan or hold is None or hold.category != 2 or hold.t < hold.decel.T
+                or not self._people_moved(sim)):
+            return False
+        q, _ = sim.joint_state()
+        self._checked_xy = sim.human_xy()
+        now = sim.probe([q])[0]
+        need_h, need_z = self._needs(now)
+        turn = self._turn_away(sim, q, need_h, need_z)  # cheap: joint 7 alone, checked as routes are
+        if turn is not None:
+            self.replans.append((round(self.t, 6), "re-checked while holding: the held hazard turns away"))
+            self.q_safe, self.hazard_axis_angle_deg, self._moves = turn
+            self.wrist_turn_rad = float(self.q_safe[6] - self._q_spec[6])
+            self.route, self.planned_closest_m = "turn", now["human"]
+            self._gains = [self._gain(sim, m.qa, m.qb) for m in self._moves]
+            self.tau, self.rate, self._blocked = 0.0, 1.0, False
+        elif not self._try_plan(sim, q, "re-checked while holding: a way is clear now",
+                                ("direct", "fold", "lift", "away", "back")):
+            return False
+        sim.rebase_reference()
+        self._hold, self.name, self._decel = None, "safe_pose", None
+        self._arrival_checked = False
+        return True
+
     def command(self, sim: ArmSim) -> None:
         if not self._started:
             self._started = True
@@ -466,7 +533,7 @@ class SafePoseController:
                 self.name = "stop_2"
             t_dec = self._decel.T if self._decel else 0.0
             self.plan_s = t_dec + sum(m.T for m in self._moves)
-        if self._hold is not None:
+        if self._hold is not None and not self._recheck_hold(sim):
             self._hold.command(sim)
             self.name = self._hold.name
             return
@@ -493,7 +560,12 @@ class SafePoseController:
                 now = sim.hazard_axis_angles_deg()
                 want = _HAZARD_AWAY_DEG if self.route != "turn" else min(
                     _HAZARD_AWAY_DEG, (self.hazard_axis_angle_deg or 0.0) + _AXIS_SLACK_DEG)
-                if now is not None and now[0] < want - _AXIS_SLACK_DEG:
+                if self.route == "turn" and self._try_plan(
+                        sim, q, "turned away in place: the retreat is clear from here",
+                        ("direct", "fold", "lift", "away", "back")):
+                    self._arrival_checked = False
+                    q, dq, ddq, i = self._at(0.0)
+                elif now is not None and now[0] < want - _AXIS_SLACK_DEG:
                     self._blocked = True  # plan again from here (a wrist turn, as it can)
         target = self._rate_target(sim, i)
         # change the rate no faster than the rated acceleration allows on top of the planned one
@@ -513,7 +585,9 @@ class SafePoseController:
                 return
             q, dq, ddq, i = self._at(0.0)
             rate_before = self.rate
-            self._arrival_checked = False
+            # at rest with nothing better to do (no move planned), nothing moves and nothing is
+            # planned again until someone moves (issue 32: 363 re-plans after arrival)
+            self._arrival_checked = bool(self._moves) is False
         # the path time advances by the mean rate over the cycle: the position the servo is given
         # then matches a linear change of the rate (its cubic interpolation keeps a constant
         # acceleration; the end rate alone made it peak at 4x the mean, over the rating)

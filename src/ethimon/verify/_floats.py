@@ -1,5 +1,13 @@
 """Where the monitor's doubles can leave the reals: interval bounds per arithmetic term (no z3).
 
+Besides overflow and underflow (below), :func:`rounding_hazards` bounds each comparison's rounding
+error (a forward error bound per term) against how far the inputs' own precision moves its sides
+(interval bounds on the derivatives): where rounding reaches more than 2^10 times that, absorption
+(``(x + 1e16) - 1e16``), cancellation (``(y + 0.1) - y``) or a division that amplifies an error
+decides the comparison on a region of inputs far wider than an ulp, and the proof is labelled
+``proved (real arithmetic)`` naming the term. Rounding within that factor is the ordinary rounding
+at a boundary that no real-arithmetic proof sees either way.
+
 ``ethimon verify`` proves its properties in real arithmetic; the monitor computes in IEEE-754
 doubles. They differ by rounding (an ulp or so, which a proof with boundaries exactly on a
 float cannot see either way), and by much more where a term *overflows* (a real value beyond
@@ -21,7 +29,7 @@ from fractions import Fraction
 from ..compiler._plan import RISK_NAME
 from ..language._expr import Binary, Call, Name, Num, Unary, separation_distance, to_source, walk
 
-__all__ = ["float_hazards", "defined_in_doubles"]
+__all__ = ["float_hazards", "defined_in_doubles", "exact_value", "rounding_hazards"]
 
 MAX = Fraction(sys.float_info.max)
 TINY = Fraction(sys.float_info.min)  # the smallest normal double: below it, digits are lost
@@ -181,6 +189,9 @@ def float_hazards(plan, ob) -> list[str]:
                                            (o.mz is not None and o.mz < 1 / _AMPLIFY)) for o in others):
                     out.append(f"{text} can underflow to 0 or a subnormal, and {to_source(p)} amplifies the "
                                "lost digits")
+    # rounding that decides a comparison otherwise (absorption, cancellation, division); an error bound
+    # made infinite by an overflow or a divisor reaching 0 is already named above
+    out += [h for h in rounding_hazards(plan, ob) if not (out and "up to inf" in h)]
     return out
 
 
@@ -263,3 +274,225 @@ def defined_in_doubles(plan, ob) -> bool:
             if isinstance(n, Call) and n.func == "separation_distance" and not all(_nonneg(b, a) for a in n.args):
                 return False
     return True
+
+
+# ---------------------------------------------------------------- rounding that can flip a comparison
+#: unit roundoff of a double (round to nearest): each operation's relative error is at most this
+_U = 2.0 ** -53
+#: a comparison's rounding error up to this many times what the inputs' own precision (an ulp of
+#: each input) moves its sides is ordinary rounding at a boundary; beyond it, absorption or
+#: cancellation decides it, on a region of inputs far wider than an ulp
+_FLIP_RATIO = 2.0 ** 10
+_CMP = ("<", "<=", ">", ">=", "==", "!=")
+_ONE = Fraction(1)
+
+
+def _f(x: Fraction) -> float:
+    return math.inf if abs(x) > MAX else float(abs(x))
+
+
+def _pow2(b: "_Bounds", node) -> bool:
+    """A constant power of two (multiplying or dividing by it is exact barring over/underflow)."""
+    v = b.of(node)
+    if v is None or v.lo != v.hi or v.lo == 0 or not (isinstance(node, Num) or isinstance(node, Name)):
+        return False
+    m = abs(v.lo)
+    return m.numerator & (m.numerator - 1) == 0 and m.denominator & (m.denominator - 1) == 0
+
+
+class _Err:
+    """A forward bound on the absolute rounding error of each term's double (``E``) and interval
+    bounds on its partial derivatives by each input (``D``), over the declared input ranges."""
+
+    def __init__(self, plan) -> None:
+        self.b = _Bounds(plan)
+        self.plan = plan
+        self.memo: dict[int, tuple[float, dict] | None] = {}
+        self.own: dict[int, float] = {}  # each operation's own rounding bound
+
+    def of(self, node) -> tuple[float, dict] | None:
+        k = id(node)
+        if k not in self.memo:
+            self.memo[k] = self._of(node)
+        return self.memo[k]
+
+    def rnd(self, node, exact: bool = False) -> float:
+        v = self.b.of(node)
+        r = 0.0 if exact else _U * _f(v.mag)
+        self.own[id(node)] = r
+        return r
+
+    def sens(self, d: dict) -> float:
+        """How far the inputs' own precision (an ulp each) moves a term with derivatives ``d``."""
+        return sum(_f(iv.mag) * _U * _f(self.b.ranges[k].mag) for k, iv in d.items())
+
+    def _of(self, node):
+        b = self.b
+        if isinstance(node, Num):
+            return 0.0, {}
+        if isinstance(node, Name):
+            if node.id in self.plan.constants:
+                return 0.0, {}
+            return (0.0, {node.id: _I(_ONE, _ONE)}) if node.id in b.ranges else None
+        if b.of(node) is None:
+            return None
+        if isinstance(node, Unary):
+            got = self.of(node.operand)
+            return None if got is None else (got[0], {k: _I(-d.hi, -d.lo) for k, d in got[1].items()})
+        if isinstance(node, Binary):
+            la, lb = self.of(node.left), self.of(node.right)
+            if la is None or lb is None:
+                return None
+            (ea, da), (eb, db) = la, lb
+            A, B, V = b.of(node.left), b.of(node.right), b.of(node)
+            zero = _I(Fraction(0), Fraction(0))
+            if node.op in ("+", "-"):
+                sign = 1 if node.op == "+" else -1
+                d = {k: (da.get(k, zero) + db.get(k, zero)) if sign > 0 else (da.get(k, zero) - db.get(k, zero))
+                     for k in {*da, *db}}
+                return ea + eb + self.rnd(node), d
+            if node.op == "*":
+                d = {k: da.get(k, zero) * B + A * db.get(k, zero) for k in {*da, *db}}
+                exact = _pow2(b, node.left) or _pow2(b, node.right)
+                return _f(A.mag) * eb + _f(B.mag) * ea + ea * eb + self.rnd(node, exact), d
+            if node.op == "/":
+                if B.has_zero():
+                    # exact operands: one correctly rounded quotient (relative error 2^-53, a boundary
+                    # rounding); a divisor reaching 0 is the .defined property's question. Rounded
+                    # operands divided by a divisor near 0: no bound
+                    return None if ea == 0 and eb == 0 else (math.inf, {})
+                mzb = float(min(abs(B.lo), abs(B.hi)))
+                if eb >= mzb:
+                    return math.inf, {}
+                d = {k: da.get(k, zero) / B - (V * db.get(k, zero)) / B for k in {*da, *db}}
+                return (ea + _f(V.mag) * eb) / (mzb - eb) + self.rnd(node, _pow2(b, node.right)), d
+            return None
+        if isinstance(node, Call):
+            args = [self.of(a) for a in node.args]
+            if any(a is None for a in args):
+                return None
+            if node.func == "abs":
+                e, d = args[0]
+                return e, {k: _I(-iv.mag, iv.mag) for k, iv in d.items()}
+            if node.func in ("min", "max", "prev"):
+                keys = {k for _, d in args for k in d}
+                d = {}
+                for k in keys:
+                    ivs = [dd.get(k, _I(Fraction(0), Fraction(0))) for _, dd in args]
+                    d[k] = _I(min(iv.lo for iv in ivs), max(iv.hi for iv in ivs))
+                return max(e for e, _ in args), d
+            if node.func == "sqrt":
+                a = b.of(node.args[0])
+                if a.lo <= 0:
+                    return None
+                lo, hi = math.sqrt(float(a.lo)), math.sqrt(_f(a.hi))
+                e, d = args[0]
+                k = _I(Fraction(1 / (2 * hi)) if hi < math.inf else Fraction(0), Fraction(1 / (2 * lo)))
+                return e / (2 * lo) + self.rnd(node), {n: iv * k for n, iv in d.items()}
+        return None
+
+
+def rounding_hazards(plan, ob) -> list[str]:
+    """The comparisons of obligation ``ob`` that rounding can decide otherwise than the reals by more
+    than the inputs' own precision, for inputs in their declared ranges: absorption (a term added to
+    one far larger loses its digits), cancellation (a difference of rounded terms that the inputs
+    barely move), a division that amplifies an operand's error. Each names the term (empty: none)."""
+    er = _Err(plan)
+    b = er.b
+    out: list[str] = []
+    for root in (ob.when, ob.require):
+        if root is None:
+            continue
+        for p in walk(root):
+            if not (isinstance(p, Binary) and p.op in _CMP):
+                continue
+            lft, rgt = er.of(p.left), er.of(p.right)
+            if lft is None or rgt is None:
+                continue
+            e = lft[0] + rgt[0]
+            if e == 0:
+                continue
+            diff = b.of(p.left) - b.of(p.right)
+            if e < math.inf and (float(diff.lo) > e or float(diff.hi) < -e):
+                continue  # decided with a margin no rounding reaches
+            zero = _I(Fraction(0), Fraction(0))
+            d = {k: lft[1].get(k, zero) - rgt[1].get(k, zero) for k in {*lft[1], *rgt[1]}}
+            s = er.sens(d)
+            if e <= _FLIP_RATIO * s:
+                continue
+            out.append(_name_flip(er, p, e, s))
+    return out
+
+
+def _name_flip(er: _Err, p, e: float, s: float) -> str:
+    """What in comparison ``p`` rounds past the inputs' precision: absorption, cancellation, division."""
+    b = er.b
+    found: list[str] = []
+    for side in (p.left, p.right):
+        for n in walk(side):
+            if not (isinstance(n, Binary) and n.op in ("+", "-", "/")):
+                continue
+            got = er.of(n)
+            if got is None:
+                continue
+            kids = [er.of(n.left), er.of(n.right)]
+            if n.op in ("+", "-"):
+                big = _f(b.of(n).mag)
+                for k in (n.left, n.right):
+                    m = _f(b.of(k).mag)
+                    if 0 < m and m * _FLIP_RATIO < big:
+                        found.append(f"absorption in {to_source(n)} ({to_source(k)}, up to {m:.3g}, is added to a "
+                                     f"term up to {big:.3g} and loses its low digits)")
+                        break
+            e_in = sum(x[0] for x in kids if x is not None)
+            if e_in > 0 and e_in > _FLIP_RATIO * er.sens(got[1]):
+                what = "cancellation" if n.op in ("+", "-") else "division"
+                found.append(f"{what} in {to_source(n)} (its operands' rounding, up to {e_in:.3g}, is what the "
+                             f"inputs barely move)" if what == "cancellation" else
+                             f"division in {to_source(n)} (it amplifies its operands' rounding, up to {e_in:.3g})")
+    why = "; ".join(reversed(dict.fromkeys(found))) or "rounding"  # innermost first
+    return (f"{why}: the doubles of {to_source(p)} can be off by up to {e:.3g}, where the inputs' own precision "
+            f"moves them by {s:.3g}, so the monitor can decide it otherwise than the reals")
+
+
+def exact_value(plan, node, env: dict):
+    """The exact (rational) value of ``node`` for inputs ``env`` (Fractions and bools), as the proof's real
+    arithmetic has it; ``None`` where it is not exact or not covered (sqrt, temporal functions, a division by 0)."""
+    if isinstance(node, Num):
+        return Fraction(node.value)
+    if isinstance(node, Name):
+        if node.id in plan.constants:
+            return Fraction(plan.constants[node.id])
+        return env.get(node.id)
+    if type(node).__name__ == "BoolLit":
+        return bool(node.value)
+    if isinstance(node, Unary):
+        v = exact_value(plan, node.operand, env)
+        if v is None:
+            return None
+        return (not v) if node.op == "not" else -v
+    if isinstance(node, Binary):
+        a = exact_value(plan, node.left, env)
+        if a is None:
+            return None
+        if node.op in ("and", "or", "implies"):
+            c = exact_value(plan, node.right, env)
+            if c is None:
+                return None
+            return (a and c) if node.op == "and" else (a or c) if node.op == "or" else ((not a) or c)
+        c = exact_value(plan, node.right, env)
+        if c is None:
+            return None
+        op = node.op
+        if op == "/":
+            return None if c == 0 else a / c
+        fns = {"+": lambda: a + c, "-": lambda: a - c, "*": lambda: a * c, "<": lambda: a < c,
+               "<=": lambda: a <= c, ">": lambda: a > c, ">=": lambda: a >= c, "==": lambda: a == c,
+               "!=": lambda: a != c}
+        return fns[op]() if op in fns else None
+    if isinstance(node, Call) and node.func in ("abs", "min", "max"):
+        args = [exact_value(plan, a, env) for a in node.args]
+        if any(a is None for a in args):
+            return None
+        return abs(args[0]) if node.func == "abs" else (min(args) if node.func == "min" else max(args))
+    return None

@@ -1,7 +1,9 @@
 """The lints of ``ethimon verify`` (imports z3): what an engineer would question in a spec that
 the monitor runs as written (τ outside the reachable R_e, R_e not monotone, a latch that never
 releases, release policies, vacuous or contradictory obligations, unbounded signals, the fault
-latch shorter than a window, a safe pose outside the Panda's rated range, the confirm band)."""
+latch shorter than a window, a safe pose outside the Panda's rated range, a stop 0/1 the brakes
+cannot hold with the rated payload, a retreat uncapped
+near people, the confirm band)."""
 
 from __future__ import annotations
 
@@ -14,6 +16,7 @@ import z3
 from ..compiler._risk_formula import risk_from_p_unsafe, two_class_risk
 from ..runtime import Monitor
 from ..language._expr import Name, walk
+from .. import _robot
 from .._robot import out_of_range, safe_pose_problem
 from ._policy import manual_rules, release_policy_warnings
 from ._checks import CheckBase, _fmt
@@ -36,7 +39,9 @@ class Lints(CheckBase):
                 ("lint.release_policy", self.lint_release_policy),
                 ("lint.vacuous", self.lint_vacuous), ("lint.contradiction", self.lint_contradictions),
                 ("lint.unbounded", self.lint_unbounded), ("lint.fault_gap", self.lint_fault_gap),
-                ("lint.safe_pose_range", self.lint_safe_pose_range)] + (
+                ("lint.safe_pose_range", self.lint_safe_pose_range),
+                ("lint.brakes", lambda: [self._timed(self.lint_brakes)]),
+                ("lint.retreat_uncapped", self.lint_retreat_uncapped)] + (
                     [("lint.confirm_band", lambda: [self._timed(lambda: lint_confirm_band(self))])]
                     if has_tiers(self.full_spec) else [])
 
@@ -381,6 +386,88 @@ class Lints(CheckBase):
         return [Finding("lint", name, WARNING, f"{where}{problem} (an error for 'ethimon lint' and "
                         "'check --sim'; FCI 'Limits for Panda')")]
 
+    def lint_retreat_uncapped(self) -> list[Finding]:
+        """A spec that can send the arm to its safe pose but states no near-human speed rule
+        (``when: human_distance < D``, ``require: ee_speed <= V``) leaves the retreat uncapped
+        near people on a real cell (issue 32 item 5: a governor-only cell's fold passed a helper
+        with a link at 0.41 m/s). The simulation caps it at its own 0.25 m/s within 1.5 m
+        (``ethimon.sim._rules.RETREAT_NEAR_HUMAN_DEFAULT``); the pattern is the one the sim reads."""
+        import re
+        name = "lint.retreat_uncapped"
+        spec = self.spec
+        num = r"([A-Za-z_][A-Za-z0-9_]*|[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)"
+        when = (re.compile(rf"^\s*human_distance\s*<=?\s*{num}\s*$"),
+                re.compile(rf"^\s*{num}\s*>=?\s*human_distance\s*$"))
+        req = re.compile(rf"^\s*ee_speed\s*<=?\s*{num}\s*$")
+        obs = list(getattr(spec, "obligations", ()) or ())
+        capped = [ob.id for ob in obs if any(w.match(getattr(ob, "when", None) or "") for w in when)
+                  and req.match(getattr(ob, "require", "") or "")]
+        if capped:
+            return [Finding("lint", name, OK, f"retreats near people are capped by {capped[0]!r}")]
+        resp = [str(getattr(getattr(spec, "risk", None), "response", "") or "")]
+        resp += [str(getattr(ob, "response", "") or "") for ob in obs]
+        resp.append(str(getattr(spec, "on_fault", "") or ""))
+        if not any(r.endswith("safe_pose") for r in resp):
+            return [Finding("lint", name, OK, "no response sends the arm to its safe pose")]
+        return [Finding("lint", name, WARNING,
+                        "a response sends the arm to its safe pose but no rule caps its speed near people "
+                        "(when: human_distance < D, require: ee_speed <= V): on a real cell the retreat "
+                        "moves at the safe pose's joint speed past anyone beside it; the simulation caps "
+                        "it at its own 0.25 m/s within 1.5 m. Add such a rule (cobot_cell's slow_near_human)")]
+
+    def lint_brakes(self) -> Finding:
+        """A stop 0/1 cuts motor power and leaves the arm to its brakes: over a grid of poses (the
+        spec's safe pose and joints 2-6 across their rated ranges, where gravity loads the joints),
+        the gravity load of arm + the rated payload (3 kg at the grasp point) against each joint's
+        brake holding torque (``ethimon._robot.BRAKE_TABLE``, estimates, stated per number). Names
+        the rules that cut power, the poses where a brake would slip and the largest payload the
+        brakes hold at every pose."""
+        name = "lint.brakes"
+        plan = self.plan
+        cuts = [ob.id for ob in plan.obligations if ob.response.value in ("stop_0", "stop_1")]
+        if plan.risk_rule.response.value in ("stop_0", "stop_1"):
+            cuts.append("risk")
+        if plan.fault_rule.response.value in ("stop_0", "stop_1"):
+            cuts.append("on_fault")
+        if not cuts:
+            return Finding("lint", name, OK, "no rule cuts motor power (stop 0/1): the brakes never hold the arm alone")
+        holding, kg, off = _robot.BRAKE_HOLDING_N_M, _robot.RATED_PAYLOAD_KG, _robot.PAYLOAD_OFFSET_M
+        worst: tuple[float, tuple[float, ...], int, float] | None = None  # (payload held, pose, joint, load)
+        falls = []
+        n = 0
+        for q in _brake_grid(tuple(self.spec.safe_pose.joints_rad)):
+            n += 1
+            a, per_kg = _robot.gravity_torque_parts(q, off)  # the load is linear in the payload's mass
+            for j in range(7):
+                slope = per_kg[j]
+                if abs(a[j]) > holding[j]:
+                    m_max = 0.0
+                elif abs(slope) < 1e-12:
+                    continue
+                else:  # the largest m >= 0 with |a + slope m| <= holding
+                    m_max = max(0.0, (holding[j] - a[j] * (1 if slope > 0 else -1)) / abs(slope))
+                if worst is None or m_max < worst[0]:
+                    worst = (m_max, q, j + 1, abs(a[j] + slope * kg))
+                if m_max < kg:
+                    falls.append((q, j + 1, abs(a[j] + slope * kg), holding[j]))
+        assert worst is not None
+        pose = ", ".join(f"{v:.2f}" for v in worst[1])
+        who = ", ".join(cuts)
+        if falls:
+            q, j, load, h = max(falls, key=lambda f: f[2] / f[3])
+            where = ", ".join(f"{v:.2f}" for v in q)
+            return Finding("lint", name, WARNING,
+                           f"{who} cut motor power (stop 0/1), and at {len(falls)} of {n} poses the brakes "
+                           f"cannot hold arm + the rated {kg:g} kg: the arm would fall (worst: joint {j} needs "
+                           f"{load:.1f} N·m at [{where}] rad, its brake holds {h:g} N·m; "
+                           f"from {worst[0]:.2f} kg at [{pose}] a brake slips). The simulation refuses such a "
+                           f"power-off and holds powered (a stop 2); a real cell needs stronger brakes, a "
+                           f"lighter payload or stop 2 for these rules")
+        return Finding("lint", name, OK,
+                       f"the brakes hold arm + the rated {kg:g} kg at all {n} grid poses after a stop 0/1 "
+                       f"({who}); the first slips from {worst[0]:.2f} kg (joint {worst[2]} at [{pose}] rad; "
+                       f"holding torques are estimates: ethimon._robot.BRAKE_TABLE)")
+
     def lint_fault_gap(self) -> list[Finding]:
         """The fault latch's hold must cover every obligation's window: a fault clears the
         history, so a shorter hold lets the arm resume (by itself, or on an acknowledgement
@@ -397,3 +484,15 @@ class Lints(CheckBase):
                     f"fault latch's hold_cycles={hold}: the arm can {how} while it is still violated"))
         return out or [Finding("lint", "lint.fault_gap", OK,
                                "the fault latch's hold_cycles covers every obligation's window after a fault")]
+
+
+def _brake_grid(safe: tuple[float, ...]) -> list[tuple[float, ...]]:
+    """The safe pose and joints 2-6 over their rated ranges (7, 3, 7, 3, 5 values; joints 1 and 7
+    turn about axes that do not change the gravity load of a payload on the flange axis)."""
+    def span(j: int, k: int) -> list[float]:
+        lo, hi = _robot.RATED_Q_MIN[j], _robot.RATED_Q_MAX[j]
+        return [lo + (hi - lo) * i / (k - 1) for i in range(k)]
+    grid = [safe] if len(safe) == 7 else []
+    for q2, q3, q4, q5, q6 in itertools.product(span(1, 7), span(2, 3), span(3, 7), span(4, 3), span(5, 5)):
+        grid.append((0.0, q2, q3, q4, q5, q6, 0.0))
+    return grid

@@ -375,12 +375,58 @@ class Properties(CheckBase):
                 hazard = self.float_hazard(ob)
                 if hazard:
                     f.status, f.message = PROVED_REAL, f"{f.message}; {hazard}"
+                    cex = self._float_counterexample(ob, name, sev)
+                    if cex is not None:
+                        f.counterexample = cex
+                        f.message += f"; in doubles: {cex.note}"
             return f
         return self._timed(lambda: in_floats(self._decision_check(
             name, bad, lambda t: {"final_override": True, "fired": [ob.id]},
             lambda d, t: not (d.override and d.response.severity >= sev and ob.id in d.violations),
             f"{what}{bound} => violation and override ({ob.response.value} or more)"
             + (f" by {n} cycles after the trigger" if n else " in the same cycle"), only=i)))
+
+    def _float_counterexample(self, ob, name: str, sev: int, tries: int = 400):
+        """A one-cycle input (seeded search over the declared ranges) on which the real arithmetic of
+        the proof says ``ob`` is violated and the :class:`Monitor`, computing in doubles, does not
+        override for it; ``None`` if none is found (or ``ob`` is temporal, or not exactly evaluable)."""
+        import random
+        from fractions import Fraction
+
+        from ..language._expr import TEMPORAL, Call
+        from ._encode import risk_input_range
+        from ._floats import exact_value
+        from ._report import Counterexample
+        roots = [r for r in (ob.when, ob.require) if r is not None]
+        if any(isinstance(n, Call) and n.func in TEMPORAL for r in roots for n in walk(r)):
+            return None
+        rng = random.Random(f"ethimon-verify-floats:{self.spec.name}:{ob.id}")
+        rlo, _ = risk_input_range(self.plan)
+        for _ in range(tries):
+            frame: dict[str, Any] = {}
+            for sig in self.plan.signals:
+                if sig.kind == "bool":
+                    frame[sig.name] = rng.random() < 0.5
+                else:
+                    lo, hi = max(sig.lo, -1e300), min(sig.hi, 1e300)
+                    frame[sig.name] = rng.choice([lo, hi, (lo + hi) / 2] + [rng.uniform(lo, hi)] * 5)
+            env = {k: (v if isinstance(v, bool) else Fraction(v)) for k, v in frame.items()}
+            when = True if ob.when is None else exact_value(self.plan, ob.when, env)
+            req = exact_value(self.plan, ob.require, env)
+            if when is not True or req is not False:
+                continue  # the reals do not say it must fire here (or cannot say exactly)
+            frame["risk"] = rlo
+            if self.spec.risk.max_age_s is not None:
+                frame["risk_age_s"] = 0.0
+            d = Monitor(self.spec).step(frame)
+            if d.faults or (d.override and d.response.severity >= sev and ob.id in d.violations):
+                continue
+            shown = ", ".join(f"{k} = {v!r}" for k, v in frame.items() if k in {s.name for s in self.plan.signals})
+            return Counterexample(name, [frame], 0, {"final_override": True, "fired": [ob.id]}, [d.as_dict()],
+                                  True, f"{shown}: the reals violate {ob.id}, the Monitor (doubles) gives "
+                                        f"{'no override' if not d.override else d.response.value} without it "
+                                        f"(replayed)")
+        return None
 
     def prop_resume_explained(self) -> Finding:
         def bad(dt, t):

@@ -1,0 +1,141 @@
+"""What a transport must provide to run the monitor live (:class:`Channel`), the values it carries
+(:class:`Sample`, :class:`AckRequest`), one cycle's inputs (:class:`Frame`) and an in-memory channel
+(:class:`MemoryChannel`) that drives :class:`~ethimon.io.LiveMonitor` without any middleware (tests,
+simulators, a recording played back)."""
+
+from __future__ import annotations
+
+import threading
+from collections import deque
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from typing import Any, Protocol, runtime_checkable
+
+from ..runtime import Fault
+
+__all__ = ["TASK_TEXT", "AckRequest", "Channel", "Frame", "MemoryChannel", "Sample"]
+
+#: the ``signal`` of a :class:`Sample` that carries the task text (not a name a spec signal can have)
+TASK_TEXT = "<task>"
+
+
+class Frame(dict):
+    """One cycle's inputs (signal → value) and ``faults``: what the live side found wrong with them
+    (stale, stamped in the future, replaced unjudged, a foreign writer); ``GovernedLoop`` fails closed on each."""
+
+    __slots__ = ("faults",)
+
+    def __init__(self, values: dict[str, Any] | None = None, faults: tuple[Fault, ...] = ()) -> None:
+        super().__init__(values or {})
+        self.faults = faults
+
+
+@dataclass(frozen=True)
+class Sample:
+    """One mapped field of one message: the monitor input ``signal`` it feeds (:data:`TASK_TEXT` for the task
+    text), ``value`` (the field as the message holds it, before any reduction: the mapping's ``field`` path
+    followed, :func:`~ethimon.io.follow`), ``t_log`` (its receive time on the channel's ``now("log")`` clock)
+    and ``t_header`` (its ``header.stamp`` in Unix seconds, ``None`` without one)."""
+
+    signal: str
+    value: Any
+    t_log: float
+    t_header: float | None = None
+
+
+@dataclass(frozen=True)
+class AckRequest:
+    """An operator's acknowledgement as it came off the transport. ``error``: why it is malformed (refused);
+    ``authenticated``: the transport authenticated the sender (e.g. DDS Security)."""
+
+    operator: str | None
+    reason: str = ""
+    task_sha256: str | None = None
+    sender: str = "an unknown sender"
+    authenticated: bool = False
+    error: str | None = None
+
+
+@runtime_checkable
+class Channel(Protocol):
+    """A transport under :class:`~ethimon.io.LiveMonitor`. Every method is called from the loop thread
+    (once per cycle, in this order: :meth:`take`, :meth:`faults`, then the writers and :meth:`acks`);
+    none may block or raise (a failure is a fault in :meth:`faults`)."""
+
+    def now(self, clock: str) -> float:
+        """The time on ``"log"`` (the receive times' clock) or ``"header"`` (Unix seconds) now."""
+
+    def take(self) -> Iterable[Sample]:
+        """The samples that arrived since the last call, in arrival order (one per mapped signal a message
+        feeds, and the task text)."""
+
+    def faults(self) -> tuple[Fault, ...]:
+        """What the transport finds wrong now: a foreign writer on a read topic or on the override topic."""
+
+    def acks(self) -> Iterable[AckRequest]:
+        """Acknowledgement requests that arrived since the last call."""
+
+    def write_override(self, value: bool) -> None:
+        """Publish the override (every cycle: the heartbeat)."""
+
+    def write_decision(self, text: str) -> None:
+        """Publish the decision (JSON)."""
+
+    def write_ack_result(self, text: str) -> None:
+        """Publish the answer to an acknowledgement (JSON)."""
+
+
+@dataclass
+class MemoryChannel:
+    """A :class:`Channel` in memory: :meth:`publish` a sample, :meth:`request_ack`, read what was written
+    (``overrides``, ``decisions``, ``ack_results``). ``clock`` gives both clocks (a fake clock in tests)."""
+
+    clock: Any = None
+    overrides: list = field(default_factory=list)
+    decisions: list = field(default_factory=list)
+    ack_results: list = field(default_factory=list)
+    extra_faults: tuple = ()
+
+    def __post_init__(self) -> None:
+        self._q: deque = deque()
+        self._acks: deque = deque()
+        self._lock = threading.Lock()
+
+    def now(self, clock: str) -> float:
+        import time
+        if self.clock is not None:
+            return float(self.clock())
+        return time.time() if clock == "header" else time.monotonic()
+
+    def publish(self, signal: str, value: Any, t_log: float | None = None, t_header: float | None = None) -> None:
+        """A value for ``signal`` (:data:`TASK_TEXT`: a task text) received at ``t_log`` (default: now)."""
+        with self._lock:
+            self._q.append(Sample(signal, value, self.now("log") if t_log is None else t_log, t_header))
+
+    def request_ack(self, req: AckRequest) -> None:
+        with self._lock:
+            self._acks.append(req)
+
+    def take(self) -> list[Sample]:
+        with self._lock:
+            out = list(self._q)
+            self._q.clear()
+        return out
+
+    def faults(self) -> tuple[Fault, ...]:
+        return tuple(self.extra_faults)
+
+    def acks(self) -> list[AckRequest]:
+        with self._lock:
+            out = list(self._acks)
+            self._acks.clear()
+        return out
+
+    def write_override(self, value: bool) -> None:
+        self.overrides.append(bool(value))
+
+    def write_decision(self, text: str) -> None:
+        self.decisions.append(text)
+
+    def write_ack_result(self, text: str) -> None:
+        self.ack_results.append(text)

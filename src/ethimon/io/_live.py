@@ -1,0 +1,262 @@
+"""``LiveMonitor(loop, mapping, channel)``: a :class:`~ethimon.loop.GovernedLoop` fed from a transport.
+
+Each cycle, in the loop thread: the samples that arrived are put into one :class:`~ethimon.io.Hold` per
+mapped signal (the same reduction, ``derive: rate``, staleness and future-stamp rules as replay), the
+task text goes to the loop's risk source, the cycle's :class:`~ethimon.io.Frame` (values and faults, the
+channel's own faults included) is stepped, and the decision is published. Acknowledgements are queued by
+the channel and applied by the loop thread after a cycle's decision is published, before the next cycle
+(never during a step). With ``record=True`` every sample and every cycle's time is kept in
+:attr:`LiveMonitor.recording`, which replay reads back (:func:`ethimon.replay.recorded_data`).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..errors import SpecError
+from ..runtime import Decision, Fault
+from ._channel import TASK_TEXT, AckRequest, Channel, Frame, Sample
+from ._hold import Hold
+from ._mapping import RISK_INPUTS, Mapping, bool_mismatch, check_against_spec
+
+__all__ = ["MAX_TEXT", "LiveMonitor", "Recording", "decision_json", "mapping_error"]
+
+#: longest task text kept (characters), as replay
+MAX_TEXT = 10_000
+
+
+def _finite(x: Any) -> Any:
+    if isinstance(x, float) and not math.isfinite(x):
+        return None if x != x else ("inf" if x > 0 else "-inf")
+    return x
+
+
+def _bounded(value: Any, limit: int) -> Any:
+    """A sender's string, bounded for the audit log (as ``ethimon.audit.bounded``): its head, length and sha256."""
+    if isinstance(value, str) and len(value) > limit:
+        import hashlib
+        data = value.encode("utf-8", "surrogatepass")
+        return {"head": value[:limit], "chars": len(value), "bytes": len(data),
+                "sha256": hashlib.sha256(data).hexdigest()}
+    return value
+
+
+def decision_json(d: Decision, ids: tuple[str, ...], *, t_unix: float | None = None,
+                  hold: list | None = None) -> str:
+    """The JSON text published as the decision of one cycle (strict JSON: no NaN/inf); ``hold``: what
+    holds the arm (:meth:`GovernedLoop.holding <ethimon.loop.GovernedLoop.holding>`)."""
+    margins = {oid: _finite(float(m)) for oid, m in zip(ids, d.margins)} if d.margins else {}
+    return json.dumps({
+        "cycle": d.cycle, "t_unix": t_unix if t_unix is not None else time.time(),
+        "override": bool(d.override), "response": d.response.value, "violations": list(d.violations),
+        "faults": [{"kind": f.kind, "subject": f.subject, "message": f.message} for f in d.faults],
+        "margins": margins, "risk": _finite(d.risk) if d.risk is not None else None,
+        "latched": bool(d.latched), "latched_rules": list(d.latched_rules), "hold": hold or []},
+        separators=(",", ":"), allow_nan=False)
+
+
+def mapping_error(mapping: Mapping, message: str, loc: tuple, *, hint: str | None = None) -> SpecError:
+    """A :class:`SpecError` pointing at ``loc`` in the mapping file (the nearest key it has)."""
+    src = mapping._source
+    if src is not None:
+        try:
+            return src.error(message, loc, hint=hint)
+        except Exception:  # noqa: BLE001 - a location the file does not have: the nearest one
+            return src.error(message, loc[:-1], hint=hint, key=True)
+    return SpecError(message, hint=hint)
+
+
+@dataclass
+class Recording:
+    """What a live run received and when it judged: every sample (arrival order), the cycle that took each
+    (``taken``: an index into ``cycles``) and each cycle's time on both clocks ``(log, header)``; replay reads
+    it back (:func:`ethimon.replay.recorded_data`)."""
+
+    samples: list[Sample] = field(default_factory=list)
+    cycles: list[tuple[float, float | None]] = field(default_factory=list)
+    taken: list[int] = field(default_factory=list)
+
+
+class LiveMonitor:
+    """A :class:`~ethimon.loop.GovernedLoop` (built without ``signals=``) fed from a :class:`Channel`.
+
+    Args:
+        loop: the loop; this object becomes its signal source and its decision callback (an
+            ``on_decision`` it had is still called, after publishing).
+        mapping: the mapping (its ``signals`` and ``task``; ``ros2.allow_unauthenticated_acknowledge``).
+        channel: the transport.
+        kinds: what the transport knows of each mapped field before any message (``"bool"``,
+            ``"number"``, ...): a true/false field on a number input is refused here, with the message
+            replay gives.
+        record: keep a :class:`Recording` in :attr:`recording`.
+
+    Raises:
+        SpecError: the mapping does not fit the spec, cannot run live (``risk: none``, a signal that can
+            never go stale) or maps a bool field to a number (located in the mapping file).
+    """
+
+    def __init__(self, loop: Any, mapping: Mapping, channel: Channel, *, kinds: dict[str, str] | None = None,
+                 record: bool = False) -> None:
+        spec = loop.spec
+        if mapping.risk == "none":
+            raise mapping_error(mapping, "'risk: none' cannot run live: the monitor's risk rule would have no input "
+                                "and fail closed on every cycle (replay reports it NOT CHECKED; a live monitor "
+                                "cannot skip it)", ("risk",), hint="map the task text ('task: {topic: /task}') or a "
+                                "'p_unsafe' topic")
+        check_against_spec(mapping, spec, risk_given=loop.risk is not None and mapping.task is None)
+        if getattr(loop, "_signals", None) is not None:
+            raise ValueError("LiveMonitor is the loop's signal source: build the GovernedLoop without signals=")
+        self.loop, self.mapping, self.channel = loop, mapping, channel
+        self.holds: dict[str, Hold] = {}
+        for name, sm in mapping.signals.items():
+            limit = mapping.limit_s(name)
+            if limit is None and sm.stale:  # never stale by default, not by choice: a dead topic held forever
+                raise mapping_error(mapping, f"signal {name!r}: live, every topic needs a staleness limit, and the "
+                                    "mapping's max_age_s is null: a publisher that dies would leave its last value "
+                                    "in force forever (override off)", ("max_age_s",),
+                                    hint=f"set 'max_age_s: <s>' at the top or on this signal; 'stale: false' on "
+                                    f"{name!r} if its topic is latched (published once) on purpose")
+            kind = (kinds or {}).get(name)
+            msg = bool_mismatch(name, spec, sm.topic, sm.type or "?")
+            if kind == "bool" and msg is not None:
+                raise mapping_error(mapping, msg, ("signals", name, "field"),
+                                    hint=f"declare {name!r} with 'type: bool' in the spec, or map a numeric field")
+            sig = spec.signals.get(name)
+            h = Hold(name, sm, limit, every=mapping.samples_of(name) == "every",
+                     tolerance_s=mapping.future_tolerance_s, truth=sig is not None and sig.type == "bool",
+                     bool_message=msg)
+            self.holds[name] = h
+        self._risk_hold = next((h for n, h in self.holds.items() if n in RISK_INPUTS), None)
+        self._header = any(sm.time == "header" for sm in mapping.signals.values())
+        self._ids = loop.monitor.obligation_ids
+        self.recording: Recording | None = Recording() if record else None
+        self.acks_refused = 0
+        self._user_on_decision: Callable[[Decision], None] | None = getattr(loop, "_on_decision", None)
+        loop._signals = self.frame  # the loop calls these from its own thread, every cycle
+        loop._on_decision = self._after
+
+    # ------------------------------------------------------------------ each cycle (the loop thread)
+    def frame(self) -> Frame:
+        """This cycle's inputs: the samples that arrived, put into their holds, read at the channel's now."""
+        ch = self.channel
+        faults: list[Fault] = []
+        try:
+            samples = ch.take()
+        except Exception as exc:  # noqa: BLE001 - a transport that fails: nothing new, the holds age
+            faults.append(Fault("signals", f"the channel failed to deliver samples: {type(exc).__name__}: {exc}"[:300]))
+            samples = ()
+        rec = self.recording
+        now = ch.now("log")
+        wall = ch.now("header") if self._header else None
+        for s in samples:
+            if rec is not None:
+                rec.samples.append(s)
+                rec.taken.append(len(rec.cycles))
+            if s.signal == TASK_TEXT:
+                self._text(s.value)
+                continue
+            h = self.holds.get(s.signal)
+            if h is None:
+                continue
+            if h.sm.time == "header":
+                if s.t_header is None:
+                    faults.append(Fault("invalid", f"{h.name}: {h.sm.topic} has no header.stamp, but the mapping "
+                                        "sets 'time: header'", h.name))
+                    continue
+                h.put(s.value, s.t_header, h.sm.topic, now=wall)
+            else:
+                h.put(s.value, s.t_log, h.sm.topic)
+        if rec is not None:
+            rec.cycles.append((now, wall))
+        frame = Frame()
+        for name, h in self.holds.items():
+            at = wall if h.sm.time == "header" else now
+            v = h.read(at, faults)
+            if v is None:
+                continue
+            frame[name] = v
+            if h is self._risk_hold and self.loop.monitor.max_age_s is not None:
+                frame["risk_age_s"] = h.age(at)
+        try:
+            faults.extend(ch.faults())
+        except Exception as exc:  # noqa: BLE001
+            faults.append(Fault("signals", f"the channel cannot say what it found: {type(exc).__name__}: {exc}"[:300]))
+        frame.faults = tuple(faults)
+        return frame
+
+    def _text(self, value: Any) -> None:
+        risk = self.loop.risk
+        if isinstance(value, str) and risk is not None:
+            text = value  # never cut: the estimator reads it all or refuses it (fail closed)
+            if text != risk.text:
+                risk.set_text(text)
+
+    def _after(self, d: Decision) -> None:
+        """After each cycle's decision: publish it, then apply the acknowledgements that arrived (the next
+        cycle is the first to see a release)."""
+        ch = self.channel
+        try:
+            ch.write_override(d.override)
+            try:
+                hold = self.loop.holding() if d.override else []
+            except Exception:  # noqa: BLE001 - the description is best effort; the decision is published anyway
+                hold = []
+            ch.write_decision(decision_json(d, self._ids, hold=hold))
+        finally:
+            if self._user_on_decision is not None:
+                self._user_on_decision(d)
+            self._apply_acks()
+
+    def _apply_acks(self) -> None:
+        try:
+            reqs = list(self.channel.acks())
+        except Exception:  # noqa: BLE001
+            return
+        for req in reqs:
+            out = self._ack(req)
+            try:
+                self.channel.write_ack_result(json.dumps(out))
+            except Exception:  # noqa: BLE001
+                pass
+
+    def _ack(self, req: AckRequest) -> dict[str, Any]:
+        operator = req.operator[:200] if isinstance(req.operator, str) else None
+        reason = req.reason[:2000] if isinstance(req.reason, str) else ""
+        if req.error is not None or not (operator and operator.strip()):
+            return self._refuse(None, "", req.sender, req.error or "refused: no operator named")
+        allow = self.mapping.ros2.allow_unauthenticated_acknowledge
+        if not req.authenticated and allow is None:
+            return self._refuse(operator, reason, req.sender,
+                                "refused: unauthenticated (no authentication on this transport); the mapping's "
+                                "ros2.allow_unauthenticated_acknowledge is not set")
+        how = "authenticated" if req.authenticated else f"unauthenticated, allowed by the mapping: {allow}"
+        task = req.task_sha256[:128] if isinstance(req.task_sha256, str) else None
+        try:
+            # in the loop thread, between two cycles: applied now (GovernedLoop.acknowledge)
+            a = self.loop.acknowledge(operator, reason=f"{reason} [from {req.sender[:300]} ({how})]", task_sha256=task)
+            return {"operator": operator, "released": a.released, "rules": list(a.rules), "message": a.message}
+        except Exception as exc:  # noqa: BLE001
+            return {"operator": operator, "released": False, "rules": [], "message": f"refused: {exc}"[:300]}
+
+    def _refuse(self, operator: str | None, reason: str, sender: str, message: str) -> dict[str, Any]:
+        self.acks_refused += 1
+        audit = self.loop.audit
+        operator, reason = _bounded(operator, 200), _bounded(reason, 256)  # a sender's payload (issue 31)
+        if audit is not None:
+            try:
+                audit.append("acknowledge", operator=operator, reason=reason, released=False, rules=[],
+                             message=message[:300], sender=sender[:300], cycle=self.loop.monitor.cycle)
+            except Exception:  # noqa: BLE001
+                pass
+        return {"operator": operator if not isinstance(operator, dict) else operator["head"], "released": False,
+                "rules": [], "message": message}
+
+    @property
+    def skipped(self) -> dict[str, int]:
+        """Samples per signal replaced before a cycle read them (after the first cycle)."""
+        return {n: h.skipped for n, h in self.holds.items()}

@@ -1,0 +1,119 @@
+"""Issue 31: live and replay read one mapping the same way. A live stream (driven through the in-memory
+channel, no DDS) and the replay of its own recording give the same verdict on every cycle, for each row of
+the issue's table: ``derive: rate``, a bool, a burst, a header stamp in the future."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from ethimon.errors import BagError, SpecError
+from ethimon.io import LiveMonitor, MemoryChannel, load_mapping_text
+from ethimon.loop import GovernedLoop
+
+from tests.io._drive import MAPPING, S, spec, verdicts
+
+
+def _base(t_end=0.6, every=0.02, *, pos=lambda k: 0.0, dist=1.0, estop=False):
+    out = []
+    for k in range(int(t_end / every) + 1):
+        t = round(0.0001 + k * every, 6)
+        out += [S(t, "speed", [pos(k), 0.0]), S(t, "dist", dist, t), S(t, "estop", estop), S(t, "p_unsafe", 0.05)]
+    return out
+
+
+def _same(samples, mapping=MAPPING):
+    liv, rep, live, res = verdicts(samples, mapping)
+    assert len(liv) == len(rep) > 10
+    bad = [(k, a, b) for k, (a, b) in enumerate(zip(liv, rep)) if a != b]
+    assert not bad, bad[:3]
+    return liv, live, res
+
+
+def test_derive_rate_gives_the_rate_live_as_in_replay():
+    # positions 0.0 .. 0.9 (all below 2.0), 0.1 per 20 ms: 5 rad/s. Before, live fed the position as the speed.
+    liv, _, res = _same(_base(pos=lambda k: 0.1 * (k % 10)))
+    assert sum("slow" in v for *_, v in liv) > len(liv) // 2
+    assert res.check("slow").cycles > len(liv) // 2
+
+
+def test_a_bool_drives_a_bool_signal_alike_and_is_refused_on_a_number_alike():
+    liv, _, _ = _same(_base(estop=True))
+    assert all(o and sev == 4 for o, sev, *_ in liv)  # stop_0 from the e-stop, live and replay
+    bad = MAPPING.replace("dist: {topic: /range, field: range, time: header}", "dist: {topic: /range, field: data}")
+    samples = [s if s.signal != "dist" else S(s.t_log, "dist", True) for s in _base()]
+    with pytest.raises(BagError) as e:
+        verdicts(samples, bad)
+    assert "a bool is not a number" in str(e.value)
+    # live, the transport knows the field is a bool before any message: the same message, located
+    loop = GovernedLoop(spec(), period_s=0.01)
+    with pytest.raises(SpecError) as e2:
+        LiveMonitor(loop, load_mapping_text(bad, "m.yaml"), MemoryChannel(), kinds={"dist": "bool"})
+    assert e.value.message.split(": a bool")[0].split("(")[0] in str(e2.value) and "m.yaml:" in str(e2.value)
+    # and a bool arriving unannounced is an invalid input live (the cycle fails closed)
+    loop = GovernedLoop(spec(), period_s=0.01)
+    ch = MemoryChannel(clock=lambda: 1.0)
+    lm = LiveMonitor(loop, load_mapping_text(bad, "m.yaml"), ch)
+    for s in _base(t_end=0.1):
+        ch.publish(s.signal, True if s.signal == "dist" else s.value, 0.99, 0.99)
+    f = lm.frame()
+    assert "dist" not in f or math.isnan(f["dist"])
+    assert any(x.kind == "invalid" and "a bool is not a number" in x.message for x in f.faults)
+
+
+def _burst():
+    out = _base(t_end=0.6)
+    for k in (5, 15, 25):  # 9 rad/s for 1 ms, replaced before the next cycle
+        t = 0.0001 + k * 0.02 + 0.002
+        prev = 0.0
+        out += [S(t, "speed", [prev + 0.009, 0.0]), S(t + 0.001, "speed", [prev, 0.0])]
+    return sorted(out, key=lambda s: s.t_log)
+
+
+def test_a_burst_is_counted_alike_under_samples_latest():
+    liv, live, res = _same(_burst())
+    assert live.holds["speed"].skipped == 3
+    assert res.signals["speed"]["judged"] == res.signals["speed"]["samples"] - 3
+
+
+def test_a_burst_is_refused_alike_under_samples_every():
+    every = MAPPING.replace("samples: latest", "samples: every")
+    with pytest.raises(BagError, match="would never judge them"):
+        verdicts(_burst(), every)
+    from tests.io._drive import live_on_grid, replay_of
+    mapping = load_mapping_text(MAPPING)
+    res = replay_of(_burst(), spec(), mapping)
+    decisions, _ = live_on_grid(_burst(), spec(), load_mapping_text(every), [int(x) for x in res.grid],
+                                res.started["cycle"])
+    refused = [d for d in decisions if any("would never judge it" in f.message for f in d.faults)]
+    assert len(refused) == 3 and all(d.override for d in refused)
+
+
+def test_a_header_stamp_in_the_future_is_a_fault_not_a_fresh_value():
+    # dist stamped 30 ms ahead of its arrival from t = 0.3 s (within max_age_s 35.5 ms, beyond the 5 ms
+    # tolerance). Before: fresh for up to 2 x max_age_s. Now a fault until its time has come, live and in
+    # the replay of the recording alike.
+    samples = [s if s.signal != "dist" or s.t_log < 0.3 else S(s.t_log, "dist", s.value, s.t_log + 0.03)
+               for s in _base()]
+    liv, live, res = _same(samples)
+    assert not any(o for o, *_ in liv[:20])
+    assert sum(o and f for o, _, _, f, _ in liv[32:]) >= 10
+    assert "future" in res.as_dict()["checks"][-1]["detail"] or res.check("inputs").cycles >= 10
+
+
+def test_a_stamp_within_the_tolerance_waits_for_its_time_and_ages_from_it():
+    from ethimon.io import Hold
+    sm = load_mapping_text(MAPPING).signals["dist"]
+    h = Hold("dist", sm, 0.0355)
+    fl: list = []
+    h.put(1.0, 10.004, now=10.0)  # 4 ms ahead: not a fault, not yet a value
+    assert h.read(10.0, fl) is None and not fl
+    assert h.read(10.004, fl) == 1.0 and not fl
+    assert h.read(10.004 + 0.0355, fl) == 1.0
+    assert h.read(10.004 + 0.0356, fl) is None and fl[0].kind == "stale"
+    h.put(2.0, 20.1, now=20.0)  # 100 ms ahead: a fault, and no value, until its time
+    fl.clear()
+    assert h.read(20.0, fl) is None and "future" in fl[0].message
+    fl.clear()
+    assert h.read(20.1, fl) == 2.0 and not fl
