@@ -57,6 +57,8 @@ PUBLIC: dict[str, list[str]] = {
                      "dds_type", "decision_json", "normalize_type", "ros_topic", "run_ros2", "security_available",
                      "to_cyclone"],
     "ethimon.runtime": ["Acknowledgement", "Decision", "FAULT_KINDS", "Fault", "Monitor"],
+    "ethimon.view": ["DECISION", "DEFAULT_HOST", "DEFAULT_PORT", "FAULTS", "FoxgloveView", "INPUTS", "MARGINS", "RISK",
+                     "TOPICS", "VerdictChannels", "parse_address"],
     "ethimon.scenario": ["BUILTIN_INPUTS", "CheckOutcome", "CheckReport", "Expect", "Scenario", "ScenarioResult",
                          "ScenarioSession", "TimelineEntry", "build_inputs", "check_expectations",
                          "check_input_names", "check_paths", "error_line", "find_scenarios", "load_scenario",

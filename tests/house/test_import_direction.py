@@ -16,7 +16,8 @@ own modules are always allowed):
     offline, replay         recorded data checked offline (replay may use offline and io)
     fleet                   many scenario files / bags on Ray (ray imported lazily)
     gym                     Gymnasium: the monitor as a shield, the sim cell as an env
-    loop                    GovernedLoop: runtime + audit + risk + verify (SMT gate on reload)
+    view                    the verdict channels (MCAP and the live Foxglove server): reads decisions as values
+    loop                    GovernedLoop: runtime + audit + risk + verify (SMT gate on reload) + view
     _lint                   ethimon lint as a library: load, compile, release policies, a mapping
     ethimon (root)          the public names
     cli                     the command line, on top
@@ -47,6 +48,7 @@ ALLOWED: dict[str, set[str]] = {
     "spec": _LANGUAGE | {"_api"},
     "runtime": _COMPILED,
     "audit": _BESIDE,
+    "view": _BESIDE,
     "risk": _BESIDE,
     "sim": _BESIDE,
     "verify": _BESIDE,
@@ -54,15 +56,15 @@ ALLOWED: dict[str, set[str]] = {
     "scenario": _BESIDE | {"sim", "risk"},
     "offline": _BESIDE | {"audit", "risk"},
     "io": _BESIDE,
-    "replay": _BESIDE | {"audit", "risk", "offline", "io"},
+    "replay": _BESIDE | {"audit", "risk", "offline", "io", "view"},
     "fleet": _BESIDE | {"audit", "risk", "sim", "scenario", "replay", "offline", "io"},
     "gym": _BESIDE | {"sim", "risk", "audit"},
-    "loop": _BESIDE | {"audit", "risk", "verify"},
+    "loop": _BESIDE | {"audit", "risk", "verify", "view"},
     "_lint": _BESIDE | {"verify", "scenario", "replay", "io", "risk"},
-    "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop", "io"},
+    "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop", "io", "view"},
     "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io"},
     "cli": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io",
-                      "fleet", "ros2", "ethimon", "_lint"},
+                      "fleet", "ros2", "ethimon", "_lint", "view"},
 }
 
 

@@ -520,7 +520,8 @@ def test_mcap_output_on_the_bag_timeline_read_back(tmp_path):
     assert faults[0][0] == int(res.grid[15]) and faults[0][1]["faults"][0]["kind"] == "missing"
     assert faults[1] == (int(res.grid[16]), {"faults": []})
     assert got["/ethimon/inputs/b"][15][1] == {"value": None} and dec[15][1]["fault"]
-    assert got["/ethimon/risk"][0][1] == {"R_e": None, "tau": 0.5, "checked": False}  # risk: none
+    assert got["/ethimon/risk"][0][1] == {"R_e": None, "tau": 0.5, "tau_confirm": None, "checked": False,  # risk: none
+                                          "band": None, "judge": None, "confirm_hold": False, "judge_hold": False}
     assert f"MCAP messages to {out}" in r.stderr
 
 

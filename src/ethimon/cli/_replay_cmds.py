@@ -16,6 +16,7 @@ import argparse
 import sys
 import time
 import xml.etree.ElementTree as ET
+from typing import Any
 
 from ._common import Progress, add_ray_options, emit_json, emit_report, err, open_audit_log, ray_options
 
@@ -42,12 +43,41 @@ def add_replay_parsers(sub) -> None:
                    "(default: the spec's risk.estimator.model, else the shipped model)")
     p.add_argument("--mcap", metavar="OUT", help="write each cycle's decision, margins, faults, R_e and inputs as "
                    "MCAP topics on the bag's timeline (for Foxglove); with several bags OUT is a folder")
+    p.add_argument("--foxglove", nargs="?", const="127.0.0.1:8765", metavar="[HOST:]PORT",
+                   help="serve the verdicts (the --mcap channels) to a live Foxglove view as the bag replays "
+                        "(WebSocket; needs ethimon[foxglove]; default 127.0.0.1:8765, loopback unless a host is named)")
+    p.add_argument("--foxglove-speed", type=float, default=1.0, metavar="X",
+                   help="with --foxglove: X times the bag's own pace (default 1; 0: as fast as it goes)")
+    p.add_argument("--foxglove-wait-s", type=float, default=60.0, metavar="S",
+                   help="with --foxglove: wait up to S seconds for a client to subscribe before serving (default 60)")
     p.add_argument("--topics", action="store_true", help="list each BAG's topics (type, count, rate, log and header "
                    "time spans, fields, joint names) and exit; needs no --spec or --map")
     p.add_argument("--schema", action="store_true", help="print the JSON Schema of mapping files and exit")
     p.add_argument("--quiet", "-q", action="store_true", help="print only problems and the summary")
     add_ray_options(p, "bags")
     p.set_defaults(handler=cmd_replay)
+
+
+def _open_view(args: argparse.Namespace, spec: Any) -> tuple[Any, int | None]:
+    """``--foxglove``: the live view of the replay's verdicts, once a client subscribed (or the wait ended)."""
+    from ..errors import DependencyNotInstalled
+    from ..runtime import Monitor
+    from ..view import FoxgloveView, VerdictChannels, parse_address
+    try:
+        address = "%s:%d" % parse_address(args.foxglove)
+        view = FoxgloveView(VerdictChannels.of_spec(spec, Monitor(spec).obligation_ids), address,
+                            queue=4096, name="ethimon replay")
+    except ValueError as exc:
+        return None, err(f"--foxglove: {exc}")
+    except (DependencyNotInstalled, OSError) as exc:
+        return None, err(f"--foxglove: {exc}")
+    if not args.quiet:
+        print(f"ethimon replay: Foxglove view on {view.url}: open it in Foxglove (Open connection, Foxglove "
+              f"WebSocket; layout examples/foxglove/ethimon-layout.json); waiting up to {args.foxglove_wait_s:g} s "
+              "for a subscriber", file=sys.stderr, flush=True)
+    if args.foxglove_wait_s > 0 and not view.wait_subscribed(1, args.foxglove_wait_s) and not args.quiet:
+        print("ethimon replay: no Foxglove client subscribed; replaying anyway", file=sys.stderr, flush=True)
+    return view, None
 
 
 def cmd_replay(args: argparse.Namespace) -> int:
@@ -72,6 +102,18 @@ def cmd_replay(args: argparse.Namespace) -> int:
                    "written in bag order by one process); run without --ray to write it")
     if ray is not None and args.mcap:
         return err("ethimon replay: --mcap cannot be used with --ray; run without --ray to write it")
+    if ray is not None and args.foxglove is not None:
+        return err("ethimon replay: --foxglove cannot be used with --ray; run without --ray to serve it")
+    if args.foxglove is not None:
+        from ..view import parse_address
+        try:
+            parse_address(args.foxglove)
+        except ValueError as exc:
+            return err(f"--foxglove: {exc}")
+    if not (args.foxglove_speed >= 0 and args.foxglove_speed != float("inf")):
+        return err(f"--foxglove-speed {args.foxglove_speed:g}: expected a number >= 0 (0: no pacing)")
+    if not (args.foxglove_wait_s >= 0 and args.foxglove_wait_s != float("inf")):
+        return err(f"--foxglove-wait-s {args.foxglove_wait_s:g}: expected a number of seconds >= 0")
     if not args.spec or not args.mapping:
         return err("ethimon replay: --spec SPEC and --map MAP are required (ethimon replay BAG --topics lists "
                    "a bag's topics to write the mapping from)")
@@ -82,6 +124,11 @@ def cmd_replay(args: argparse.Namespace) -> int:
     except SpecError as exc:
         print(str(exc), file=sys.stderr)
         return 2
+    view = None
+    if args.foxglove is not None:
+        view, rc = _open_view(args, spec)
+        if rc is not None:
+            return rc
     audit = None
     if args.audit:
         audit, rc = open_audit_log(args.audit, spec, tool="ethimon replay", spec=args.spec, mapping=args.mapping,
@@ -98,7 +145,7 @@ def cmd_replay(args: argparse.Namespace) -> int:
                 scorer = TaskScorer(spec, model_dir=args.model)
                 report = replay_paths(args.bags, spec, mapping, score=scorer, audit=audit, mcap=args.mcap,
                                       on_bag=lambda i, n, b: (bar.new(b), progress(i, n, b)),
-                                      on_progress=bar)
+                                      on_progress=bar, foxglove=view, foxglove_speed=args.foxglove_speed)
             else:  # the same records, each bag on a Ray worker
                 from ..fleet import replay_records
                 report = ReplayReport(replay_records(
@@ -109,6 +156,8 @@ def cmd_replay(args: argparse.Namespace) -> int:
     finally:
         if audit is not None:
             audit.close()
+        if view is not None:
+            view.close(timeout=10.0)  # what is queued goes out first
     results = report.results
     rows, problems, notes = [], [], []
     for w in lint_mapping(mapping, spec):
@@ -151,6 +200,8 @@ def cmd_replay(args: argparse.Namespace) -> int:
                              f"{sg['judged']:,} of {sg.get('samples', sg['messages']):,} samples")
         if "mcap" in rec:
             notes.append(f"{bag}: wrote {rec['mcap']['messages']:,} MCAP messages to {rec['mcap']['path']}")
+        if "foxglove" in rec:
+            notes.append(f"{bag}: served {rec['foxglove']['cycles']:,} cycles to {rec['foxglove']['url']}")
     elapsed = time.perf_counter() - t0
     if not args.quiet:
         _print_table(rows, out)

@@ -43,6 +43,10 @@ def add_ros2_parsers(sub) -> None:
                    help=".msg file or folder for types outside the ROS 2 Humble type store (repeatable)")
     p.add_argument("--audit", metavar="FILE", help="write a new hash-chained audit log")
     p.add_argument("--model", metavar="DIR", help="risk model for the task text (default: the spec's)")
+    p.add_argument("--foxglove", nargs="?", const="127.0.0.1:8765", metavar="[HOST:]PORT",
+                   help="serve a live Foxglove view (WebSocket; needs ethimon[foxglove]): the decision, margins by "
+                        "rule, R_e against tau and tau_confirm, every input, the channels of 'ethimon replay --mcap' "
+                        "(default 127.0.0.1:8765; loopback unless a host is named)")
     p.add_argument("--json", metavar="FILE", help="write the run's statistics as JSON ('-': stdout)")
     p.add_argument("--quiet", "-q", action="store_true", help="print nothing but problems")
     p.set_defaults(handler=cmd_ros2)
@@ -66,6 +70,14 @@ def cmd_ros2(args: argparse.Namespace) -> int:
         return err(f"--domain {domain}: a ROS 2 domain id is 0..232")
     if args.duration_s is not None and not args.duration_s > 0:
         return err(f"--duration-s {args.duration_s:g}: expected a positive number of seconds")
+    if args.foxglove is not None:
+        from ..view import parse_address
+        try:
+            kwargs_view = {"foxglove": "%s:%d" % parse_address(args.foxglove)}
+        except ValueError as exc:
+            return err(f"--foxglove: {exc}")
+    else:
+        kwargs_view = {}
     try:
         spec = _api.load_spec(args.spec)
         mapping = load_mapping(args.mapping)
@@ -79,7 +91,7 @@ def cmd_ros2(args: argparse.Namespace) -> int:
                                    domain_id=domain)
         if rc is not None:
             return rc
-    kwargs = {}
+    kwargs = dict(kwargs_view)
     if args.model:
         kwargs["estimator_kwargs"] = {"model_dir": os.path.abspath(args.model)}
         kwargs["estimator"] = "ethimon.risk:load_estimator"
@@ -92,11 +104,17 @@ def cmd_ros2(args: argparse.Namespace) -> int:
             return 2
         except (DependencyNotInstalled, EthimonError) as exc:
             return err(str(exc))
+        except OSError as exc:  # the Foxglove port is taken
+            return err(f"--foxglove: {exc}")
         if threading.current_thread() is threading.main_thread():
             signal.signal(signal.SIGTERM, lambda *_: node.stop())
         if not args.quiet:
             print(f"ethimon ros2: spec {spec.name!r} on domain {domain} at {float(mapping.rate_hz):g} Hz; "
                   f"publishing /ethimon/override and /ethimon/decision", file=sys.stderr, flush=True)
+            if node.loop.foxglove is not None:
+                print(f"ethimon ros2: Foxglove view on {node.loop.foxglove.url} (open it in Foxglove: Open "
+                      "connection, Foxglove WebSocket; layout examples/foxglove/ethimon-layout.json)",
+                      file=sys.stderr, flush=True)
         try:
             stats = node.run(args.duration_s)
         except KeyboardInterrupt:
@@ -110,6 +128,10 @@ def cmd_ros2(args: argparse.Namespace) -> int:
            "deadline_misses": stats.deadline_misses, "stalls": stats.stalls, "max_late_ms": stats.max_late_s * 1e3,
            "acknowledgements_refused": node.acks_refused, "pending_cycles": stats.pending_cycles,
            "held_by": stats.held_by}
+    view = node.loop.foxglove
+    if view is not None:
+        doc["foxglove"] = {"url": view.url, "cycles": view.cycles, "messages": view.messages,
+                           "dropped_cycles": view.dropped}
     if args.json and not emit_json(args.json, doc, "JSON summary"):
         return 2
     if not args.quiet and args.json != "-":
@@ -118,4 +140,6 @@ def cmd_ros2(args: argparse.Namespace) -> int:
               f"{stats.max_late_s * 1e3:.2f} ms")
         print(f"ethimon ros2: {stats.pending_cycles} cycles held awaiting an input (start, new task text); "
               + (f"at the end the arm was held by {stats.held_by}" if stats.held_by else "the arm was free at the end"))
+        if view is not None:
+            print(f"ethimon ros2: {view.summary()}")
     return 0

@@ -56,7 +56,8 @@ def decision_json(d: Decision, ids: tuple[str, ...], *, t_unix: float | None = N
         "override": bool(d.override), "response": d.response.value, "violations": list(d.violations),
         "faults": [{"kind": f.kind, "subject": f.subject, "message": f.message} for f in d.faults],
         "margins": margins, "risk": _finite(d.risk) if d.risk is not None else None,
-        "latched": bool(d.latched), "hold": hold or []}, separators=(",", ":"), allow_nan=False)
+        "latched": bool(d.latched), "latched_rules": list(d.latched_rules), "hold": hold or []},
+        separators=(",", ":"), allow_nan=False)
 
 
 def mapping_error(mapping: Mapping, message: str, loc: tuple, *, hint: str | None = None) -> SpecError:

@@ -113,6 +113,13 @@ class GovernedLoop(_Acknowledging, _Reloading):
             answer is a ``judge`` audit record (hash, model, verdict, latency, status; never the key).
         clock: time source in seconds (``time.perf_counter``; inject one in tests).
         sleep: how :meth:`run` waits (``time.sleep``).
+        foxglove: a live Foxglove view of every cycle (decision, margins by rule, R_e against τ and
+            τ_confirm, the judge/confirm state, every input; the ``--mcap`` file's channels):
+            ``"[HOST:]PORT"`` or a port (``0``: a free one) starts a
+            :class:`~ethimon.view.FoxgloveView` on it (loopback unless a host is named; closed by
+            :meth:`stop`), or pass your own (any object with ``put(decision, inputs)``). It is fed once
+            per cycle without blocking: a bounded queue whose oldest cycle is dropped, and counted, when
+            a viewer falls behind. ``pip install 'ethimon[foxglove]'``.
 
     Example:
         >>> import ethimon
@@ -139,7 +146,8 @@ class GovernedLoop(_Acknowledging, _Reloading):
                  on_stall: Callable[[str], None] | None = None,
                  on_decision: Callable[[Decision], None] | None = None,
                  clock: Callable[[], float] = time.perf_counter, sleep: Callable[[float], None] = time.sleep,
-                 judge: Any = "spec", acknowledge_clear: tuple[str, float] | None = None) -> None:
+                 judge: Any = "spec", acknowledge_clear: tuple[str, float] | None = None,
+                 foxglove: Any = None) -> None:
         if isinstance(monitor, Spec):
             monitor = Monitor(monitor)
         if not isinstance(monitor, Monitor):
@@ -203,6 +211,14 @@ class GovernedLoop(_Acknowledging, _Reloading):
             raise ValueError(f"verify={verify!r}; expected None, 'smt' or a callable verify(spec)")
         self._verify = verify
         self._on_decision = on_decision
+        #: the live Foxglove view fed each cycle (``None``: none); ``_own_view``: this loop started it
+        self.foxglove: Any = None
+        self._own_view = False
+        if foxglove is not None and not callable(getattr(foxglove, "put", None)):
+            from ..view import FoxgloveView, VerdictChannels
+            foxglove = FoxgloveView(VerdictChannels.of_spec(monitor.spec, monitor.obligation_ids), foxglove)
+            self._own_view = True
+        self.foxglove = foxglove
         self._clock = clock
         self._sleep = sleep
         self._next: float | None = None  # scheduled start of the next cycle
@@ -419,6 +435,11 @@ class GovernedLoop(_Acknowledging, _Reloading):
                 self._on_decision(d)
             except Exception as exc:  # noqa: BLE001 - recorded, and the next cycle overrides
                 self._stall_reason = Fault("callback", f"on_decision callback raised {type(exc).__name__}: {exc}"[:300])
+        if self.foxglove is not None:
+            try:
+                self.foxglove.put(d, inputs)  # never blocks: a bounded queue, the oldest cycle dropped
+            except Exception as exc:  # noqa: BLE001 - recorded, and the next cycle overrides
+                self._stall_reason = Fault("callback", f"foxglove view raised {type(exc).__name__}: {exc}"[:300])
         return d
 
     def _gone(self, inputs: dict) -> bool:
@@ -476,7 +497,7 @@ class GovernedLoop(_Acknowledging, _Reloading):
         ok = self._log("decision", event=event, loop_cycle=self.stats.cycles - 1, cycle=d.cycle,
                        override=d.override, response=d.response.value, violations=list(d.violations),
                        faults=[f.message for f in d.faults], fault_kinds=[f.kind for f in d.faults],
-                       latched=d.latched, risk=d.risk,
+                       latched=d.latched, latched_rules=list(d.latched_rules), risk=d.risk,
                        margins=dict(zip(self._ids, d.margins)) if d.margins else {},
                        inputs=inputs, risk_age_s=reading.age_s if reading is not None else None,
                        spec_sha256=self.spec_sha256,
@@ -562,6 +583,8 @@ class GovernedLoop(_Acknowledging, _Reloading):
         t = self._thread
         if t is not None and t is not threading.current_thread():
             t.join(timeout)
+        if self._own_view:
+            self.foxglove.close()
 
     def _stalled(self, reason: str) -> None:
         self._stall_reason = Fault("stall", reason)

@@ -38,19 +38,25 @@ def bag_error_record(bag: str, msg: str) -> dict[str, Any]:
 
 def bag_record(bag: str | os.PathLike, spec: Any, mapping: Mapping, *, score: Any = None,
                p: Sequence[float] | None = None, audit: Any = None, mcap: str | os.PathLike | None = None,
-               on_progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
+               on_progress: Callable[[int, int], None] | None = None, foxglove: Any = None,
+               foxglove_speed: float = 1.0) -> dict[str, Any]:
     """:func:`~ethimon.replay.replay_bag` of one bag as its JSON record (``BagReplay.as_dict()``), or
     :func:`bag_error_record` when the bag cannot be checked (never raises for a bad bag). ``mcap``:
-    also write the cycles' verdicts to this MCAP file (:func:`~ethimon.replay._mcap.write_mcap`)."""
+    also write the cycles' verdicts to this MCAP file (:func:`~ethimon.replay._mcap.write_mcap`);
+    ``foxglove``: also serve them to this live view at ``foxglove_speed`` (``_mcap.serve_verdicts``)."""
     from ._replay import replay_bag  # the module's name, looked up per call
     bag = os.fspath(bag)
     try:
-        res = replay_bag(bag, spec, mapping, score=score, p=p, audit=audit, keep_trace=mcap is not None,
-                         on_progress=on_progress)
+        res = replay_bag(bag, spec, mapping, score=score, p=p, audit=audit,
+                         keep_trace=mcap is not None or foxglove is not None, on_progress=on_progress)
         rec = res.as_dict()
         if mcap is not None:
             from ._mcap import write_mcap
             rec["mcap"] = {"path": os.fspath(mcap), "messages": write_mcap(res, mcap, spec)}
+        if foxglove is not None:
+            from ._mcap import serve_verdicts
+            rec["foxglove"] = {"url": getattr(foxglove, "url", None),
+                               "cycles": serve_verdicts(res, foxglove, spec, speed=foxglove_speed)}
         return rec
     except Exception as exc:  # noqa: BLE001 - one unusable bag is one ERROR row; the others still run
         return bag_error_record(bag, bag_error_line(bag, exc))
@@ -98,10 +104,12 @@ class ReplayReport:
 def replay_paths(bags: Sequence[str | os.PathLike], spec: Any, mapping: Mapping, *, score: Any = None,
                  p: Sequence[float] | None = None, audit: Any = None, mcap: str | os.PathLike | None = None,
                  on_bag: Callable[[int, int, str], None] | None = None,
-                 on_progress: Callable[[int, int], None] | None = None) -> ReplayReport:
+                 on_progress: Callable[[int, int], None] | None = None, foxglove: Any = None,
+                 foxglove_speed: float = 1.0) -> ReplayReport:
     """Replay bags one after the other (the library twin of ``ethimon replay``): one record per bag
     (:func:`bag_record`), an unusable bag an error record. ``mcap``: a file for one bag, a folder
-    (created) for several (:func:`mcap_path`). ``score`` defaults to one :class:`TaskScorer` for
+    (created) for several (:func:`mcap_path`). ``foxglove``: a live view (:class:`~ethimon.view.FoxgloveView`)
+    each bag's verdicts are served to, paced at ``foxglove_speed``. ``score`` defaults to one :class:`TaskScorer` for
     all bags (the model loads once)."""
     import time
 
@@ -118,7 +126,7 @@ def replay_paths(bags: Sequence[str | os.PathLike], spec: Any, mapping: Mapping,
             on_bag(i, len(names), bag)
         where = None if mcap is None else mcap_path(mcap, bag, i, len(names))
         out.append(bag_record(bag, spec, mapping, score=score, p=p, audit=audit, mcap=where,
-                              on_progress=on_progress))
+                              on_progress=on_progress, foxglove=foxglove, foxglove_speed=foxglove_speed))
     if on_bag is not None:
         on_bag(len(names), len(names), "")
     return ReplayReport(out, time.perf_counter() - t0)

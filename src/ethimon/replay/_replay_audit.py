@@ -39,7 +39,7 @@ def _audit(log: Any, res: BagReplay, tr: CycleResults, rs: Resampled, spec: Spec
         append("decision", event=event, bag=res.path, cycle=k, bag_time_ns=int(rs.grid[k]),
                override=bool(tr.override[k]), response=resp, violations=list(viol),
                faults=[_fault_dict(f) for f in tr.faults_at(k)],
-               latched=bool(tr.latched[k]),
+               latched=bool(tr.latched[k]), latched_rules=list(tr.holding_at(k)),
                risk=None if (tr.risk[k] != tr.risk[k] or not checked) else float(tr.risk[k]),
                margins={oid: float(tr.margins[k, j]) for j, oid in enumerate(ids)},
                inputs={nm: float(rs.columns[nm][k]) for nm in names})

@@ -154,6 +154,8 @@ class Ros2Monitor:
                 self._dds.close()
                 raise
         except BaseException:
+            if getattr(self, "loop", None) is not None:
+                self.loop.stop()  # a Foxglove view it started gives its port back
             if risk is not None:
                 risk.stop()
             if self._child is not None:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from itertools import compress
+
 from ..language import Response
 from ._fault import Fault
 
@@ -27,6 +29,12 @@ class Decision:
         awaiting_release: a manual latch is ready for the operator: every rule latched with
             ``release: manual`` has met its release condition for its ``hold_cycles``, so
             :meth:`Monitor.acknowledge` would release it now (``False`` when none is latched).
+        ids: the obligation ids that name ``margins`` (the monitor's ``obligation_ids`` tuple, shared by
+            reference: nothing is copied per cycle); read a margin by name with :meth:`margin`.
+        latched_rules: the rules whose latch holds the override after this cycle, by name (obligation
+            ids, ``"risk"``, ``"fault"``, ``"judge"``, ``"confirm"``, ``"pending"``; as
+            :attr:`Monitor.latched_rules`); empty when the cycle did not override (filled on override
+            cycles only, so a clean cycle allocates nothing for it).
 
     Example:
         >>> d = Decision(True, Response.SAFE_POSE, ("risk",), (), 0.62, 3, False, ())
@@ -35,11 +43,13 @@ class Decision:
     """
 
     __slots__ = ("override", "response", "violations", "margins", "risk", "cycle", "latched", "faults",
-                 "awaiting_release")
+                 "awaiting_release", "ids", "_rules", "_names", "_lat")
 
     def __init__(self, override: bool, response: Response, violations: tuple[str, ...],
                  margins: tuple[float, ...], risk: float | None, cycle: int, latched: bool,
-                 faults: tuple[Fault, ...], awaiting_release: bool = False) -> None:
+                 faults: tuple[Fault, ...], awaiting_release: bool = False, ids: tuple[str, ...] = (),
+                 latched_rules: tuple[str, ...] = (), _names: tuple[str, ...] | None = None,
+                 _lat: list | None = None) -> None:
         self.override = override
         self.response = response
         self.violations = violations
@@ -49,6 +59,49 @@ class Decision:
         self.latched = latched
         self.faults = faults
         self.awaiting_release = awaiting_release
+        self.ids = ids
+        self._rules = latched_rules
+        # from Monitor.step on an override cycle: the rule names (by reference) and a copy of the latch
+        # severities, resolved to names on first read (a list copy per override cycle, no name tuple)
+        self._names = _names
+        self._lat = _lat
+
+    @property
+    def latched_rules(self) -> tuple[str, ...]:
+        """The rules whose latch holds the override after this cycle, by name (see the class doc)."""
+        lat = self._lat  # read once: a viewer's thread may resolve it at the same time
+        if lat is not None:
+            self._rules = tuple(compress(self._names, lat))
+            self._lat = None
+        return self._rules
+
+    def margin(self, rule: str) -> float:
+        """The margin of obligation ``rule`` this cycle (NaN where it was not evaluated, e.g. a fault cycle).
+
+        Raises:
+            KeyError: ``rule`` is no obligation of the monitor that made this decision (the message
+                lists its ids).
+
+        Example:
+            >>> import ethimon
+            >>> m = ethimon.Monitor(ethimon.load_spec_text(
+            ...     "{ethimon: 1, name: d, signals: {gap: {unit: m}}, "
+            ...     "obligations: [{id: separation, require: gap >= 0.5}]}"))
+            >>> m.step({"gap": 0.8, "risk": 0.1}).margin("separation")
+            0.30000000000000004
+        """
+        try:
+            j = self.ids.index(rule)
+        except ValueError:
+            raise KeyError(f"no rule {rule!r} has a margin in this decision; its obligations: "
+                           f"{', '.join(self.ids) or '(none)'}") from None
+        if not self.margins:
+            return float("nan")  # the monitor was built with margins=False
+        return self.margins[j]
+
+    def margins_by_id(self) -> dict[str, float]:
+        """Every margin by obligation id (a new dict: built on request, never by :meth:`Monitor.step`)."""
+        return dict(zip(self.ids, self.margins)) if self.margins else {r: float("nan") for r in self.ids}
 
     @property
     def reasons(self) -> tuple[str, ...]:
@@ -67,7 +120,7 @@ class Decision:
             "cycle": self.cycle, "override": self.override, "response": self.response.value,
             "violations": list(self.violations), "risk": self.risk, "latched": self.latched,
             "faults": [f.message for f in self.faults], "fault_kinds": [f.kind for f in self.faults],
-            "awaiting_release": self.awaiting_release,
+            "awaiting_release": self.awaiting_release, "latched_rules": list(self.latched_rules),
             "margins": [m if m == m and abs(m) != float("inf") else (None if m != m else (
                 "inf" if m > 0 else "-inf")) for m in self.margins],
         }

@@ -50,7 +50,8 @@ class _FailClosed:
         self._confirmed = False  # a fault found outside the monitor ends a confirmation too (issue 31)
         sev = max(decision.response.severity, self._latch_fault())
         return Decision(True, _RESPONSES[sev], decision.violations, decision.margins, decision.risk,
-                        decision.cycle, decision.latched, decision.faults + reasons)
+                        decision.cycle, decision.latched, decision.faults + reasons, False, self.obligation_ids,
+                        _EMPTY, self._names, self._lat[:])
 
     def _latch_fault(self, k: int | None = None) -> int:
         """Latch the fault rule (or rule ``k``: the pending hold); every release count restarts (the cycle
@@ -115,7 +116,8 @@ class _FailClosed:
             self._nlat += 1
         run[pi] = -1
         sev, awaiting = self._release_pass(False)  # no R_e: the risk rule's count restarts
-        return Decision(True, _RESPONSES[sev], tuple(found), margins, None, cycle, False, _EMPTY, awaiting)
+        return Decision(True, _RESPONSES[sev], tuple(found), margins, None, cycle, False, _EMPTY, awaiting,
+                        self.obligation_ids, _EMPTY, self._names, self._lat[:])
 
     def _fault(self, cycle: int, reasons: tuple[Fault, ...], r: float | None,
                bad: list[int] | None = None, latch: int | None = None) -> Decision:
@@ -161,4 +163,5 @@ class _FailClosed:
         violations = tuple(found) if found else _EMPTY
         sev = self._latch_fault(latch)
         margins = self._nan_margins if self._margins_on else _EMPTY
-        return Decision(True, _RESPONSES[sev], violations, margins, r, cycle, False, reasons)
+        return Decision(True, _RESPONSES[sev], violations, margins, r, cycle, False, reasons, False,
+                        self.obligation_ids, _EMPTY, self._names, self._lat[:])

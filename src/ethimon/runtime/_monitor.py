@@ -252,15 +252,16 @@ class Monitor(_Construction, _Latches, _FailClosed):
             margins = _EMPTY
             if self._margins_on:
                 margins = self._mcall()  # a margin that cannot be computed is NaN
-            if not self._nlat:
-                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
+            if not self._nlat:  # ids: the obligation-id tuple by reference (Decision.margin reads it)
+                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY, False, self.obligation_ids)
             sev, awaiting = self._release_pass(r < self._release_cut or held)  # held: the confirm latch holds
             if violations is not None:
                 return Decision(True, _RESPONSES[sev], tuple(violations), margins, r, cycle, False, _EMPTY,
-                                awaiting)
+                                awaiting, self.obligation_ids, _EMPTY, self._names, self._lat[:])
             if not self._nlat:  # the last latch released this cycle
-                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY)
-            return Decision(True, _RESPONSES[sev], _EMPTY, margins, r, cycle, True, _EMPTY, awaiting)
+                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY, False, self.obligation_ids)
+            return Decision(True, _RESPONSES[sev], _EMPTY, margins, r, cycle, True, _EMPTY, awaiting,
+                            self.obligation_ids, _EMPTY, self._names, self._lat[:])
         except BaseException as exc:  # fail closed: nothing escapes into the control loop, not even
             # a KeyboardInterrupt raised by a hostile input's __float__: the arm is told to stop instead
             try:
