@@ -73,7 +73,7 @@ def recorded_data(recording: Any, mapping: Any, path: str = "<recording>") -> An
     same rules as a bag (receive times as log time, header stamps as header time, ``offset_s``, ``derive``).
     A header stamp that was further than ``future_tolerance_s`` ahead of the cycle that took it (a fault live
     until its time came) is an unusable sample at that cycle's time, then its value at its own time."""
-    from ..io import MAX_TEXT, TASK_TEXT
+    from ..io import TASK_TEXT
 
     def header(t_s: float) -> _Header:
         ns = int(round(t_s * 1e9))

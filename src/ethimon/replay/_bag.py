@@ -27,8 +27,6 @@ __all__ = ["MAX_MESSAGES", "BagData", "BagError", "read_bag"]
 
 #: most messages read from one bag (all mapped topics together)
 MAX_MESSAGES = 50_000_000
-#: longest task text kept (characters)
-MAX_TEXT = 10_000
 
 
 
