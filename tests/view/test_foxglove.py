@@ -153,3 +153,23 @@ def test_no_foxglove_import_until_a_view_starts() -> None:
             "print(sorted(m for m in ('foxglove', 'websockets') if m in sys.modules))")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0 and r.stdout.strip() == "[]", r.stderr
+
+
+def test_wait_subscribed_settles_until_a_clients_last_subscription() -> None:
+    """Regression (CI, stop 35): ``ethimon replay --foxglove`` started after the FIRST channel of a client's
+    subscription and published before the second was registered, so the client missed messages. With
+    ``settle_s`` the wait lasts until subscriptions stop coming."""
+    loop = GovernedLoop(ethimon.load_spec_text(SPEC), foxglove=0, period_s=1.0)
+    client = FoxgloveClient(loop.foxglove.url)
+    try:
+        client.handshake(set(TOPICS))
+        client.subscribe(TOPICS[:1])
+        later = threading.Timer(0.15, client.subscribe, args=(TOPICS[1:],))
+        later.start()
+        assert loop.foxglove.wait_subscribed(1, timeout=5.0, settle_s=0.5)
+        assert loop.foxglove.subscriptions == len(TOPICS)  # the second request was waited for
+        later.join()
+        assert not loop.foxglove.wait_subscribed(len(TOPICS) + 1, timeout=0.05, settle_s=0.5)
+    finally:
+        client.close()
+        loop.stop()

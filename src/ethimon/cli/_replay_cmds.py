@@ -75,7 +75,7 @@ def _open_view(args: argparse.Namespace, spec: Any) -> tuple[Any, int | None]:
         print(f"ethimon replay: Foxglove view on {view.url}: open it in Foxglove (Open connection, Foxglove "
               f"WebSocket; layout examples/foxglove/ethimon-layout.json); waiting up to {args.foxglove_wait_s:g} s "
               "for a subscriber", file=sys.stderr, flush=True)
-    if args.foxglove_wait_s > 0 and not view.wait_subscribed(1, args.foxglove_wait_s) and not args.quiet:
+    if args.foxglove_wait_s > 0 and not view.wait_subscribed(1, args.foxglove_wait_s, settle_s=0.3) and not args.quiet:
         print("ethimon replay: no Foxglove client subscribed; replaying anyway", file=sys.stderr, flush=True)
     return view, None
 

@@ -80,14 +80,20 @@ class FoxgloveView:
         self._ctx = foxglove.Context()
         #: channel subscriptions made by clients so far (:meth:`wait_subscribed`)
         self.subscriptions = 0
+        self._last_subscribed = 0.0
         self._subscribed = threading.Condition()
         view = self
 
-        class _Listener:
+        class _Listener(getattr(foxglove, "ServerListener", object)):  # type: ignore[misc]
+            # the SDK's base class gives every other callback (unsubscribe, parameters ...) its no-op default
             def on_subscribe(self, client: Any, channel: Any) -> None:
                 with view._subscribed:
                     view.subscriptions += 1
+                    view._last_subscribed = time.monotonic()
                     view._subscribed.notify_all()
+
+            def on_unsubscribe(self, client: Any, channel: Any) -> None:
+                return None
 
         try:
             self._server = foxglove.start_server(name=name, host=self.host, port=port, context=self._ctx,
@@ -111,11 +117,24 @@ class FoxgloveView:
         self._worker = threading.Thread(target=self._run, name="ethimon-foxglove", daemon=True)
         self._worker.start()
 
-    def wait_subscribed(self, count: int = 1, timeout: float | None = None) -> bool:
+    def wait_subscribed(self, count: int = 1, timeout: float | None = None, settle_s: float = 0.0) -> bool:
         """Wait until clients have made ``count`` channel subscriptions (at most ``timeout`` s; ``None``:
-        no limit); whether they have. What is published before a client subscribes reaches no one."""
+        no limit); whether they have. What is published before a client subscribes reaches no one.
+
+        ``settle_s`` > 0: after that, also wait until no further subscription has come for ``settle_s``
+        (still within ``timeout``), so that a client subscribing to several channels in one request has all
+        of them before the first message (the SDK reports each channel of a request separately)."""
+        end = None if timeout is None else time.monotonic() + timeout
         with self._subscribed:
-            return self._subscribed.wait_for(lambda: self.subscriptions >= count, timeout)
+            if not self._subscribed.wait_for(lambda: self.subscriptions >= count, timeout):
+                return False
+            while settle_s > 0:
+                now = time.monotonic()
+                quiet_until = self._last_subscribed + settle_s
+                if now >= quiet_until or (end is not None and now >= end):
+                    break
+                self._subscribed.wait(min(quiet_until, end if end is not None else quiet_until) - now)
+            return True
 
     @property
     def url(self) -> str:
@@ -183,13 +202,19 @@ class FoxgloveView:
             time.sleep(0.005)
         return not self._q
 
-    def close(self, timeout: float = 2.0) -> None:
-        """Publish what is queued (at most ``timeout`` s), then stop the server."""
+    def close(self, timeout: float = 2.0, linger_s: float = 0.5) -> None:
+        """Publish what is queued (at most ``timeout`` s), then stop the server.
+
+        ``linger_s``: when a client is subscribed and messages were published, how long the server stays up
+        after the last one so the SDK's per-client send queues reach the sockets (the SDK has no flush;
+        stopping at once dropped the tail of a replay)."""
         if self._closed:
             return
         self._closed = True
         self._wake.set()
         self._worker.join(timeout)
+        if linger_s > 0 and self.subscriptions and self.messages:
+            time.sleep(linger_s)
         try:
             self._server.stop()
         except Exception:  # noqa: BLE001 - already stopped
