@@ -483,37 +483,39 @@ def test_task_text_is_scored_live():
         peer.close()
 
 
-@pytest.mark.xfail(reason='the io seam moved the DDS writer out of ros2._node (_Dds is now ros2/_channel.py); the test must follow it (next session)', strict=False)
 def test_publication_handles_compare_unsigned():
     """Regression: the matched-publications list gives instance handles as signed int64, a sample's
     info as uint64; a handle with the top bit set made every sample of the one accepted writer look
-    foreign (dropped: the signal went missing and the node failed closed for good)."""
+    foreign (dropped: the signal went missing and the node failed closed for good). The DDS side now
+    lives in :class:`ethimon.ros2._channel.DdsChannel` (the io seam); the sample must reach the loop."""
     import threading
     import uuid
     from types import SimpleNamespace
 
-    from ethimon.ros2._node import _Dds, _Slot, _Sub
-    from ethimon.replay import SignalMap
+    from ethimon.ros2._channel import DdsChannel, Subscription
 
     h_unsigned = (1 << 63) + 12345
     h_signed = h_unsigned - (1 << 64)
     ep = SimpleNamespace(key=uuid.UUID(int=1), participant_key=uuid.UUID(int=2))
 
     class Reader:
+        def __init__(self):
+            self.pending = [(SimpleNamespace(data=1.5), SimpleNamespace(publication_handle=h_unsigned))]
+
         def get_matched_publications(self):
             return [h_signed]
 
         def get_matched_publication_data(self, h):
+            assert h == h_signed
             return ep
 
-    sm = SignalMap(topic="/joint_states", field="data")
-    node = SimpleNamespace(mapping=SimpleNamespace(ros2=SimpleNamespace(publishers=1)))
-    dds = object.__new__(_Dds)
-    dds.node, dds._lock, dds._closed = node, threading.Lock(), False
-    sub = _Sub("/joint_states", "std_msgs/msg/Float64", [_Slot("v", sm, 0.1)], reader=Reader())
-    dds.check_publishers(sub)
-    assert sub.foreign == () and sub.pinned == (str(ep.key),)
-    mon = object.__new__(Ros2Monitor)
-    mon._dds = dds
-    mon._on_sample(sub, SimpleNamespace(data=1.5), SimpleNamespace(publication_handle=h_unsigned))
-    assert sub.messages == 1 and sub.slots[0].last[0] == 1.5
+    sub = Subscription("/joint_states", "std_msgs/msg/Float64", fields=[("v", ("data",))], reader=Reader())
+    ch = object.__new__(DdsChannel)
+    ch.subs, ch.publishers, ch._lock, ch._closed = [sub], 1, threading.Lock(), False
+    ch._own_dirty, ch._own_foreign = False, ()
+    ch._take = staticmethod(lambda reader, n: [reader.pending.pop()] if reader.pending else [])
+    ch.check_publishers(sub)
+    assert sub.foreign == () and sub.pinned == (str(ep.key),) and sub.pinned_handles == {h_unsigned}
+    got = ch.take()
+    assert sub.messages == 1 and [(s.signal, s.value) for s in got] == [("v", 1.5)]
+    assert ch.faults() == ()
