@@ -51,7 +51,14 @@ def test_missing_z3_names_the_extra(monkeypatch):
         verify_spec(os.path.join(SPECS, "governor.yaml"))
 
 
-@pytest.mark.xfail(reason='lint.retreat_uncapped (issue 32) now warns on specs/governor.yaml, which has no near-human rule; decide whether the governor gets one (next session)', strict=False)
+#: the one warning a shipped spec may carry: lint.retreat_uncapped (issue 32 item 5) is true of a spec whose
+#: risk rule retreats to the safe pose but that has no ee_speed signal to cap the retreat near people
+#: (the paper's text-only governor; ssm_measured, whose risk rule is unused in its cell). The lint's
+#: message tells the integrator which rule to add; cobot_cell has it (slow_near_human).
+EXPECTED_WARNINGS = {"governor.yaml": {"lint.retreat_uncapped"}, "cobot_cell.yaml": set(),
+                     "ssm_measured.yaml": {"lint.retreat_uncapped"}}
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("name", ["governor.yaml", "cobot_cell.yaml"])
 def test_shipped_specs_prove_everything_without_warnings(name):
@@ -62,7 +69,7 @@ def test_shipped_specs_prove_everything_without_warnings(name):
     assert props and all(f.status == "proved" for f in props), format_table(rep)
     assert rep.finding("model.agrees").status == "ok"
     assert all(f.status == "ok" for f in rep.findings if f.name == "tier.agrees"), format_table(rep)
-    assert not rep.warnings, format_table(rep)
+    assert {f.name for f in rep.warnings} == EXPECTED_WARNINGS[name], format_table(rep)
     assert rep.exit_code == 0
 
 
@@ -161,14 +168,17 @@ obligations:
     assert all(fr["d"] < 1 for fr in cex.frames[-3:])
 
 
-@pytest.mark.xfail(reason='new lints (lint.brakes, lint.retreat_uncapped, issue 32) change the verify tables this test pins (next session)', strict=False)
 @pytest.mark.slow
 def test_cli_exit_codes_json_and_tables(tmp_path, capsys):
     out = tmp_path / "v.json"
     assert main(["verify", SPECS, "--json", str(out)]) == 0
     doc = json.loads(out.read_text())
     assert doc["exit_code"] == 0 and len(doc["specs"]) == 3  # cobot_cell, governor, ssm_measured
-    assert all(f["status"] in ("proved", "ok") for s in doc["specs"] for f in s["findings"])
+    for s in doc["specs"]:
+        odd = {f["name"] for f in s["findings"] if f["status"] not in ("proved", "ok")}
+        assert odd == EXPECTED_WARNINGS[os.path.basename(s["path"])], (s["path"], odd)
+        assert {f["status"] for f in s["findings"] if f["name"] in odd} <= {"warning"}
+    assert {f["name"] for s in doc["specs"] for f in s["findings"]} >= {"lint.brakes", "lint.retreat_uncapped"}
     assert "risk.override" in capsys.readouterr().out
     assert main(["verify", fixture("refuted_division.yaml"), "--counterexamples", str(tmp_path / "c")]) == 1
     assert os.listdir(tmp_path / "c") == ["refuted_division.time_to_contact.defined.yaml"]
