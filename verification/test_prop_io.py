@@ -5,8 +5,10 @@ rates, header stamps at or after receipt, some beyond the future-stamp tolerance
 live path (``LiveMonitor`` on an in-memory channel and a fake clock) and its own recording is replayed:
 the verdict (override, severity, latched, fault, violations) is the same on every cycle.
 
-It found that live held due samples in the order they arrived, replay by their time: a sample arriving after
-one stamped later displaced it live (``tests/io/test_differential.py``, the shrunk case). ``ci`` runs 20
+It found that live held due samples in the order they arrived, replay by their time (a sample arriving after
+one stamped later displaced it live), and that the replay of a recording marked a far-future stamp unusable at
+the very time of a sample stamped at that cycle, then refused the recording (both shrunk cases are regression
+tests in ``tests/io/test_differential.py``). ``ci`` runs 20
 streams (about 10 s); ``HYPOTHESIS_PROFILE=thorough`` 750."""
 
 from __future__ import annotations

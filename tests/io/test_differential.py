@@ -130,3 +130,13 @@ def test_a_later_arrival_with_an_older_stamp_does_not_displace_the_newer_sample(
     liv, live, res = _same(sorted(samples, key=lambda s: s.t_log))
     assert live.holds["dist"].skipped == 1  # B: never held by a cycle, live as in replay
     assert res.signals["dist"]["judged"] == res.signals["dist"]["samples"] - 1
+
+
+def test_a_far_future_stamp_and_a_sample_stamped_at_the_cycle_that_took_both():
+    # found by verification/test_prop_io.py (thorough profile): a sample stamped 30 ms ahead (beyond the
+    # tolerance) and one stamped exactly at the cycle time, both taken by that cycle. Live the second is held
+    # (its time has come: it replaces the unusable one). Before: the replay of the recording put the unusable
+    # mark at the cycle's time too and refused the recording ("share a time with another of a different value").
+    samples = _base(every=0.01, dist=1.0, t_end=0.3) + [S(0.1371, "dist", 0.3, 0.1671)]
+    liv, live, res = _same(sorted(samples, key=lambda s: s.t_log))
+    assert res.signals["dist"]["judged"] >= res.signals["dist"]["samples"] - 2
