@@ -14,7 +14,7 @@ streams (about 10 s); ``HYPOTHESIS_PROFILE=thorough`` 750."""
 from __future__ import annotations
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from tests.io._drive import MAPPING, S, verdicts
@@ -50,6 +50,13 @@ def streams(draw):
 @settings(max_examples=max(1, settings.default.max_examples // 2), deadline=None)
 @given(streams())
 def test_live_and_the_replay_of_its_recording_agree_on_every_cycle(samples):
+    # two header stamps equal and their values not: replay refuses the recording (one cycle cannot judge both,
+    # docs/replay.md), live holds the later arrival; outside the one semantics, by design
+    stamps: dict = {}
+    for x in samples:
+        if x.t_header is not None:
+            stamps.setdefault(x.t_header, set()).add(x.value)
+    assume(all(len(v) == 1 for v in stamps.values()))
     liv, rep, _live, _res = verdicts(samples, MAPPING)
     assert len(liv) == len(rep)
     bad = [(k, a, b) for k, (a, b) in enumerate(zip(liv, rep)) if a != b]
