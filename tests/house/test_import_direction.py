@@ -55,7 +55,7 @@ ALLOWED: dict[str, set[str]] = {
     "testing": _BESIDE,
     "scenario": _BESIDE | {"sim", "risk"},
     "offline": _BESIDE | {"audit", "risk"},
-    "io": _BESIDE,
+    "io": _BESIDE | {"audit"},
     "replay": _BESIDE | {"audit", "risk", "offline", "io", "view"},
     "fleet": _BESIDE | {"audit", "risk", "sim", "scenario", "replay", "offline", "io"},
     "gym": _BESIDE | {"sim", "risk", "audit"},

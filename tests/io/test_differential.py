@@ -117,3 +117,26 @@ def test_a_stamp_within_the_tolerance_waits_for_its_time_and_ages_from_it():
     assert h.read(20.0, fl) is None and "future" in fl[0].message
     fl.clear()
     assert h.read(20.1, fl) == 2.0 and not fl
+
+
+def test_a_later_arrival_with_an_older_stamp_does_not_displace_the_newer_sample():
+    # found by verification/test_prop_io.py (shrunk): dist sample A stamped 30 ms ahead of its arrival at
+    # 0.1561 (beyond the tolerance: a fault until 0.1861), sample B arriving at 0.1811 stamped 0.1811. At the
+    # cycle 0.1901 both are due; replay (and its zero-order hold) holds the newest by time, A, fresh until
+    # 0.2216. Before: live held them in arrival order and kept B (older), stale from 0.2166 -- on the cycle
+    # 0.2201 live saw a stale input where the replay of its own recording judged A.
+    samples = [s for s in _base(every=0.01, dist=1.0) if s.signal != "dist" or not 0.15 < s.t_log < 0.3]
+    samples += [S(0.1561, "dist", 0.3, 0.1861), S(0.1811, "dist", 1.0, 0.1811)]
+    liv, live, res = _same(sorted(samples, key=lambda s: s.t_log))
+    assert live.holds["dist"].skipped == 1  # B: never held by a cycle, live as in replay
+    assert res.signals["dist"]["judged"] == res.signals["dist"]["samples"] - 1
+
+
+def test_a_far_future_stamp_and_a_sample_stamped_at_the_cycle_that_took_both():
+    # found by verification/test_prop_io.py (thorough profile): a sample stamped 30 ms ahead (beyond the
+    # tolerance) and one stamped exactly at the cycle time, both taken by that cycle. Live the second is held
+    # (its time has come: it replaces the unusable one). Before: the replay of the recording put the unusable
+    # mark at the cycle's time too and refused the recording ("share a time with another of a different value").
+    samples = _base(every=0.01, dist=1.0, t_end=0.3) + [S(0.1371, "dist", 0.3, 0.1671)]
+    liv, live, res = _same(sorted(samples, key=lambda s: s.t_log))
+    assert res.signals["dist"]["judged"] >= res.signals["dist"]["samples"] - 2

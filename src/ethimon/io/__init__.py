@@ -20,14 +20,14 @@ from __future__ import annotations
 
 from ._channel import TASK_TEXT, AckRequest, Channel, Frame, MemoryChannel, Sample
 from ._hold import MAX_CYCLES, MISSING, OK, STALE, Hold, cycle_grid, hold, judged
-from ._live import MAX_TEXT, LiveMonitor, Recording, decision_json, mapping_error
+from ._live import LiveMonitor, Recording, decision_json, mapping_error
 from ._mapping import (FIELD_PATH, FUTURE_TOLERANCE_S, MSGTYPE, REDUCTIONS, RISK_INPUTS, ByName, Mapping, Ros2Map,
                        SignalMap, TaskMap, bool_mismatch, check_against_spec, lint_mapping, load_mapping,
                        load_mapping_text, mapping_json_schema, msgtype_key, parse_field_path)
 from ._values import follow, is_truth, numbers_of, rate_between, reduce_array, reduce_value
 
 __all__ = ["AckRequest", "ByName", "Channel", "FIELD_PATH", "FUTURE_TOLERANCE_S", "Frame", "Hold", "LiveMonitor",
-           "MAX_CYCLES", "MAX_TEXT", "MISSING", "MSGTYPE", "Mapping", "MemoryChannel", "OK", "REDUCTIONS",
+           "MAX_CYCLES", "MISSING", "MSGTYPE", "Mapping", "MemoryChannel", "OK", "REDUCTIONS",
            "RISK_INPUTS", "Recording", "Ros2Map", "STALE", "Sample", "SignalMap", "TASK_TEXT", "TaskMap", "bool_mismatch",
            "check_against_spec", "cycle_grid", "decision_json", "follow", "hold", "is_truth", "judged",
            "lint_mapping", "load_mapping", "load_mapping_text", "mapping_error", "mapping_json_schema",

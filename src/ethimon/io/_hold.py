@@ -180,18 +180,25 @@ class Hold:
 
     def _hold(self, x: Any, t: int) -> None:
         last = self.last
+        if last is not None and t < last[1]:  # arrived after a newer sample was held: no cycle holds it
+            self._unjudged()
+            return
         if last is not None and self._unread and not (last[1] == t and (last[0] == x or (last[0] != last[0]
                                                                                         and x != x))):
-            if self.read_yet:
-                self.skipped += 1
-                if self.every and self._skip_note is None:
-                    self._skip_note = (f"signal {self.name!r}: a sample on {self.sm.topic} was replaced by a newer "
-                                       "one before a cycle read it; the monitor would never judge it ('samples: "
-                                       "every'; 'samples: latest' judges the latest each cycle)")
-            else:
-                self.before += 1
+            self._unjudged()
         self.last = (x, t)
         self._unread = True
+
+    def _unjudged(self) -> None:
+        """A sample no cycle will read: counted (and a fault under ``samples: every``)."""
+        if self.read_yet:
+            self.skipped += 1
+            if self.every and self._skip_note is None:
+                self._skip_note = (f"signal {self.name!r}: a sample on {self.sm.topic} was replaced by a newer "
+                                   "one before a cycle read it; the monitor would never judge it ('samples: "
+                                   "every'; 'samples: latest' judges the latest each cycle)")
+        else:
+            self.before += 1
 
     def read(self, now: float, faults: list[Fault]) -> Any:
         """The value this cycle (at ``now``, the clock of the sample times) takes, or ``None`` when it has none
@@ -199,13 +206,16 @@ class Hold:
         future (a fault added). A value that cannot be formed is NaN (the monitor refuses it as invalid)."""
         c = int(round(now * 1e9))
         pend = self.pending
-        if pend and any(p[1] <= c for p in pend):  # every sample whose time has come, in the order taken
+        if pend and any(p[1] <= c for p in pend):
+            # every sample whose time has come, by time (stably: in the order taken among equal times), as
+            # replay's hold orders a recording; one older than the sample held is never held (not judged)
             keep: deque[list] = deque()
+            due = []
             for p in pend:
-                if p[1] <= c:
-                    self._hold(p[0], p[1])
-                else:
-                    keep.append(p)
+                (due if p[1] <= c else keep).append(p)
+            due.sort(key=lambda p: p[1])
+            for p in due:
+                self._hold(p[0], p[1])
             self.pending = pend = keep
         if self._skip_note is not None:
             faults.append(Fault("signals", self._skip_note, self.name))

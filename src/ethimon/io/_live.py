@@ -18,32 +18,20 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..audit import bounded
 from ..errors import SpecError
 from ..runtime import Decision, Fault
 from ._channel import TASK_TEXT, AckRequest, Channel, Frame, Sample
 from ._hold import Hold
 from ._mapping import RISK_INPUTS, Mapping, bool_mismatch, check_against_spec
 
-__all__ = ["MAX_TEXT", "LiveMonitor", "Recording", "decision_json", "mapping_error"]
-
-#: longest task text kept (characters), as replay
-MAX_TEXT = 10_000
+__all__ = ["LiveMonitor", "Recording", "decision_json", "mapping_error"]
 
 
 def _finite(x: Any) -> Any:
     if isinstance(x, float) and not math.isfinite(x):
         return None if x != x else ("inf" if x > 0 else "-inf")
     return x
-
-
-def _bounded(value: Any, limit: int) -> Any:
-    """A sender's string, bounded for the audit log (as ``ethimon.audit.bounded``): its head, length and sha256."""
-    if isinstance(value, str) and len(value) > limit:
-        import hashlib
-        data = value.encode("utf-8", "surrogatepass")
-        return {"head": value[:limit], "chars": len(value), "bytes": len(data),
-                "sha256": hashlib.sha256(data).hexdigest()}
-    return value
 
 
 def decision_json(d: Decision, ids: tuple[str, ...], *, t_unix: float | None = None,
@@ -246,7 +234,7 @@ class LiveMonitor:
     def _refuse(self, operator: str | None, reason: str, sender: str, message: str) -> dict[str, Any]:
         self.acks_refused += 1
         audit = self.loop.audit
-        operator, reason = _bounded(operator, 200), _bounded(reason, 256)  # a sender's payload (issue 31)
+        operator, reason = bounded(operator, 200), bounded(reason, 256)  # a sender's payload (issue 31)
         if audit is not None:
             try:
                 audit.append("acknowledge", operator=operator, reason=reason, released=False, rules=[],

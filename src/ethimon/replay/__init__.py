@@ -75,8 +75,8 @@ def recorded_data(recording: Any, mapping: Any, path: str = "<recording>") -> An
     until its time came) is an unusable sample at that cycle's time, then its value at its own time."""
     from ..io import TASK_TEXT
 
-    def header(t_s: float) -> _Header:
-        ns = int(round(t_s * 1e9))
+    def header(t_s: float, minus_ns: int = 0) -> _Header:
+        ns = int(round(t_s * 1e9)) - minus_ns
         return _Header(_Stamp(ns // 1_000_000_000, ns % 1_000_000_000))
 
     taken, cycles = getattr(recording, "taken", []), getattr(recording, "cycles", [])
@@ -96,7 +96,9 @@ def recorded_data(recording: Any, mapping: Any, path: str = "<recording>") -> An
                 if sm.time == "header" and k is not None and k < len(cycles) and cycles[k][1] is not None:
                     wall = cycles[k][1]
                     if int(round(s.t_header * 1e9)) + off - int(round(wall * 1e9)) > tol_ns:
-                        c.add(_Recorded(math.nan, header(wall - sm.offset_s)), int(round(cycles[k][0] * 1e9)),
+                        # 1 ns before the cycle: a sample stamped at the cycle's time, taken by it, replaces the
+                        # mark (live, its time has come), instead of sharing the mark's time
+                        c.add(_Recorded(math.nan, header(wall, off + 1)), int(round(cycles[k][0] * 1e9)),
                               sm.topic, msgtype)
             c.add(_Recorded(s.value, hdr), int(round(s.t_log * 1e9)), sm.topic, msgtype)
         series[name] = c.series(sm.topic, msgtype)

@@ -96,24 +96,26 @@ def _worst(values: np.ndarray, violated: np.ndarray) -> tuple[float | None, int]
 
 #: how many override runs a replay result lists (the one to the end of the bag is always among them)
 MAX_RUNS = 200
+#: the running count in Monitor.holding()'s words ("... (3 of 10 now)")
+_COUNT = re.compile(r" \(\d+ of \d+ now\)")
 
 
 def _release_words(spec: Spec) -> dict[str, str]:
-    """How each rule's latch is released, in a person's words (the spec's release policy)."""
-    from ..compiler import plan_of
-    plan = plan_of(spec)
-    out = {}
-    for ob in plan.obligations:
-        out[ob.id] = ("by an operator's acknowledgement (release: manual)" if ob.manual else
-                      f"by itself after {ob.release_hold} cycles of holding")
-    rr, fr = plan.risk_rule, plan.fault_rule
-    out["risk"] = ("by an operator's acknowledgement (release: manual)" if rr.manual else
-                   f"by itself after {rr.hold} cycles of R_e < τ − δ = {plan.release_cut:g}")
-    out["fault"] = ("by an operator's acknowledgement (on_fault release: manual)" if fr.manual else
-                    f"by itself after {fr.hold} cycles without a fault")
-    out["confirm"] = "by a person's confirmation, or once the text leaves the confirm band"
-    out["judge"] = "once the judge's unsafe verdict no longer stands (a new text), or by acknowledgement"
-    return out
+    """How each rule's latch is released, in a person's words: what :meth:`Monitor.holding
+    <ethimon.Monitor.holding>` says of it (live and replay in the same words), without its running count."""
+    from ..runtime import Monitor
+    m = Monitor(spec)
+    m.carry_latches((*m.obligation_ids, "risk", "fault", "judge", "confirm"))  # a tier rule the spec lacks: none
+    return {h["rule"]: released_words(h["how"]) for h in m.holding()}
+
+
+def released_words(how: str) -> str:
+    """``Monitor.holding()``'s ``how`` to follow "released": "by an acknowledgement once ...", "by itself ...",
+    "when an acknowledgement confirms ..."; its running count left out."""
+    how = _COUNT.sub("", how)
+    if how.startswith("an acknowledgement confirms"):
+        return "when " + how
+    return how if how.startswith("by ") else "by " + how
 
 
 def _override_runs(tr: CycleResults, grid: np.ndarray, rate_hz: float, spec: Spec, fresh: int = 0,
