@@ -115,7 +115,11 @@ class Plan:
         obligations: checked obligations in spec order.
         temporal: every temporal call node, children before parents.
         types: type of every expression node, keyed by ``id(node)``.
-        windows: the integer bound of each temporal node (``id(node)`` → n or None).
+        windows: the integer bound of each temporal node (``id(node)`` → n or None), in cycles
+            (a window written in seconds is already its whole number of cycles at ``rate_hz``).
+        window_seconds: the seconds the author wrote, for each temporal node whose window is a
+            time (``held(e, 0.5 s)``, or a constant in s): ``id(node)`` → seconds; for printers.
+        rate_hz: the spec's stated control rate (``None``: it counts cycles only).
         slots: input slot of every name an expression can read (signals and ``risk``),
             built once here for every consumer (code generation, fault-path evaluation).
         risk: the spec's risk settings (τ, weights, classes, release, max age).
@@ -140,6 +144,8 @@ class Plan:
     temporal: tuple[Call, ...]
     types: dict[int, Ty] = field(default_factory=dict)
     windows: dict[int, int | None] = field(default_factory=dict)
+    window_seconds: dict[int, float] = field(default_factory=dict)
+    rate_hz: float | None = None
     slots: dict[str, int] = field(default_factory=dict)
     risk: RiskConfig = field(default_factory=RiskConfig)
     on_fault: Response = Response.SAFE_POSE

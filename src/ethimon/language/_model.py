@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import difflib
 import enum
+import math
 from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator
@@ -28,6 +29,7 @@ __all__ = [
     "Obligation",
     "SafePose", "Spec", "MANUAL_BY_DEFAULT",
     "FORMAT_VERSION", "RESERVED_INPUTS", "validation_to_spec_error", "IDENT",
+    "RATE_HZ", "seconds_to_cycles", "SecondsNotWhole",
 ]
 
 FORMAT_VERSION = 1
@@ -75,6 +77,53 @@ SEVERITY_ORDER: tuple[Response, ...] = tuple(Response)
 _SEVERITY = {r: i for i, r in enumerate(SEVERITY_ORDER)}
 _RESPONSE_NAMES = tuple(r.value for r in SEVERITY_ORDER[1:])  # the responses of an override
 ACTIVE_RESPONSES = Literal[_RESPONSE_NAMES]  # type: ignore[valid-type]
+
+#: the control rates a spec may state (``rate_hz``), the same bounds as a mapping file's
+RATE_HZ = (0.1, 100_000.0)
+#: relative tolerance for float noise when seconds are made cycles (0.07 s × 100 Hz = 7.000000000000001)
+_WHOLE_TOL = 1e-9
+
+
+class SecondsNotWhole(ValueError):
+    """A time in seconds that is not a whole number of cycles at the spec's rate (or has no rate)."""
+
+    def __init__(self, msg: str, hint: str) -> None:
+        super().__init__(msg)
+        self.msg, self.hint = msg, hint
+
+
+def _g(x: float) -> str:
+    return f"{x:.10g}"
+
+
+def seconds_to_cycles(seconds: float, rate_hz: float | None, what: str) -> int:
+    """``seconds`` at ``rate_hz`` as a whole number of cycles (``round(seconds * rate_hz)``).
+
+    The product may be off a whole number by float noise only (a relative 1e-9: 0.05 s at
+    100 Hz is 5 cycles); anything else is refused, as is a time without a rate.
+
+    Raises:
+        SecondsNotWhole: no ``rate_hz``, or not a whole number of cycles; ``msg`` names ``what``
+            and ``hint`` gives the nearest times that are whole.
+
+    Example:
+        >>> seconds_to_cycles(0.05, 100.0, "a window")
+        5
+    """
+    if rate_hz is None:
+        raise SecondsNotWhole(f"{what} is written in seconds ({_g(seconds)} s), but the spec states no rate_hz",
+                              "state rate_hz: the control rate in Hz the spec is written for (top level, e.g. "
+                              "'rate_hz: 100'), or count cycles instead")
+    exact = seconds * rate_hz
+    n = round(exact)
+    if abs(exact - n) > _WHOLE_TOL * max(1.0, abs(exact)):
+        lo, hi = math.floor(exact), math.floor(exact) + 1
+        near = " or ".join(f"{_g(k / rate_hz)} s ({k} cycle{'s' if k != 1 else ''})" for k in (lo, hi) if k >= 1)
+        raise SecondsNotWhole(f"{what} is {_g(seconds)} s, {_g(exact)} cycles at rate_hz {_g(rate_hz)}: not a "
+                              "whole number of cycles", f"a cycle is {_g(1 / rate_hz)} s at {_g(rate_hz)} Hz; "
+                              f"write {near}" if near else f"a cycle is {_g(1 / rate_hz)} s at {_g(rate_hz)} Hz")
+    return int(n)
+
 
 _CFG = ConfigDict(extra="forbid", frozen=True, populate_by_name=True, strict=True)
 
@@ -357,6 +406,9 @@ class Obligation(BaseModel):
     within_cycles: int | None = Field(
         None, ge=0, le=1_000_000,
         description="bounded response: after the trigger, require must hold within this many cycles")
+    within_s: FiniteFloat | None = Field(
+        None, ge=0.0, description="within_cycles written in seconds (needs the spec's rate_hz; must be a whole "
+        "number of cycles at it); the spec's within_cycles then holds the count")
     response: ACTIVE_RESPONSES = "safe_pose"
     release: RuleRelease | None = Field(
         None, description=f"{_RELEASE_FORMS}; default manual for stop_0/stop_1, else auto")
@@ -430,6 +482,10 @@ class Spec(BaseModel):
     ethimon: Literal[1] = Field(description="format version; this ethimon reads 1")
     name: str = Field(min_length=1)
     description: str = ""
+    rate_hz: FiniteFloat | None = Field(
+        None, ge=RATE_HZ[0], le=RATE_HZ[1], description="the control rate (Hz) the spec is written for: needed by "
+        "times in seconds (held(e, 0.5 s), within_s, hold_s), each a whole number of cycles at it; a replay or "
+        "live mapping must run at this rate; null: the spec counts cycles only")
     signals: dict[Annotated[str, Field(pattern=IDENT)], Signal] = Field(default_factory=dict)
     constants: dict[Annotated[str, Field(pattern=IDENT)], FiniteFloat | Constant] = Field(default_factory=dict)
     risk: RiskConfig = Field(default_factory=RiskConfig)
@@ -499,6 +555,7 @@ class Spec(BaseModel):
                 raise _LocError(f"duplicate obligation id {ob.id!r} (first is obligations[{seen[ob.id]}])",
                                 ("obligations", i, "id"))
             seen[ob.id] = i
+        self._resolve_seconds()
         for name in self.signals:
             if name in RESERVED_INPUTS:
                 raise _LocError(f"{name!r} is a built-in name and cannot be declared as a signal",
@@ -510,6 +567,31 @@ class Spec(BaseModel):
             if name in self.signals:
                 raise _LocError(f"{name!r} is declared both as a signal and as a constant", ("constants", name))
         return self
+
+
+    def _resolve_seconds(self) -> None:
+        """Times written in seconds become their cycle counts, once, here: ``within_s`` fills the
+        obligation's ``within_cycles`` (every consumer reads that count); the seconds stay for printers."""
+        obs = list(self.obligations)
+        changed = False
+        for i, ob in enumerate(obs):
+            if ob.within_s is None:
+                continue
+            loc = ("obligations", i, "within_s")
+            try:
+                n = seconds_to_cycles(ob.within_s, self.rate_hz, f"within_s of obligation {ob.id!r}")
+            except SecondsNotWhole as exc:
+                raise _LocError(exc.msg, loc, hint=exc.hint) from None
+            if n > 1_000_000:
+                raise _LocError(f"within_s {_g(ob.within_s)} s is {n} cycles: at most 1000000", loc)
+            if ob.within_cycles is not None and ob.within_cycles != n:
+                raise _LocError(f"obligation {ob.id!r} gives within_cycles {ob.within_cycles} and within_s "
+                                f"{_g(ob.within_s)} s ({n} cycles at {_g(self.rate_hz)} Hz)", loc,
+                                hint="give one of within_cycles and within_s")
+            obs[i] = ob.model_copy(update={"within_cycles": n})
+            changed = True
+        if changed:
+            object.__setattr__(self, "obligations", tuple(obs))
 
 
 def _resolved(rel: RuleRelease | None, default_mode: str, default_hold: int) -> tuple[str, int]:
