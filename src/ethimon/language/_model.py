@@ -174,6 +174,9 @@ class Release(BaseModel):
     hysteresis: FiniteFloat = Field(0.05, ge=0.0, description="δ: release needs R_e < τ − δ")
     hold_cycles: int = Field(10, ge=1, le=10_000_000,
                              description="N: the release condition must hold N consecutive cycles")
+    hold_s: FiniteFloat | None = Field(
+        None, gt=0.0, description="hold_cycles written in seconds (needs the spec's rate_hz; a whole number of "
+        "cycles at it)")
 
 
 #: responses whose latch is released manually unless the rule says ``release: auto``
@@ -207,6 +210,9 @@ class RuleRelease(BaseModel):
     hold_cycles: int | None = Field(
         None, ge=1, le=10_000_000,
         description="N: the rule's condition must hold N consecutive cycles (default: risk.release.hold_cycles)")
+    hold_s: FiniteFloat | None = Field(
+        None, gt=0.0, description="hold_cycles written in seconds (needs the spec's rate_hz; a whole number of "
+        "cycles at it)")
 
 
 #: what a ``release:`` key accepts (for the JSON Schema; the short forms become mappings)
@@ -588,10 +594,38 @@ class Spec(BaseModel):
                 raise _LocError(f"obligation {ob.id!r} gives within_cycles {ob.within_cycles} and within_s "
                                 f"{_g(ob.within_s)} s ({n} cycles at {_g(self.rate_hz)} Hz)", loc,
                                 hint="give one of within_cycles and within_s")
-            obs[i] = ob.model_copy(update={"within_cycles": n})
+            obs[i] = ob = ob.model_copy(update={"within_cycles": n})
             changed = True
+        for i, ob in enumerate(obs):
+            rel = self._hold_in_cycles(ob.release, ("obligations", i, "release"), f"obligation {ob.id!r}")
+            if rel is not ob.release:
+                obs[i] = ob.model_copy(update={"release": rel})
+                changed = True
         if changed:
             object.__setattr__(self, "obligations", tuple(obs))
+        rel = self._hold_in_cycles(self.risk.release, ("risk", "release"), "risk")
+        if rel is not self.risk.release:
+            object.__setattr__(self, "risk", self.risk.model_copy(update={"release": rel}))
+        rel = self._hold_in_cycles(self.fault_policy.release, ("on_fault", "release"), "on_fault")
+        if rel is not self.fault_policy.release:
+            object.__setattr__(self, "fault_policy", self.fault_policy.model_copy(update={"release": rel}))
+
+    def _hold_in_cycles(self, rel: Any, loc: tuple, who: str) -> Any:
+        """``rel`` with its ``hold_s`` made ``hold_cycles`` (``rel`` itself when it has no ``hold_s``)."""
+        if rel is None or rel.hold_s is None:
+            return rel
+        loc = loc + ("hold_s",)
+        try:
+            n = seconds_to_cycles(rel.hold_s, self.rate_hz, f"the release hold_s of {who}")
+        except SecondsNotWhole as exc:
+            raise _LocError(exc.msg, loc, hint=exc.hint) from None
+        if not 1 <= n <= 10_000_000:
+            raise _LocError(f"the release hold_s of {who}, {_g(rel.hold_s)} s, is {n} cycles: expected 1 to 10000000",
+                            loc)
+        if "hold_cycles" in rel.model_fields_set and rel.hold_cycles != n:
+            raise _LocError(f"the release of {who} gives hold_cycles {rel.hold_cycles} and hold_s {_g(rel.hold_s)} s "
+                            f"({n} cycles at {_g(self.rate_hz)} Hz)", loc, hint="give one of hold_cycles and hold_s")
+        return rel.model_copy(update={"hold_cycles": n})
 
 
 def _resolved(rel: RuleRelease | None, default_mode: str, default_hold: int) -> tuple[str, int]:
