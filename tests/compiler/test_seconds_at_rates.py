@@ -1,11 +1,13 @@
 """A spec written in seconds means the same at 50 and 100 Hz, or is refused (issue 34 item 2, done-when).
 
-One scenario, given in time (piecewise constant inputs that change on a 20 ms grid), is sampled at
-50 Hz and at 100 Hz and stepped through the same spec compiled at each rate. Every rule's violation
-episodes and the override episodes (with their response) then match in seconds: the same number,
-each start and end within one cycle of the slower rate (a window of T s holds T s of samples, and
-the samples of the two rates fall at different instants inside it). A time that is not a whole
-number of cycles at the spec's rate is refused instead; a mapping at another rate is refused too.
+One scenario, given in time (piecewise constant inputs that change on a 20 ms grid; a sample at the
+instant of a change still reads the old value, so the sample at the end of each 20 ms piece reads that
+piece at both rates), is sampled at 50 Hz and at 100 Hz and stepped through the same spec compiled at
+each rate. At every instant both rates sample (each 20 ms) the same rules are violated (a window
+of T s holds the same T s of input at both rates), and the override episodes, with their response
+and latched rules, start and end within one 50 Hz cycle of each other (a release hold of T s counts
+the 100 Hz cycles in between too, whose windows straddle the pieces). A time that is not a whole number of cycles at the spec's rate is refused instead; a
+mapping at another rate is refused too.
 """
 
 from __future__ import annotations
@@ -62,7 +64,7 @@ DURATION = 3.0
 def _inputs(t: float) -> dict:
     cur: dict = {"p_unsafe": 0.0}
     for at, values in TIMELINE:
-        if t + 1e-9 >= at:
+        if at == 0 or t > at + 1e-9:  # the value over (at, next at]
             cur.update(values)
     return cur
 
@@ -91,6 +93,11 @@ def _same_in_seconds(a: list, b: list, tol: float) -> bool:
 
 def test_a_spec_in_seconds_gives_the_same_verdicts_at_50_and_100_hz():
     runs = {rate: _run(rate) for rate in (50, 100)}
+    fine = runs[100][::2]  # the instants both rates sample
+    assert len(fine) == len(runs[50])
+    for d50, d100 in zip(runs[50], fine):
+        assert d50.violations == d100.violations, (d50, d100)
+    # ... and as episodes in seconds, the override and its latches too
     tol = 1 / 50
     for rule in ("slow_near_human", "clamping", "recent_fast", "calm"):
         eps = {rate: _episodes([rule in d.violations for d in ds], rate) for rate, ds in runs.items()}
