@@ -162,3 +162,24 @@ def test_a_monitor_runs_a_spec_in_seconds():
     for _ in range(9):
         assert not m.step({"d": 0.2, "v": 0.05, "p_unsafe": 0.0}).override
     assert m.step({"d": 0.2, "v": 0.05, "p_unsafe": 0.0}).violations == ("dwell",)  # 10 cycles = 0.1 s
+
+
+def test_printers_give_the_time_beside_the_cycles():
+    assert plan_of(load_spec_text(BASE)).cycles(6) == "6 cycles (0.06 s at 100 Hz)"
+    assert plan_of(load_spec_text(BASE.replace("rate_hz: 100", "rate_hz: 50"))).cycles(1) == "1 cycle (0.02 s at 50 Hz)"
+    text = "ethimon: 1\nname: t\nsignals: {d: {unit: m}}\nobligations: [{id: a, require: d > 1}]\n"
+    assert plan_of(load_spec_text(text)).cycles(3) == "3 cycles"  # no rate stated: cycles only
+
+
+def test_the_example_in_seconds_means_what_the_shipped_spec_in_cycles_means():
+    from pathlib import Path
+
+    from ethimon import load_spec
+    root = Path(__file__).resolve().parents[2]
+    secs, cycles = load_spec(root / "examples/specs-in-seconds/cobot_cell.yaml"), load_spec(root / "specs/cobot_cell.yaml")
+    assert secs.rate_hz == 100.0 and cycles.rate_hz is None
+    ps, pc = plan_of(secs), plan_of(cycles)
+    assert sorted(ps.windows.values(), key=str) == sorted(pc.windows.values(), key=str)
+    assert [o.within_cycles for o in ps.obligations] == [o.within_cycles for o in pc.obligations]
+    assert ps.rules() == pc.rules()
+    assert [o.require_text for o in ps.obligations] != [o.require_text for o in pc.obligations]  # written in s

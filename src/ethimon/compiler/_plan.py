@@ -189,6 +189,14 @@ class Plan:
         return tuple([ob.id for ob in self.obligations if ob.manual]
                      + [r.name for r in (self.risk_rule, self.fault_rule) if r.manual])
 
+    def cycles(self, n: int) -> str:
+        """``n`` cycles for a person: ``"3 cycles"``, with the time when the spec states its rate:
+        ``"3 cycles (0.03 s at 100 Hz)"`` (what a spec written in seconds said)."""
+        text = f"{n} cycle{'s' if n != 1 else ''}"
+        if self.rate_hz:
+            text += f" ({n / self.rate_hz:.10g} s at {self.rate_hz:g} Hz)"
+        return text
+
     @property
     def n_slots(self) -> int:
         return len(self.signals) + 1
