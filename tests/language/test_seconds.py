@@ -11,7 +11,7 @@ from ethimon._api import load_spec_text
 from ethimon.compiler import plan_of
 from ethimon.errors import SpecError
 from ethimon.language._expr import Num, Seconds, parse_expr, to_source
-from ethimon.language._model import seconds_to_cycles
+from ethimon.language import seconds_to_cycles
 
 BASE = """\
 ethimon: 1

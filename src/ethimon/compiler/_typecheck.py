@@ -11,8 +11,7 @@ import math
 from ..errors import SpecError
 from ..language._expr import (FUNCTIONS, SEPARATION_PARAMS, Binary, BoolLit, Call, ExprSyntaxError, Name,
                           Node, Num, Seconds, Unary, parse_expr, separation_distance)
-from ..language import Constant, Response, Spec
-from ..language._model import SecondsNotWhole, seconds_to_cycles
+from ..language import Constant, Response, Spec, seconds_to_cycles
 from ._plan import BOOL, MAX_WINDOW, RISK_NAME, ObligationPlan, Plan, RuleRelease, SignalSlot, Ty
 from ._risk_formula import release_bound
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit
@@ -252,8 +251,8 @@ class _Checker:
         try:
             n = seconds_to_cycles(value, self.spec.rate_hz, f"the window of {fname}()" if isinstance(arg, Num)
                                   else f"the window {arg.id} of {fname}()")  # type: ignore[union-attr]
-        except SecondsNotWhole as exc:
-            raise self.err(arg, exc.msg, hint=exc.hint) from None
+        except ValueError as exc:  # not whole cycles, or no rate_hz: its msg and hint, located here
+            raise self.err(arg, getattr(exc, "msg", str(exc)), hint=getattr(exc, "hint", None)) from None
         if n < 1:
             raise self.err(arg, f"a window of {self.snippet(arg)} is less than one cycle in {fname}()",
                            hint="windows count the current cycle, so the smallest is one cycle (1 / rate_hz s)")

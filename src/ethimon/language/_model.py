@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import difflib
 import enum
-import math
 from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator
@@ -29,7 +28,7 @@ __all__ = [
     "Obligation",
     "SafePose", "Spec", "MANUAL_BY_DEFAULT",
     "FORMAT_VERSION", "RESERVED_INPUTS", "validation_to_spec_error", "IDENT",
-    "RATE_HZ", "seconds_to_cycles", "SecondsNotWhole",
+    "RATE_HZ",
 ]
 
 FORMAT_VERSION = 1
@@ -80,51 +79,6 @@ ACTIVE_RESPONSES = Literal[_RESPONSE_NAMES]  # type: ignore[valid-type]
 
 #: the control rates a spec may state (``rate_hz``), the same bounds as a mapping file's
 RATE_HZ = (0.1, 100_000.0)
-#: relative tolerance for float noise when seconds are made cycles (0.07 s × 100 Hz = 7.000000000000001)
-_WHOLE_TOL = 1e-9
-
-
-class SecondsNotWhole(ValueError):
-    """A time in seconds that is not a whole number of cycles at the spec's rate (or has no rate)."""
-
-    def __init__(self, msg: str, hint: str) -> None:
-        super().__init__(msg)
-        self.msg, self.hint = msg, hint
-
-
-def _g(x: float) -> str:
-    return f"{x:.10g}"
-
-
-def seconds_to_cycles(seconds: float, rate_hz: float | None, what: str) -> int:
-    """``seconds`` at ``rate_hz`` as a whole number of cycles (``round(seconds * rate_hz)``).
-
-    The product may be off a whole number by float noise only (a relative 1e-9: 0.05 s at
-    100 Hz is 5 cycles); anything else is refused, as is a time without a rate.
-
-    Raises:
-        SecondsNotWhole: no ``rate_hz``, or not a whole number of cycles; ``msg`` names ``what``
-            and ``hint`` gives the nearest times that are whole.
-
-    Example:
-        >>> seconds_to_cycles(0.05, 100.0, "a window")
-        5
-    """
-    if rate_hz is None:
-        raise SecondsNotWhole(f"{what} is written in seconds ({_g(seconds)} s), but the spec states no rate_hz",
-                              "state rate_hz: the control rate in Hz the spec is written for (top level, e.g. "
-                              "'rate_hz: 100'), or count cycles instead")
-    exact = seconds * rate_hz
-    n = round(exact)
-    if abs(exact - n) > _WHOLE_TOL * max(1.0, abs(exact)):
-        lo, hi = math.floor(exact), math.floor(exact) + 1
-        near = " or ".join(f"{_g(k / rate_hz)} s ({k} cycle{'s' if k != 1 else ''})" for k in (lo, hi) if k >= 1)
-        raise SecondsNotWhole(f"{what} is {_g(seconds)} s, {_g(exact)} cycles at rate_hz {_g(rate_hz)}: not a "
-                              "whole number of cycles", f"a cycle is {_g(1 / rate_hz)} s at {_g(rate_hz)} Hz; "
-                              f"write {near}" if near else f"a cycle is {_g(1 / rate_hz)} s at {_g(rate_hz)} Hz")
-    return int(n)
-
-
 _CFG = ConfigDict(extra="forbid", frozen=True, populate_by_name=True, strict=True)
 
 #: strict: an int is accepted (as a float), a bool or a string is not
@@ -561,7 +515,9 @@ class Spec(BaseModel):
                 raise _LocError(f"duplicate obligation id {ob.id!r} (first is obligations[{seen[ob.id]}])",
                                 ("obligations", i, "id"))
             seen[ob.id] = i
-        self._resolve_seconds()
+        from ._time import resolve_seconds  # the one place times in seconds become cycles
+        for key, value in resolve_seconds(self).items():
+            object.__setattr__(self, key, value)
         for name in self.signals:
             if name in RESERVED_INPUTS:
                 raise _LocError(f"{name!r} is a built-in name and cannot be declared as a signal",
@@ -573,59 +529,6 @@ class Spec(BaseModel):
             if name in self.signals:
                 raise _LocError(f"{name!r} is declared both as a signal and as a constant", ("constants", name))
         return self
-
-
-    def _resolve_seconds(self) -> None:
-        """Times written in seconds become their cycle counts, once, here: ``within_s`` fills the
-        obligation's ``within_cycles`` (every consumer reads that count); the seconds stay for printers."""
-        obs = list(self.obligations)
-        changed = False
-        for i, ob in enumerate(obs):
-            if ob.within_s is None:
-                continue
-            loc = ("obligations", i, "within_s")
-            try:
-                n = seconds_to_cycles(ob.within_s, self.rate_hz, f"within_s of obligation {ob.id!r}")
-            except SecondsNotWhole as exc:
-                raise _LocError(exc.msg, loc, hint=exc.hint) from None
-            if n > 1_000_000:
-                raise _LocError(f"within_s {_g(ob.within_s)} s is {n} cycles: at most 1000000", loc)
-            if ob.within_cycles is not None and ob.within_cycles != n:
-                raise _LocError(f"obligation {ob.id!r} gives within_cycles {ob.within_cycles} and within_s "
-                                f"{_g(ob.within_s)} s ({n} cycles at {_g(self.rate_hz)} Hz)", loc,
-                                hint="give one of within_cycles and within_s")
-            obs[i] = ob = ob.model_copy(update={"within_cycles": n})
-            changed = True
-        for i, ob in enumerate(obs):
-            rel = self._hold_in_cycles(ob.release, ("obligations", i, "release"), f"obligation {ob.id!r}")
-            if rel is not ob.release:
-                obs[i] = ob.model_copy(update={"release": rel})
-                changed = True
-        if changed:
-            object.__setattr__(self, "obligations", tuple(obs))
-        rel = self._hold_in_cycles(self.risk.release, ("risk", "release"), "risk")
-        if rel is not self.risk.release:
-            object.__setattr__(self, "risk", self.risk.model_copy(update={"release": rel}))
-        rel = self._hold_in_cycles(self.fault_policy.release, ("on_fault", "release"), "on_fault")
-        if rel is not self.fault_policy.release:
-            object.__setattr__(self, "fault_policy", self.fault_policy.model_copy(update={"release": rel}))
-
-    def _hold_in_cycles(self, rel: Any, loc: tuple, who: str) -> Any:
-        """``rel`` with its ``hold_s`` made ``hold_cycles`` (``rel`` itself when it has no ``hold_s``)."""
-        if rel is None or rel.hold_s is None:
-            return rel
-        loc = loc + ("hold_s",)
-        try:
-            n = seconds_to_cycles(rel.hold_s, self.rate_hz, f"the release hold_s of {who}")
-        except SecondsNotWhole as exc:
-            raise _LocError(exc.msg, loc, hint=exc.hint) from None
-        if not 1 <= n <= 10_000_000:
-            raise _LocError(f"the release hold_s of {who}, {_g(rel.hold_s)} s, is {n} cycles: expected 1 to 10000000",
-                            loc)
-        if "hold_cycles" in rel.model_fields_set and rel.hold_cycles != n:
-            raise _LocError(f"the release of {who} gives hold_cycles {rel.hold_cycles} and hold_s {_g(rel.hold_s)} s "
-                            f"({n} cycles at {_g(self.rate_hz)} Hz)", loc, hint="give one of hold_cycles and hold_s")
-        return rel.model_copy(update={"hold_cycles": n})
 
 
 def _resolved(rel: RuleRelease | None, default_mode: str, default_hold: int) -> tuple[str, int]:
