@@ -115,7 +115,11 @@ class Plan:
         obligations: checked obligations in spec order.
         temporal: every temporal call node, children before parents.
         types: type of every expression node, keyed by ``id(node)``.
-        windows: the integer bound of each temporal node (``id(node)`` → n or None).
+        windows: the integer bound of each temporal node (``id(node)`` → n or None), in cycles
+            (a window written in seconds is already its whole number of cycles at ``rate_hz``).
+        window_seconds: the seconds the author wrote, for each temporal node whose window is a
+            time (``held(e, 0.5 s)``, or a constant in s): ``id(node)`` → seconds; for printers.
+        rate_hz: the spec's stated control rate (``None``: it counts cycles only).
         slots: input slot of every name an expression can read (signals and ``risk``),
             built once here for every consumer (code generation, fault-path evaluation).
         risk: the spec's risk settings (τ, weights, classes, release, max age).
@@ -140,6 +144,8 @@ class Plan:
     temporal: tuple[Call, ...]
     types: dict[int, Ty] = field(default_factory=dict)
     windows: dict[int, int | None] = field(default_factory=dict)
+    window_seconds: dict[int, float] = field(default_factory=dict)
+    rate_hz: float | None = None
     slots: dict[str, int] = field(default_factory=dict)
     risk: RiskConfig = field(default_factory=RiskConfig)
     on_fault: Response = Response.SAFE_POSE
@@ -182,6 +188,14 @@ class Plan:
         """The rules whose latch waits for ``Monitor.acknowledge()`` (obligation ids, ``risk``, ``fault``)."""
         return tuple([ob.id for ob in self.obligations if ob.manual]
                      + [r.name for r in (self.risk_rule, self.fault_rule) if r.manual])
+
+    def cycles(self, n: int) -> str:
+        """``n`` cycles for a person: ``"3 cycles"``, with the time when the spec states its rate:
+        ``"3 cycles (0.03 s at 100 Hz)"`` (what a spec written in seconds said)."""
+        text = f"{n} cycle{'s' if n != 1 else ''}"
+        if self.rate_hz:
+            text += f" ({n / self.rate_hz:.10g} s at {self.rate_hz:g} Hz)"
+        return text
 
     @property
     def n_slots(self) -> int:

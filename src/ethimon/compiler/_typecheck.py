@@ -10,8 +10,8 @@ import math
 
 from ..errors import SpecError
 from ..language._expr import (FUNCTIONS, SEPARATION_PARAMS, Binary, BoolLit, Call, ExprSyntaxError, Name,
-                          Node, Num, Unary, parse_expr, separation_distance)
-from ..language import Constant, Response, Spec
+                          Node, Num, Seconds, Unary, parse_expr, separation_distance)
+from ..language import Constant, Response, Spec, seconds_to_cycles
 from ._plan import BOOL, MAX_WINDOW, RISK_NAME, ObligationPlan, Plan, RuleRelease, SignalSlot, Ty
 from ._risk_formula import release_bound
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit
@@ -31,6 +31,7 @@ class _Checker:
         self.loc: tuple = ()
         self.text = ""
         self.folded: dict[int, float] = {}  # id(node) -> value, for constant numeric subexpressions
+        self.seconds: dict[int, float] = {}  # id(window node) -> the seconds the author wrote (a window in s)
         for name, sig in spec.signals.items():
             try:
                 unit = parse_unit(sig.unit) if sig.type == "number" else None
@@ -135,6 +136,10 @@ class _Checker:
         self.folded[id(node)] = value
 
     def _check(self, node: Node) -> Ty:
+        if isinstance(node, Seconds):
+            raise self.err(node, f"a time in seconds ({self.snippet(node)!r}) is only a window of held(), once() "
+                                 "or since()", hint="declare a constant with a unit instead, e.g. "
+                                 "'t_stop: {value: 0.5, unit: s}', and use its name")
         if isinstance(node, Num):
             if not math.isfinite(node.value):
                 raise self.err(node, "number is not finite")
@@ -211,6 +216,9 @@ class _Checker:
         raise self.err(node, "unsupported expression")  # pragma: no cover
 
     def bound(self, node: Call, arg: Node, fname: str) -> int:
+        if isinstance(arg, Seconds) or (isinstance(arg, Name) and arg.id in self.consts
+                                        and self.names[arg.id].unit == _SECOND):
+            return self.bound_seconds(node, arg, fname)
         if isinstance(arg, Num):
             value = arg.value
         elif isinstance(arg, Name) and arg.id in self.consts:
@@ -232,6 +240,27 @@ class _Checker:
             raise self.err(arg, f"window {n} is too long (at most {MAX_WINDOW} cycles)",
                            hint="a window counts control cycles")
         self.types[id(arg)] = Ty("num", None)
+        return n
+
+    def bound_seconds(self, node: Call, arg: Node, fname: str) -> int:
+        """A window in seconds (``0.5 s``, or a constant in s) as whole cycles at the spec's ``rate_hz``."""
+        value = arg.value if isinstance(arg, Num) else self.consts[arg.id]  # type: ignore[union-attr]
+        if not value > 0:
+            raise self.err(arg, f"a window of {self.snippet(arg)} makes no sense in {fname}()",
+                           hint="windows count the current cycle, so the smallest is one cycle (1 / rate_hz s)")
+        try:
+            n = seconds_to_cycles(value, self.spec.rate_hz, f"the window of {fname}()" if isinstance(arg, Num)
+                                  else f"the window {arg.id} of {fname}()")  # type: ignore[union-attr]
+        except ValueError as exc:  # not whole cycles, or no rate_hz: its msg and hint, located here
+            raise self.err(arg, getattr(exc, "msg", str(exc)), hint=getattr(exc, "hint", None)) from None
+        if n < 1:
+            raise self.err(arg, f"a window of {self.snippet(arg)} is less than one cycle in {fname}()",
+                           hint="windows count the current cycle, so the smallest is one cycle (1 / rate_hz s)")
+        if n > MAX_WINDOW:
+            raise self.err(arg, f"window {self.snippet(arg)} of {fname}() is {n} cycles: too long (at most "
+                                f"{MAX_WINDOW} cycles)", hint="a window counts control cycles")
+        self.types[id(arg)] = Ty("num", _SECOND)
+        self.seconds[id(node)] = float(value)
         return n
 
     def check_separation(self, node: Call) -> Ty:
@@ -326,6 +355,7 @@ class _Checker:
 
 
 _SEPARATION_UNITS = {sym: parse_unit(u) for sym, u, _ in SEPARATION_PARAMS}
+_SECOND = parse_unit("s")
 _SEPARATION_HINT = ("separation_distance(" + ", ".join(f"{sym} [{u}]" for sym, u, _ in SEPARATION_PARAMS)
                     + "): S_p = v_h*(T_r + T_s) + v_r*T_r + S_s + C + Z_d + Z_r (ISO/TS 15066)")
 
@@ -382,7 +412,7 @@ def compile_plan(spec: Spec) -> Plan:
     fmode, fhold = spec.fault_release()
     return Plan(spec=spec, signals=tuple(signals), risk_slot=len(signals), constants=dict(ck.consts),
                 obligations=tuple(obligations), temporal=tuple(ck.temporal), types=ck.types,
-                windows=ck.windows, slots=slots, risk=r, on_fault=Response(spec.on_fault),
+                windows=ck.windows, window_seconds=ck.seconds, rate_hz=spec.rate_hz, slots=slots, risk=r, on_fault=Response(spec.on_fault),
                 threshold=float(r.threshold), release_exact=exact,
                 release_cut=cut,
                 risk_rule=RuleRelease("risk", Response(r.response), r.release.mode == "manual",

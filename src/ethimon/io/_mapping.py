@@ -33,6 +33,7 @@ entry whose index the message's ``name`` list gives).
 from __future__ import annotations
 
 import difflib
+import math
 import os
 import re
 from typing import Any, Literal
@@ -273,12 +274,17 @@ def _err(mapping: Mapping, message: str, loc: tuple, *, hint: str | None = None,
 
 
 def check_against_spec(mapping: Mapping, spec: Spec, *, risk_given: bool = False) -> None:
-    """Every mapped name is a signal of ``spec`` (or a risk input), every spec signal is mapped,
-    and there is a risk input (a task topic, a ``p_unsafe``/``risk`` signal, or ``risk_given``).
+    """The mapping runs at the spec's ``rate_hz`` (when the spec states one), every mapped name is a
+    signal of ``spec`` (or a risk input), every spec signal is mapped, and there is a risk input (a task topic, a ``p_unsafe``/``risk`` signal, or ``risk_given``).
 
     Raises:
         SpecError: pointing into the mapping file.
     """
+    rate = spec.rate_hz
+    if rate is not None and not math.isclose(mapping.rate_hz, rate, rel_tol=1e-9):
+        raise _err(mapping, f"the mapping runs the monitor at rate_hz {mapping.rate_hz:g}, but spec {spec.name!r} is "
+                   f"written for rate_hz {rate:g}: its windows in cycles would mean other times", ("rate_hz",),
+                   hint=f"set 'rate_hz: {rate:g}' in the mapping (or use a spec written for {mapping.rate_hz:g} Hz)")
     known = list(spec.signals) + list(RISK_INPUTS)
     for name, sm in mapping.signals.items():
         if name in known:

@@ -10,13 +10,16 @@ Grammar (lowest precedence first)::
     sum     := term ( ("+" | "-") term )*
     term    := unary ( ("*" | "/") unary )*
     unary   := "-" unary | primary
-    primary := NUMBER | "true" | "false" | NAME | NAME "(" args? ")" | "(" expr ")"
+    primary := NUMBER "s"? | "true" | "false" | NAME | NAME "(" args? ")" | "(" expr ")"
 
 Functions: ``abs(x)``, ``min(x, y, ...)``, ``max(x, y, ...)``, ``sqrt(x)``,
 ``separation_distance(v_h, v_r, T_r, T_s, S_s, C, Z_d, Z_r)`` (the protective
 separation distance of ISO/TS 15066, see :func:`separation_distance`) and
 the bounded past-time temporal operators ``prev(e[, init])``,
-``held(e, n)``, ``once(e, n)``, ``since(a, b[, n])`` (integer cycle bounds).
+``held(e, n)``, ``once(e, n)``, ``since(a, b[, n])`` (integer cycle bounds, or
+a time in seconds, ``held(e, 0.5 s)``: a number followed by the unit ``s``, a
+:class:`Seconds` node, which the compiler turns into cycles at the spec's
+``rate_hz`` and refuses anywhere but a window).
 
 The parser is hand-written (no ``eval``); every node keeps the character
 offsets of its source text so errors can point at file:line:column.
@@ -48,7 +51,7 @@ from dataclasses import dataclass
 from ..errors import ExprSyntaxError
 
 __all__ = [
-    "Node", "Num", "BoolLit", "Name", "Unary", "Binary", "Call", "ExprSyntaxError",
+    "Node", "Num", "Seconds", "BoolLit", "Name", "Unary", "Binary", "Call", "ExprSyntaxError",
     "parse_expr", "BINARY_OPS", "COMPARISON_MARGINS", "MARGIN_SHAPES", "comparison_margin",
     "CONNECTIVE_MARGINS", "connective_margin", "FUNCTIONS", "TEMPORAL", "walk", "to_source",
     "SEPARATION_PARAMS", "separation_distance",
@@ -64,6 +67,18 @@ class Node:
 @dataclass(frozen=True, eq=False)
 class Num(Node):
     value: float
+
+
+@dataclass(frozen=True, eq=False)
+class Seconds(Num):
+    """A time in seconds, written ``0.5 s`` (or ``0.5s``): only a window of ``held``/``once``/``since``.
+
+    A :class:`Num` (its ``value`` is the seconds the author wrote), so every walker that reads
+    literals sees a number; the compiler turns it into whole cycles at the spec's ``rate_hz``."""
+
+
+#: the one unit suffix a number may carry in an expression (a window in seconds)
+SECONDS_SUFFIX = "s"
 
 
 @dataclass(frozen=True, eq=False)
@@ -414,7 +429,7 @@ class _Parser:
             operand = self.unary()
             self.depth -= 1
             if isinstance(operand, Num):
-                return Num(t.start, operand.end, -operand.value)
+                return type(operand)(t.start, operand.end, -operand.value)  # -0.5 s stays in seconds
             return self.wrap(Unary(t.start, operand.end, "-", operand), operand, t.start)
         return self.primary()
 
@@ -426,6 +441,9 @@ class _Parser:
             if not math.isfinite(value):
                 raise ExprSyntaxError(f"number {_shorten(t.text)} is too large", t.start,
                                       "the largest number is about 1.8e308")
+            if self.tok.kind == "name" and self.tok.text == SECONDS_SUFFIX:  # 0.5 s: a time in seconds
+                unit = self.take()
+                return Seconds(t.start, unit.end, value)
             return Num(t.start, t.end, value)
         if t.kind in ("true", "false"):
             self.take()
@@ -518,7 +536,8 @@ def to_source(node: Node) -> str:
     """Render an AST back to (fully parenthesised where needed) source text."""
     if isinstance(node, Num):
         v = node.value
-        return repr(int(v)) if v == int(v) and abs(v) < 1e15 else repr(v)
+        text = repr(int(v)) if v == int(v) and abs(v) < 1e15 else repr(v)
+        return f"{text} s" if isinstance(node, Seconds) else text
     if isinstance(node, BoolLit):
         return "true" if node.value else "false"
     if isinstance(node, Name):

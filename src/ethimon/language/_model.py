@@ -28,6 +28,7 @@ __all__ = [
     "Obligation",
     "SafePose", "Spec", "MANUAL_BY_DEFAULT",
     "FORMAT_VERSION", "RESERVED_INPUTS", "validation_to_spec_error", "IDENT",
+    "RATE_HZ",
 ]
 
 FORMAT_VERSION = 1
@@ -76,6 +77,8 @@ _SEVERITY = {r: i for i, r in enumerate(SEVERITY_ORDER)}
 _RESPONSE_NAMES = tuple(r.value for r in SEVERITY_ORDER[1:])  # the responses of an override
 ACTIVE_RESPONSES = Literal[_RESPONSE_NAMES]  # type: ignore[valid-type]
 
+#: the control rates a spec may state (``rate_hz``), the same bounds as a mapping file's
+RATE_HZ = (0.1, 100_000.0)
 _CFG = ConfigDict(extra="forbid", frozen=True, populate_by_name=True, strict=True)
 
 #: strict: an int is accepted (as a float), a bool or a string is not
@@ -125,6 +128,9 @@ class Release(BaseModel):
     hysteresis: FiniteFloat = Field(0.05, ge=0.0, description="δ: release needs R_e < τ − δ")
     hold_cycles: int = Field(10, ge=1, le=10_000_000,
                              description="N: the release condition must hold N consecutive cycles")
+    hold_s: FiniteFloat | None = Field(
+        None, gt=0.0, description="hold_cycles written in seconds (needs the spec's rate_hz; a whole number of "
+        "cycles at it)")
 
 
 #: responses whose latch is released manually unless the rule says ``release: auto``
@@ -158,6 +164,9 @@ class RuleRelease(BaseModel):
     hold_cycles: int | None = Field(
         None, ge=1, le=10_000_000,
         description="N: the rule's condition must hold N consecutive cycles (default: risk.release.hold_cycles)")
+    hold_s: FiniteFloat | None = Field(
+        None, gt=0.0, description="hold_cycles written in seconds (needs the spec's rate_hz; a whole number of "
+        "cycles at it)")
 
 
 #: what a ``release:`` key accepts (for the JSON Schema; the short forms become mappings)
@@ -357,6 +366,9 @@ class Obligation(BaseModel):
     within_cycles: int | None = Field(
         None, ge=0, le=1_000_000,
         description="bounded response: after the trigger, require must hold within this many cycles")
+    within_s: FiniteFloat | None = Field(
+        None, ge=0.0, description="within_cycles written in seconds (needs the spec's rate_hz; must be a whole "
+        "number of cycles at it); the spec's within_cycles then holds the count")
     response: ACTIVE_RESPONSES = "safe_pose"
     release: RuleRelease | None = Field(
         None, description=f"{_RELEASE_FORMS}; default manual for stop_0/stop_1, else auto")
@@ -430,6 +442,10 @@ class Spec(BaseModel):
     ethimon: Literal[1] = Field(description="format version; this ethimon reads 1")
     name: str = Field(min_length=1)
     description: str = ""
+    rate_hz: FiniteFloat | None = Field(
+        None, ge=RATE_HZ[0], le=RATE_HZ[1], description="the control rate (Hz) the spec is written for: needed by "
+        "times in seconds (held(e, 0.5 s), within_s, hold_s), each a whole number of cycles at it; a replay or "
+        "live mapping must run at this rate; null: the spec counts cycles only")
     signals: dict[Annotated[str, Field(pattern=IDENT)], Signal] = Field(default_factory=dict)
     constants: dict[Annotated[str, Field(pattern=IDENT)], FiniteFloat | Constant] = Field(default_factory=dict)
     risk: RiskConfig = Field(default_factory=RiskConfig)
@@ -499,6 +515,9 @@ class Spec(BaseModel):
                 raise _LocError(f"duplicate obligation id {ob.id!r} (first is obligations[{seen[ob.id]}])",
                                 ("obligations", i, "id"))
             seen[ob.id] = i
+        from ._time import resolve_seconds  # the one place times in seconds become cycles
+        for key, value in resolve_seconds(self).items():
+            object.__setattr__(self, key, value)
         for name in self.signals:
             if name in RESERVED_INPUTS:
                 raise _LocError(f"{name!r} is a built-in name and cannot be declared as a signal",

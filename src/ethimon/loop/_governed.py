@@ -484,7 +484,8 @@ class GovernedLoop(_Acknowledging, _Reloading):
                 self._log("judge", loop_cycle=self.stats.cycles, **res.audit_fields())
 
     def _audit(self, d: Decision, inputs: dict, reading: RiskReading | None) -> None:
-        key = (d.override, d.response, d.violations, tuple((f.kind, f.subject) for f in d.faults) if d.faults else ())
+        key = (d.override, d.response, d.violations, tuple((f.kind, f.subject) for f in d.faults) if d.faults else (),
+               d.latched_rules)  # a rule released while another holds the override is a change too
         if not self.audit_every_cycle and key == self._state_key:
             return
         prev = self._state_key

@@ -29,7 +29,8 @@ def _audit(log: Any, res: BagReplay, tr: CycleResults, rs: Resampled, spec: Spec
     checked = res.check("risk").status != "NOT CHECKED"  # risk: none holds R_e at 0: not a measured value
     for k in range(res.cycles):
         viol = tuple(oid for j, oid in enumerate(tr.ids) if tr.violated[k, j])
-        key = (bool(tr.override[k]), int(tr.severity[k]), viol, bool(tr.fault[k]))
+        held = tuple(tr.holding_at(k))  # a rule released while another holds the override is a change too
+        key = (bool(tr.override[k]), int(tr.severity[k]), viol, bool(tr.fault[k]), held)
         if key == prev:
             continue
         event = "change" if prev is not None and prev[0] == key[0] else (
@@ -39,7 +40,7 @@ def _audit(log: Any, res: BagReplay, tr: CycleResults, rs: Resampled, spec: Spec
         append("decision", event=event, bag=res.path, cycle=k, bag_time_ns=int(rs.grid[k]),
                override=bool(tr.override[k]), response=resp, violations=list(viol),
                faults=[_fault_dict(f) for f in tr.faults_at(k)],
-               latched=bool(tr.latched[k]), latched_rules=list(tr.holding_at(k)),
+               latched=bool(tr.latched[k]), latched_rules=list(held),
                risk=None if (tr.risk[k] != tr.risk[k] or not checked) else float(tr.risk[k]),
                margins={oid: float(tr.margins[k, j]) for j, oid in enumerate(ids)},
                inputs={nm: float(rs.columns[nm][k]) for nm in names})

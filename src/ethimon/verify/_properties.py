@@ -384,7 +384,7 @@ class Properties(CheckBase):
             name, bad, lambda t: {"final_override": True, "fired": [ob.id]},
             lambda d, t: not (d.override and d.response.severity >= sev and ob.id in d.violations),
             f"{what}{bound} => violation and override ({ob.response.value} or more)"
-            + (f" by {n} cycles after the trigger" if n else " in the same cycle"), only=i)))
+            + (f" by {self.plan.cycles(n)} after the trigger" if n else " in the same cycle"), only=i)))
 
     def _float_counterexample(self, ob, name: str, sev: int, tries: int = 400):
         """A one-cycle input (seeded search over the declared ranges) on which the real arithmetic of
@@ -457,7 +457,7 @@ class Properties(CheckBase):
         auto = [r for r in rules if not r.manual]
         manual = [r.name for r in rules if r.manual]
         conds = {"risk": f"R_e < tau - delta = {_fmt(self.below)}", "fault": "no fault"}
-        parts = [f"{r.name} after {r.hold} cycle{'s' if r.hold != 1 else ''} of {conds.get(r.name, 'holding')}"
+        parts = [f"{r.name} after {self.plan.cycles(r.hold)} of {conds.get(r.name, 'holding')}"
                  for r in auto]
         msg = "a latched override resumes by itself only once each rule latched is released: " + (
             "; ".join(parts) if parts else "no rule releases automatically")
