@@ -394,6 +394,24 @@ class SafePose(BaseModel):
         return v
 
 
+class Restart(BaseModel):
+    """What resumes motion after an operator's acknowledgement (``restart``).
+
+    An accepted acknowledgement is a reset: it releases the manual latches and never starts
+    motion by itself (ISO 13849-1:2015 5.2.2, IEC 60204-1:2016 9.2.2 as we read them). ``start``
+    names the separate start condition: ``command`` (default), a deliberate start command
+    after the acknowledgement (``GovernedArm.start()``, a scenario's ``sim.start_at_s``); or the
+    name of a ``bool`` input (a start button wired to the monitor): its rising edge, false to true,
+    after the acknowledgement. Automatic releases (``release: auto``) restart by themselves, as
+    before: speed and separation monitoring may resume once the separation is restored.
+    """
+
+    model_config = _CFG
+    start: Annotated[str, Field(pattern=IDENT)] = Field(
+        "command", description="command (default): a separate start command after the acknowledgement; "
+        "or the name of a bool input whose rising edge after the acknowledgement starts motion")
+
+
 class _Carried:
     """What the compiler made of a spec (its plan), carried by the spec object itself.
 
@@ -439,6 +457,9 @@ class Spec(BaseModel):
         description="response to missing/NaN/out-of-range/stale input: safe_pose | stop_2 | stop_1 | stop_0, "
         "or {response: ..., release: auto | manual | {mode, hold_cycles}}")
     safe_pose: SafePose = Field(default_factory=SafePose)
+    restart: Restart = Field(
+        default_factory=Restart, description="what resumes motion after an accepted acknowledgement "
+        "(a reset never starts motion): {start: command} (default) or {start: <bool input>}")
 
     _source: SourceMap | None = PrivateAttr(default=None)
     #: the compiled plan, set by the compiler (see :class:`_Carried`); not part of the spec's value
@@ -453,6 +474,19 @@ class Spec(BaseModel):
             raise ValueError("expected safe_pose, stop_2, stop_1 or stop_0, or a mapping "
                              "{response: ..., release: auto|manual}")
         return v
+
+    @model_validator(mode="after")
+    def _restart_signal(self) -> "Spec":
+        st = self.restart.start
+        if st != "command":
+            sig = self.signals.get(st)
+            if sig is None:
+                raise ValueError(f"restart.start: {st!r} is not a declared signal (command, or the "
+                                 "name of a bool input: a start button)")
+            if sig.type != "bool":
+                raise ValueError(f"restart.start: signal {st!r} is {sig.type}, a start condition "
+                                 "needs a bool input (its rising edge starts motion)")
+        return self
 
     @property
     def on_fault(self) -> str:

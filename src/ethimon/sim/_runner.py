@@ -18,10 +18,10 @@ import numpy as np
 
 from .._robot import PANDA_HOME_JOINTS_RAD
 from ._arm import ArmSim
-from ._control import SEVERITY, StopController, TaskController, plan_task
+from ._control import SEVERITY, StopController, TaskController, plan_task, restart_margin_m, stop_incomplete
 from ._limits import out_of_range, safe_pose_problem
 from ._model import SimBlock
-from ._rules import RETREAT_NEAR_HUMAN_DEFAULT, near_human_speed_rule
+from ._rules import RETREAT_NEAR_HUMAN_DEFAULT, near_human_grace_cycles, near_human_speed_rule
 from ._safe_pose import SafePoseController
 from ._record import Recorder
 from ._result import CycleRecord, SimResult, check_sim_expectations
@@ -77,7 +77,7 @@ class GovernedArm:
                  signal_filter=None, task_joint_speed_rad_s: float = 0.8,
                  stop_ramp_s: float = 0.25, standstill_tolerance_rad: float = 0.02,
                  near_human: Any = "spec", release_dwell_s: float = 1.0,
-                 acknowledge_clear_m: Any = "spec") -> None:
+                 acknowledge_clear_m: Any = "spec", sensor_latency_s: float = 0.0) -> None:
         self.sim = sim
         self.monitor = monitor
         sp = safe_pose if safe_pose is not None else getattr(getattr(monitor, "spec", None),
@@ -121,7 +121,16 @@ class GovernedArm:
             if acknowledge_clear_m == "spec" else acknowledge_clear_m
         self.release_dwell_s = float(release_dwell_s)
         self._clear_since: float | None = None   # monitor released (no override) since
-        self._acked = False                      # an accepted acknowledgement since the override
+        self._acked = False                      # an accepted start since the acknowledgement
+        # issue 32 item 4: an accepted acknowledgement (a reset) waits for the spec's start condition
+        spec = getattr(monitor, "spec", None)
+        self.start_condition = getattr(getattr(spec, "restart", None), "start", "command")
+        self.awaiting_start = False
+        self._start_prev = False
+        #: after a restart the task keeps the zone's speed this far beyond the zone (m): the distance
+        #: sensor's latency, the near-human rule's grace and the task's slow-down at walking speed
+        self.restart_margin_m = restart_margin_m(sensor_latency_s, near_human_grace_cycles(spec),
+                                                 1.0 / sim.dt)
         self._resume_retreat_since: float | None = None   # a stop 2 over a retreat released since
         #: sim times at which a stop 2 handed the arm back to the retreat (its rule released)
         self.retreat_resumed: list[float] = []
@@ -156,6 +165,12 @@ class GovernedArm:
         d = self.monitor.step(fed)
         self.last_decision = d
         self._fed = fed
+        if self.start_condition != "command":  # a start input: its rising edge after the reset
+            now = fed.get(self.start_condition) is True or _num(fed.get(self.start_condition)) == 1.0
+            if self.awaiting_start and now and not self._start_prev:
+                self.start()
+            self._start_prev = now
+        self.task.distance_reading = _num(fed.get("human_distance", math.nan))
         resp = _response_name(d.response)
         if d.override:
             self._clear_since = None
@@ -180,8 +195,12 @@ class GovernedArm:
                 self._clear_since = t
             # an automatic release resumes the task only after the minimum dwell (the response
             # carries on meanwhile); an operator's accepted acknowledgement resumes at once
-            if self._acked or t - self._clear_since >= self.release_dwell_s - 1e-9:
+            if self.awaiting_start:
+                pass  # a reset never starts motion: the response holds until the start condition
+            elif self._acked or t - self._clear_since >= self.release_dwell_s - 1e-9:
                 q, _ = sim.joint_state()
+                if self.near_human is not None:  # a restart keeps the zone's speed (issue 32 item 4)
+                    self.task.restart_cap = (*self.near_human, self.restart_margin_m)
                 self.task.resume(q)
                 self.controller = self.task
                 self.active = "none"
@@ -229,17 +248,22 @@ class GovernedArm:
     def acknowledge(self) -> Acknowledgement:
         """An operator's acknowledgement (a manual reset), checked before the monitor sees it.
 
-        Refused, and not remembered, while the last cycle's decision had a rule firing or a
-        fault, or while the monitor's ``human_distance`` reading is missing or below
+        Refused, and not remembered, until the stop it would end has completed (standstill,
+        brakes engaged, power state settled: :func:`~._control.stop_incomplete`), while the last
+        cycle's decision had a rule firing or a fault, or while the monitor's ``human_distance``
+        reading is missing or below
         ``acknowledge_clear_m`` (a person inside the protective zone; the spec's near-human
         zone by default). Otherwise :meth:`Monitor.acknowledge` decides (it releases the
         manual latches whose condition has held). ISO 13849-1:2015 5.2.2 (manual reset: the
-        stop condition is kept until safe conditions for restarting exist).
+        stop condition is kept until safe conditions for restarting exist). An accepted one
+        never starts motion: the arm waits for the spec's ``restart.start`` (:meth:`start`).
         """
         d = self.last_decision
         why = ""
         if d is None:
             why = "no cycle judged yet"
+        elif (why := stop_incomplete(self.controller, self.sim) or ""):
+            pass
         elif d.violations:
             why = "rules still fire: " + ", ".join(d.violations)
         elif d.faults:
@@ -256,8 +280,35 @@ class GovernedArm:
         a = self.monitor.acknowledge() if hasattr(self.monitor, "acknowledge") else \
             Acknowledgement(False, (), "the monitor takes no acknowledgement")
         if a.released:
-            self._acked = True
+            self.awaiting_start = True
+            self._start_prev = True  # a start input already on does not count: it must rise
         return a
+
+    def start(self) -> Acknowledgement:
+        """The separate start after an accepted acknowledgement (``restart.start: command``, or
+        the rising edge of the spec's start input): motion resumes from the next cycle.
+
+        Refused, and not remembered, when no acknowledged stop awaits a start, while the monitor
+        overrides (a rule fires, a latch holds, a fault), or while a person is inside the
+        protective zone (as for the acknowledgement).
+        """
+        d = self.last_decision
+        why = ""
+        if not self.awaiting_start:
+            why = "no acknowledged stop awaits a start"
+        elif d is None or d.override or d.violations or d.faults:
+            why = "the monitor overrides: " + (", ".join(d.violations) or (str(d.faults[0]) if d.faults else
+                                                                            "a latch holds")) if d else "no cycle"
+        elif self.acknowledge_clear_m is not None:
+            v = _num(self._fed.get("human_distance", math.nan))
+            if math.isnan(v) or v < self.acknowledge_clear_m:
+                why = ("no human_distance reading" if math.isnan(v) else
+                       f"a person is {v:.2f} m away, inside the {self.acknowledge_clear_m:g} m protective zone")
+        if why:
+            return Acknowledgement(False, (), "start refused: " + why)
+        self.awaiting_start = False
+        self._acked = True
+        return Acknowledgement(True, (), "started")
 
     def _stop2_may_hand_back(self, resp: str) -> bool:
         """A powered stop 2 (not escalated, at standstill, not the hold of a task that lost its
@@ -509,7 +560,9 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
                           task_joint_speed_rad_s=block.task_joint_speed_rad_s,
                           stop_ramp_s=block.stop_ramp_s,
                           standstill_tolerance_rad=block.standstill_tolerance_rad,
-                          release_dwell_s=block.release_dwell_s)
+                          release_dwell_s=block.release_dwell_s,
+                          sensor_latency_s=(block.sensors["human_distance"].latency_s
+                                            if "human_distance" in block.sensors else 0.0))
         if record_dir is not None:
             recorder = Recorder(record_dir, sim, spec=getattr(monitor, "spec", None), block=block,
                                 safe_tol=arm.safe_tol)
@@ -530,23 +583,40 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         t_stop: float | None = None
         near = block.expect.near_human_m
         acks = sorted(block.acknowledge_at_s)
+        starts = sorted(block.start_at_s)
+        start_log: list[tuple[float, bool, str]] = []
         people = _PeopleWatch(sim)
         ack_log: list[tuple[float, bool, str]] = []
         resp_since: float | None = None
+        restarted = False
         axis0: dict[str, float] = {}  # each person's hazard-axis angle at the first override
         for _ in range(n_cycles):
             while acks and sim.time_s >= acks[0] - 1e-9:  # the operator's acknowledgement
                 acks.pop(0)
                 a = arm.acknowledge()
                 ack_log.append((round(sim.time_s, 6), bool(a.released), a.message))
+            while starts and sim.time_s >= starts[0] - 1e-9:  # the operator's start command
+                starts.pop(0)
+                a = arm.start()
+                start_log.append((round(sim.time_s, 6), bool(a.released), a.message))
             prev_ctrl = res.trace[-1].controller if res.trace else "task"
             rec = arm.step()
             if rec.controller != "task" and prev_ctrl == "task":
                 resp_since = rec.t_s
             elif rec.controller == "task" and prev_ctrl != "task" and resp_since is not None:
                 res.task_resumes += 1
+                restarted = True
+                last_ack = max((a for a, ok, _ in ack_log if ok), default=None)
+                last_start = max((a for a, ok, _ in start_log if ok), default=None)
+                if last_ack is not None and (last_start is None or last_start < last_ack):
+                    res.reset_started_motion = True  # the reset itself restarted the task
                 dur = round(rec.t_s - resp_since, 6)
                 res.min_response_s = dur if res.min_response_s is None else min(res.min_response_s, dur)
+            if restarted and rec.controller == "task" and arm.near_human is not None \
+                    and rec.human_distance_true_m < arm.near_human[0]:
+                v = rec.link_speed_max_m_s  # fastest link frame: at least the end effector
+                res.restart_max_speed_in_zone_m_s = max(res.restart_max_speed_in_zone_m_s or 0.0, round(v, 4))
+                res.restart_zone_breaches += int(v > arm.near_human[1])
             people.observe()
             res.trace.append(rec)
             if recorder:
@@ -610,6 +680,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         loop_wall = time.perf_counter() - loop0 - (recorder.seconds - rec_s0 if recorder else 0.0)
         _summarize(res, arm, sim, people, first_cmd=first_cmd, max_sp=max_sp, ack_log=ack_log, fired=fired,
                    loop_wall=loop_wall)
+        res.starts = tuple(start_log)
         if recorder:
             recorder.frame("end")
         # set before the recording is finished: its summary.json carries it (setup, loop and frames;
