@@ -262,12 +262,12 @@ class GovernedArm:
         why = ""
         if d is None:
             why = "no cycle judged yet"
-        elif (why := stop_incomplete(self.controller, self.sim) or ""):
-            pass
         elif d.violations:
             why = "rules still fire: " + ", ".join(d.violations)
         elif d.faults:
             why = f"a fault is reported: {d.faults[0]}"
+        elif (why := stop_incomplete(self.controller, self.sim) or ""):
+            pass
         elif self.acknowledge_clear_m is not None:
             v = _num(self._fed.get("human_distance", math.nan))
             if math.isnan(v):
