@@ -37,6 +37,8 @@ class CycleRecord:
         dropped: ``"object (why)"`` for each held object that left the gripper in this cycle
             other than by the task's release.
         task_stopped: in the cycle the task found its object missing and stopped, why.
+        escalated: in the cycle a stop 0/1's power-off was refused because the brakes cannot
+            hold arm + payload (held powered, a stop 2 instead), why (issue 32 item 1).
     """
 
     cycle: int
@@ -65,6 +67,7 @@ class CycleRecord:
     task_stopped: str = ""
     retreat_rate: float | None = None
     replanned: str = ""
+    escalated: str = ""
 
 
 @dataclass

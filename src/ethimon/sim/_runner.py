@@ -216,8 +216,10 @@ class GovernedArm:
                 self._switch("stop_2")
         sp = self.controller if isinstance(self.controller, SafePoseController) else None
         n_replans = len(sp.replans) if sp is not None else 0
+        n_brake = len(sim.brake_log)
         self.controller.command(sim)        # same cycle as the decision
         label = self.controller.name if self.controller is not self.task else "task"
+        escalated = "; ".join(w for _, w in sim.brake_log[n_brake:] if "refused" in w)
         if label in SEVERITY and SEVERITY[label] > SEVERITY[self.active]:
             self.active = label  # a stop 2 escalated (standstill lost), a retreat that holds
         decel = sp is not None and sp.decelerating
@@ -243,7 +245,8 @@ class GovernedArm:
             task_stopped=stopped_now,
             retreat_rate=(round(sp.rate, 4) if sp is not None and sp.holding is None
                           and not decel else None),
-            replanned="; ".join(w for _, w in sp.replans[n_replans:]) if sp is not None else "")
+            replanned="; ".join(w for _, w in sp.replans[n_replans:]) if sp is not None else "",
+            escalated=escalated)
 
     def acknowledge(self) -> Acknowledgement:
         """An operator's acknowledgement (a manual reset), checked before the monitor sees it.
@@ -524,7 +527,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
             p: Sequence[float] | None = None, risk: float | None = None,
             p_unsafe: float | None = None, inputs: Mapping[str, Any] | None = None,
             record_dir: str | None = None, gui: bool = False,
-            probs: Sequence[float] | None = None) -> SimResult:
+            probs: Sequence[float] | None = None, audit: Any = None) -> SimResult:
     """Run a scenario's ``sim:`` block with ``monitor`` in the loop.
 
     Args:
@@ -540,6 +543,10 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         record_dir: write PNG frames, ``trace.jsonl``/``trace.csv`` and ``plot.png`` there.
         gui: show the PyBullet GUI (needs a display) and run in real time.
         probs: deprecated spelling of ``p`` (still works, warns ``DeprecationWarning``).
+        audit: an ``ethimon.audit.AuditLog`` (anything with ``append(kind, **fields)``): gets a
+            record per acknowledgement (``acknowledge``), start (``start``), and per power-off
+            and refused power-off of the brakes' check (``brakes``, ``escalated: true`` when a stop
+            0/1 was held powered because the brakes cannot hold arm + payload).
 
     Returns:
         A :class:`SimResult`.
@@ -595,12 +602,22 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
                 acks.pop(0)
                 a = arm.acknowledge()
                 ack_log.append((round(sim.time_s, 6), bool(a.released), a.message))
+                if audit is not None:
+                    audit.append("acknowledge", t_s=round(sim.time_s, 6), accepted=bool(a.released),
+                                 message=a.message)
             while starts and sim.time_s >= starts[0] - 1e-9:  # the operator's start command
                 starts.pop(0)
                 a = arm.start()
                 start_log.append((round(sim.time_s, 6), bool(a.released), a.message))
+                if audit is not None:
+                    audit.append("start", t_s=round(sim.time_s, 6), accepted=bool(a.released), message=a.message)
             prev_ctrl = res.trace[-1].controller if res.trace else "task"
+            n_brake = len(sim.brake_log)
             rec = arm.step()
+            if audit is not None:
+                for tb, what in sim.brake_log[n_brake:]:
+                    audit.append("brakes", t_s=tb, cycle=rec.cycle, escalated="refused" in what,
+                                 response=rec.response, controller=rec.controller, reason=what)
             if rec.controller != "task" and prev_ctrl == "task":
                 resp_since = rec.t_s
             elif rec.controller == "task" and prev_ctrl != "task" and resp_since is not None:
