@@ -19,7 +19,8 @@ from ._limits import (BRAKE_ENGAGE_S, LIMIT_MARGIN_RAD, RATED_DDDQ_MAX, RATED_DD
 from ..language import SEVERITY_ORDER
 from ._model import SimError, HandOver, Pick, Place, Pour, Reach, SimBlock, Wait, Wipe
 
-__all__ = ["plan_task", "TaskController", "StopController", "SEVERITY", "stop_incomplete", "restart_margin_m",
+__all__ = ["plan_task", "TaskController", "StopController", "SEVERITY", "stop_incomplete", "start_refused",
+           "restart_margin_m",
            "WALKING_SPEED_M_S"]
 
 #: Response name -> severity (the spec's one order, ``ethimon.language.SEVERITY_ORDER``); the arm never
@@ -80,6 +81,26 @@ def stop_incomplete(controller, sim: ArmSim) -> str | None:
     if v >= _STANDSTILL_RAD_S:
         return f"the arm is not at standstill ({v:.3f} rad/s)"
     return None
+
+
+def start_refused(awaiting: bool, decision, distance_m: float, clear_m: float | None) -> str:
+    """Why an operator's start is refused (``""``: accepted): no accepted acknowledgement awaits
+    one, the monitor overrides (a rule fires, a latch holds, a fault), or the distance reading is
+    missing or inside the protective zone ``clear_m`` (as for the acknowledgement)."""
+    d = decision
+    if not awaiting:
+        return "no acknowledged stop awaits a start"
+    if d is None:
+        return "no cycle judged yet"
+    if d.override or d.violations or d.faults:
+        return "the monitor overrides: " + (", ".join(d.violations) or (str(d.faults[0]) if d.faults
+                                                                        else "a latch holds"))
+    if clear_m is not None:
+        if math.isnan(distance_m):
+            return "no human_distance reading"
+        if distance_m < clear_m:
+            return f"a person is {distance_m:.2f} m away, inside the {clear_m:g} m protective zone"
+    return ""
 
 
 def _min_jerk(u: float) -> tuple[float, float]:

@@ -191,6 +191,22 @@ class SimResult:
     reset_started_motion: bool = False
     restart_max_speed_in_zone_m_s: float | None = None
     restart_zone_breaches: int = 0
+
+    def observe_resume(self, acks: list, starts: list) -> None:
+        """The task resumed: did the reset itself start it (an accepted acknowledgement, in
+        ``acks``, with no accepted start since, in ``starts``: ``(t_s, accepted, message)``)?"""
+        last_ack = max((t for t, ok, _ in acks if ok), default=None)
+        last_start = max((t for t, ok, _ in starts if ok), default=None)
+        if last_ack is not None and (last_start is None or last_start < last_ack):
+            self.reset_started_motion = True
+
+    def observe_restart(self, rec: CycleRecord, zone: tuple[float, float] | None) -> None:
+        """A task cycle after a restart: with a person within the zone ``(distance_m, speed_m_s)``
+        (true distance), its fastest link frame (at least the end effector) counts."""
+        if zone is not None and rec.human_distance_true_m < zone[0]:
+            v = rec.link_speed_max_m_s
+            self.restart_max_speed_in_zone_m_s = max(self.restart_max_speed_in_zone_m_s or 0.0, round(v, 4))
+            self.restart_zone_breaches += int(v > zone[1])
     min_response_s: float | None = None
 
     @property

@@ -18,7 +18,8 @@ import numpy as np
 
 from .._robot import PANDA_HOME_JOINTS_RAD
 from ._arm import ArmSim
-from ._control import SEVERITY, StopController, TaskController, plan_task, restart_margin_m, stop_incomplete
+from ._control import (SEVERITY, StopController, TaskController, plan_task, restart_margin_m, start_refused,
+                       stop_incomplete)
 from ._limits import out_of_range, safe_pose_problem
 from ._model import SimBlock
 from ._rules import RETREAT_NEAR_HUMAN_DEFAULT, near_human_grace_cycles, near_human_speed_rule
@@ -77,7 +78,7 @@ class GovernedArm:
                  signal_filter=None, task_joint_speed_rad_s: float = 0.8,
                  stop_ramp_s: float = 0.25, standstill_tolerance_rad: float = 0.02,
                  near_human: Any = "spec", release_dwell_s: float = 1.0,
-                 acknowledge_clear_m: Any = "spec", sensor_latency_s: float = 0.0) -> None:
+                 acknowledge_clear_m: Any = "spec", sensor_latency_s: float = 0.0, audit: Any = None) -> None:
         self.sim = sim
         self.monitor = monitor
         sp = safe_pose if safe_pose is not None else getattr(getattr(monitor, "spec", None),
@@ -122,6 +123,11 @@ class GovernedArm:
         self.release_dwell_s = float(release_dwell_s)
         self._clear_since: float | None = None   # monitor released (no override) since
         self._acked = False                      # an accepted start since the acknowledgement
+        #: an ``ethimon.audit.AuditLog`` (anything with ``append(kind, **fields)``) or ``None``
+        self.audit = audit
+        #: ``(t_s, accepted, message)`` of every acknowledgement and every start, in order
+        self.acks: list[tuple[float, bool, str]] = []
+        self.starts: list[tuple[float, bool, str]] = []
         # issue 32 item 4: an accepted acknowledgement (a reset) waits for the spec's start condition
         spec = getattr(monitor, "spec", None)
         self.start_condition = getattr(getattr(spec, "restart", None), "start", "command")
@@ -220,6 +226,9 @@ class GovernedArm:
         self.controller.command(sim)        # same cycle as the decision
         label = self.controller.name if self.controller is not self.task else "task"
         escalated = "; ".join(w for _, w in sim.brake_log[n_brake:] if "refused" in w)
+        for tb, what in sim.brake_log[n_brake:] if self.audit is not None else ():
+            self.audit.append("brakes", t_s=tb, cycle=cycle, escalated="refused" in what, response=resp,
+                              controller=label, reason=what)
         if label in SEVERITY and SEVERITY[label] > SEVERITY[self.active]:
             self.active = label  # a stop 2 escalated (standstill lost), a retreat that holds
         decel = sp is not None and sp.decelerating
@@ -279,12 +288,19 @@ class GovernedArm:
                 why = (f"a person is {v:.2f} m away, inside the {self.acknowledge_clear_m:g} m "
                        "protective zone")
         if why:
-            return Acknowledgement(False, (), "refused: " + why)
+            return self._audited("acknowledge", Acknowledgement(False, (), "refused: " + why))
         a = self.monitor.acknowledge() if hasattr(self.monitor, "acknowledge") else \
             Acknowledgement(False, (), "the monitor takes no acknowledgement")
         if a.released:
             self.awaiting_start = True
             self._start_prev = True  # a start input already on does not count: it must rise
+        return self._audited("acknowledge", a)
+
+    def _audited(self, kind: str, a: Acknowledgement) -> Acknowledgement:
+        (self.acks if kind == "acknowledge" else self.starts).append((round(self.sim.time_s, 6), bool(a.released),
+                                                                      a.message))
+        if self.audit is not None:
+            self.audit.append(kind, t_s=round(self.sim.time_s, 6), accepted=bool(a.released), message=a.message)
         return a
 
     def start(self) -> Acknowledgement:
@@ -295,23 +311,13 @@ class GovernedArm:
         overrides (a rule fires, a latch holds, a fault), or while a person is inside the
         protective zone (as for the acknowledgement).
         """
-        d = self.last_decision
-        why = ""
-        if not self.awaiting_start:
-            why = "no acknowledged stop awaits a start"
-        elif d is None or d.override or d.violations or d.faults:
-            why = "the monitor overrides: " + (", ".join(d.violations) or (str(d.faults[0]) if d.faults else
-                                                                            "a latch holds")) if d else "no cycle"
-        elif self.acknowledge_clear_m is not None:
-            v = _num(self._fed.get("human_distance", math.nan))
-            if math.isnan(v) or v < self.acknowledge_clear_m:
-                why = ("no human_distance reading" if math.isnan(v) else
-                       f"a person is {v:.2f} m away, inside the {self.acknowledge_clear_m:g} m protective zone")
+        why = start_refused(self.awaiting_start, self.last_decision,
+                            _num(self._fed.get("human_distance", math.nan)), self.acknowledge_clear_m)
         if why:
-            return Acknowledgement(False, (), "start refused: " + why)
+            return self._audited("start", Acknowledgement(False, (), "start refused: " + why))
         self.awaiting_start = False
         self._acked = True
-        return Acknowledgement(True, (), "started")
+        return self._audited("start", Acknowledgement(True, (), "started"))
 
     def _stop2_may_hand_back(self, resp: str) -> bool:
         """A powered stop 2 (not escalated, at standstill, not the hold of a task that lost its
@@ -513,7 +519,7 @@ def _summarize(res: SimResult, arm: GovernedArm, sim: ArmSim, people: _PeopleWat
     res.wrist_turn_rad = round(sp.wrist_turn_rad, 4) if sp is not None else None
     res.object_end_z_m = {n: round(z, 4) for n, z in sim.object_z().items()}
     res.max_human_speed_ratio, res.human_overshoot_m = people.result()
-    res.acknowledgements = tuple(ack_log)
+    res.acknowledgements, res.starts = tuple(ack_log), tuple(arm.starts)
     res.max_past_limit_mrad = round(1000.0 * sim.max_past_limit_rad, 4)
     res.brake_log, res.brakes_escalated = tuple(sim.brake_log), any("refused" in w for _, w in sim.brake_log)
     res.max_travel_unpowered_rad = round(sim.max_travel_unpowered_rad, 5)
@@ -521,6 +527,11 @@ def _summarize(res: SimResult, arm: GovernedArm, sim: ArmSim, people: _PeopleWat
     res.fired = tuple(fired)
     res.sim_time_s = round(sim.time_s, 6)
     res.realtime_factor = res.sim_time_s / loop_wall if loop_wall > 0 else math.inf
+
+
+def _latency(block: SimBlock) -> float:
+    """The distance sensor's latency (s) in a ``sim:`` block."""
+    return getattr(block.sensors.get("human_distance"), "latency_s", 0.0)
 
 
 def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
@@ -543,10 +554,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         record_dir: write PNG frames, ``trace.jsonl``/``trace.csv`` and ``plot.png`` there.
         gui: show the PyBullet GUI (needs a display) and run in real time.
         probs: deprecated spelling of ``p`` (still works, warns ``DeprecationWarning``).
-        audit: an ``ethimon.audit.AuditLog`` (anything with ``append(kind, **fields)``): gets a
-            record per acknowledgement (``acknowledge``), start (``start``), and per power-off
-            and refused power-off of the brakes' check (``brakes``, ``escalated: true`` when a stop
-            0/1 was held powered because the brakes cannot hold arm + payload).
+        audit: an ``AuditLog`` for the operator's actions and every power-off check (``GovernedArm``).
 
     Returns:
         A :class:`SimResult`.
@@ -567,9 +575,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
                           task_joint_speed_rad_s=block.task_joint_speed_rad_s,
                           stop_ramp_s=block.stop_ramp_s,
                           standstill_tolerance_rad=block.standstill_tolerance_rad,
-                          release_dwell_s=block.release_dwell_s,
-                          sensor_latency_s=(block.sensors["human_distance"].latency_s
-                                            if "human_distance" in block.sensors else 0.0))
+                          release_dwell_s=block.release_dwell_s, audit=audit, sensor_latency_s=_latency(block))
         if record_dir is not None:
             recorder = Recorder(record_dir, sim, spec=getattr(monitor, "spec", None), block=block,
                                 safe_tol=arm.safe_tol)
@@ -589,51 +595,24 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         sp_v0: float | None = None
         t_stop: float | None = None
         near = block.expect.near_human_m
-        acks = sorted(block.acknowledge_at_s)
-        starts = sorted(block.start_at_s)
-        start_log: list[tuple[float, bool, str]] = []
+        actions = sorted([(t, "acknowledge") for t in block.acknowledge_at_s] + [(t, "start") for t in block.start_at_s])
         people = _PeopleWatch(sim)
-        ack_log: list[tuple[float, bool, str]] = []
         resp_since: float | None = None
-        restarted = False
         axis0: dict[str, float] = {}  # each person's hazard-axis angle at the first override
         for _ in range(n_cycles):
-            while acks and sim.time_s >= acks[0] - 1e-9:  # the operator's acknowledgement
-                acks.pop(0)
-                a = arm.acknowledge()
-                ack_log.append((round(sim.time_s, 6), bool(a.released), a.message))
-                if audit is not None:
-                    audit.append("acknowledge", t_s=round(sim.time_s, 6), accepted=bool(a.released),
-                                 message=a.message)
-            while starts and sim.time_s >= starts[0] - 1e-9:  # the operator's start command
-                starts.pop(0)
-                a = arm.start()
-                start_log.append((round(sim.time_s, 6), bool(a.released), a.message))
-                if audit is not None:
-                    audit.append("start", t_s=round(sim.time_s, 6), accepted=bool(a.released), message=a.message)
+            while actions and sim.time_s >= actions[0][0] - 1e-9:  # the operator: acknowledge, start
+                arm.acknowledge() if actions.pop(0)[1] == "acknowledge" else arm.start()
             prev_ctrl = res.trace[-1].controller if res.trace else "task"
-            n_brake = len(sim.brake_log)
             rec = arm.step()
-            if audit is not None:
-                for tb, what in sim.brake_log[n_brake:]:
-                    audit.append("brakes", t_s=tb, cycle=rec.cycle, escalated="refused" in what,
-                                 response=rec.response, controller=rec.controller, reason=what)
             if rec.controller != "task" and prev_ctrl == "task":
                 resp_since = rec.t_s
             elif rec.controller == "task" and prev_ctrl != "task" and resp_since is not None:
                 res.task_resumes += 1
-                restarted = True
-                last_ack = max((a for a, ok, _ in ack_log if ok), default=None)
-                last_start = max((a for a, ok, _ in start_log if ok), default=None)
-                if last_ack is not None and (last_start is None or last_start < last_ack):
-                    res.reset_started_motion = True  # the reset itself restarted the task
+                res.observe_resume(arm.acks, arm.starts)
                 dur = round(rec.t_s - resp_since, 6)
                 res.min_response_s = dur if res.min_response_s is None else min(res.min_response_s, dur)
-            if restarted and rec.controller == "task" and arm.near_human is not None \
-                    and rec.human_distance_true_m < arm.near_human[0]:
-                v = rec.link_speed_max_m_s  # fastest link frame: at least the end effector
-                res.restart_max_speed_in_zone_m_s = max(res.restart_max_speed_in_zone_m_s or 0.0, round(v, 4))
-                res.restart_zone_breaches += int(v > arm.near_human[1])
+            if res.task_resumes and rec.controller == "task":
+                res.observe_restart(rec, arm.near_human)
             people.observe()
             res.trace.append(rec)
             if recorder:
@@ -695,9 +674,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
             if gui:
                 time.sleep(max(0.0, loop0 + sim.time_s - time.perf_counter()))
         loop_wall = time.perf_counter() - loop0 - (recorder.seconds - rec_s0 if recorder else 0.0)
-        _summarize(res, arm, sim, people, first_cmd=first_cmd, max_sp=max_sp, ack_log=ack_log, fired=fired,
+        _summarize(res, arm, sim, people, first_cmd=first_cmd, max_sp=max_sp, ack_log=arm.acks, fired=fired,
                    loop_wall=loop_wall)
-        res.starts = tuple(start_log)
         if recorder:
             recorder.frame("end")
         # set before the recording is finished: its summary.json carries it (setup, loop and frames;
