@@ -67,7 +67,7 @@ def test_restart_start_defaults_to_a_command_and_may_name_a_bool_input(tmp_path)
     f.write_text(_SPEC_START % ("bool", "start_button"))
     assert ethimon.load_spec(str(f)).restart.start == "start_button"
     f.write_text(_SPEC_START % ("bool", "go"))
-    with pytest.raises(SpecError, match="restart.start: 'go' is not a declared signal"):
+    with pytest.raises(SpecError, match="restart: start: .go. is not a declared signal"):
         ethimon.load_spec(str(f))
     f.write_text(_SPEC_START % ("number", "start_button"))
     with pytest.raises(SpecError, match="needs a bool input"):

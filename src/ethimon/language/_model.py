@@ -16,7 +16,8 @@ import difflib
 import enum
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator
+from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, ValidationInfo, field_validator,
+                      model_validator)
 
 from .._robot import PANDA_HOME_JOINTS_RAD
 from ..errors import SpecError
@@ -475,18 +476,19 @@ class Spec(BaseModel):
                              "{response: ..., release: auto|manual}")
         return v
 
-    @model_validator(mode="after")
-    def _restart_signal(self) -> "Spec":
-        st = self.restart.start
-        if st != "command":
-            sig = self.signals.get(st)
+    @field_validator("restart")
+    @classmethod
+    def _restart_signal(cls, v: Restart, info: ValidationInfo) -> Restart:
+        st = v.start
+        if st != "command" and "signals" in info.data:  # (signals validated before restart)
+            sig = info.data["signals"].get(st)
             if sig is None:
-                raise ValueError(f"restart.start: {st!r} is not a declared signal (command, or the "
+                raise ValueError(f"start: {st!r} is not a declared signal (command, or the "
                                  "name of a bool input: a start button)")
             if sig.type != "bool":
-                raise ValueError(f"restart.start: signal {st!r} is {sig.type}, a start condition "
+                raise ValueError(f"start: signal {st!r} is {sig.type}, a start condition "
                                  "needs a bool input (its rising edge starts motion)")
-        return self
+        return v
 
     @property
     def on_fault(self) -> str:
