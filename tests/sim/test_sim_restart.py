@@ -70,4 +70,6 @@ def test_automatic_release_waits_the_dwell_so_task_and_retreat_cannot_chatter():
     res, problems = _run("release_dwell_no_chatter")
     assert problems == [] and res.min_response_s >= 1.0
     res0, _ = _run("release_dwell_no_chatter", release_dwell_s=0.0)
-    assert res0.min_response_s < 0.3 and res0.task_resumes > 2 * res.task_resumes  # the old chatter
+    # without the dwell the response is short again (the old chatter's 0.23 s), but since issue 32
+    # item 4 a restarted task keeps v_slow inside the zone, so the rule does not fire again
+    assert res0.min_response_s < 0.3 and res0.task_resumes == 1 and res0.restart_zone_breaches == 0

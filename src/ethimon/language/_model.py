@@ -16,7 +16,8 @@ import difflib
 import enum
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator
+from pydantic import (BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, ValidationInfo, field_validator,
+                      model_validator)
 
 from .._robot import PANDA_HOME_JOINTS_RAD
 from ..errors import SpecError
@@ -406,6 +407,24 @@ class SafePose(BaseModel):
         return v
 
 
+class Restart(BaseModel):
+    """What resumes motion after an operator's acknowledgement (``restart``).
+
+    An accepted acknowledgement is a reset: it releases the manual latches and never starts
+    motion by itself (ISO 13849-1:2015 5.2.2, IEC 60204-1:2016 9.2.2 as we read them). ``start``
+    names the separate start condition: ``command`` (default), a deliberate start command
+    after the acknowledgement (``GovernedArm.start()``, a scenario's ``sim.start_at_s``); or the
+    name of a ``bool`` input (a start button wired to the monitor): its rising edge, false to true,
+    after the acknowledgement. Automatic releases (``release: auto``) restart by themselves, as
+    before: speed and separation monitoring may resume once the separation is restored.
+    """
+
+    model_config = _CFG
+    start: Annotated[str, Field(pattern=IDENT)] = Field(
+        "command", description="command (default): a separate start command after the acknowledgement; "
+        "or the name of a bool input whose rising edge after the acknowledgement starts motion")
+
+
 class _Carried:
     """What the compiler made of a spec (its plan), carried by the spec object itself.
 
@@ -455,6 +474,9 @@ class Spec(BaseModel):
         description="response to missing/NaN/out-of-range/stale input: safe_pose | stop_2 | stop_1 | stop_0, "
         "or {response: ..., release: auto | manual | {mode, hold_cycles}}")
     safe_pose: SafePose = Field(default_factory=SafePose)
+    restart: Restart = Field(
+        default_factory=Restart, description="what resumes motion after an accepted acknowledgement "
+        "(a reset never starts motion): {start: command} (default) or {start: <bool input>}")
 
     _source: SourceMap | None = PrivateAttr(default=None)
     #: the compiled plan, set by the compiler (see :class:`_Carried`); not part of the spec's value
@@ -468,6 +490,20 @@ class Spec(BaseModel):
                 return {"response": v}
             raise ValueError("expected safe_pose, stop_2, stop_1 or stop_0, or a mapping "
                              "{response: ..., release: auto|manual}")
+        return v
+
+    @field_validator("restart")
+    @classmethod
+    def _restart_signal(cls, v: Restart, info: ValidationInfo) -> Restart:
+        st = v.start
+        if st != "command" and "signals" in info.data:  # (signals validated before restart)
+            sig = info.data["signals"].get(st)
+            if sig is None:
+                raise ValueError(f"start: {st!r} is not a declared signal (command, or the "
+                                 "name of a bool input: a start button)")
+            if sig.type != "bool":
+                raise ValueError(f"start: signal {st!r} is {sig.type}, a start condition "
+                                 "needs a bool input (its rising edge starts motion)")
         return v
 
     @property

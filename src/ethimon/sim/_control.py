@@ -19,7 +19,9 @@ from ._limits import (BRAKE_ENGAGE_S, LIMIT_MARGIN_RAD, RATED_DDDQ_MAX, RATED_DD
 from ..language import SEVERITY_ORDER
 from ._model import SimError, HandOver, Pick, Place, Pour, Reach, SimBlock, Wait, Wipe
 
-__all__ = ["plan_task", "TaskController", "StopController", "SEVERITY"]
+__all__ = ["plan_task", "TaskController", "StopController", "SEVERITY", "stop_incomplete", "start_refused",
+           "restart_margin_m",
+           "WALKING_SPEED_M_S"]
 
 #: Response name -> severity (the spec's one order, ``ethimon.language.SEVERITY_ORDER``); the arm never
 #: de-escalates while overridden.
@@ -35,6 +37,70 @@ _DQ = np.array(RATED_DQ_MAX)
 _DDQ = np.array(RATED_DDQ_MAX)
 _DDDQ = np.array(RATED_DDDQ_MAX)
 _Q_MIN, _Q_MAX = np.array(RATED_Q_MIN), np.array(RATED_Q_MAX)
+
+
+#: the speed a person is assumed to approach with (ISO 13855's walking speed K, 1.6 m/s)
+WALKING_SPEED_M_S = 1.6
+#: the time a resumed task takes to shed its speed down to the near-human cap (s; the rate may
+#: fall by this share per second of the planned speed)
+_TASK_SLOWDOWN_S = 0.3
+#: below this every joint is at standstill (rad/s), as a stop judges it
+_STANDSTILL_RAD_S = 0.01
+
+
+def restart_margin_m(latency_s: float, grace_cycles: int, control_hz: float) -> float:
+    """How far beyond the slow zone a restarted task already keeps the zone's speed (m): a person
+    walking at :data:`WALKING_SPEED_M_S` covers this during the distance sensor's latency, the
+    rule's grace (``within_cycles``) and one cycle, and the task's own slow-down."""
+    return WALKING_SPEED_M_S * (max(latency_s, 0.0) + (max(grace_cycles, 0) + 1) / control_hz
+                                + _TASK_SLOWDOWN_S)
+
+
+def stop_incomplete(controller, sim: ArmSim) -> str | None:
+    """Why the stop an acknowledgement would end has not completed (``None``: it has).
+
+    Completed (issue 32 item 4): every joint at standstill; a stop 0/1 has removed power and its
+    brakes have engaged (or its power-off was refused and it holds powered); a stop 2 has
+    decelerated and holds. A retreat counts as completed once the arm stands still (arrived, or
+    holding). The running task has no stop to end.
+    """
+    c = controller
+    if isinstance(c, TaskController):
+        return None
+    c = getattr(c, "holding", None) or c  # a retreat that holds: its stop
+    if isinstance(c, StopController):
+        if c.category in (0, 1):
+            if not c.done:
+                return f"the {c.name} has not completed: still braking, motor power still on"
+            if not sim.powered and sim.brakes and not sim.brakes_engaged:
+                return f"the {c.name} has not completed: the brakes have not engaged yet"
+        elif not c.done:
+            return "the stop 2 has not completed: still decelerating"
+    _, qd = sim.joint_state()
+    v = float(np.max(np.abs(qd)))
+    if v >= _STANDSTILL_RAD_S:
+        return f"the arm is not at standstill ({v:.3f} rad/s)"
+    return None
+
+
+def start_refused(awaiting: bool, decision, distance_m: float, clear_m: float | None) -> str:
+    """Why an operator's start is refused (``""``: accepted): no accepted acknowledgement awaits
+    one, the monitor overrides (a rule fires, a latch holds, a fault), or the distance reading is
+    missing or inside the protective zone ``clear_m`` (as for the acknowledgement)."""
+    d = decision
+    if not awaiting:
+        return "no acknowledged stop awaits a start"
+    if d is None:
+        return "no cycle judged yet"
+    if d.override or d.violations or d.faults:
+        return "the monitor overrides: " + (", ".join(d.violations) or (str(d.faults[0]) if d.faults
+                                                                        else "a latch holds"))
+    if clear_m is not None:
+        if math.isnan(distance_m):
+            return "no human_distance reading"
+        if distance_m < clear_m:
+            return f"a person is {distance_m:.2f} m away, inside the {clear_m:g} m protective zone"
+    return ""
 
 
 def _min_jerk(u: float) -> tuple[float, float]:
@@ -168,6 +234,14 @@ class TaskController:
         self.q_initial = self._from.copy()
         self._dur = self.segments[0].duration_s if self.segments else 0.0
         self.setpoint = self._from.copy()
+        #: after a restart (issue 32 item 4): ``(zone_m, speed_m_s, margin_m)``: while the distance
+        #: reading (:attr:`distance_reading`) is under ``zone_m + margin_m`` (or missing) no link
+        #: moves faster than 0.8 x ``speed_m_s``; ``None``: the task as planned
+        self.restart_cap: tuple[float, float, float] | None = None
+        #: the monitor's human_distance reading this cycle (set by its caller)
+        self.distance_reading = math.inf
+        self.rate = 1.0          # path-time rate (1: as planned)
+        self._gain: float | None = None   # link speed (m/s) per unit path speed of this segment
 
     @property
     def done(self) -> bool:
@@ -200,6 +274,7 @@ class TaskController:
         """Restart the current segment from the measured pose ``q_now`` (after a release)."""
         self._from = np.asarray(q_now, dtype=float)
         self.t = 0.0
+        self.rate, self._gain = 0.0 if self.restart_cap is not None else 1.0, None
         if not self.done:
             seg = self.segments[self.index]
             self._dur = _timed(self._from, seg.q, seg.duration_s, self.v_task)
@@ -210,12 +285,15 @@ class TaskController:
             sim.command_joints(self.setpoint, np.zeros(7), last.gripper_m if last else None)
             return
         seg = self.segments[self.index]
-        s, ds = _min_jerk(self.t / self._dur)
+        rate0 = self.rate
+        if self.restart_cap is not None or rate0 != 1.0:
+            self.rate = self._rate(sim, seg)
+        s, ds = _min_jerk(min(self.t / self._dur, 1.0))
         q = self._from + s * (seg.q - self._from)
-        qd = (ds / self._dur) * (seg.q - self._from)
+        qd = (ds / self._dur) * self.rate * (seg.q - self._from)
         self.setpoint = q
         sim.command_joints(q, qd, seg.gripper_m)
-        self.t += sim.dt
+        self.t += (0.5 * (rate0 + self.rate) if self.rate != 1.0 or rate0 != 1.0 else 1.0) * sim.dt
         if self.t >= self._dur - 1e-9:
             if seg.attach:
                 sim.attach(seg.attach)
@@ -224,9 +302,33 @@ class TaskController:
             self._from = seg.q
             self.index += 1
             self.t = 0.0
+            self._gain = None
             if not self.done:
                 nxt = self.segments[self.index]
                 self._dur = nxt.duration_s
+
+
+    def _rate(self, sim: ArmSim, seg: Segment) -> float:
+        """This cycle's path-time rate: 1 as planned; after a restart, with someone within the
+        slow zone plus the margin (or no reading), low enough that no link frame passes 0.8 x the
+        zone's speed at this point of the profile; changed by at most ``dt / _TASK_SLOWDOWN_S``."""
+        target = 1.0
+        cap = self.restart_cap
+        d = self.distance_reading
+        if cap is not None and not (d >= cap[0] + cap[2]):  # NaN: no reading, keep the cap
+            if self._gain is None:
+                pts = [sim.link_points(self._from + (k / 10) * (seg.q - self._from)) for k in range(11)]
+                step = max(float(np.max(np.linalg.norm(b - a, axis=1))) for a, b in zip(pts, pts[1:]))
+                self._gain = 1.3 * 10.0 * step  # per unit path; 1.3: chord vs arc, sampling
+            u = min(self.t / self._dur, 1.0) if self._dur > 0 else 1.0
+            _, ds = _min_jerk(u)
+            # the speed at the profile's peak ahead bounds it too, so the rate never lags a rise
+            peak = ds if u >= 0.5 else max(ds, _min_jerk(min(u + 0.1, 0.5))[1])
+            v = self._gain * peak / self._dur if self._dur > 0 else 0.0
+            if v > 0:
+                target = min(1.0, 0.8 * cap[1] / v)
+        step = sim.dt / _TASK_SLOWDOWN_S
+        return max(target, self.rate - step) if target < self.rate else min(target, self.rate + step)
 
 
 # ---------------------------------------------------------------- response motions

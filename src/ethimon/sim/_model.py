@@ -331,6 +331,14 @@ class SimExpect(_Model):
         "limit (mrad), over the whole run, power-off included")
     acknowledgements: tuple[bool, ...] | None = Field(
         None, description="per acknowledge_at_s, in order: accepted (true) or refused (false)")
+    starts: tuple[bool, ...] | None = Field(
+        None, description="per start_at_s, in order: accepted (true) or refused (false)")
+    reset_started_motion: bool | None = Field(
+        None, description="false: the task never resumed after an accepted acknowledgement without "
+        "an accepted start since (a reset never starts motion)")
+    max_restart_speed_in_zone_m_s: float | None = Field(
+        None, gt=0.0, description="after a restart, no link faster than this (+1 %) while a person "
+        "is within the near-human zone (true distance)")
     min_response_s: float | None = Field(
         None, ge=0.0, description="every response lasted at least this long before the task "
         "resumed (no chatter)")
@@ -384,6 +392,10 @@ class SimBlock(_Model):
         "times: refused while a rule fires, a fault is reported or a person is within the "
         "protective distance; otherwise Monitor.acknowledge releases the manual latches whose "
         "condition has held. A refused acknowledgement is not remembered")
+    start_at_s: tuple[float, ...] = Field(
+        (), description="an operator's start command (GovernedArm.start) at these simulated times: "
+        "after an accepted acknowledgement motion resumes only on it (spec restart.start: command); "
+        "refused while the monitor overrides or a person is within the protective distance")
     release_dwell_s: float = Field(
         1.0, ge=0.0, le=60.0, description="after an automatic release the task resumes only once "
         "the monitor has stayed released this long (the response carries on meanwhile), so task "

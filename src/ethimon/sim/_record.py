@@ -465,6 +465,10 @@ class Recorder:
         for ts, ok, msg in getattr(result, "acknowledgements", ()) or ():
             self.events.append({"event": "ack_accepted" if ok else "ack_refused", "cycle": int(round(ts / dt)) if dt else None,
                                 "t_s": float(ts), "detail": msg, "value": None, "frame": None})
+        for ts, ok, msg in getattr(result, "starts", ()) or ():
+            self.events.append({"event": "start_accepted" if ok else "start_refused",
+                                "cycle": int(round(ts / dt)) if dt else None,
+                                "t_s": float(ts), "detail": msg, "value": None, "frame": None})
         self.events.sort(key=lambda e: (e["t_s"], e["cycle"] if e["cycle"] is not None else -1))
         self.extra["acks"] = list(getattr(result, "acknowledgements", ()) or ())
         self.extra["slow_zone"] = near_human_speed_rule(self.spec) if self.spec is not None else None
@@ -481,6 +485,8 @@ class Recorder:
                     "safe_pose_error_rad": r.safe_pose_error_rad,
                     "human_distance_true_m": _clean(r.human_distance_true_m),
                 }
+                if getattr(r, "escalated", ""):
+                    row["escalated"] = r.escalated  # a refused power-off: why (issue 32)
                 if r.cycle < len(self.extra["powered"]):
                     row.update(powered=self.extra["powered"][r.cycle], brakes=self.extra["brakes"][r.cycle],
                                grasp_z_m=_clean(round(self.extra["grasp_z"][r.cycle], 5)))

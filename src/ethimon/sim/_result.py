@@ -37,6 +37,8 @@ class CycleRecord:
         dropped: ``"object (why)"`` for each held object that left the gripper in this cycle
             other than by the task's release.
         task_stopped: in the cycle the task found its object missing and stopped, why.
+        escalated: in the cycle a stop 0/1's power-off was refused because the brakes cannot
+            hold arm + payload (held powered, a stop 2 instead), why (issue 32 item 1).
     """
 
     cycle: int
@@ -65,6 +67,7 @@ class CycleRecord:
     task_stopped: str = ""
     retreat_rate: float | None = None
     replanned: str = ""
+    escalated: str = ""
 
 
 @dataclass
@@ -129,6 +132,12 @@ class SimResult:
         max_travel_unpowered_rad, max_drop_unpowered_m: the furthest any joint travelled, and the
             grasp point fell, from where they were at a power-off, while unpowered.
         task_resumes: how often the task resumed after a response.
+        starts: ``(t_s, accepted, message)`` for every operator start command (``sim.start_at_s``).
+        reset_started_motion: the task resumed after an accepted acknowledgement with no accepted
+            start since (the reset itself started motion).
+        restart_max_speed_in_zone_m_s: after the first restart, the fastest link frame (m/s) in a
+            task cycle with a person within the near-human zone (true distance); ``None``: none.
+        restart_zone_breaches: such cycles above the zone's speed.
         min_response_s: the shortest time a response drove the arm before the task resumed
             (``None``: the task never resumed).
         task_stopped: why the task stopped for good (the object it should carry was not in the
@@ -178,6 +187,26 @@ class SimResult:
     max_travel_unpowered_rad: float = 0.0
     max_drop_unpowered_m: float = 0.0
     task_resumes: int = 0
+    starts: tuple[tuple[float, bool, str], ...] = ()
+    reset_started_motion: bool = False
+    restart_max_speed_in_zone_m_s: float | None = None
+    restart_zone_breaches: int = 0
+
+    def observe_resume(self, acks: list, starts: list) -> None:
+        """The task resumed: did the reset itself start it (an accepted acknowledgement, in
+        ``acks``, with no accepted start since, in ``starts``: ``(t_s, accepted, message)``)?"""
+        last_ack = max((t for t, ok, _ in acks if ok), default=None)
+        last_start = max((t for t, ok, _ in starts if ok), default=None)
+        if last_ack is not None and (last_start is None or last_start < last_ack):
+            self.reset_started_motion = True
+
+    def observe_restart(self, rec: CycleRecord, zone: tuple[float, float] | None) -> None:
+        """A task cycle after a restart: with a person within the zone ``(distance_m, speed_m_s)``
+        (true distance), its fastest link frame (at least the end effector) counts."""
+        if zone is not None and rec.human_distance_true_m < zone[0]:
+            v = rec.link_speed_max_m_s
+            self.restart_max_speed_in_zone_m_s = max(self.restart_max_speed_in_zone_m_s or 0.0, round(v, 4))
+            self.restart_zone_breaches += int(v > zone[1])
     min_response_s: float | None = None
 
     @property
@@ -305,6 +334,20 @@ def check_sim_expectations(sim_block: SimBlock, result: SimResult) -> list[str]:
                              for t, a, m in r.acknowledgements) or "none"
             out.append(f"sim: acknowledgements {[str(a).lower() for a in got]} ({said}), expected "
                        f"{[str(a).lower() for a in ex.acknowledgements]}")
+    if ex.starts is not None:
+        got = tuple(a for _, a, _ in r.starts)
+        if got != tuple(ex.starts):
+            said = "; ".join(f"{t:g} s {'accepted' if a else 'refused'} ({m})" for t, a, m in r.starts) or "none"
+            out.append(f"sim: starts {[str(a).lower() for a in got]} ({said}), expected "
+                       f"{[str(a).lower() for a in ex.starts]}")
+    if ex.reset_started_motion is not None and r.reset_started_motion != ex.reset_started_motion:
+        out.append(f"sim: reset_started_motion is {str(r.reset_started_motion).lower()}, expected "
+                   f"{str(ex.reset_started_motion).lower()} (an acknowledgement must not start motion)")
+    if ex.max_restart_speed_in_zone_m_s is not None and r.restart_max_speed_in_zone_m_s is not None \
+            and r.restart_max_speed_in_zone_m_s > ex.max_restart_speed_in_zone_m_s * 1.01:
+        out.append(f"sim: after a restart a link reached {r.restart_max_speed_in_zone_m_s:.3f} m/s with a person "
+                   f"inside the slow zone ({r.restart_zone_breaches} cycles over the zone's speed), expected at "
+                   f"most {ex.max_restart_speed_in_zone_m_s:g} m/s")
     if ex.min_response_s is not None and r.min_response_s is not None \
             and r.min_response_s < ex.min_response_s - 1e-9:
         out.append(f"sim: a response lasted only {r.min_response_s:.3f} s before the task resumed "

@@ -15,7 +15,8 @@ from __future__ import annotations
 import re
 from typing import Any
 
-__all__ = ["near_human_speed_rule", "retreat_speed_rule", "RETREAT_NEAR_HUMAN_DEFAULT"]
+__all__ = ["near_human_speed_rule", "near_human_grace_cycles", "retreat_speed_rule",
+           "RETREAT_NEAR_HUMAN_DEFAULT"]
 
 #: the safe-pose retreat's own speed limit near people when the spec states none:
 #: ``(distance_m, speed_m_s)`` = 0.25 m/s within 1.5 m (ISO 10218-1's reduced speed, 250 mm/s;
@@ -51,6 +52,17 @@ def near_human_speed_rule(spec: Any) -> tuple[float, float] | None:
         if best is None or v < best[1] or (v == best[1] and d > best[0]):
             best = (max(d, best[0]) if best and v == best[1] else d, v)
     return best
+
+
+def near_human_grace_cycles(spec: Any) -> int:
+    """The longest grace (``within_cycles``) among the spec's near-human speed rules: the cycles
+    the monitor lets a breach last before it fires (0 without such a rule)."""
+    out = 0
+    for ob in getattr(spec, "obligations", ()) or ():
+        when = getattr(ob, "when", None) or ""
+        if (_WHEN.match(when) or _WHEN_REV.match(when)) and _REQ.match(getattr(ob, "require", "") or ""):
+            out = max(out, int(getattr(ob, "within_cycles", 0) or 0))
+    return out
 
 
 def retreat_speed_rule(spec: Any) -> tuple[float, float]:

@@ -18,10 +18,11 @@ import numpy as np
 
 from .._robot import PANDA_HOME_JOINTS_RAD
 from ._arm import ArmSim
-from ._control import SEVERITY, StopController, TaskController, plan_task
+from ._control import (SEVERITY, StopController, TaskController, plan_task, restart_margin_m, start_refused,
+                       stop_incomplete)
 from ._limits import out_of_range, safe_pose_problem
 from ._model import SimBlock
-from ._rules import RETREAT_NEAR_HUMAN_DEFAULT, near_human_speed_rule
+from ._rules import RETREAT_NEAR_HUMAN_DEFAULT, near_human_grace_cycles, near_human_speed_rule
 from ._safe_pose import SafePoseController
 from ._record import Recorder
 from ._result import CycleRecord, SimResult, check_sim_expectations
@@ -77,7 +78,7 @@ class GovernedArm:
                  signal_filter=None, task_joint_speed_rad_s: float = 0.8,
                  stop_ramp_s: float = 0.25, standstill_tolerance_rad: float = 0.02,
                  near_human: Any = "spec", release_dwell_s: float = 1.0,
-                 acknowledge_clear_m: Any = "spec") -> None:
+                 acknowledge_clear_m: Any = "spec", sensor_latency_s: float = 0.0, audit: Any = None) -> None:
         self.sim = sim
         self.monitor = monitor
         sp = safe_pose if safe_pose is not None else getattr(getattr(monitor, "spec", None),
@@ -121,7 +122,21 @@ class GovernedArm:
             if acknowledge_clear_m == "spec" else acknowledge_clear_m
         self.release_dwell_s = float(release_dwell_s)
         self._clear_since: float | None = None   # monitor released (no override) since
-        self._acked = False                      # an accepted acknowledgement since the override
+        self._acked = False                      # an accepted start since the acknowledgement
+        #: an ``ethimon.audit.AuditLog`` (anything with ``append(kind, **fields)``) or ``None``
+        self.audit = audit
+        #: ``(t_s, accepted, message)`` of every acknowledgement and every start, in order
+        self.acks: list[tuple[float, bool, str]] = []
+        self.starts: list[tuple[float, bool, str]] = []
+        # issue 32 item 4: an accepted acknowledgement (a reset) waits for the spec's start condition
+        spec = getattr(monitor, "spec", None)
+        self.start_condition = getattr(getattr(spec, "restart", None), "start", "command")
+        self.awaiting_start = False
+        self._start_prev = False
+        #: after a restart the task keeps the zone's speed this far beyond the zone (m): the distance
+        #: sensor's latency, the near-human rule's grace and the task's slow-down at walking speed
+        self.restart_margin_m = restart_margin_m(sensor_latency_s, near_human_grace_cycles(spec),
+                                                 1.0 / sim.dt)
         self._resume_retreat_since: float | None = None   # a stop 2 over a retreat released since
         #: sim times at which a stop 2 handed the arm back to the retreat (its rule released)
         self.retreat_resumed: list[float] = []
@@ -156,6 +171,12 @@ class GovernedArm:
         d = self.monitor.step(fed)
         self.last_decision = d
         self._fed = fed
+        if self.start_condition != "command":  # a start input: its rising edge after the reset
+            now = fed.get(self.start_condition) is True or _num(fed.get(self.start_condition)) == 1.0
+            if self.awaiting_start and now and not self._start_prev:
+                self.start()
+            self._start_prev = now
+        self.task.distance_reading = _num(fed.get("human_distance", math.nan))
         resp = _response_name(d.response)
         if d.override:
             self._clear_since = None
@@ -180,8 +201,12 @@ class GovernedArm:
                 self._clear_since = t
             # an automatic release resumes the task only after the minimum dwell (the response
             # carries on meanwhile); an operator's accepted acknowledgement resumes at once
-            if self._acked or t - self._clear_since >= self.release_dwell_s - 1e-9:
+            if self.awaiting_start:
+                pass  # a reset never starts motion: the response holds until the start condition
+            elif self._acked or t - self._clear_since >= self.release_dwell_s - 1e-9:
                 q, _ = sim.joint_state()
+                if self.near_human is not None:  # a restart keeps the zone's speed (issue 32 item 4)
+                    self.task.restart_cap = (*self.near_human, self.restart_margin_m)
                 self.task.resume(q)
                 self.controller = self.task
                 self.active = "none"
@@ -197,8 +222,13 @@ class GovernedArm:
                 self._switch("stop_2")
         sp = self.controller if isinstance(self.controller, SafePoseController) else None
         n_replans = len(sp.replans) if sp is not None else 0
+        n_brake = len(sim.brake_log)
         self.controller.command(sim)        # same cycle as the decision
         label = self.controller.name if self.controller is not self.task else "task"
+        escalated = "; ".join(w for _, w in sim.brake_log[n_brake:] if "refused" in w)
+        for tb, what in sim.brake_log[n_brake:] if self.audit is not None else ():
+            self.audit.append("brakes", t_s=tb, cycle=cycle, escalated="refused" in what, response=resp,
+                              controller=label, reason=what)
         if label in SEVERITY and SEVERITY[label] > SEVERITY[self.active]:
             self.active = label  # a stop 2 escalated (standstill lost), a retreat that holds
         decel = sp is not None and sp.decelerating
@@ -224,17 +254,21 @@ class GovernedArm:
             task_stopped=stopped_now,
             retreat_rate=(round(sp.rate, 4) if sp is not None and sp.holding is None
                           and not decel else None),
-            replanned="; ".join(w for _, w in sp.replans[n_replans:]) if sp is not None else "")
+            replanned="; ".join(w for _, w in sp.replans[n_replans:]) if sp is not None else "",
+            escalated=escalated)
 
     def acknowledge(self) -> Acknowledgement:
         """An operator's acknowledgement (a manual reset), checked before the monitor sees it.
 
-        Refused, and not remembered, while the last cycle's decision had a rule firing or a
-        fault, or while the monitor's ``human_distance`` reading is missing or below
+        Refused, and not remembered, until the stop it would end has completed (standstill,
+        brakes engaged, power state settled: :func:`~._control.stop_incomplete`), while the last
+        cycle's decision had a rule firing or a fault, or while the monitor's ``human_distance``
+        reading is missing or below
         ``acknowledge_clear_m`` (a person inside the protective zone; the spec's near-human
         zone by default). Otherwise :meth:`Monitor.acknowledge` decides (it releases the
         manual latches whose condition has held). ISO 13849-1:2015 5.2.2 (manual reset: the
-        stop condition is kept until safe conditions for restarting exist).
+        stop condition is kept until safe conditions for restarting exist). An accepted one
+        never starts motion: the arm waits for the spec's ``restart.start`` (:meth:`start`).
         """
         d = self.last_decision
         why = ""
@@ -244,6 +278,8 @@ class GovernedArm:
             why = "rules still fire: " + ", ".join(d.violations)
         elif d.faults:
             why = f"a fault is reported: {d.faults[0]}"
+        elif (why := stop_incomplete(self.controller, self.sim) or ""):
+            pass
         elif self.acknowledge_clear_m is not None:
             v = _num(self._fed.get("human_distance", math.nan))
             if math.isnan(v):
@@ -252,12 +288,36 @@ class GovernedArm:
                 why = (f"a person is {v:.2f} m away, inside the {self.acknowledge_clear_m:g} m "
                        "protective zone")
         if why:
-            return Acknowledgement(False, (), "refused: " + why)
+            return self._audited("acknowledge", Acknowledgement(False, (), "refused: " + why))
         a = self.monitor.acknowledge() if hasattr(self.monitor, "acknowledge") else \
             Acknowledgement(False, (), "the monitor takes no acknowledgement")
         if a.released:
-            self._acked = True
+            self.awaiting_start = True
+            self._start_prev = True  # a start input already on does not count: it must rise
+        return self._audited("acknowledge", a)
+
+    def _audited(self, kind: str, a: Acknowledgement) -> Acknowledgement:
+        (self.acks if kind == "acknowledge" else self.starts).append((round(self.sim.time_s, 6), bool(a.released),
+                                                                      a.message))
+        if self.audit is not None:
+            self.audit.append(kind, t_s=round(self.sim.time_s, 6), accepted=bool(a.released), message=a.message)
         return a
+
+    def start(self) -> Acknowledgement:
+        """The separate start after an accepted acknowledgement (``restart.start: command``, or
+        the rising edge of the spec's start input): motion resumes from the next cycle.
+
+        Refused, and not remembered, when no acknowledged stop awaits a start, while the monitor
+        overrides (a rule fires, a latch holds, a fault), or while a person is inside the
+        protective zone (as for the acknowledgement).
+        """
+        why = start_refused(self.awaiting_start, self.last_decision,
+                            _num(self._fed.get("human_distance", math.nan)), self.acknowledge_clear_m)
+        if why:
+            return self._audited("start", Acknowledgement(False, (), "start refused: " + why))
+        self.awaiting_start = False
+        self._acked = True
+        return self._audited("start", Acknowledgement(True, (), "started"))
 
     def _stop2_may_hand_back(self, resp: str) -> bool:
         """A powered stop 2 (not escalated, at standstill, not the hold of a task that lost its
@@ -459,7 +519,7 @@ def _summarize(res: SimResult, arm: GovernedArm, sim: ArmSim, people: _PeopleWat
     res.wrist_turn_rad = round(sp.wrist_turn_rad, 4) if sp is not None else None
     res.object_end_z_m = {n: round(z, 4) for n, z in sim.object_z().items()}
     res.max_human_speed_ratio, res.human_overshoot_m = people.result()
-    res.acknowledgements = tuple(ack_log)
+    res.acknowledgements, res.starts = tuple(ack_log), tuple(arm.starts)
     res.max_past_limit_mrad = round(1000.0 * sim.max_past_limit_rad, 4)
     res.brake_log, res.brakes_escalated = tuple(sim.brake_log), any("refused" in w for _, w in sim.brake_log)
     res.max_travel_unpowered_rad = round(sim.max_travel_unpowered_rad, 5)
@@ -469,11 +529,16 @@ def _summarize(res: SimResult, arm: GovernedArm, sim: ArmSim, people: _PeopleWat
     res.realtime_factor = res.sim_time_s / loop_wall if loop_wall > 0 else math.inf
 
 
+def _latency(block: SimBlock) -> float:
+    """The distance sensor's latency (s) in a ``sim:`` block."""
+    return getattr(block.sensors.get("human_distance"), "latency_s", 0.0)
+
+
 def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
             p: Sequence[float] | None = None, risk: float | None = None,
             p_unsafe: float | None = None, inputs: Mapping[str, Any] | None = None,
             record_dir: str | None = None, gui: bool = False,
-            probs: Sequence[float] | None = None) -> SimResult:
+            probs: Sequence[float] | None = None, audit: Any = None) -> SimResult:
     """Run a scenario's ``sim:`` block with ``monitor`` in the loop.
 
     Args:
@@ -489,6 +554,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         record_dir: write PNG frames, ``trace.jsonl``/``trace.csv`` and ``plot.png`` there.
         gui: show the PyBullet GUI (needs a display) and run in real time.
         probs: deprecated spelling of ``p`` (still works, warns ``DeprecationWarning``).
+        audit: an ``AuditLog`` for the operator's actions and every power-off check (``GovernedArm``).
 
     Returns:
         A :class:`SimResult`.
@@ -509,7 +575,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
                           task_joint_speed_rad_s=block.task_joint_speed_rad_s,
                           stop_ramp_s=block.stop_ramp_s,
                           standstill_tolerance_rad=block.standstill_tolerance_rad,
-                          release_dwell_s=block.release_dwell_s)
+                          release_dwell_s=block.release_dwell_s, audit=audit, sensor_latency_s=_latency(block))
         if record_dir is not None:
             recorder = Recorder(record_dir, sim, spec=getattr(monitor, "spec", None), block=block,
                                 safe_tol=arm.safe_tol)
@@ -529,24 +595,24 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         sp_v0: float | None = None
         t_stop: float | None = None
         near = block.expect.near_human_m
-        acks = sorted(block.acknowledge_at_s)
+        actions = sorted([(t, "acknowledge") for t in block.acknowledge_at_s] + [(t, "start") for t in block.start_at_s])
         people = _PeopleWatch(sim)
-        ack_log: list[tuple[float, bool, str]] = []
         resp_since: float | None = None
         axis0: dict[str, float] = {}  # each person's hazard-axis angle at the first override
         for _ in range(n_cycles):
-            while acks and sim.time_s >= acks[0] - 1e-9:  # the operator's acknowledgement
-                acks.pop(0)
-                a = arm.acknowledge()
-                ack_log.append((round(sim.time_s, 6), bool(a.released), a.message))
+            while actions and sim.time_s >= actions[0][0] - 1e-9:  # the operator: acknowledge, start
+                arm.acknowledge() if actions.pop(0)[1] == "acknowledge" else arm.start()
             prev_ctrl = res.trace[-1].controller if res.trace else "task"
             rec = arm.step()
             if rec.controller != "task" and prev_ctrl == "task":
                 resp_since = rec.t_s
             elif rec.controller == "task" and prev_ctrl != "task" and resp_since is not None:
                 res.task_resumes += 1
+                res.observe_resume(arm.acks, arm.starts)
                 dur = round(rec.t_s - resp_since, 6)
                 res.min_response_s = dur if res.min_response_s is None else min(res.min_response_s, dur)
+            if res.task_resumes and rec.controller == "task":
+                res.observe_restart(rec, arm.near_human)
             people.observe()
             res.trace.append(rec)
             if recorder:
@@ -608,7 +674,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
             if gui:
                 time.sleep(max(0.0, loop0 + sim.time_s - time.perf_counter()))
         loop_wall = time.perf_counter() - loop0 - (recorder.seconds - rec_s0 if recorder else 0.0)
-        _summarize(res, arm, sim, people, first_cmd=first_cmd, max_sp=max_sp, ack_log=ack_log, fired=fired,
+        _summarize(res, arm, sim, people, first_cmd=first_cmd, max_sp=max_sp, ack_log=arm.acks, fired=fired,
                    loop_wall=loop_wall)
         if recorder:
             recorder.frame("end")
