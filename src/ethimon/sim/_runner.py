@@ -502,7 +502,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
     if hasattr(monitor, "reset"):
         monitor.reset()
     recorder = None
-    with ArmSim.from_block(block, gui=gui) as sim:
+    # nothing rendered (no recording, no GUI): the arm without its visual meshes, same physics
+    with ArmSim.from_block(block, gui=gui, visuals=gui or record_dir is not None) as sim:
         segments = plan_task(sim, block)
         arm = GovernedArm(sim, monitor, segments=segments, inputs=fixed,
                           signal_filter=_signal_filter(block),
