@@ -332,6 +332,7 @@ class _PeopleWatch:
         self.over: float | None = None
         self.moving = {n: float(np.max(hb.speeds())) for n, hb in sim.humans.items()
                        if hb.speeds().size and float(np.max(hb.speeds())) > 0}
+        self._last_walk: dict[str, int] = {}
 
     def observe(self) -> None:
         sim = self.sim
@@ -340,8 +341,9 @@ class _PeopleWatch:
             v = float(np.linalg.norm(now[n] - self.last[n])) / sim.dt
             self.ratio = max(self.ratio or 0.0, v / vmax)
             hb = sim.humans[n]
-            sp = hb.speeds()
-            k = int(np.flatnonzero(sp > 0)[-1])
+            k = self._last_walk.get(n)
+            if k is None:  # the script's last walking segment (fixed: worked out once per person)
+                k = self._last_walk[n] = int(np.flatnonzero(hb.speeds() > 0)[-1])
             u = hb.xy[k + 1] - hb.xy[k]
             u = u / float(np.linalg.norm(u))
             if sim.time_s >= hb.times[k + 1] - 1e-9:
