@@ -439,7 +439,8 @@ def check_paths(paths: Iterable[str], *, sim: bool = False, model_dir: str | Non
             :data:`ProgressCallback`).
         jobs: with ``sim``, run the ``sim:`` blocks in a pool of this many worker processes (each
             its own PyBullet); the timelines, specs and risk model stay in this process. The
-            outcomes, their order and every figure are the serial run's (``1``: serial, the default).
+            outcomes, their order and every figure are the serial run's (``1``: serial, the default;
+            a single sim row always runs in this process).
 
     Raises:
         SpecError: a path given that does not exist or is not a regular file or folder, or a folder
@@ -449,7 +450,9 @@ def check_paths(paths: Iterable[str], *, sim: bool = False, model_dir: str | Non
     session = ScenarioSession(model_dir=model_dir)
     report = CheckReport()
     t0 = time.perf_counter()
-    pool = _SimPool(jobs, model_dir) if sim and jobs > 1 else None
+    defer = sim and jobs > 1
+    pool: _SimPool | None = None   # started at the second sim row: one sim row runs here
+    pending: list[tuple[int, str, dict]] = []
     rows: list[list[CheckOutcome]] = []
     try:
         for i, (path, reason) in enumerate(files):
@@ -458,10 +461,22 @@ def check_paths(paths: Iterable[str], *, sim: bool = False, model_dir: str | Non
             if reason is not None:  # a FIFO, socket or device in a folder: never opened
                 rows.append([_skipped(path, reason)])
             else:
-                out = session.check_file(path, sim=sim, defer_sim=pool is not None)
+                out = session.check_file(path, sim=sim, defer_sim=defer)
                 if out and out[-1].status == "PENDING":
-                    pool.submit(len(rows), path, out[-1].record["sim_inputs"])
+                    pending.append((len(rows), path, out[-1].record["sim_inputs"]))
+                    if pool is None and len(pending) >= 2:
+                        pool = _SimPool(jobs, model_dir)
+                    if pool is not None:
+                        for job in pending:
+                            pool.submit(*job)
+                        pending.clear()
                 rows.append(out)
+        for i, path, inputs in pending:  # the only sim row: no worker to start
+            sim_rows = session.sim_row(path, inputs)
+            if sim_rows[0].status == "ERROR":
+                rows[i] = sim_rows
+            else:
+                rows[i][-1:] = sim_rows
         if pool is not None:
             for i, sim_rows in pool.results():
                 if sim_rows[0].status == "ERROR":  # as serially: the file's one row is the error
