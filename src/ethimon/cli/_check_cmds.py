@@ -23,6 +23,9 @@ def add_check_parser(sub) -> None:
                    "only the JSON, the table and summary go to stderr)")
     p.add_argument("--junit", metavar="FILE", help="write a JUnit XML report")
     p.add_argument("--sim", action="store_true", help="also run scenarios with a 'sim:' block in PyBullet")
+    p.add_argument("--jobs", "-j", type=int, metavar="N", default=None,
+                   help="with --sim: run the sim blocks in N worker processes (default: the CPU cores this "
+                        "process may use; 1: serial). Results and their order are the serial run's")
     p.add_argument("--model", metavar="DIR", help="risk model directory for every scenario "
                    "(default: each spec's risk.estimator.model, else the shipped model)")
     p.add_argument("--quiet", "-q", action="store_true", help="print only problems and the summary")
@@ -42,9 +45,13 @@ def cmd_check(args: argparse.Namespace) -> int:
         return err(str(exc))
     if not args.paths:
         return err("ethimon check: give at least one PATH (scenario files or folders)")
+    if args.jobs is not None and args.jobs < 1:
+        return err(f"ethimon check: --jobs must be at least 1, got {args.jobs}")
+    jobs = args.jobs if args.jobs is not None else default_jobs()
     with Progress("check", enabled=not json_to_stdout) as progress:
         if ray is None:
-            report = check_paths(args.paths, sim=args.sim, model_dir=args.model, on_file=progress)
+            report = check_paths(args.paths, sim=args.sim, model_dir=args.model, on_file=progress,
+                                 jobs=jobs)
         else:
             from ..fleet import check_paths as check_on_ray
             report = check_on_ray(args.paths, sim=args.sim, model_dir=args.model, on_file=progress,
@@ -62,6 +69,15 @@ def cmd_check(args: argparse.Namespace) -> int:
     if args.junit and not emit_report(args.junit, report.junit_xml(), "JUnit report", dash_is_stdout=False):
         rc = 2
     return rc
+
+
+def default_jobs() -> int:
+    """The CPU cores this process may use: the default ``--jobs`` of ``check --sim``."""
+    import os
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
 
 
 def print_table(rows, out=None) -> None:

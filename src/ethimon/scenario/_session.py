@@ -271,8 +271,12 @@ class ScenarioSession:
         """:func:`sim_risk_inputs` with this session's estimator of ``spec``."""
         return sim_risk_inputs(sc, self.estimator_for(spec))
 
-    def run_sim(self, sc: Scenario, spec: Any, *, record_dir: str | None = None, gui: bool = False):
+    def run_sim(self, sc: Scenario, spec: Any, *, record_dir: str | None = None, gui: bool = False,
+                inputs: dict[str, Any] | None = None):
         """Run the scenario's ``sim:`` block; returns ``(block, SimResult, sim problems)``.
+
+        ``inputs``: the constant risk input, already worked out (:meth:`sim_inputs`; a pool worker
+        is given the parent's, so that the risk model is loaded once, in the parent).
 
         Raises:
             DependencyNotInstalled: the simulator cannot be loaded.
@@ -284,7 +288,8 @@ class ScenarioSession:
         from ..runtime import Monitor
         block = sc.sim if isinstance(sc.sim, SimBlock) else SimBlock.model_validate(sc.sim)
         try:
-            res = run_sim(block, Monitor(spec), record_dir=record_dir, gui=gui, **self.sim_inputs(sc, spec))
+            fixed = self.sim_inputs(sc, spec) if inputs is None else inputs
+            res = run_sim(block, Monitor(spec), record_dir=record_dir, gui=gui, **fixed)
         except SimError as exc:  # a sim: block that cannot be simulated, located where it says
             loc = getattr(exc, "loc", None)
             if loc is None or sc._source is None:
@@ -294,10 +299,12 @@ class ScenarioSession:
 
     # -- one file ------------------------------------------------------------------------------------
 
-    def check_file(self, path: str, *, sim: bool = False) -> list[CheckOutcome]:
+    def check_file(self, path: str, *, sim: bool = False, defer_sim: bool = False) -> list[CheckOutcome]:
         """``ethimon check`` of one scenario file: its timeline row, and its sim row with ``sim``.
 
         Never raises for a bad file: the problem is one ERROR outcome (its message names the file).
+        ``defer_sim``: the sim row is not run here but returned as a ``"PENDING"`` outcome whose
+        ``record["sim_inputs"]`` holds its risk input (:func:`check_paths` runs it in a worker).
         """
         from . import _run, load_scenario  # the package's name, looked up per call
         sc = None
@@ -320,7 +327,11 @@ class ScenarioSession:
             if not sim_only:
                 out.append(self._timeline_outcome(sc, spec, path))
             if sim and sc.sim is not None:
-                out.append(self._sim_outcome(sc, spec, path))
+                if defer_sim:
+                    out.append(CheckOutcome(f"{sc.name} [sim]", path, "PENDING",
+                                            record={"sim_inputs": self.sim_inputs(sc, spec)}))
+                else:
+                    out.append(self._sim_outcome(sc, spec, path))
             return out
         except Exception as exc:  # noqa: BLE001 - one unusable file is one ERROR row; the others still run
             msg = error_line(path, exc, where=where)
@@ -340,8 +351,28 @@ class ScenarioSession:
         return CheckOutcome(res.name, path, "PASS" if res.passed else "FAIL", res.expected, res.got,
                             res.first_override_cycle, msgs, {**res.as_dict(), "path": path}, res)
 
-    def _sim_outcome(self, sc: Scenario, spec: Any, path: str) -> CheckOutcome:
-        block, res, problems = self.run_sim(sc, spec)
+    def sim_row(self, path: str, inputs: dict[str, Any]) -> list[CheckOutcome]:
+        """The sim row of ``check`` for one file whose timeline row has already been made (a pool
+        worker's job): ``[sim outcome]``, or ``[ERROR outcome]`` that replaces the file's rows, as
+        the serial :meth:`check_file` would have."""
+        from . import load_scenario
+        sc = None
+        try:
+            sc = load_scenario(path)
+            try:
+                spec = self.spec_for(sc)
+            except _SpecLoadError as exc:
+                raise exc.exc from None
+            return [self._sim_outcome(sc, spec, path, inputs=inputs)]
+        except Exception as exc:  # noqa: BLE001 - as check_file: one unusable file is one ERROR row
+            msg = error_line(path, exc)
+            name = sc.name if sc is not None else path
+            return [CheckOutcome(name, path, "ERROR", "-", "bad input", messages=[msg],
+                                 record={"name": name, "path": path, "passed": False, "error": msg})]
+
+    def _sim_outcome(self, sc: Scenario, spec: Any, path: str, *,
+                     inputs: dict[str, Any] | None = None) -> CheckOutcome:
+        block, res, problems = self.run_sim(sc, spec, inputs=inputs)
         problems = problems + override_expectations(sc.expect, res.first_override_cycle)
         name = f"{sc.name} [sim]"
         record = {"name": name, "path": path, "passed": not problems, "failures": problems,
@@ -395,7 +426,7 @@ def _skipped(path: str, reason: str) -> CheckOutcome:
 
 
 def check_paths(paths: Iterable[str], *, sim: bool = False, model_dir: str | None = None,
-                on_file: ProgressCallback | None = None) -> CheckReport:
+                on_file: ProgressCallback | None = None, jobs: int = 1) -> CheckReport:
     """Run every scenario file under ``paths`` (files and folders): what ``ethimon check`` reports.
 
     Args:
@@ -406,6 +437,10 @@ def check_paths(paths: Iterable[str], *, sim: bool = False, model_dir: str | Non
         model_dir: the risk model of every scenario (default: each spec's).
         on_file: ``on_file(done, total, path)`` before each file and once at the end (see
             :data:`ProgressCallback`).
+        jobs: with ``sim``, run the ``sim:`` blocks in a pool of this many worker processes (each
+            its own PyBullet); the timelines, specs and risk model stay in this process. The
+            outcomes, their order and every figure are the serial run's (``1``: serial, the default;
+            a single sim row always runs in this process).
 
     Raises:
         SpecError: a path given that does not exist or is not a regular file or folder, or a folder
@@ -415,17 +450,90 @@ def check_paths(paths: Iterable[str], *, sim: bool = False, model_dir: str | Non
     session = ScenarioSession(model_dir=model_dir)
     report = CheckReport()
     t0 = time.perf_counter()
-    for i, (path, reason) in enumerate(files):
-        if on_file is not None:
-            on_file(i, len(files), path)
-        if reason is not None:  # a FIFO, socket or device in a folder: never opened
-            report.outcomes.append(_skipped(path, reason))
-        else:
-            report.outcomes.extend(session.check_file(path, sim=sim))
+    defer = sim and jobs > 1
+    pool: _SimPool | None = None   # started at the second sim row: one sim row runs here
+    pending: list[tuple[int, str, dict]] = []
+    rows: list[list[CheckOutcome]] = []
+    try:
+        for i, (path, reason) in enumerate(files):
+            if on_file is not None:
+                on_file(i, len(files), path)
+            if reason is not None:  # a FIFO, socket or device in a folder: never opened
+                rows.append([_skipped(path, reason)])
+            else:
+                out = session.check_file(path, sim=sim, defer_sim=defer)
+                if out and out[-1].status == "PENDING":
+                    pending.append((len(rows), path, out[-1].record["sim_inputs"]))
+                    if pool is None and len(pending) >= 2:
+                        pool = _SimPool(jobs, model_dir)
+                    if pool is not None:
+                        for job in pending:
+                            pool.submit(*job)
+                        pending.clear()
+                rows.append(out)
+        for i, path, inputs in pending:  # the only sim row: no worker to start
+            sim_rows = session.sim_row(path, inputs)
+            if sim_rows[0].status == "ERROR":
+                rows[i] = sim_rows
+            else:
+                rows[i][-1:] = sim_rows
+        if pool is not None:
+            for i, sim_rows in pool.results():
+                if sim_rows[0].status == "ERROR":  # as serially: the file's one row is the error
+                    rows[i] = sim_rows
+                else:
+                    rows[i][-1:] = sim_rows
+    finally:
+        if pool is not None:
+            pool.close()
+    for out in rows:
+        report.outcomes.extend(out)
     if on_file is not None:
         on_file(len(files), len(files), "")
     report.seconds = time.perf_counter() - t0
     return report
+
+
+_WORKER_SESSION: ScenarioSession | None = None
+
+
+def _worker_sim_row(path: str, inputs: dict[str, Any], model_dir: str | None) -> list[dict[str, Any]]:
+    """A pool worker's job: the sim row of one file, as plain data (no result object, no trace)."""
+    global _WORKER_SESSION
+    if _WORKER_SESSION is None or _WORKER_SESSION.model_dir != model_dir:
+        _WORKER_SESSION = ScenarioSession(model_dir=model_dir)  # specs read once per worker
+    return [{"name": o.name, "path": o.path, "status": o.status, "expected": o.expected, "got": o.got,
+             "first_override_cycle": o.first_override_cycle, "messages": list(o.messages),
+             "record": dict(o.record)} for o in _WORKER_SESSION.sim_row(path, inputs)]
+
+
+class _SimPool:
+    """``check --sim -j N``: the sim rows in ``N`` spawned worker processes, collected in file order."""
+
+    def __init__(self, jobs: int, model_dir: str | None) -> None:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+        # spawn: a fresh interpreter per worker (no forked PyBullet, ONNX or torch state)
+        self._ex = ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("spawn"))
+        self._model_dir = model_dir
+        self._futures: list[tuple[int, str, Any]] = []
+
+    def submit(self, index: int, path: str, inputs: dict[str, Any]) -> None:
+        self._futures.append((index, path, self._ex.submit(_worker_sim_row, path, inputs, self._model_dir)))
+
+    def results(self):
+        """``(row index, [CheckOutcome])`` in submission order; a worker that died is an ERROR row."""
+        for index, path, fut in self._futures:
+            try:
+                rows = [CheckOutcome(**d) for d in fut.result()]
+            except Exception as exc:  # noqa: BLE001 - a crashed worker fails its file, not the run
+                msg = internal_error(path, exc)
+                rows = [CheckOutcome(path, path, "ERROR", "-", "bad input", messages=[msg],
+                                     record={"name": path, "path": path, "passed": False, "error": msg})]
+            yield index, rows
+
+    def close(self) -> None:
+        self._ex.shutdown(wait=True, cancel_futures=True)
 
 
 def simulate_paths(paths: Iterable[str], *, model_dir: str | None = None, record_dir: str | None = None,

@@ -20,7 +20,8 @@ import numpy as np
 from ._limits import BRAKE_TORQUE_N_M
 from ._model import PHYSICS_HZ, Gripper, Human, SimBlock, SimObject
 from ._cell import (ARM_JOINTS, EE_LINK, FINGER_JOINTS, HAND_LINK, HOME_JOINTS_RAD, Segment, _HumanBody, _Q_MAX,
-                    _Q_MIN, _RATED_DDQ, _SLIP_M, _half_height, _half_width, import_pybullet)
+                    _Q_MIN, _RATED_DDQ, _SLIP_M, _half_height, _half_width, import_pybullet,
+                    physics_only_urdf)
 from ._actuation import _Actuation
 from ._kinematics import _Kinematics
 from ._render import _Rendering
@@ -43,6 +44,8 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
         gui: open the PyBullet GUI instead of DIRECT (needs a display).
         start_joints_rad: initial arm pose (default :data:`HOME_JOINTS_RAD`).
         humans, objects: :class:`~ethimon.sim.Human` / :class:`~ethimon.sim.SimObject`.
+        visuals: load the arm's visual meshes (frames, GUI); ``False`` loads the same physics
+            without them, about 5x faster (``run_sim`` does so when it records nothing).
 
     Example:
         >>> sim = ArmSim(control_hz=60)              # doctest: +SKIP
@@ -55,7 +58,7 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
                  start_joints_rad: Sequence[float] | None = None,
                  humans: Sequence[Human] = (), objects: Sequence[SimObject] = (),
                  brakes: bool = True, gripper: Gripper | None = None,
-                 brake_torque_n_m: Sequence[float] | None = None) -> None:
+                 brake_torque_n_m: Sequence[float] | None = None, visuals: bool = True) -> None:
         if control_hz <= 0 or PHYSICS_HZ % control_hz:
             raise ValueError(f"control_hz={control_hz} must divide {PHYSICS_HZ}")
         p, pd = import_pybullet()
@@ -75,7 +78,9 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
         if gui:
             p.configureDebugVisualizer(p.COV_ENABLE_GUI, 0, physicsClientId=cid)
         self.plane = p.loadURDF("plane.urdf", physicsClientId=cid)
-        self.robot = p.loadURDF("franka_panda/panda.urdf", useFixedBase=True,
+        # visuals=False: the same arm without its visual meshes (nothing is rendered), 5x faster to load
+        urdf = "franka_panda/panda.urdf" if visuals or gui else physics_only_urdf(pd.getDataPath())
+        self.robot = p.loadURDF(urdf, useFixedBase=True,
                                 flags=p.URDF_USE_SELF_COLLISION_EXCLUDE_PARENT,
                                 physicsClientId=cid)
         info = [p.getJointInfo(self.robot, j, physicsClientId=cid) for j in ARM_JOINTS]
@@ -136,11 +141,11 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
     # ------------------------------------------------------------ construction
 
     @classmethod
-    def from_block(cls, block: SimBlock, *, gui: bool = False) -> ArmSim:
-        """Build the cell a scenario's ``sim:`` block describes."""
+    def from_block(cls, block: SimBlock, *, gui: bool = False, visuals: bool = True) -> ArmSim:
+        """Build the cell a scenario's ``sim:`` block describes (``visuals``: see :class:`ArmSim`)."""
         sim = cls(control_hz=block.control_hz, gui=gui, start_joints_rad=block.start_joints_rad,
                   humans=block.humans, objects=block.objects, brakes=block.brakes,
-                  gripper=block.gripper, brake_torque_n_m=block.brake_torque_n_m)
+                  gripper=block.gripper, brake_torque_n_m=block.brake_torque_n_m, visuals=visuals)
         if block.start_xyz_m is not None:
             q = sim.solve_ik(block.start_xyz_m, seed=HOME_JOINTS_RAD)
             sim.reset_joints(q)
@@ -349,16 +354,15 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
                 self._apply_unpowered()
                 self._off_substeps += 1
             p.stepSimulation(physicsClientId=cid)
-            _, qd = self.joint_state()
+            qm, qd = self.joint_state()  # one read per physics step (ndarray.max: no wrapper cost)
             acc = np.abs(qd - qd_prev) / h
             qd_prev = qd
-            qm, _ = self.joint_state()
-            past = max(float(np.max(qm - _Q_MAX)), float(np.max(_Q_MIN - qm)))
+            past = max(float((qm - _Q_MAX).max()), float((_Q_MIN - qm).max()))
             if past > self.max_past_limit_rad:
                 self.max_past_limit_rad = past
-            peak = max(peak, float(np.max(np.abs(qd))))
-            peak_a = max(peak_a, float(np.max(acc)))
-            ratio_a = max(ratio_a, float(np.max(acc / _RATED_DDQ)))
+            peak = max(peak, float(np.abs(qd).max()))
+            peak_a = max(peak_a, float(acc.max()))
+            ratio_a = max(ratio_a, float((acc / _RATED_DDQ).max()))
         if not self.powered:  # a later re-power starts from the measured state
             self._q_sub, self._qd_sub = self.joint_state()
             self._track_unpowered()

@@ -5,7 +5,7 @@ the run's :class:`SimResult`, and :func:`check_sim_expectations` against the blo
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from typing import Any
 
 from ._model import SimBlock
@@ -216,7 +216,9 @@ class SimResult:
 
     def summary(self) -> dict[str, Any]:
         """The scalar results as a JSON-ready dict (no trace)."""
-        d = {k: v for k, v in asdict(self).items() if k not in ("trace",)}
+        # asdict of a copy without the trace: asdict deep-copies every field, and the trace's
+        # thousands of records were most of the time a summary took
+        d = {k: v for k, v in asdict(replace(self, trace=[])).items() if k not in ("trace",)}
         d["override"] = self.override
         d["fired"] = list(self.fired)
         if d["min_separation_m"] == math.inf:

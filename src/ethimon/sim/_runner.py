@@ -392,6 +392,7 @@ class _PeopleWatch:
         self.over: float | None = None
         self.moving = {n: float(np.max(hb.speeds())) for n, hb in sim.humans.items()
                        if hb.speeds().size and float(np.max(hb.speeds())) > 0}
+        self._last_walk: dict[str, int] = {}
 
     def observe(self) -> None:
         sim = self.sim
@@ -400,8 +401,9 @@ class _PeopleWatch:
             v = float(np.linalg.norm(now[n] - self.last[n])) / sim.dt
             self.ratio = max(self.ratio or 0.0, v / vmax)
             hb = sim.humans[n]
-            sp = hb.speeds()
-            k = int(np.flatnonzero(sp > 0)[-1])
+            k = self._last_walk.get(n)
+            if k is None:  # the script's last walking segment (fixed: worked out once per person)
+                k = self._last_walk[n] = int(np.flatnonzero(hb.speeds() > 0)[-1])
             u = hb.xy[k + 1] - hb.xy[k]
             u = u / float(np.linalg.norm(u))
             if sim.time_s >= hb.times[k + 1] - 1e-9:
@@ -568,7 +570,8 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
     if hasattr(monitor, "reset"):
         monitor.reset()
     recorder = None
-    with ArmSim.from_block(block, gui=gui) as sim:
+    # nothing rendered (no recording, no GUI): the arm without its visual meshes, same physics
+    with ArmSim.from_block(block, gui=gui, visuals=gui or record_dir is not None) as sim:
         segments = plan_task(sim, block)
         arm = GovernedArm(sim, monitor, segments=segments, inputs=fixed,
                           signal_filter=_signal_filter(block),

@@ -314,6 +314,10 @@ class SafePoseController:
                     k, top = i, a
             if k >= 0 and top >= now[0] + 5.0 and (best is None or top > best[1]):
                 best = (poses[k], float(top))
+        if best is None or best[1] <= 90.0:  # still in someone's half-space: tilt the wrist too
+            tilt = self._tilt_away(sim, q_start if best is None else best[0], q_start, need_h, need_z, floor)
+            if tilt is not None:
+                best = tilt
         if best is None:
             return None
         pts = sim.probe(self._samples([q_start, best[0]]))
@@ -324,6 +328,40 @@ class SafePoseController:
         if self.near_human is not None:
             moves = self._capped(sim, [q_start, best[0]], 0.8 * self.near_human[1])
         return best[0], best[1], moves
+
+    def _tilt_away(self, sim: ArmSim, q_from: np.ndarray, q_start: np.ndarray, need_h: float,
+                   need_z: float, floor: dict[str, float]):
+        """Joint 7 alone leaves the held hazard's axis within 90 deg of someone (its range ends):
+        the elbow and the wrist moved too (joint 4 by up to 0.6 rad, 5 by up to 1.5, 6 by up to
+        1.2, every 0.3 rad), the pose that points it furthest from everyone, beyond 90 deg, on a
+        straight joint-space line from ``q_start`` that never turns it more than the slack toward
+        anyone, keeps the clearances and never comes nearer anyone than the arm is now (issue 32:
+        the showcase ended 75.6 deg from the child; now 137.6). ``(pose, angle)`` or ``None``."""
+        poses = []
+        for d4 in np.arange(-0.6, 0.61, 0.3):
+            for d5 in np.arange(-1.5, 1.51, 0.3):
+                for d6 in np.arange(-1.2, 1.21, 0.3):
+                    q = q_from.copy()
+                    q[3] += d4
+                    q[4] += d5
+                    q[5] += d6
+                    if np.all(q >= _Q_MIN + 0.02) and np.all(q <= _Q_MAX - 0.02):
+                        poses.append(q)
+        per = sim.hazard_axis_angles_deg(poses) or []
+        h_now = sim.probe([q_start])[0]["human"]
+        for k in np.argsort(-np.asarray(per), kind="stable")[:40]:  # the 40 best-pointed, best first
+            if per[k] <= 90.0:
+                break
+            samples = self._samples([q_start, poses[k]])
+            angles = sim.hazard_axis_angles_deg(samples, each=True)
+            if any(a[n] < f - 1e-6 for a in angles for n, f in floor.items()):
+                continue
+            pts = sim.probe(samples)
+            if (min(p["obstacle"] for p in pts) < 0.02 or min(p["human"] for p in pts) < max(need_h, h_now - 1e-3)
+                    or min(p["hazard"] for p in pts) < need_z - 1e-3):
+                continue
+            return poses[k], float(per[k])
+        return None
 
     def _best_route(self, sim: ArmSim, q_start: np.ndarray, need_h: float, need_z: float):
         """The fastest candidate route to ``q_safe`` that keeps the clearances and the hazard
