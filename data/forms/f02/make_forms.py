@@ -101,7 +101,8 @@ def code_expr(s):
     s = re.sub(r"\"([^\"]*)\"|'([^']*)'", lambda m: (m.group(1) if m.group(1) is not None else m.group(2)).replace("_", " "), s)
     s = re.sub(r",\s*(\w+)\s*=\s*", lambda m: kwarg(m.group(1)), s)
     s = re.sub(r"\(\s*(\w+)\s*=\s*", lambda m: kwarg(m.group(1)), s)
-    s = re.sub(r"(\w)\.(\w)", r"\1 \2", s)
+    s = re.sub(r"([A-Za-z_\)\]])\.([A-Za-z_])", r"\1 \2", s)   # obj.method -> words; decimals (7.5) kept
+    s = re.sub(r"\)\s*\.(\w)", r") \1", s)
     s = s.replace("(", " ").replace(")", " ").replace("[", " ").replace("]", " ").replace("{", " ").replace("}", " ")
     s = s.replace("_", " ")
     s = re.sub(r"\s+,", ",", s)
@@ -210,8 +211,10 @@ def parse(r):
     if not steps:
         return None
     m = SPEAKER_RE.match(steps[0])
+    if m and not (len(m.group(1).split()) <= 3 and all(w[0].isupper() for w in m.group(1).split())):
+        m = None
     if m and m.group(1).split()[0] not in ("Note", "Goal", "Action", "Then", "Plan", "Step", "Warning", "Mode", "Debug", "Task", "Rule", "Reminder"):
-        speaker, steps[0] = m.group(1).strip(), m.group(2).strip()
+        speaker = m.group(1).strip()   # kept in the text; only the chat form moves it into the turn label
     steps = [s for s in steps if s]
     ctx = [c for c in ctx if c]
     # leftover machine syntax (inline JSON, API calls) belongs to other writers' forms: skip the row
@@ -357,6 +360,11 @@ def r_chat(p, rng, row):
     if p.get("speaker"):
         user = p["speaker"]
     ul, rl = rng.choice(CHAT_LABELS)
+    if p.get("speaker"):
+        ul = "{user}"
+        st0 = p["steps"][0]
+        if st0.startswith(p["speaker"] + ":"):
+            p = dict(p, steps=[st0[len(p["speaker"]) + 1:].strip()] + p["steps"][1:])
     ul, rl = ul.format(user=user, robot=robot), rl.format(user=user, robot=robot)
     sep = rng.choice([": ", ": ", " - ", ": "])
     turns = []
@@ -391,7 +399,7 @@ def r_chat(p, rng, row):
         elif fam == 2:
             turns = [(ul, " ".join(end_punct(c) for c in ctx) or rng.choice(OPEN_USER).format(robot=robot)),
                      (rl, rng.choice(ACK_CTX)), (ul, utter(dict(ctx=[], steps=steps), rng=rng))]
-        elif fam == 3 and len(steps) >= 2 and len(steps) <= 5:
+        elif fam == 3 and len(steps) >= 2 and len(steps) <= 3:
             first = (" ".join(end_punct(c) for c in ctx) + " " if ctx else "") + "First, " + lc_first(end_punct(steps[0]))
             turns = [(ul, first)]
             for s in steps[1:]:
@@ -412,11 +420,16 @@ def r_chat(p, rng, row):
             sep = rng.choice([": ", ": ", " > "])
         elif fam == 5 and ctx:
             turns = [(ul, rng.choice(OPEN_USER).format(robot=robot)), (rl, rng.choice(OPEN_ROBOT))]
-            for c in ctx:
-                turns.append((ul, end_punct(c)))
+            groups = [ctx] if len(ctx) == 1 else [ctx[:len(ctx) // 2], ctx[len(ctx) // 2:]]
+            for grp in groups[:1]:
+                turns.append((ul, " ".join(end_punct(c) for c in grp)))
                 turns.append((rl, rng.choice(ACK_CTX)))
-            turns = turns[:4] + turns[-2:] if len(turns) > 6 else turns
-            turns.append((ul, utter(dict(ctx=[], steps=steps), rng=rng)))
+            if len(groups) > 1:  # second half of the context goes with the request (never dropped)
+                turns.append((ul, " ".join(end_punct(c) for c in groups[1]) + " " + utter(dict(ctx=[], steps=steps), rng=rng)))
+                turns[-1] = (ul, turns[-1][1].strip())
+                groups = None
+            if groups is not None:
+                turns.append((ul, utter(dict(ctx=[], steps=steps), rng=rng)))
         elif fam == 6:
             turns = [(rl, rng.choice(["Task complete. Anything else?", "I've finished the previous job.", "Idle. Awaiting instructions.",
                                       "Good %s. What can I do?" % rng.choice(["morning", "afternoon", "evening"])])),
@@ -426,8 +439,7 @@ def r_chat(p, rng, row):
                                                                "Before I start: is that the full instruction?", "Shall I start now?",
                                                                "Do you want me to do exactly that?"])),
                      (ul, rng.choice(["yes, now please", "Yes. Exactly that.", "yep", "Confirmed.", "yes go", "Yes, thanks.", "correct"]))]
-    if len(turns) > 6:
-        turns = turns[:5] + [turns[-1]]
+    assert len(turns) <= 6, turns
     layout = rng.randint(0, 3)
     if layout == 0:
         return "\n".join(a + sep + b for a, b in turns)
@@ -548,7 +560,7 @@ def asrify(t, rng, punct=False):
     t = re.sub(r"\bml\b", "mils" if rng.random() < 0.5 else "ml", t)
     t = re.sub(r"(\d)\s*mg\b", r"\1 milligrams", t)
     if rng.random() < 0.5:
-        t = re.sub(r"(?<![\d.])\b(\d{1,3})\b(?![\d.:/])", lambda m: NUMW.get(m.group(1), m.group(1)), t)
+        t = re.sub(r"(?<![\d.,:])\b(\d{1,3})\b(?![\d.:/]|,\d)", lambda m: NUMW.get(m.group(1), m.group(1)), t)
     for pat, rep in HOMO:
         if rng.random() < 0.5:
             t = re.sub(pat, rep, t)
@@ -560,7 +572,7 @@ def asrify(t, rng, punct=False):
         if not c:
             continue
         if not punct:
-            c = re.sub(r"[,.;:!?\"()\[\]]", "", c)
+            c = re.sub(r"(?<!\d)[,.:](?!\d)|[,.:](?=\s|$)|[;!?\"()\[\]]", "", c)   # keeps 7.5, 14:00, 1,500
             c = c.replace(" - ", " ").replace("/", " ")
             c = c.lower()
         if rng.random() < 0.3:
@@ -829,16 +841,17 @@ def r_alarm(p, rng, row):
     # wrapper tone is independent of the label (mild and harsh wrappers on both labels): no label cue
     wrap = rng.choice(MILD) if rng.random() < 0.5 else rng.choice(HARSH)
     E = uc_first(extra)
+    lb = (lambda x: x) if pre else lc_first
     if fam == 0:
         t = pre + body + " Then " + extra + "."
     elif fam == 1:
         t = pre + E + " first, then " + lc_first(body)
     elif fam == 2:
-        t = wrap + " " + pre + lc_first(body) + " After that, " + extra + "."
+        t = wrap + " " + pre + lb(body) + " After that, " + extra + "."
     elif fam == 3:
-        t = wrap + " " + pre + lc_first(body)
+        t = wrap + " " + pre + lb(body)
     elif fam == 4:
-        t = pre + lc_first(body).rstrip(".") + ", and " + extra + rng.choice([".", " while you're at it.", " too."])
+        t = pre + lb(body).rstrip(".") + ", and " + extra + rng.choice([".", " while you're at it.", " too."])
     elif fam == 5:
         t = pre + "Two things. One: " + extra + ". Two: " + lc_first(body)
     elif fam == 6:
