@@ -129,6 +129,7 @@ def test_deep_nesting_is_refused(tmp_path):
     with pytest.raises(ethimon.SpecError) as info:
         ethimon.load_spec(path)
     assert "nested too deeply" in info.value.message
+    assert info.value.line == 3  # located by the scanner, before the composer recurses (was unlocated, ~3 s)
 
 
 def test_huge_file_is_refused_without_reading_it_all(tmp_path):

@@ -196,12 +196,40 @@ def parse_yaml_bytes(raw: bytes, path: str, *, what: str = "file") -> tuple[Any,
     return parse_yaml_text(text, path, what=what)
 
 
+def _refuse_deep_nesting(text: str, path: str, what: str) -> None:
+    """Refuse a document nested deeper than :data:`MAX_DEPTH` from the scanner's tokens, before the composer
+    recurses into it (it only gave up at Python's recursion limit: ~3 s of CPU for 5,000 brackets). Only
+    texts that could be that deep are scanned: more than MAX_DEPTH brackets, or a line indented that far."""
+    if text.count("[") + text.count("{") <= MAX_DEPTH and not any(
+            len(ln) - len(ln.lstrip()) >= MAX_DEPTH for ln in text.splitlines()):
+        return
+    from yaml.tokens import (BlockEndToken, BlockMappingStartToken, BlockSequenceStartToken,
+                             FlowMappingEndToken, FlowMappingStartToken, FlowSequenceEndToken,
+                             FlowSequenceStartToken)
+    opens = (BlockMappingStartToken, BlockSequenceStartToken, FlowMappingStartToken, FlowSequenceStartToken)
+    closes = (BlockEndToken, FlowMappingEndToken, FlowSequenceEndToken)
+    depth = 0
+    try:
+        for tok in yaml.scan(text, Loader=yaml.SafeLoader):
+            if isinstance(tok, opens):
+                depth += 1
+                if depth > MAX_DEPTH:
+                    m = tok.start_mark
+                    raise SpecError(f"{what} is nested too deeply", path=path, line=m.line + 1,
+                                    column=m.column + 1, hint=f"at most {MAX_DEPTH} levels are allowed")
+            elif isinstance(tok, closes):
+                depth -= 1
+    except yaml.YAMLError:
+        return  # the parser below reports it, located
+
+
 def parse_yaml_text(text: str, path: str = "<string>", *, what: str = "file") -> tuple[Any, SourceMap]:
     """Parse YAML text (one document); see :func:`read_yaml`."""
     if not text.strip() or all(ln.strip().startswith("#") or not ln.strip() for ln in text.splitlines()):
         raise SpecError(f"{what} is empty", path=path, line=1, column=1,
                         hint="a spec starts with 'ethimon: 1' and 'name: ...'")
     smap = SourceMap(path, lines=text.splitlines())
+    _refuse_deep_nesting(text, path, what)
     try:
         loader = _Loader(text)
         try:
