@@ -381,7 +381,7 @@ class SafePose(BaseModel):
 
     model_config = _CFG
     joints_rad: tuple[FiniteFloat, ...] = Field(
-        PANDA_HOME_JOINTS_RAD, description="joint configuration (rad); default: the Panda's ready pose", **_SEQ)
+        PANDA_HOME_JOINTS_RAD, description="joint configuration (rad), one per joint of the spec's robot; default: the robot's home pose (the Panda's ready pose)", **_SEQ)
     max_joint_speed_rad_s: FiniteFloat = Field(1.0, gt=0.0, le=10.0,
                                                description="joint-speed limit on the way (rad/s)")
     tolerance_rad: FiniteFloat = Field(0.02, gt=0.0, le=1.0, description="reached when every joint is this close")
@@ -439,8 +439,13 @@ class Spec(BaseModel):
         description="response to missing/NaN/out-of-range/stale input: safe_pose | stop_2 | stop_1 | stop_0, "
         "or {response: ..., release: auto | manual | {mode, hold_cycles}}")
     safe_pose: SafePose = Field(default_factory=SafePose)
+    robot: str = Field("panda", min_length=1, description="the arm: a shipped robot description (panda, ur5e) "
+                       "or the path of a robot YAML file (data, never code), relative to the spec; its joint "
+                       "count and rated limits are what lint and verify check the safe pose against")
 
     _source: SourceMap | None = PrivateAttr(default=None)
+    #: the robot description (``language._robots``), attached when the spec is read
+    _robot: Any = PrivateAttr(default=None)
     #: the compiled plan, set by the compiler (see :class:`_Carried`); not part of the spec's value
     _compiled: _Carried = PrivateAttr(default_factory=_Carried)
 
