@@ -47,6 +47,7 @@ def test_shipped_descriptions_cite_every_number_and_the_panda_names_come_from_pa
     assert ur5e.dq_max == (3.1416,) * 6 and "ESTIMATE" in ur5e.source("acceleration_rad_s2")
 
 
+@pytest.mark.slow
 def test_ur5e_spec_loads_with_its_robot_and_lints_clean() -> None:
     spec = ethimon.load_spec(UR5E_SPEC)
     assert spec.robot == "ur5e" and len(spec.safe_pose.joints_rad) == 6
@@ -101,6 +102,7 @@ def test_lint_checks_the_safe_pose_against_the_named_robots_range(tmp_path: Path
     assert math.isclose(_robot.shipped_robot("ur5e").q_max[2], 3.1416)
 
 
+@pytest.mark.slow
 def test_sim_refuses_another_robot_with_a_located_error() -> None:
     pytest.importorskip("pybullet")
     from ethimon.sim._runner import GovernedArm
