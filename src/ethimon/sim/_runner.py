@@ -95,7 +95,7 @@ class GovernedArm:
             from ..errors import SpecError
             src = getattr(getattr(monitor, "spec", None), "source", None)
             msg = (f"the simulation is Franka Panda only; this spec's robot is {robot!r}")
-            hint = "check it without --sim (lint, verify, check, replay and ros2 read its robot), or simulate a Panda spec"
+            hint = "check it without --sim (lint and verify read its robot), or simulate a Panda spec"
             raise src.error(msg, ("robot",), hint=hint) if src is not None else SpecError(msg, hint=hint)
         if self.safe_joints.shape != (7,):
             from ..errors import SpecError
