@@ -9,7 +9,6 @@ from dataclasses import dataclass, field
 
 from . import _api
 from ._files import scan_yaml_files
-from ._robot import out_of_range, safe_pose_problem
 from .scenario import error_line
 from .language import Spec
 from .verify._policy import release_policy_warnings  # no z3
@@ -51,14 +50,16 @@ class LintReport:
 
 
 def lint_safe_pose(spec: Spec) -> None:
-    """A 7-joint safe pose outside the Franka Panda's rated range (the simulated arm) is a
-    lint error naming each joint, as it is a SpecError for ``check --sim``."""
+    """A safe pose outside the rated range of the spec's robot (``robot:``, the Franka Panda by
+    default) is a lint error naming each joint, as it is a SpecError for ``check --sim``."""
+    from .language._robots import robot_of
+    robot = robot_of(spec)
     joints = tuple(spec.safe_pose.joints_rad)
-    problem = safe_pose_problem(joints)
+    problem = robot.safe_pose_problem(joints)
     if problem is not None:
-        raise spec.source.error(problem, ("safe_pose", "joints_rad", out_of_range(joints)[0][0] - 1),
-                                hint="keep every joint inside the Panda's rated range "
-                                     "(FCI 'Limits for Panda', see src/ethimon/sim/README.md)")
+        raise spec.source.error(problem, ("safe_pose", "joints_rad", robot.out_of_range(joints)[0][0] - 1),
+                                hint=f"keep every joint inside the {robot.title}'s rated range "
+                                     f"({robot.source('position_min_rad')}; robot: {spec.robot}, docs/robots.md)")
 
 
 def iter_lint(paths: Iterable[str | os.PathLike], *, mapping: str | None = None) -> Iterator[LintLine]:

@@ -14,7 +14,7 @@ SRC = Path(__file__).resolve().parents[2] / "src" / "ethimon"
 
 #: private exception classes that never leave their module (each raised and caught inside it)
 PRIVATE_INTERNAL = {
-    ("language/_model.py", "_LocError"),        # a pydantic validator's ValueError, turned into a SpecError by the loader
+    ("language/_errors.py", "_LocError"),        # a pydantic validator's ValueError, turned into a SpecError by the loader
     ("scenario/_session.py", "_SpecLoadError"),  # wraps a spec's error so the row names the spec; unwrapped there
     ("risk/_onnx_build.py", "_NoGraph"),    # "no ONNX form here": load_estimator falls back to torch or raises ModelError
 }

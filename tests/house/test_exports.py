@@ -123,6 +123,8 @@ INTERNAL_REACHES: dict[str, tuple[set[str], str]] = {
                     "ExprVisitor, the interpreter protocol the four back-ends implement"),
     "language._load": ({"io", "replay", "scenario"}, "the located YAML validation, for their own file formats"),
     "language._yaml": ({"io", "replay", "scenario"}, "the located YAML reader, for their own file formats"),
+    "language._robots": ({"_lint", "verify"}, "robot_of: the spec's robot description, that lint and verify check "
+                                             "the safe pose against (issue 34)"),
     "language._model": ({"io", "replay", "scenario", "verify"}, "field types and defaults (FiniteFloat, ACTIVE_RESPONSES, "
                                                       "MANUAL_BY_DEFAULT, the located-error helper)"),
     "compiler._plan": ({"testing", "verify"}, "RISK_NAME, the name R_e has in a plan"),

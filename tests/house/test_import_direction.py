@@ -41,7 +41,7 @@ _BESIDE = _COMPILED | {"_api", "runtime"}
 ALLOWED: dict[str, set[str]] = {
     "errors": set(),
     "_files": {"errors"},
-    "_robot": set(),
+    "_robot": {"errors"},
     "language": _LOW,
     "compiler": _LANGUAGE,
     "_api": _COMPILED,

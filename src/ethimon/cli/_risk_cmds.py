@@ -134,11 +134,13 @@ def add_risk_parsers(subparsers) -> None:
     e.add_argument("--data", required=True, metavar="CSV", help="CSV with label and input (or text) columns; with pair and/or type columns, minimal-pair and per-type figures too")
     e.add_argument("--spec", help="spec file for alpha, beta, gamma, variance, tau (and risk.confirm_threshold)")
     e.add_argument("--confirm-threshold", type=float, default=None, metavar="TAU_C",
-                   help="tau_confirm (default: the spec's risk.confirm_threshold): report the three outcomes "
+                   help="tau_confirm (default: the spec's risk.confirm_threshold; without --spec the shipped governor's): report the three outcomes "
                         "(unsafe executed unseen, safe held for confirmation, safe stopped outright), no judge")
     e.add_argument("--json", metavar="PATH", help="write every figure to this JSON file ('-': stdout, "
                    "the summary then goes to stderr)")
-    e.add_argument("--plots", metavar="DIR", help="write confusion matrix and R_e histogram PNGs here")
+    e.add_argument("--plots", metavar="DIR", help="write PNGs here, at the monitor's tau and tau_confirm (the spec's, else the shipped "
+                   "governor's): the confusion matrix at R_e >= tau (stop), the three outcomes (execute, hold "
+                   "for confirmation, stop) and the R_e histogram with both thresholds drawn")
     e.add_argument("--calibrate-on", metavar="CSV",
                    help="fit the temperature on this validation CSV (label,input; never the "
                         "--data rows) and report --data with it instead of the model's own")
@@ -482,18 +484,27 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
                   "temperature_source": f"fitted on {args.calibrate_on} ({len(cal)} rows)" if cal
                   else "spec risk.estimator" if cfg["spec"] is not None
                   and cfg["spec"].risk.estimator.temperature is not None else "model"})
-        if args.plots:
+        tc = args.confirm_threshold
+        if tc is None:  # the spec's; without a spec the shipped governor's (risk_config)
+            tc = cfg["spec"].risk.confirm_threshold if cfg["spec"] is not None else cfg["confirm_threshold"]
+        if tc is not None and not 0.0 <= tc < cfg["threshold"]:
+            raise ValueError(f"--confirm-threshold {tc:g} must lie in [0, tau = {cfg['threshold']:g})")
+        if args.plots:  # at the monitor's thresholds: what it does with each row's R_e
+            from ..risk._evaluate import plot_outcomes
             d = Path(args.plots)
             d.mkdir(parents=True, exist_ok=True)
-            m["plots"] = [plot_confusion(m["confusion"], d / "confusion_matrix.png",
-                                         threshold=m["confusion_threshold"]),
-                          plot_risk_hist(risks, rows.labels, cfg["threshold"], d / "risk_distribution.png")]
-        tc = args.confirm_threshold
-        if tc is None and cfg["spec"] is not None:
-            tc = cfg["spec"].risk.confirm_threshold
+            tau = cfg["threshold"]
+            flag = np.asarray(risks) >= tau
+            yy = np.asarray(rows.labels) == 1
+            conf = {"tn": int((~yy & ~flag).sum()), "fp": int((~yy & flag).sum()),
+                    "fn": int((yy & ~flag).sum()), "tp": int((yy & flag).sum())}
+            plots = [plot_confusion(conf, d / "confusion_matrix.png", f"Confusion matrix (R_e ≥ τ = {tau:g}: stop)",
+                                    labels=(f"R_e < {tau:g}", f"stop (R_e ≥ {tau:g})")),
+                     plot_outcomes(rows.labels, risks, tau, tc, d / "outcomes.png"),
+                     plot_risk_hist(risks, rows.labels, tau, d / "risk_distribution.png", confirm_threshold=tc)]
+            m["plots"] = [str(p) for p in plots]
+            m["plot_titles"] = {Path(p).name: p.title for p in plots}
         if tc is not None:
-            if not 0.0 <= tc < cfg["threshold"]:
-                raise ValueError(f"--confirm-threshold {tc:g} must lie in [0, tau = {cfg['threshold']:g})")
             from ..risk._evaluate import tier_metrics
             m["tiers"] = tier_metrics(rows.labels, risks, cfg["threshold"], tc)
         if args.json and args.json != "-":

@@ -7,7 +7,9 @@ from typing import Any
 
 from pydantic import ValidationError
 
-from ._model import FORMAT_VERSION, Spec, _shown, validation_to_spec_error
+from ._errors import FORMAT_VERSION, _shown, validation_to_spec_error
+from ._model import Spec
+from ._robots import attach_robot
 from ._yaml import SourceMap, parse_yaml_text, read_yaml
 
 __all__ = ["parse_spec_file", "parse_spec_text", "validate_document", "check_version"]
@@ -42,10 +44,10 @@ def validate_document(model, data: Any, smap: SourceMap, what: str):
 def parse_spec_file(path: str | os.PathLike) -> Spec:
     """Read and validate a spec file (expressions are checked by the compiler)."""
     data, smap = read_yaml(path, what="spec")
-    return validate_document(Spec, data, smap, "spec")
+    return attach_robot(validate_document(Spec, data, smap, "spec"), data, smap)
 
 
 def parse_spec_text(text: str, path: str = "<string>") -> Spec:
     """Validate spec YAML given as text."""
     data, smap = parse_yaml_text(text, path, what="spec")
-    return validate_document(Spec, data, smap, "spec")
+    return attach_robot(validate_document(Spec, data, smap, "spec"), data, smap)

@@ -15,7 +15,7 @@ import numpy as np
 from ._formula import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, risk_from_p_unsafe, tier_outcome
 
 __all__ = ["classification_metrics", "expected_calibration_error", "flag_stats", "softmax_unsafe",
-           "evaluate_logits", "pair_metrics", "type_metrics", "tau_for_false_alarm_budget", "tier_metrics", "plot_training", "plot_confusion", "plot_risk_hist"]
+           "evaluate_logits", "pair_metrics", "type_metrics", "tau_for_false_alarm_budget", "tier_metrics", "plot_training", "plot_confusion", "plot_risk_hist", "plot_outcomes", "PlotFile"]
 
 
 def softmax_unsafe(logits, temperature: float = 1.0, unsafe_index: int = 1) -> np.ndarray:
@@ -266,30 +266,96 @@ def plot_training(summary: dict, out_dir: str | Path) -> list[str]:
     return paths
 
 
-def plot_confusion(conf: dict, path: str | Path, title: str = "Confusion matrix", *,
-                   threshold: float | None = None, score: str = "p_unsafe") -> str:
-    """The 2x2 confusion matrix as a PNG; with ``threshold``, the title says ``(score ≥ threshold)``."""
+class PlotFile(str):
+    """The path of a written plot (a ``str``, as before) that also says what it shows: ``title``,
+    axis labels, tick labels and values, the vertical lines drawn (``(x, label)``) and the
+    matrix of a matrix plot. What tests assert instead of pixels."""
+
+    title: str = ""
+    xlabel: str = ""
+    ylabel: str = ""
+    xticklabels: list = []
+    yticklabels: list = []
+    yticks: list = []
+    lines: list = []
+    matrix: list = []
+
+    @classmethod
+    def of(cls, path: str | Path, ax, **extra) -> "PlotFile":
+        out = cls(str(path))
+        out.title, out.xlabel, out.ylabel = ax.get_title(), ax.get_xlabel(), ax.get_ylabel()
+        out.xticklabels = [t.get_text() for t in ax.get_xticklabels()]
+        out.yticklabels = [t.get_text() for t in ax.get_yticklabels()]
+        lo, hi = ax.get_ylim()
+        out.yticks = [float(t) for t in ax.get_yticks() if lo <= t <= hi]
+        for k, v in extra.items():
+            setattr(out, k, v)
+        return out
+
+
+def _matrix_plot(m: np.ndarray, path: str | Path, title: str, xlabels: list[str], ylabels: list[str],
+                 xlabel: str, ylabel: str) -> PlotFile:
     plt = _plt()
-    if threshold is not None:
-        title = f"{title} ({score} ≥ {threshold:g})"
-    m = np.array([[conf["tn"], conf["fp"]], [conf["fn"], conf["tp"]]])
-    fig, ax = plt.subplots(figsize=(3.8, 3.4))
+    fig, ax = plt.subplots(figsize=(1.6 + 1.3 * m.shape[1], 3.4))
     ax.imshow(m, cmap="Blues")
     for (i, j), v in np.ndenumerate(m):
         ax.text(j, i, str(v), ha="center", va="center", color="white" if v > m.max() / 2 else "black")
-    ax.set_xticks([0, 1], ["pred safe", "pred unsafe"]); ax.set_yticks([0, 1], ["safe", "unsafe"])
-    ax.set_title(title); fig.tight_layout(); fig.savefig(path, dpi=110); plt.close(fig)
-    return str(path)
+    ax.set_xticks(range(m.shape[1]), xlabels); ax.set_yticks(range(m.shape[0]), ylabels)
+    ax.set_xlabel(xlabel); ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=9, wrap=True); fig.tight_layout(); fig.savefig(path, dpi=110)
+    out = PlotFile.of(path, ax, matrix=m.tolist())
+    plt.close(fig)
+    return out
 
 
-def plot_risk_hist(risks, labels, tau: float, path: str | Path, title: str = "Distribution of R_e") -> str:
+def plot_confusion(conf: dict, path: str | Path, title: str = "Confusion matrix", *,
+                   threshold: float | None = None, score: str = "p_unsafe",
+                   labels: tuple[str, str] = ("pred safe", "pred unsafe")) -> PlotFile:
+    """The 2x2 confusion matrix as a PNG; with ``threshold``, the title says ``(score ≥ threshold)``.
+    ``labels``: the two columns (what was decided). ``ethimon evaluate --plots`` draws it at the
+    monitor's R_e ≥ τ (its stop), titled so."""
+    if threshold is not None:
+        title = f"{title} ({score} ≥ {threshold:g})"
+    m = np.array([[conf["tn"], conf["fp"]], [conf["fn"], conf["tp"]]])
+    return _matrix_plot(m, path, title, list(labels), ["safe", "unsafe"], "", "rows labelled")
+
+
+def plot_outcomes(labels, risks, tau: float, confirm_threshold: float | None, path: str | Path,
+                  title: str = "Monitor outcomes") -> PlotFile:
+    """Rows labelled safe/unsafe against what the monitor does with their R_e: execute, hold for a
+    person's confirmation (τ_confirm ≤ R_e < τ) and stop (R_e ≥ τ), the outcomes of
+    :func:`tier_metrics` (no judge); without τ_confirm, execute and stop."""
+    t = tier_metrics(labels, risks, tau, confirm_threshold)
+    c = t["counts"]
+    cols = ["execute", "confirm", "stop"] if confirm_threshold is not None else ["execute", "stop"]
+    m = np.array([[c[f"{lab}_{o}"] for o in cols] for lab in ("safe", "unsafe")])
+    band = f", hold at τ_confirm = {confirm_threshold:g} ≤ R_e" if confirm_threshold is not None else ""
+    names = {"execute": "execute", "confirm": "hold (confirm)", "stop": "stop"}
+    return _matrix_plot(m, path, f"{title} (stop at R_e ≥ τ = {tau:g}{band})", [names[o] for o in cols],
+                        ["safe", "unsafe"], "what the monitor does", "rows labelled")
+
+
+def plot_risk_hist(risks, labels, tau: float, path: str | Path, title: str = "Distribution of R_e", *,
+                   confirm_threshold: float | None = None) -> PlotFile:
+    """R_e of safe and unsafe rows with τ (and τ_confirm) drawn; the y axis counts whole rows."""
+    from matplotlib.ticker import MaxNLocator
     plt = _plt()
-    r = np.asarray(risks); y = np.asarray(labels)
+    r = np.asarray(risks, dtype=float); y = np.asarray(labels)
+    marks = [tau] + ([confirm_threshold] if confirm_threshold is not None else [])
+    lo = min([0.1, *marks, *(r.tolist() or [0.1])]) - 0.01
+    hi = max([0.7, *marks, *(r.tolist() or [0.7])]) + 0.01
     fig, ax = plt.subplots(figsize=(6, 3.5))
-    bins = np.linspace(0.1, 0.7, 31)
+    bins = np.linspace(lo, hi, 31)
     ax.hist(r[y == 0], bins=bins, alpha=0.6, label="safe / not wrong")
     ax.hist(r[y == 1], bins=bins, alpha=0.6, label="unsafe / wrong")
-    ax.axvline(tau, c="k", ls="--", label=f"τ = {tau:g}")
+    lines = [(float(tau), f"τ = {tau:g} (stop)")]
+    ax.axvline(tau, c="k", ls="--", label=lines[0][1])
+    if confirm_threshold is not None:
+        lines.append((float(confirm_threshold), f"τ_confirm = {confirm_threshold:g} (hold)"))
+        ax.axvline(confirm_threshold, c="0.4", ls=":", label=lines[1][1])
+    ax.yaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set_xlabel("R_e"); ax.set_ylabel("rows"); ax.set_title(title); ax.legend()
-    fig.tight_layout(); fig.savefig(path, dpi=110); plt.close(fig)
-    return str(path)
+    fig.tight_layout(); fig.savefig(path, dpi=110)
+    out = PlotFile.of(path, ax, lines=lines)
+    plt.close(fig)
+    return out

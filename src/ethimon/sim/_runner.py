@@ -91,6 +91,13 @@ class GovernedArm:
             self.safe_joints = np.array(sp.joints_rad, dtype=float)
             self.safe_speed = float(sp.max_joint_speed_rad_s)
             self.safe_tol = float(sp.tolerance_rad)
+        robot = getattr(getattr(monitor, "spec", None), "robot", "panda")
+        if isinstance(robot, str) and robot != "panda":  # the simulated arm is a Franka Panda (issue 34)
+            from ..errors import SpecError
+            src = getattr(getattr(monitor, "spec", None), "source", None)
+            msg = f"the simulation is Franka Panda only; this spec's robot is {robot!r}"
+            hint = "check it without --sim (lint and verify read its robot), or simulate a Panda spec"
+            raise src.error(msg, ("robot",), hint=hint) if src is not None else SpecError(msg, hint=hint)
         if self.safe_joints.shape != (7,):
             from ..errors import SpecError
             raise SpecError(f"safe_pose.joints_rad has {len(self.safe_joints)} values; the Panda arm "

@@ -17,7 +17,7 @@ from ..compiler._risk_formula import risk_from_p_unsafe, two_class_risk
 from ..runtime import Monitor
 from ..language._expr import Name, walk
 from .. import _robot
-from .._robot import out_of_range, safe_pose_problem
+from ..language._robots import robot_of
 from ._policy import manual_rules, release_policy_warnings
 from ._checks import CheckBase, _fmt
 from ._encode import Unrolled, real, z3_value
@@ -365,26 +365,30 @@ class Lints(CheckBase):
         return out or [Finding("lint", "lint.unbounded", OK, "every numeric signal has a declared range")]
 
     def lint_safe_pose_range(self) -> list[Finding]:
-        """The safe pose inside the Franka Panda's rated joint range (``ethimon._robot``, FCI
-        'Limits for Panda'): outside it the real arm aborts the motion and the simulation refuses
-        the spec; ``ethimon lint`` reports it as an error. One warning naming each joint, its
-        value and the rated limits, at the spec's file:line:column when known."""
+        """The safe pose inside the rated joint range of the spec's robot (``robot:``, the Franka
+        Panda by default; ``ethimon._robot`` reads its description): outside it the real arm aborts
+        the motion and the simulation refuses the spec; ``ethimon lint`` reports it as an error. One
+        warning naming each joint, its value and the rated limits, at the spec's file:line:column
+        when known. A spec that names its robot has a safe pose of its joint count (a load error
+        otherwise); one that names none and gives another count is a Panda spec with a warning."""
         name = "lint.safe_pose_range"
+        robot = robot_of(self.spec)
         joints = tuple(self.spec.safe_pose.joints_rad)
-        if len(joints) != 7:
+        if len(joints) != robot.n_joints:
             return [Finding("lint", name, WARNING, f"safe_pose.joints_rad has {len(joints)} values; the "
-                            "Franka Panda (the simulated arm, the rated-limit table) has 7 joints")]
-        problem = safe_pose_problem(joints)
+                            f"{robot.title} (robot: {self.spec.robot}, the default) has {robot.n_joints} joints: "
+                            "name the spec's robot (robot: ur5e, or the path of a robot YAML file; docs/robots.md)")]
+        problem = robot.safe_pose_problem(joints)
         if problem is None:
-            return [Finding("lint", name, OK, "the safe pose lies inside the Franka Panda's rated joint range")]
+            return [Finding("lint", name, OK, f"the safe pose lies inside the {robot.title}'s rated joint range")]
         where = ""
         src = getattr(self.spec, "source", None)
         if src is not None:  # the first joint outside its range, in the spec file
-            err = src.error(problem, ("safe_pose", "joints_rad", out_of_range(joints)[0][0] - 1))
+            err = src.error(problem, ("safe_pose", "joints_rad", robot.out_of_range(joints)[0][0] - 1))
             if err.line is not None:
                 where = f"{err.location}: "
         return [Finding("lint", name, WARNING, f"{where}{problem} (an error for 'ethimon lint' and "
-                        "'check --sim'; FCI 'Limits for Panda')")]
+                        f"'check --sim'; {robot.source('position_min_rad')})")]
 
     def lint_retreat_uncapped(self) -> list[Finding]:
         """A spec that can send the arm to its safe pose but states no near-human speed rule
@@ -431,6 +435,12 @@ class Lints(CheckBase):
             cuts.append("on_fault")
         if not cuts:
             return Finding("lint", name, OK, "no rule cuts motor power (stop 0/1): the brakes never hold the arm alone")
+        robot = robot_of(self.spec)
+        if robot.name != "panda" or robot.path != _robot.PANDA.path:  # the gravity model is the Panda's
+            return Finding("lint", name, SKIPPED,
+                           f"{', '.join(cuts)} cut motor power (stop 0/1), but ethimon has a gravity model of the "
+                           f"Franka Panda only: whether the {robot.title}'s brakes hold arm + its rated "
+                           f"{robot.payload_kg:g} kg is not checked (holding torques: {robot.source('brake_holding_n_m')})")
         holding, kg, off = _robot.BRAKE_HOLDING_N_M, _robot.RATED_PAYLOAD_KG, _robot.PAYLOAD_OFFSET_M
         worst: tuple[float, tuple[float, ...], int, float] | None = None  # (payload held, pose, joint, load)
         falls = []
