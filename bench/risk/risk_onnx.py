@@ -103,7 +103,8 @@ def main() -> None:
     if a.json is None:
         a.json = str(RESULTS / "risk" / ("risk_onnx_oneshot.json" if a.one_shot_only else "risk_onnx.json"))
     load_start = loadavg()
-    from ethimon.risk import DEFAULT_TAU, DEFAULT_TAU_CONFIRM, load_estimator, risk_from_probs
+    from ethimon.risk import DEFAULT_TAU, load_estimator, risk_from_probs
+    from ethimon.risk._estimator import DEFAULT_TAU_CONFIRM
     from ethimon.language import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA
 
     def r_e(p):
