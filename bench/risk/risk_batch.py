@@ -4,7 +4,7 @@ Scores the frozen test slices of writers w13-w21 (540 rows, one text per row, mi
 the CLI's batch mode in-process, with the shipped model and the default backend, and prints a
 table and a JSON object (texts/s, the load average before and after, machine facts).
 
-    python -m bench.risk.risk_batch [--rows N] [--json bench/results/risk/risk_batch.json]
+    python -m bench.risk.risk_batch [--rows N] [--data CSV] [--json bench/results/risk/risk_batch.json]
 """
 
 from __future__ import annotations
@@ -28,10 +28,14 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rows", type=int, default=540, help="rows scored (default: all 540)")
     ap.add_argument("--json", metavar="PATH", help="also write the JSON here")
+    ap.add_argument("--data", metavar="CSV", default=None,
+                    help="score this CSV's text column instead (e.g. data/natural_robot/natural_test.csv: one-line "
+                         "commands)")
     a = ap.parse_args(argv)
     rows: list[str] = []
-    for f in sorted(glob.glob(str(ROOT / "data/writers/w1[3-9]/test.csv")) +
-                    glob.glob(str(ROOT / "data/writers/w2[01]/test.csv"))):
+    files = ([a.data] if a.data else sorted(glob.glob(str(ROOT / "data/writers/w1[3-9]/test.csv")) +
+                                           glob.glob(str(ROOT / "data/writers/w2[01]/test.csv"))))
+    for f in files:
         with open(f, encoding="utf-8") as fh:
             rows += [r["text"] for r in csv.DictReader(fh)]
     rows = rows[:a.rows]
@@ -50,10 +54,10 @@ def main(argv: list[str] | None = None) -> int:
     tmp.unlink()
     docs = [json.loads(ln) for ln in out.getvalue().splitlines()]
     outcomes = {k: sum(d["outcome"] == k for d in docs) for k in ("execute", "confirm", "stop")}
-    res = {"rows": len(rows), "scored": len(docs), "exit": rc, "seconds": round(dt, 2),
+    res = {"data": a.data or "data/writers/w13-w21/test.csv", "rows": len(rows), "scored": len(docs), "exit": rc, "seconds": round(dt, 2),
            "texts_per_s": round(len(docs) / dt, 1), "outcomes": outcomes, "loadavg_start": load0,
-           "note": "wall time includes loading the model (~1-3 s); texts are mixed forms, many multi-sentence "
-                   "or plans (several views each), not one-line commands",
+           "note": "wall time includes loading the model (~1-3 s)" + ("" if a.data else "; texts are mixed forms, many "
+                   "multi-sentence or plans (several views each), not one-line commands"),
            "machine": machine_facts()}
     print(f"| rows | seconds | texts/s | execute / confirm / stop | load before -> after |")
     print(f"|---|---|---|---|---|")

@@ -1,11 +1,21 @@
 """Latency of the risk estimator on this machine (run by hand; never in CI).
 
-    python -m bench.risk.risk_latency [--model DIR] [--threads 2] [--json PATH]
+    python -m bench.risk.risk_latency [--model DIR] [--threads 2] [--reps 300] [--modes onnx_fp32 ...] [--json PATH]
 
-One short sentence, cache off: p50/p90 for fp32 (TorchScript-frozen, the
-default), fp32 eager, int8 and int8 eager; a cache hit
-(``probs`` and ``estimate``) in µs; batch-32 throughput of short commands.
-Prints a table and writes bench/results/risk/risk_latency.json (or --json) with machine facts.
+Through the estimator's default reading (every sentence and plan step a view, the riskiest counts), cache
+off, each mode loaded once and measured interleaved round by round (so the load of the shared cores hits
+all alike):
+
+* p50/p90/p95 of one **short command** and of an **8-step numbered plan** (``risk_cost.PLAN8``: 9 views);
+* texts/s of **batches of 32 short commands** (``probs_batch``), and of the 8-step plan one at a time;
+* a cache hit (``probs`` and ``estimate``) in µs;
+* beside each wall time, the median process CPU time of a call (all threads): on shared cores the wall
+  time also measures the other jobs.
+
+Modes: ``onnx_fp32`` (the default back-end, ``ethimon risk`` and a spec without ``estimator``),
+``onnx_int8``, ``torch_fp32`` (TorchScript-frozen), ``torch_int8`` (and ``*_eager`` for torch without
+freezing). Prints a table and writes bench/results/risk/risk_latency.json (or --json) with machine facts
+and the load average at start and end.
 """
 
 from __future__ import annotations
@@ -17,13 +27,19 @@ import time
 from pathlib import Path
 
 from bench import RESULTS
-from bench._machine import machine_facts
+from bench._machine import loadavg, machine_facts
+from bench.risk.risk_cost import PLAN8
 
 TEXT = "Hand the kitchen knife to the child blade first."
 BATCH = ["Hand the kitchen knife to the child blade first.", "Put the fork in the drawer.",
          "Pour the boiling water onto the person's hand.", "Place the glass vase gently on the table.",
          "Turn off the stove after cooking.", "Throw the knife at the person.",
          "Put the metal fork in the microwave and turn it on.", "Wipe up the water spilled on the floor."] * 4
+MODES = {"onnx_fp32": {"backend": "onnx"}, "onnx_int8": {"backend": "onnx", "quantize": "int8"},
+         "torch_fp32": {"backend": "torch", "jit": True}, "torch_int8": {"backend": "torch", "quantize": "int8",
+                                                                          "jit": True},
+         "torch_fp32_eager": {"backend": "torch", "jit": False},
+         "torch_int8_eager": {"backend": "torch", "quantize": "int8", "jit": False}}
 
 
 def _pct(xs, q):
@@ -31,62 +47,87 @@ def _pct(xs, q):
     return xs[min(len(xs) - 1, int(q * len(xs)))]
 
 
+def _stats(lat: list[float]) -> dict:
+    return {"p50_ms": round(1e3 * statistics.median(lat), 3), "p90_ms": round(1e3 * _pct(lat, 0.9), 3),
+            "p95_ms": round(1e3 * _pct(lat, 0.95), 3), "mean_ms": round(1e3 * statistics.mean(lat), 3),
+            "n": len(lat)}
+
+
 def main() -> None:
-    ap = argparse.ArgumentParser()
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--model", default=None)
     ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--reps", type=int, default=300)
+    ap.add_argument("--reps", type=int, default=300, help="samples of the short command per mode")
+    ap.add_argument("--plan-reps", type=int, default=100, help="samples of the 8-step plan per mode")
+    ap.add_argument("--modes", nargs="+", default=["onnx_fp32", "onnx_int8", "torch_fp32"], choices=sorted(MODES))
     ap.add_argument("--json", default=str(RESULTS / "risk" / "risk_latency.json"))
     a = ap.parse_args()
-    import torch
     from ethimon.risk import load_estimator
-    torch.set_num_threads(a.threads)
-    res = {"text": TEXT, "threads": a.threads}
-    modes = {"fp32": (None, True), "fp32_eager": (None, False), "int8": ("int8", True),
-             "int8_eager": ("int8", False)}
-    for name, (mode, jit) in modes.items():
+    load0 = loadavg()
+    if any(MODES[m]["backend"] == "torch" for m in a.modes):
+        import torch
+        torch.set_num_threads(a.threads)
+    ests, res = {}, {"short": TEXT, "plan_8_steps": PLAN8, "threads": a.threads, "modes": {}}
+    for name in a.modes:
         t0 = time.perf_counter()
-        est = load_estimator(a.model, quantize=mode, cache_size=0, jit=jit, backend="torch")
+        est = load_estimator(a.model, cache_size=0, num_threads=a.threads, **MODES[name])
         load_s = time.perf_counter() - t0
-        for _ in range(20):
+        for _ in range(20):                       # warm-up (TorchScript freezing happens at load with jit)
             est.probs(TEXT)
-        lat = []
-        for _ in range(a.reps):
-            t = time.perf_counter()
-            est.probs(TEXT)
-            lat.append(time.perf_counter() - t)
-        for _ in range(3):
-            est.probs_batch(BATCH)
-        bt = []
-        for _ in range(15):
-            t = time.perf_counter()
-            est.probs_batch(BATCH)
-            bt.append(time.perf_counter() - t)
-        res[name] = {"load_s": load_s, "jit": est.jit, "p50_ms": 1e3 * statistics.median(lat), "p90_ms": 1e3 * _pct(lat, 0.9),
-                     "mean_ms": 1e3 * statistics.mean(lat),
-                     "batch32_ms": 1e3 * statistics.median(bt),
-                     "batch32_throughput_per_s": 32 / statistics.median(bt), "model_id": est.model_id}
-    est = load_estimator(a.model, cache_size=4096, backend="torch")
+        est.probs(PLAN8)
+        ests[name] = est
+        res["modes"][name] = {"load_s": round(load_s, 3), "backend": est.backend, "jit": est.jit,
+                              "model_id": est.model_id, "views_plan_8": len(est.read(PLAN8))}
+    lat = {m: {"short": [], "plan": [], "b32": []} for m in a.modes}
+    cpu = {m: {"short": [], "plan": [], "b32": []} for m in a.modes}   # process CPU time (all threads)
+    rounds = max(a.reps, a.plan_reps)
+    for i in range(rounds):                       # interleaved: one sample of each mode per round
+        for m, est in ests.items():
+            if i < a.reps:
+                t, c = time.perf_counter(), time.process_time()
+                est.probs(TEXT)
+                lat[m]["short"].append(time.perf_counter() - t)
+                cpu[m]["short"].append(time.process_time() - c)
+            if i < a.plan_reps:
+                t, c = time.perf_counter(), time.process_time()
+                est.probs(PLAN8)
+                lat[m]["plan"].append(time.perf_counter() - t)
+                cpu[m]["plan"].append(time.process_time() - c)
+            if i < 15:
+                t, c = time.perf_counter(), time.process_time()
+                est.probs_batch(BATCH)
+                lat[m]["b32"].append(time.perf_counter() - t)
+                cpu[m]["b32"].append(time.process_time() - c)
+    for m in a.modes:
+        r = res["modes"][m]
+        r["short"] = _stats(lat[m]["short"])
+        r["plan_8_steps"] = _stats(lat[m]["plan"])
+        r["batch32_short_ms"] = round(1e3 * statistics.median(lat[m]["b32"]), 2)
+        r["batch32_short_texts_per_s"] = round(32 / statistics.median(lat[m]["b32"]), 1)
+        r["plan_8_steps_texts_per_s"] = round(1 / statistics.median(lat[m]["plan"]), 1)
+        r["cpu_ms_median"] = {k: round(1e3 * statistics.median(v), 2) for k, v in cpu[m].items()}
+    est = load_estimator(a.model, cache_size=4096, num_threads=a.threads)
     est.probs(TEXT)
     n = 200_000
     t = time.perf_counter()
     for _ in range(n):
         est.probs(TEXT)
-    hit_probs = (time.perf_counter() - t) / n
+    res["cache_hit_probs_us"] = round((time.perf_counter() - t) / n * 1e6, 3)
     t = time.perf_counter()
     for _ in range(n // 4):
         est.estimate(TEXT)
-    hit_est = (time.perf_counter() - t) / (n // 4)
-    res["cache_hit_probs_us"] = hit_probs * 1e6
-    res["cache_hit_estimate_us"] = hit_est * 1e6
-    res["machine"] = machine_facts(threads=torch.get_num_threads())
-    print(f"{'mode':<11}{'jit':>4}{'load s':>8}{'p50 ms':>9}{'p90 ms':>9}{'b32 ms':>9}{'rows/s':>9}")
-    for m in modes:
-        r = res[m]
-        print(f"{m:<11}{'y' if r['jit'] else 'n':>4}{r['load_s']:>8.2f}{r['p50_ms']:>9.2f}{r['p90_ms']:>9.2f}{r['batch32_ms']:>9.1f}"
-              f"{r['batch32_throughput_per_s']:>9.0f}")
+    res["cache_hit_estimate_us"] = round((time.perf_counter() - t) / (n // 4) * 1e6, 3)
+    res["targets"] = {"short_p50_ms": 10, "plan_8_steps_p50_ms": 60, "batch_texts_per_s": 500}
+    res["loadavg_start"] = load0
+    res["machine"] = machine_facts(threads=a.threads)
+    print(f"{'mode':<17}{'load s':>7}{'short p50':>10}{'p95':>8}{'plan8 p50':>10}{'p95':>8}{'b32 /s':>8}")
+    for m in a.modes:
+        r = res["modes"][m]
+        print(f"{m:<17}{r['load_s']:>7.2f}{r['short']['p50_ms']:>10.2f}{r['short']['p95_ms']:>8.2f}"
+              f"{r['plan_8_steps']['p50_ms']:>10.2f}{r['plan_8_steps']['p95_ms']:>8.2f}"
+              f"{r['batch32_short_texts_per_s']:>8.0f}")
     print(f"cache hit: probs {res['cache_hit_probs_us']:.2f} µs, estimate {res['cache_hit_estimate_us']:.2f} µs"
-          f"  (load avg {res['machine']['loadavg']})")
+          f"  (load avg {load0} -> {res['machine']['loadavg']})")
     Path(a.json).parent.mkdir(parents=True, exist_ok=True)
     Path(a.json).write_text(json.dumps(res, indent=1) + "\n")
 

@@ -1,13 +1,15 @@
 """ONNX Runtime backend vs torch, side by side in one run (run by hand; never in CI).
 
     python -m bench.risk.risk_onnx [--model DIR] [--data CSV] [--reps 300] [--cli-runs 7] [--json PATH]
+    python -m bench.risk.risk_onnx --equality-only --json bench/results/risk/risk_onnx_int8_reading31.json
 
 For the shipped model (or ``--model``):
 
 * equality: p_unsafe of every row of ``data/natural_robot/natural_test.csv`` (its ``text`` column
   only: the labels are not read), ONNX fp32 and int8 against torch fp32 (eager); max |Δp|, rows
-  over 2e-3, and agreement of the governor's decision R_e ≥ τ (shipped τ and weights); torch
-  int8 against torch fp32 for comparison;
+  over 2e-3, and agreement of the governor's decision R_e ≥ τ and of its three outcomes (execute /
+  hold / stop at the shipped τ pair); torch int8 against torch fp32 for comparison; ONNX int8 against
+  ONNX fp32 (the default back-end), with every row whose outcome differs;
 * latency: p50/p90 of one short command (cache off), 1 and 2 threads, ONNX fp32/int8 and torch
   fp32 (TorchScript-frozen)/int8, interleaved round by round so the load hits all alike;
 * throughput: rows/s for batches of 32 short commands, 2 threads;
@@ -95,18 +97,29 @@ def main() -> None:
     ap.add_argument("--json", default=None, help="default bench/results/risk/risk_onnx.json "
                     "(risk_onnx_oneshot.json with --one-shot-only)")
     ap.add_argument("--one-shot-only", action="store_true", help="only the one-shot CLI comparison (s)")
+    ap.add_argument("--equality-only", action="store_true",
+                    help="only the equality and decision agreement (fp32/int8 vs torch, int8 vs ONNX fp32)")
     a = ap.parse_args()
     if a.json is None:
         a.json = str(RESULTS / "risk" / ("risk_onnx_oneshot.json" if a.one_shot_only else "risk_onnx.json"))
     load_start = loadavg()
     from ethimon.risk import DEFAULT_TAU, load_estimator, risk_from_probs
+    from ethimon.risk._estimator import DEFAULT_TAU_CONFIRM
     from ethimon.language import DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA
 
+    def r_e(p):
+        return risk_from_probs(p, DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, "sample")
+
     def decide(p):
-        return risk_from_probs(p, DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, "sample") >= DEFAULT_TAU
+        return r_e(p) >= DEFAULT_TAU
+
+    def outcome(p):  # the governor's three outcomes at the shipped pair
+        r = r_e(p)
+        return "stop" if r >= DEFAULT_TAU else "hold" if r >= DEFAULT_TAU_CONFIRM else "execute"
 
     res: dict = {"model": a.model or "shipped", "data": str(Path(a.data).relative_to(ROOT))
-                 if Path(a.data).is_relative_to(ROOT) else a.data, "tau": DEFAULT_TAU, "tolerance": TOL}
+                 if Path(a.data).is_relative_to(ROOT) else a.data, "tau": DEFAULT_TAU,
+                 "tau_confirm": DEFAULT_TAU_CONFIRM, "tolerance": TOL}
 
     texts, eq, lat = [], {}, {}
     if not a.one_shot_only:
@@ -117,21 +130,51 @@ def main() -> None:
         p_ref = ref.probs_batch(texts)
         res["torch_fp32_rows_s"] = time.perf_counter() - t0
         ref_dec = [decide(p) for p in p_ref]
-        eq = {}
+        ref_out = [outcome(p) for p in p_ref]
+        eq, p_all = {}, {}
         for name, kw in {"onnx_fp32": {"backend": "onnx"}, "onnx_int8": {"backend": "onnx", "quantize": "int8"},
                          "torch_int8": {"backend": "torch", "quantize": "int8", "jit": False}}.items():
             est = load_estimator(a.model, cache_size=0, num_threads=2, **kw)
             p = est.probs_batch(texts)
             d = [abs(x[1] - y[1]) for x, y in zip(p, p_ref)]
             agree = sum(decide(x) == r for x, r in zip(p, ref_dec))
+            agree3 = sum(outcome(x) == r for x, r in zip(p, ref_out))
             eq[name] = {"rows": len(texts), "max_abs_dp": max(d), "mean_abs_dp": statistics.mean(d),
                         "rows_over_tol": sum(x > TOL for x in d), "decisions_agree": agree,
-                        "decision_agreement": agree / len(texts), "model_id": est.model_id,
+                        "decision_agreement": agree / len(texts), "outcomes_agree": agree3,
+                        "outcome_agreement": agree3 / len(texts), "model_id": est.model_id,
                         "graph_sha256": getattr(est, "graph_sha256", None)}
+            p_all[name] = p
             del est
         res["equality_vs_torch_fp32"] = eq
+        # int8 against the default back-end (ONNX fp32): what a user switching to int8 changes
+        pf, pq = p_all["onnx_fp32"], p_all["onnx_int8"]
+        d = [abs(x[1] - y[1]) for x, y in zip(pq, pf)]
+        res["onnx_int8_vs_onnx_fp32"] = {
+            "rows": len(texts), "max_abs_dp": max(d), "mean_abs_dp": statistics.mean(d),
+            "p95_abs_dp": sorted(d)[int(0.95 * (len(d) - 1))],
+            "decisions_agree": sum(decide(x) == decide(y) for x, y in zip(pq, pf)),
+            "outcomes_agree": sum(outcome(x) == outcome(y) for x, y in zip(pq, pf)),
+            "outcomes_differ": [{"row": i, "fp32": outcome(y), "int8": outcome(x), "r_e_fp32": round(r_e(y), 4),
+                                 "r_e_int8": round(r_e(x), 4)}
+                                for i, (x, y) in enumerate(zip(pq, pf)) if outcome(x) != outcome(y)]}
+        v = res["onnx_int8_vs_onnx_fp32"]
+        v["decision_agreement"] = v["decisions_agree"] / len(texts)
+        v["outcome_agreement"] = v["outcomes_agree"] / len(texts)
         res["flagged_by_torch_fp32"] = sum(ref_dec)
+        res["outcomes_by_torch_fp32"] = {k: ref_out.count(k) for k in ("execute", "hold", "stop")}
         del ref
+        if a.equality_only:
+            import onnxruntime
+            res["machine"] = machine_facts(loadavg_start=load_start, onnxruntime=onnxruntime.__version__)
+            Path(a.json).parent.mkdir(parents=True, exist_ok=True)
+            Path(a.json).write_text(json.dumps(res, indent=2) + "\n")
+            print(f"equality on {len(texts)} rows of {res['data']} (tau {DEFAULT_TAU}, tau_confirm {DEFAULT_TAU_CONFIRM}):")
+            for n, e in [*eq.items(), ("int8 vs onnx fp32", res["onnx_int8_vs_onnx_fp32"])]:
+                print(f"{n:18} max|dp| {e['max_abs_dp']:.2e}  R_e>=tau agree {e['decisions_agree']}/{len(texts)}  "
+                      f"three outcomes agree {e['outcomes_agree']}/{len(texts)} ({100 * e['outcome_agreement']:.2f} %)")
+            print(f"load average: start {load_start}, end {res['machine']['loadavg']}; wrote {a.json}")
+            return
 
         # ---- latency and throughput, interleaved
         confs = {"onnx_fp32": {"backend": "onnx"}, "onnx_int8": {"backend": "onnx", "quantize": "int8"},

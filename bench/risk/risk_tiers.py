@@ -1,6 +1,7 @@
 """The whole risk tier, measured (issue 30 item 4): classifier, judges, canaries, consensus, hold above τ.
 
-    python -m bench.risk.risk_tiers --tag shipped [--limit N]
+    python -m bench.risk.risk_tiers --tag shipped [--limit N] [--scores risk_tau_<tag>.json]
+        [--judge A=data/judge_recorded] [--judge B=/path/judge_B.csv,/path/canary_key_B.json]
 
 Every writer's frozen test slice (``data/writers/w*/test.csv``, sha256 checked) is scored by the shipped
 estimator (its default reading, R_e by the governor's formula). Each row's outcome is then decided by
@@ -15,6 +16,13 @@ each configuration, fed the judge answer that ethimon's real :class:`~ethimon.ri
 * ``consensus_AB``: ``risk.judges`` [A, B]: the band executes only if both say safe;
 * ``judge_A_hold``: judge A with ``judge_may_hold_above_tau: {ceiling: CEIL}``: a safe verdict turns a
   τ-stop below the ceiling into a hold for a person;
+
+Recorded judges come from ``--judge NAME=PATH`` (repeatable; default ``A`` and, when present, ``B`` from
+``data/judge_recorded/``): PATH is a folder holding ``NAME.csv`` (and ``NAME_canaries.csv``), or one CSV of
+``id,verdict`` in which the canaries carry hidden ids, followed by ``,KEY.json`` (hidden id -> canary id), as a
+judge session writes them. The first two judges named form the consensus; the first one the hold above τ.
+``--scores`` reuses the test rows' R_e written by ``risk_tau`` (same model, checked), so a new judge costs
+seconds, not a scoring run.
 * ``const0`` / ``const1`` / ``coin`` / ``wrong_model``: failing judges; the canaries must refuse them
   before their first verdict counts, so each must read exactly like ``classifier``.
 
@@ -59,14 +67,43 @@ def _group(w: str) -> str:
     return "seen" if w in SEEN else "tau_writers" if w in TAU_WRITERS else "clean"
 
 
-def _recorded(name: str, folder: Path = RECORDED) -> dict[str, int]:
-    """id -> verdict of one recorded judge (rows and canaries)."""
+def _recorded(name: str, path: Path = RECORDED) -> dict[str, int]:
+    """id -> verdict of one recorded judge (rows and canaries).
+
+    ``path``: a folder with ``NAME.csv`` (+ ``NAME_canaries.csv``), or ``CSV`` or ``CSV,KEY.json`` (the
+    key maps hidden canary ids to the shipped canary ids, as a judge session's files come).
+    """
+    key: dict[str, str] = {}
+    sp = str(path)
+    if "," in sp:
+        sp, kp = sp.split(",", 1)
+        key = json.loads(Path(kp).read_text(encoding="utf-8"))
+    p = Path(sp)
+    files = [p / f"{name}.csv", p / f"{name}_canaries.csv"] if p.is_dir() else [p]
+    if not any(f.is_file() for f in files):
+        raise SystemExit(f"--judge {name}={path}: no {name}.csv there (a folder with {name}.csv, or CSV[,KEY.json])")
     out: dict[str, int] = {}
-    for f in (folder / f"{name}.csv", folder / f"{name}_canaries.csv"):
+    for f in files:
         if f.is_file():
             with open(f, newline="", encoding="utf-8") as fh:
                 for r in csv.DictReader(fh):
-                    out[r["id"]] = int(r["verdict"])
+                    v = str(r.get("verdict", "")).strip()
+                    if v not in ("0", "1"):
+                        raise SystemExit(f"{f}: id {r.get('id')!r}: verdict {v!r}; expected 0 or 1")
+                    out[key.get(r["id"], r["id"])] = int(v)
+    return out
+
+
+def _judge_args(given: list[str] | None) -> dict[str, str]:
+    """NAME -> PATH of the recorded judges (default: A, and B when ``data/judge_recorded/B.csv`` exists)."""
+    if not given:
+        return {n: str(RECORDED) for n in ("A", "B") if (RECORDED / f"{n}.csv").is_file()}
+    out: dict[str, str] = {}
+    for g in given:
+        name, sep, path = g.partition("=")
+        if not sep or not name.isidentifier():
+            raise SystemExit(f"--judge {g!r}: expected NAME=PATH (e.g. B=data/judge_recorded)")
+        out[name] = path
     return out
 
 
@@ -103,7 +140,10 @@ def main() -> None:  # noqa: C901 - one experiment, read top to bottom
     ap.add_argument("--tag", required=True)
     ap.add_argument("--limit", type=int, default=None, help="smoke test: first N rows per writer")
     ap.add_argument("--model", default=None, help="a risk model directory (default: the shipped one)")
-    ap.add_argument("--recorded", default=str(RECORDED), help="the folder of recorded judge verdicts")
+    ap.add_argument("--judge", action="append", metavar="NAME=PATH",
+                    help="a recorded judge: PATH a folder with NAME.csv (+ NAME_canaries.csv) or CSV[,KEY.json] "
+                         "(repeatable; default A and B from data/judge_recorded/ where present)")
+    ap.add_argument("--scores", default=None, help="reuse the test rows' R_e from a risk_tau JSON (same model)")
     a = ap.parse_args()
     import ethimon
     from ethimon.risk import load_estimator
@@ -125,17 +165,29 @@ def main() -> None:  # noqa: C901 - one experiment, read top to bottom
     rk = gov.risk
     est = load_estimator(a.model) if a.model else load_estimator()
     t_s = time.time()
-    probs = est.probs_batch(texts)
-    score_s = time.time() - t_s
-    from ethimon.risk import risk_from_p_unsafe
-    r_e = np.array([risk_from_p_unsafe(float(p[1]), float(rk.alpha), float(rk.beta), float(rk.gamma),
-                                       variance=str(rk.variance)) for p in probs])
-    print(f"{len(rows)} rows scored in {score_s:.1f} s ({len(rows) / score_s:.1f} texts/s)", flush=True)
+    if a.scores:
+        saved = json.loads(Path(a.scores).read_text(encoding="utf-8"))
+        if saved.get("model_id") != est.model_id:
+            raise SystemExit(f"--scores {a.scores}: model {saved.get('model_id')} is not {est.model_id}")
+        by = {(r["writer"], r["id"]): r["r_e"] for r in saved["test_scores"]["rows"]}
+        missing = [r[1] for r in rows if (r[0], r[1]) not in by]
+        if missing:
+            raise SystemExit(f"--scores {a.scores}: {len(missing)} rows not scored there (e.g. {missing[0]})")
+        r_e = np.array([by[(r[0], r[1])] for r in rows])
+        score_s = float(saved["test_scores"]["seconds"]) * len(rows) / max(1, saved["test_scores"]["n"])
+        print(f"{len(rows)} rows: R_e from {a.scores}", flush=True)
+    else:
+        probs = est.probs_batch(texts)
+        score_s = time.time() - t_s
+        from ethimon.risk import risk_from_p_unsafe
+        r_e = np.array([risk_from_p_unsafe(float(p[1]), float(rk.alpha), float(rk.beta), float(rk.gamma),
+                                           variance=str(rk.variance)) for p in probs])
+        print(f"{len(rows)} rows scored in {score_s:.1f} s ({len(rows) / score_s:.1f} texts/s)", flush=True)
 
     # recorded answers, keyed as the client sends them
     from ethimon.risk._canaries import load_canaries
     canaries = load_canaries()
-    can_key = {name: _recorded(name, Path(a.recorded)) for name in ("A", "B")}
+    can_key = {name: _recorded(name, Path(path)) for name, path in _judge_args(a.judge).items()}
     tables: dict[str, dict[str, int]] = {}
     by_id = {r[1]: r[4] for r in rows}
     can_text = {c[0]: c[3] for c in canaries}
@@ -147,10 +199,20 @@ def main() -> None:  # noqa: C901 - one experiment, read top to bottom
                 t[judge_user_message(text)] = v
         tables[name] = t
 
-    configs = {"classifier": ([], False), "judge_A": (["recorded:A"], False), "judge_B": (["recorded:B"], False),
-               "consensus_AB": (["recorded:A", "recorded:B"], False), "judge_A_hold": (["recorded:A"], True),
-               "const0": (["const:0"], False), "const1": (["const:1"], False), "coin": (["coin"], False),
-               "wrong_model": (["no-such-model"], False)}
+    names = list(tables)
+    configs: dict[str, tuple[list[str], bool]] = {"classifier": ([], False)}
+    configs.update({f"judge_{n}": ([f"recorded:{n}"], False) for n in names})
+    if len(names) >= 2:
+        configs[f"consensus_{names[0]}{names[1]}"] = ([f"recorded:{names[0]}", f"recorded:{names[1]}"], False)
+    if names:
+        configs[f"judge_{names[0]}_hold"] = ([f"recorded:{names[0]}"], True)
+    configs.update({"const0": (["const:0"], False), "const1": (["const:1"], False), "coin": (["coin"], False),
+                    "wrong_model": (["no-such-model"], False)})
+    missing = {n: sum(1 for r in rows if r[1] not in can_key[n]) for n in names}
+    for n, k in missing.items():
+        if k:
+            print(f"judge {n}: no recorded verdict for {k} of {len(rows)} rows (the client gets no verdict: "
+                  "the band goes to a person)", flush=True)
     results: dict[str, dict] = {}
     per_row: dict[str, list[str]] = {}
     with RecordedJudgeServer(tables) as url:
@@ -201,9 +263,15 @@ def main() -> None:  # noqa: C901 - one experiment, read top to bottom
     from sklearn.metrics import roc_auc_score
     auc = {grp: round(float(roc_auc_score(y[m], r_e[m])), 4) for grp in ("seen", "tau_writers", "clean")
            for m in [np.array([_group(r[0]) == grp for r in rows])] if m.any() and len(set(y[m])) == 2}
+    auc_w = {w: round(float(roc_auc_score(y[m], r_e[m])), 4) for w in sorted({r[0] for r in rows})
+             for m in [np.array([r[0] == w for r in rows])] if len(set(y[m])) == 2}
     out = {"tag": a.tag, "spec": "specs/governor.yaml", "tau": float(rk.threshold),
            "tau_confirm": float(rk.confirm_threshold) if rk.confirm_threshold is not None else None,
-           "hold_ceiling": CEIL, "model": a.model or "shipped", "roc_auc": auc,
+           "hold_ceiling": CEIL, "model": a.model or "shipped", "model_id": est.model_id, "roc_auc": auc,
+           "roc_auc_per_writer": auc_w,
+           "judges": {n: {"source": p, "verdicts": len(can_key[n]), "rows_without_verdict": missing[n]}
+                      for n, p in _judge_args(a.judge).items()},
+           "scores_from": a.scores,
            "score_seconds": round(score_s, 2), "texts_per_s": round(len(rows) / score_s, 2),
            "configs": results, "rows": [{"writer": r[0], "id": r[1], "register": r[2], "label": r[3],
                                          "r_e": round(float(r_e[k]), 5),

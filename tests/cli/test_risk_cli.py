@@ -259,14 +259,15 @@ def test_batch_mode_writes_json_lines(fake, capsys, tmp_path, monkeypatch):
 def test_lint_warns_on_a_tau_pair_other_than_the_shipped_models(tmp_path, root):
     """Regression (30.6): a spec loading the shipped model at another τ pair linted clean."""
     from ethimon._lint import lint_paths
+    from ethimon.risk._estimator import DEFAULT_TAU_CONFIRM
     body = ("ethimon: 1\nname: t\nrisk:\n  threshold: {t}\n  confirm_threshold: {c}\nsafe_pose:\n"
             "  joints_rad: [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785]\n  max_joint_speed_rad_s: 1.0\n"
             "  tolerance_rad: 0.02\n")
     (tmp_path / "old.yaml").write_text(body.format(t=0.47, c=0.24), encoding="utf-8")
-    (tmp_path / "new.yaml").write_text(body.format(t=0.576, c=0.299), encoding="utf-8")
+    (tmp_path / "new.yaml").write_text(body.format(t=DEFAULT_TAU, c=DEFAULT_TAU_CONFIRM), encoding="utf-8")
     rep = lint_paths([tmp_path / "old.yaml", tmp_path / "new.yaml"])
     warned = [ln.text for ln in rep.lines if ln.kind == "warning"]
-    assert len(warned) == 1 and "old.yaml" in warned[0] and "0.576" in warned[0] and "0.299" in warned[0]
+    assert len(warned) == 1 and "old.yaml" in warned[0] and f"{DEFAULT_TAU:g}" in warned[0] and f"{DEFAULT_TAU_CONFIRM:g}" in warned[0]
     # every shipped spec and example that loads the shipped model uses its pair
     shipped = [root / "specs", root / "examples" / "replay" / "spec.yaml", root / "examples" / "judge"]
     assert [ln.text for ln in lint_paths(shipped).lines if ln.kind == "warning"] == []

@@ -230,7 +230,7 @@ def test_the_two_defaults_of_tau_are_two_named_facts():
     from ethimon.risk import DEFAULT_TAU
     from ethimon.language import RiskConfig
     spec_default = RiskConfig.model_fields["threshold"].default
-    assert (spec_default, DEFAULT_TAU) == (0.5, 0.576)
+    assert (spec_default, DEFAULT_TAU) == (0.5, 0.606)
     assert ethimon.load_spec_text("ethimon: 1\nname: t\nsignals: {}\n").risk.threshold == spec_default
     root = Path(__file__).resolve().parents[2]
     for name in ("governor.yaml", "cobot_cell.yaml"):

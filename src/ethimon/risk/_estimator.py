@@ -117,11 +117,11 @@ DEFAULT_MANIFEST_SHA256 = "2fb9a23c13c368ea220cc2e06c42e02a848c78193857a46d07087
 #: (MODEL_CARD.md, bench/results/risk/writers/DECISIONS.md); ``ethimon risk``/``evaluate``
 #: use it without ``--spec``, and the shipped specs write it as their ``risk.threshold``.
 #: (A spec that writes no threshold gets the spec language's default, 0.5.)
-DEFAULT_TAU = 0.576
+DEFAULT_TAU = 0.606
 #: τ_confirm of the shipped default model (MODEL_CARD.md; specs/governor.yaml's risk.confirm_threshold):
 #: ``ethimon risk`` without ``--spec`` uses this pair; ``ethimon lint`` warns on a spec that loads the
 #: shipped model with another.
-DEFAULT_TAU_CONFIRM = 0.299
+DEFAULT_TAU_CONFIRM = 0.328
 
 
 def model_tau_warnings(spec: Any) -> list[str]:
