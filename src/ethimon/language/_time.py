@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ._model import Spec, _LocError
+from ._errors import _LocError
 
 __all__ = ["seconds_to_cycles", "resolve_seconds", "WHOLE_TOL"]
 
@@ -58,7 +58,7 @@ def _cycles(seconds: float, rate: float | None, what: str, loc: tuple) -> int:
         raise _LocError(exc.msg, loc, hint=exc.hint) from None
 
 
-def resolve_seconds(spec: Spec) -> dict[str, Any]:
+def resolve_seconds(spec: Any) -> dict[str, Any]:  # a language.Spec (its validator calls this: no import back)
     """The fields of ``spec`` whose times in seconds are made counts: ``{field name: new value}``
     (empty when the spec writes no ``within_s``/``hold_s``); the spec's validator sets them.
 

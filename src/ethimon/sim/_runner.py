@@ -595,10 +595,9 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
         fired: dict[str, None] = {}
         first_cmd: int | None = None
         t_override: float | None = None
-        max_sp = None
+        max_sp = shown = None
         overridden_before = False
         extra_frames = sorted(block.record_at_s)
-        shown = None
         loop0 = time.perf_counter()
         rec_s0 = recorder.seconds if recorder else 0.0
         stop_v0: float | None = None
