@@ -176,3 +176,20 @@ def test_the_numpy_hold_takes_a_sample_from_when_it_is_visible_and_ages_it_from_
     assert np.isnan(vals[14]) and vals[13] == 3.0
     same = hold(times, np.array([1.0, 2.0, 3.0]), grid, 16e-9)
     assert list(same[2]) == list(hold(times, np.array([1.0, 2.0, 3.0]), grid, 16e-9, times)[2])
+
+
+def test_a_stale_cause_names_the_age_of_the_sample_held_not_of_one_stamped_earlier_but_not_yet_received():
+    # dist samples every 40 ms, each stamped 25 ms before it arrives, max_age_s 0.03: stale between them. The
+    # report's cause must give the held sample's age (over the limit), not that of the next one, which is
+    # stamped by then but not yet received (before: "0.005 s old" for a stale input).
+    import re
+
+    from tests.io._drive import replay_of
+    mapping = load_mapping_text(MAPPING.replace("dist: {topic: /range, field: range, time: header}",
+                                                "dist: {topic: /range, field: range, time: header, max_age_s: 0.03}"))
+    samples = [s if s.signal != "dist" else S(s.t_log, "dist", 1.0, round(s.t_log - 0.025, 6))
+               for s in _base() if s.signal != "dist" or round(s.t_log * 50) % 2 == 0]
+    res = replay_of(samples, spec(), mapping)
+    detail = res.check("inputs").detail
+    ages = [float(x) for x in re.findall(r"dist: stale \(last /range message ([0-9.]+) s old", detail)]
+    assert ages and all(a > 0.03 for a in ages), detail
