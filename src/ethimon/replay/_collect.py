@@ -68,7 +68,8 @@ class _Collector:
     """The samples of one mapped signal, gathered message by message (compact arrays, not lists)."""
 
     __slots__ = ("name", "sm", "fpath", "spath", "times", "values", "raw", "bad", "past_end", "read", "bools",
-                 "zero", "header", "logs", "off", "where", "names_key", "names_idx", "names_last", "fast", "named", "pending")
+                 "zero", "header", "logs", "off", "where", "names_key", "names_idx", "names_last", "fast", "named",
+                 "pending")
 
     def __init__(self, name: str, sm: SignalMap, spath: str) -> None:
         self.name, self.sm, self.spath = name, sm, spath
