@@ -140,3 +140,56 @@ def test_a_far_future_stamp_and_a_sample_stamped_at_the_cycle_that_took_both():
     samples = _base(every=0.01, dist=1.0, t_end=0.3) + [S(0.1371, "dist", 0.3, 0.1671)]
     liv, live, res = _same(sorted(samples, key=lambda s: s.t_log))
     assert res.signals["dist"]["judged"] >= res.signals["dist"]["samples"] - 2
+
+
+def test_a_sample_stamped_before_it_arrived_is_held_from_its_arrival_in_replay_as_live():
+    # ordinary network delay: each dist sample is stamped 25 ms before it arrives (more than a 10 ms cycle),
+    # and dist drops to 0.3 (below 'clear') from the sample that arrives at 0.3001. Live holds a sample from
+    # the cycle that took it (its arrival), its age counted from its stamp. Before: the replay of the live
+    # recording held it from its stamp, so judged 'clear' violated two cycles earlier than live did.
+    mapping = MAPPING.replace("dist: {topic: /range, field: range, time: header}",
+                              "dist: {topic: /range, field: range, time: header, max_age_s: 0.1}")
+    samples = [s if s.signal != "dist" else S(s.t_log, "dist", 0.3 if s.t_log > 0.3 else 1.0,
+                                              round(s.t_log - 0.025, 6)) for s in _base()]
+    liv, live, res = _same(samples, mapping)
+    first = next(k for k, v in enumerate(liv) if "clear" in v[-1])
+    assert abs(res.grid[res.started["cycle"] + first] / 1e9 - 0.3001) < 0.0101  # the cycle that took it
+    # and its age is counted from its stamp: 25 ms old when it arrived, stale 75 ms later (max_age_s 0.1)
+    late = [s for s in samples if s.signal != "dist" or s.t_log < 0.45]
+    liv, _, _ = _same(late, mapping)
+    k_stale = next(k for k, v in enumerate(liv) if k > first and v[3])
+    assert abs(res.grid[res.started["cycle"] + k_stale] / 1e9 - (0.4401 - 0.025 + 0.1)) < 0.0101
+
+
+def test_the_numpy_hold_takes_a_sample_from_when_it_is_visible_and_ages_it_from_its_time():
+    import numpy as np
+
+    from ethimon.io import MISSING, OK, STALE, hold
+    times = np.array([0, 5, 12], dtype=np.int64)  # stamps (ns)
+    visible = np.array([8, 20, 13], dtype=np.int64)  # received: the second after the third
+    grid = np.arange(0, 30, 2, dtype=np.int64)
+    vals, code, idx = hold(times, np.array([1.0, 2.0, 3.0]), grid, 15e-9, visible)
+    # nothing before 8; the first from 8; the third (later stamp) from 13; the second, received at 20 but
+    # stamped before the third, never held; the third stale once more than 15 ns past its stamp 12
+    assert list(idx) == [-1, -1, -1, -1, 0, 0, 0, 2, 2, 2, 2, 2, 2, 2, 2]
+    assert list(code[:4]) == [MISSING] * 4 and code[4] == OK and code[14] == STALE and code[13] == OK
+    assert np.isnan(vals[14]) and vals[13] == 3.0
+    same = hold(times, np.array([1.0, 2.0, 3.0]), grid, 16e-9)
+    assert list(same[2]) == list(hold(times, np.array([1.0, 2.0, 3.0]), grid, 16e-9, times)[2])
+
+
+def test_a_stale_cause_names_the_age_of_the_sample_held_not_of_one_stamped_earlier_but_not_yet_received():
+    # dist samples every 40 ms, each stamped 25 ms before it arrives, max_age_s 0.03: stale between them. The
+    # report's cause must give the held sample's age (over the limit), not that of the next one, which is
+    # stamped by then but not yet received (before: "0.005 s old" for a stale input).
+    import re
+
+    from tests.io._drive import replay_of
+    mapping = load_mapping_text(MAPPING.replace("dist: {topic: /range, field: range, time: header}",
+                                                "dist: {topic: /range, field: range, time: header, max_age_s: 0.03}"))
+    samples = [s if s.signal != "dist" else S(s.t_log, "dist", 1.0, round(s.t_log - 0.025, 6))
+               for s in _base() if s.signal != "dist" or round(s.t_log * 50) % 2 == 0]
+    res = replay_of(samples, spec(), mapping)
+    detail = res.check("inputs").detail
+    ages = [float(x) for x in re.findall(r"dist: stale \(last /range message ([0-9.]+) s old", detail)]
+    assert ages and all(a > 0.03 for a in ages), detail

@@ -5,7 +5,8 @@ sample at a time as they arrive (live).
 Cycle ``k`` is at ``t0 + rint(k * 1e9 / rate_hz)`` ns (float64 arithmetic, as
 written); the grid runs until a cycle at or after the bag's last sample, so the
 tail is judged too. At cycle time ``t`` a signal takes the last sample with time ``<= t``
-(a sample at exactly ``t`` counts). It is *missing* when it has no such
+(a sample at exactly ``t`` counts); with ``time: header`` a sample is first held at the later of its
+log (receive) time and its stamp, and its age is counted from its stamp, as live. It is *missing* when it has no such
 sample yet, and *stale* when that sample is older than its limit:
 ``t - t_sample > max_age_s * 1e9``. A missing or stale input is unusable
 (NaN in its column): the monitor fails closed on that cycle, as it does
@@ -61,14 +62,27 @@ def cycle_grid(t0: int, t_end: int, rate_hz: float) -> np.ndarray:
 
 
 def hold(times: np.ndarray, values: np.ndarray, grid: np.ndarray,
-         max_age_s: float | None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+         max_age_s: float | None, visible: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Zero-order hold of one signal on ``grid``.
+
+    ``times`` (ascending) are the samples' own times, from which their age is counted; ``visible`` (same
+    order; ``None``: ``times``) when each can first be held: with ``time: header`` the later of its log
+    (receive) time and its stamp, as live holds a sample from the cycle that took it, or from its stamp if
+    that is still ahead. A cycle holds, of the samples visible by then, the one with the latest time (equal
+    times: the later in ``times`` order), as live does: a sample visible after one with a later time was
+    held is never held.
 
     Returns:
         ``(values, code, index)``: the held value (NaN when missing or stale), the code per
         cycle (:data:`OK`, :data:`MISSING`, :data:`STALE`) and the index of the held sample (-1: none).
     """
-    idx = np.searchsorted(times, grid, side="right") - 1
+    if visible is None:
+        idx = np.searchsorted(times, grid, side="right") - 1
+    else:
+        order = np.argsort(visible, kind="stable")
+        newest = np.maximum.accumulate(order) if order.size else order  # the latest time among the visible
+        pos = np.searchsorted(visible[order], grid, side="right") - 1
+        idx = np.where(pos >= 0, newest[np.maximum(pos, 0)] if order.size else -1, -1)
     seen = idx >= 0
     safe = np.where(seen, idx, 0)
     if times.size:

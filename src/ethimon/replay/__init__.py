@@ -71,6 +71,9 @@ def recorded_data(recording: Any, mapping: Any, path: str = "<recording>") -> An
     """A live run's :class:`~ethimon.io.Recording` (every sample :class:`~ethimon.io.LiveMonitor` received)
     as the :class:`BagData` a bag gives: replayed (:func:`~ethimon.replay.replay_data`), it is read by the
     same rules as a bag (receive times as log time, header stamps as header time, ``offset_s``, ``derive``).
+    A ``time: header`` sample's log time is its receive time moved onto the header clock (by the difference of
+    the two clocks at the cycle that took it): live holds it from that cycle, or from its stamp if that is still
+    ahead, and its age counts from its stamp; replayed, the same.
     A header stamp that was further than ``future_tolerance_s`` ahead of the cycle that took it (a fault live
     until its time came) is an unusable sample at that cycle's time, then its value at its own time."""
     from ..io import TASK_TEXT
@@ -90,17 +93,20 @@ def recorded_data(recording: Any, mapping: Any, path: str = "<recording>") -> An
             if s.signal != name:
                 continue
             hdr = None
+            t_log = int(round(s.t_log * 1e9))
             if s.t_header is not None:
                 hdr = header(s.t_header)
                 k = taken[i] if i < len(taken) else None
                 if sm.time == "header" and k is not None and k < len(cycles) and cycles[k][1] is not None:
                     wall = cycles[k][1]
+                    # received then, on the clock of the stamps (the live log clock may be another one)
+                    t_log += int(round(wall * 1e9)) - int(round(cycles[k][0] * 1e9))
                     if int(round(s.t_header * 1e9)) + off - int(round(wall * 1e9)) > tol_ns:
                         # 1 ns before the cycle: a sample stamped at the cycle's time, taken by it, replaces the
                         # mark (live, its time has come), instead of sharing the mark's time
                         c.add(_Recorded(math.nan, header(wall, off + 1)), int(round(cycles[k][0] * 1e9)),
                               sm.topic, msgtype)
-            c.add(_Recorded(s.value, hdr), int(round(s.t_log * 1e9)), sm.topic, msgtype)
+            c.add(_Recorded(s.value, hdr), t_log, sm.topic, msgtype)
         series[name] = c.series(sm.topic, msgtype)
     texts = [(int(round(s.t_log * 1e9)), s.value) for s in recording.samples
              if s.signal == TASK_TEXT and isinstance(s.value, str)]

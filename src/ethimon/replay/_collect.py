@@ -24,6 +24,8 @@ class Series:
     ``read`` messages were read from the topic (``times`` may hold one fewer with ``derive: rate``);
     ``kind`` is ``"bool"`` when the field holds truth values (a ``std_msgs/Bool``), else ``"number"``;
     ``clock`` is ``"log"`` or ``"header"``; ``offset_ns`` was added to every time (``offset_s``).
+    ``visible`` (``clock == "header"`` only, else ``None``): when each sample can first be held, the later of
+    its log time and its stamp (the age still counts from its stamp), as live (:func:`ethimon.io.hold`).
     """
 
     topic: str
@@ -35,6 +37,7 @@ class Series:
     clock: str = "log"
     msgtype: str = ""
     offset_ns: int = 0
+    visible: np.ndarray | None = None
 
 
 _PAST = object()
@@ -65,7 +68,8 @@ class _Collector:
     """The samples of one mapped signal, gathered message by message (compact arrays, not lists)."""
 
     __slots__ = ("name", "sm", "fpath", "spath", "times", "values", "raw", "bad", "past_end", "read", "bools",
-                 "zero", "header", "off", "where", "names_key", "names_idx", "names_last", "fast", "named", "pending")
+                 "zero", "header", "logs", "off", "where", "names_key", "names_idx", "names_last", "fast", "named",
+                 "pending")
 
     def __init__(self, name: str, sm: SignalMap, spath: str) -> None:
         self.name, self.sm, self.spath = name, sm, spath
@@ -74,6 +78,7 @@ class _Collector:
         self.raw: list[np.ndarray] | None = [] if sm.derive == "rate" else None
         self.bad = self.past_end = self.read = self.bools = self.zero = 0
         self.header = sm.time == "header"
+        self.logs = array("q")  # with 'time: header': each message's log time too
         self.off = int(round(sm.offset_s * 1e9))
         self.where = ""
         self.names_key: Any = None
@@ -106,6 +111,7 @@ class _Collector:
             t = _stamp(msg, topic, msgtype, self.spath, self.name)
             if t == 0:
                 self.zero += 1
+            self.logs.append(t_log)
         else:
             t = t_log
         self.times.append(t + self.off)
@@ -219,11 +225,21 @@ class _Collector:
         if self.raw is not None:
             return self._rate(times, topic, msgtype, kind)
         values = np.frombuffer(self.values, dtype=np.float64).copy() if self.values else np.zeros(0)
+        visible = self._visible(times)
         if times.size and np.any(np.diff(times) < 0):  # header stamps (or offsets) out of order
             order = np.argsort(times, kind="stable")
             times, values = times[order], values[order]
+            visible = None if visible is None else visible[order]
         _same_time(self.name, topic, times, values, self.spath, sm)
-        return Series(sm.topic, times, values, self.bad, self.read, kind, sm.time, msgtype, self.off)
+        return Series(sm.topic, times, values, self.bad, self.read, kind, sm.time, msgtype, self.off, visible)
+
+    def _visible(self, times: np.ndarray) -> np.ndarray | None:
+        """With ``time: header``: the later of each message's log time and its stamp (``None`` when that is
+        the stamp throughout, as in a bag whose stamps are at or after its log times)."""
+        if not self.header or len(self.logs) != times.size:
+            return None
+        logs = np.frombuffer(self.logs, dtype=np.int64)
+        return np.maximum(logs, times) if np.any(logs > times) else None
 
     def _rate(self, times: np.ndarray, topic: str, msgtype: str, kind: str) -> Series:
         sm, raw = self.sm, self.raw
@@ -231,8 +247,10 @@ class _Collector:
         if kind == "bool":
             raise BagError(f"{self.where}: 'derive: rate' of a bool field", self.spath,
                            hint="a rate needs numbers")
+        visible = self._visible(times)
         order = np.argsort(times, kind="stable")
         times = times[order]
+        visible = None if visible is None else visible[order][1:]
         dup = np.flatnonzero(np.diff(times) == 0)
         if dup.size:
             raise BagError(f"signal {self.name!r}: {dup.size:,} messages on {topic} share a time with the one "
@@ -247,7 +265,7 @@ class _Collector:
                 bad += 1
             out[j - 1] = x
         self.raw = None
-        return Series(sm.topic, times[1:], out, bad, self.read, "number", sm.time, msgtype, self.off)
+        return Series(sm.topic, times[1:], out, bad, self.read, "number", sm.time, msgtype, self.off, visible)
 
     def _past_what(self) -> str:
         sm = self.sm

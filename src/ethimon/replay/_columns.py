@@ -38,7 +38,7 @@ def _bag_span(data: BagData, mapping: Mapping) -> tuple[int, int] | None:
     for s in data.series.values():
         if s.times.size:
             firsts.append(int(s.times[0]))
-            lasts.append(int(s.times[-1]))
+            lasts.append(int(s.times[-1] if s.visible is None else s.visible.max()))
     if data.texts:
         firsts.append(data.texts[0][0])
         lasts.append(data.texts[-1][0])
@@ -109,7 +109,7 @@ def _judge_counts(data: BagData, mapping: Mapping, grid: np.ndarray, idxs: dict[
             out[name] = before[name] = 0
             continue
         ok = judged(s.times, s.values, idxs[name])
-        early = s.times < grid[0]
+        early = (s.times if s.visible is None else s.visible) < grid[0]
         before[name] = int((early & ~ok).sum())
         if before[name]:
             if mapping.samples_of(name) != "latest":  # 'every': no sample goes unjudged in silence
@@ -186,7 +186,7 @@ def resample(data: BagData, mapping: Mapping, spec: Spec, *, score: Scorer | Non
     codes: dict[str, np.ndarray] = {}
     idxs: dict[str, np.ndarray] = {}
     for name, s in data.series.items():
-        vals, code, idx = hold(s.times, s.values, grid, mapping.limit_s(name))
+        vals, code, idx = hold(s.times, s.values, grid, mapping.limit_s(name), s.visible)
         columns[name] = vals
         codes[name] = code
         idxs[name] = idx
@@ -243,7 +243,7 @@ def resample(data: BagData, mapping: Mapping, spec: Spec, *, score: Scorer | Non
             columns["risk_age_s"] = np.zeros(n)
         else:
             s = data.series[risk_key]
-            idx = np.searchsorted(s.times, grid, side="right") - 1
+            idx = idxs[risk_key]  # the sample the hold took: its age, from its own time
             columns["risk_age_s"] = np.where(idx >= 0, (grid - s.times[np.maximum(idx, 0)]) / 1e9, np.nan)
     warnings.extend(_held_prev_warnings(data, mapping, spec))
     return Resampled(grid, columns, codes, risk_key, risk_note, tasks, judged_n, before, warnings)

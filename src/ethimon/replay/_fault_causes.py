@@ -9,7 +9,7 @@ from ..language import Spec
 from ._bag import BagData
 from ._columns import Resampled
 from ._mapping import Mapping
-from ._resample import MISSING, OK, STALE
+from ._resample import MISSING, OK, STALE, hold
 from ._verdicts import CycleResults
 
 
@@ -41,7 +41,7 @@ def _why_fault(rs: Resampled, tr: CycleResults, data: BagData, mapping: Mapping,
         stale = code == STALE
         if stale.any():
             k = int(np.argmax(stale & tr.fault)) if (stale & tr.fault).any() else int(np.argmax(stale))
-            i = int(np.searchsorted(s.times, grid[k], side="right") - 1)
+            i = int(hold(s.times, s.values, grid[k:k + 1], None, s.visible)[2][0])  # the sample that cycle held
             age = (int(grid[k]) - int(s.times[i])) / 1e9
             add(stale, f"{name}: stale (last {s.topic} message {age:.3f} s old, max_age_s "
                        f"{mapping.limit_s(name):g})")
