@@ -13,7 +13,6 @@ import pytest
 
 import ethimon
 from ethimon import Response
-from ethimon.audit import AuditLog, read_log
 from ethimon.errors import SpecError
 from ethimon.loop import GovernedLoop
 from tests._estimators import FakeClock
@@ -34,6 +33,23 @@ CLEAR = {"human_distance": 2.0, "at_rest": True, "start_button": False, "p_unsaf
 NEAR = dict(CLEAR, human_distance=0.2)
 
 
+class _Records:
+    """An in-memory audit log (what the loop calls: append, fault, flush): no file, no fsync."""
+
+    fault = None
+    max_lag_s = 1.0
+
+    def __init__(self):
+        self.records = []
+
+    def append(self, kind, **fields):
+        self.records.append(dict(fields, kind=kind))
+        return True
+
+    def flush(self, timeout=None):
+        pass
+
+
 def _loop(restart="restart: {start: command}", **kw):
     spec = ethimon.load_spec_text(SPEC % restart)
     return GovernedLoop(ethimon.Monitor(spec), period_s=0.001, clock=FakeClock(), **kw)
@@ -46,9 +62,8 @@ def _latched_then_clear(loop, clear=CLEAR):
     assert d.override and d.awaiting_release
 
 
-def test_an_accepted_acknowledgement_holds_stop_2_until_the_start_command(tmp_path):
-    p = tmp_path / "a.jsonl"
-    loop = _loop(audit=AuditLog(str(p)))
+def test_an_accepted_acknowledgement_holds_stop_2_until_the_start_command():
+    loop = _loop(audit=_Records())
     _latched_then_clear(loop)
     assert loop.acknowledge("ops-1", reason="checked the cell")
     for _ in range(3):  # the reset never starts motion by itself
@@ -65,8 +80,7 @@ def test_an_accepted_acknowledgement_holds_stop_2_until_the_start_command(tmp_pa
     d = loop.cycle(CLEAR)
     assert not d.override and loop.hold_text == ""
     assert not loop.start_motion("ops-1").released  # nothing waits any more
-    loop.audit.close()
-    starts = [r for r in read_log(str(p)) if r["kind"] == "start"]
+    starts = [r for r in loop.audit.records if r["kind"] == "start_motion"]
     assert [r["accepted"] for r in starts] == [True, False]
     assert starts[0]["operator"] == "ops-1" and starts[0]["reason"] == "cell clear"
 
