@@ -163,3 +163,16 @@ def test_restart_standstill_names_a_declared_bool_input_and_lint_says_when_it_is
     assert any("restart.standstill" in w and "must gate" in w for w in ws)
     assert not any("standstill" in w for w in release_policy_warnings(
         ethimon.load_spec_text(SPEC % "restart: {standstill: at_rest}")))
+
+
+def test_a_reload_that_drops_the_restart_block_or_its_standstill_is_a_weakening():
+    from ethimon.loop import weakenings
+    full = ethimon.load_spec_text(SPEC % "restart: {start: start_button, standstill: at_rest}")
+    weak, _ = weakenings(full, ethimon.load_spec_text(SPEC % ""))
+    assert any("restart block removed" in w for w in weak)
+    weak, _ = weakenings(full, ethimon.load_spec_text(SPEC % "restart: {start: start_button}"))
+    assert any("restart.standstill at_rest removed" in w for w in weak)
+    _, unjudged = weakenings(full, ethimon.load_spec_text(SPEC % "restart: {standstill: at_rest}"))
+    assert any("restart.start start_button -> command" in u for u in unjudged)
+    assert weakenings(full, full) == ([], [])
+
