@@ -176,3 +176,14 @@ def test_a_reload_that_drops_the_restart_block_or_its_standstill_is_a_weakening(
     assert any("restart.start start_button -> command" in u for u in unjudged)
     assert weakenings(full, full) == ([], [])
 
+
+
+def test_the_restart_hold_says_since_when_and_that_an_acknowledgement_does_not_release_it():
+    loop = _loop()
+    _latched_then_clear(loop)
+    assert loop.acknowledge("ops-1")
+    loop.cycle(CLEAR)
+    [h] = loop.holding()
+    assert h["since_t_unix"] is not None and h["acknowledge_allowed"] is False
+    a = loop.acknowledge("ops-1")  # a second reset does not start motion either
+    assert not a.released and loop.cycle(CLEAR).override

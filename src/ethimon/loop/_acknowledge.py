@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import threading
+import time
 from typing import Any
 
 from ..audit import bounded
@@ -183,6 +184,7 @@ class _Acknowledging:
             # a reset never starts motion: the loop holds until the spec's start (ISO 13849-1 5.2.2)
             self._awaiting_start = self.monitor.cycle
             self._own_decision = None  # judged again by the next cycle
+            self._latch_t[self._awaiting_start] = time.time()  # holding()'s since_t_unix
             self._start_prev = True  # a start input already on does not count: it must rise
             a = Acknowledgement(True, a.rules, f"{a.message}; {self._waiting_text()}")
         req[3] = a
