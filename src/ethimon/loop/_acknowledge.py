@@ -53,7 +53,10 @@ class _Acknowledging:
         for its ``hold_cycles``. Every request, accepted or refused, is an
         ``acknowledge`` record in the audit log (operator, reason, result,
         monitor cycle); a request is refused without touching the monitor while
-        the audit log reports a fault, so no release goes unrecorded.
+        the audit log reports a fault, so no release goes unrecorded. With a spec ``restart:`` block,
+        also refused while its ``standstill`` input was false or missing on the last cycle (the stop has
+        not completed), and an accepted one starts nothing: the loop holds until :meth:`start_motion`
+        or the spec's start input rises.
 
         Args:
             operator: who acknowledges (a name or badge id; required).
@@ -118,8 +121,9 @@ class _Acknowledging:
         """Why a manual reset must be refused now ('' if it may go to the monitor): ISO 13849-1:2015
         5.2.2, the stop condition is kept until safe conditions for restarting exist. Refused while the
         last cycle had a rule firing (the confirm band's hold excepted: acknowledging confirms it) or a
-        fault, or, with ``acknowledge_clear``, while that reading was missing or below its minimum (a
-        person inside the protective distance). A refusal is not remembered."""
+        fault, while the spec's ``restart.standstill`` input was not true (the robot has not reported
+        that the stop completed), or, with ``acknowledge_clear``, while that reading was missing or below
+        its minimum (a person inside the protective distance). A refusal is not remembered."""
         d = self.last_decision
         if d is None:
             return ""  # nothing judged yet: the monitor itself has nothing to release
