@@ -411,16 +411,23 @@ class Restart(BaseModel):
     An accepted acknowledgement is a reset: it releases the manual latches and never starts
     motion by itself (ISO 13849-1:2015 5.2.2, IEC 60204-1:2016 9.2.2 as we read them). ``start``
     names the separate start condition: ``command`` (default), a deliberate start command
-    after the acknowledgement (``GovernedArm.start()``, a scenario's ``sim.start_at_s``); or the
-    name of a ``bool`` input (a start button wired to the monitor): its rising edge, false to true,
-    after the acknowledgement. Automatic releases (``release: auto``) restart by themselves, as
-    before: speed and separation monitoring may resume once the separation is restored.
+    after the acknowledgement (``GovernedArm.start()``, ``GovernedLoop.start_motion()``, a scenario's
+    ``sim.start_at_s``); or the name of a ``bool`` input (a start button wired to the monitor): its
+    rising edge, false to true, after the acknowledgement. ``standstill`` optionally names a ``bool``
+    input by which the robot reports that the stop has completed (standstill, brakes engaged, power
+    state settled): ``GovernedLoop.acknowledge`` is refused while it is false or missing. Automatic
+    releases (``release: auto``) restart by themselves, as before: speed and separation monitoring
+    may resume once the separation is restored.
     """
 
     model_config = _CFG
     start: Annotated[str, Field(pattern=IDENT)] = Field(
         "command", description="command (default): a separate start command after the acknowledgement; "
         "or the name of a bool input whose rising edge after the acknowledgement starts motion")
+    standstill: Annotated[str, Field(pattern=IDENT)] | None = Field(
+        None, description="the name of a bool input by which the robot reports that its stop has completed "
+        "(standstill, brakes engaged, power state settled): an acknowledgement is refused while it is false "
+        "or missing; null (default): the integrator's controller must gate acknowledgements on it")
 
 
 class _Carried:
@@ -474,7 +481,8 @@ class Spec(BaseModel):
     safe_pose: SafePose = Field(default_factory=SafePose)
     restart: Restart = Field(
         default_factory=Restart, description="what resumes motion after an accepted acknowledgement "
-        "(a reset never starts motion): {start: command} (default) or {start: <bool input>}")
+        "(a reset never starts motion): {start: command} (default) or {start: <bool input>}; "
+        "standstill: <bool input>, the robot's word that the stop has completed")
     robot: str = Field("panda", min_length=1, description="the arm: a shipped robot description (panda, ur5e) "
                        "or the path of a robot YAML file (data, never code), relative to the spec; its joint "
                        "count and rated limits are what lint and verify check the safe pose against")
@@ -498,15 +506,20 @@ class Spec(BaseModel):
     @field_validator("restart")
     @classmethod
     def _restart_signal(cls, v: Restart, info: ValidationInfo) -> Restart:
-        st = v.start
-        if st != "command" and "signals" in info.data:  # (signals validated before restart)
-            sig = info.data["signals"].get(st)
+        if "signals" not in info.data:  # (signals validated before restart)
+            return v
+        for key, name, what, role in (
+                ("start", v.start if v.start != "command" else None, "(command, or the name of a bool input: "
+                 "a start button)", "a start condition needs a bool input (its rising edge starts motion)"),
+                ("standstill", v.standstill, "(the name of a bool input: the robot's word that its stop has "
+                 "completed)", "a standstill report needs a bool input (true: the stop has completed)")):
+            if name is None:
+                continue
+            sig = info.data["signals"].get(name)
             if sig is None:
-                raise ValueError(f"start: {st!r} is not a declared signal (command, or the "
-                                 "name of a bool input: a start button)")
+                raise ValueError(f"{key}: {name!r} is not a declared signal {what}")
             if sig.type != "bool":
-                raise ValueError(f"start: signal {st!r} is {sig.type}, a start condition "
-                                 "needs a bool input (its rising edge starts motion)")
+                raise ValueError(f"{key}: signal {name!r} is {sig.type}, {role}")
         return v
 
     @property

@@ -293,6 +293,11 @@ class GovernedLoop(_Acknowledging, _Reloading):
                 h["release"] = "person"
                 h["how"] += f"; acknowledgements are refused here ({refused}): only a person at the loop releases it"
             out.append(h)
+        if self._awaiting_start is not None:  # after the monitor's own latches (most severe first)
+            h = self._restart_holding()
+            h["since_t_unix"] = times.get(self._awaiting_start)
+            h["acknowledge_allowed"] = False
+            out.append(h)
         return out
 
     @property
@@ -397,6 +402,8 @@ class GovernedLoop(_Acknowledging, _Reloading):
             self.stats.deadline_misses += 1
         if reasons:
             d = m.fault(*reasons, decision=d)
+        if self._awaiting_start is not None:  # an acknowledged stop waits for the spec's start (restart:)
+            d = self._restart_hold(d, inputs)
         st.cycles += 1
         if end - now > st.max_cycle_s:
             st.max_cycle_s = end - now

@@ -102,6 +102,24 @@ def _judge_tier_changes(ro, rn, weak: list[str], unjudged: list[str]) -> None:
                     "stop for a person)")
 
 
+def _restart_changes(old: Spec, new: Spec, weak: list[str], unjudged: list[str]) -> None:
+    """The ``restart:`` block (issue 32 item 4): GovernedLoop gates restarts only with one."""
+    go, gn = "restart" in old.model_fields_set, "restart" in new.model_fields_set
+    if go and not gn:
+        weak.append("restart block removed (an accepted acknowledgement now releases at once: no start awaited)")
+        return
+    if not (go and gn):
+        return
+    so, sn = old.restart.standstill, new.restart.standstill
+    if so is not None and sn is None:
+        weak.append(f"restart.standstill {so} removed (acknowledgements no longer wait for the robot's "
+                    "report that the stop completed)")
+    elif so != sn and so is not None:
+        unjudged.append(f"restart.standstill {so} -> {sn}")
+    if old.restart.start != new.restart.start:
+        unjudged.append(f"restart.start {old.restart.start} -> {new.restart.start}")
+
+
 def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> tuple[list[str], list[str]]:
     """How ``new`` weakens monitoring compared with ``old``, judged field by field.
 
@@ -112,14 +130,13 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     class or the number of classes changed; ``risk.response`` or ``on_fault``
     less severe; release mode manual → auto (the risk rule's, an obligation's
     or the fault latch's, defaults filled in) or a rule's hold lowered; the release bound τ − δ raised
-    (hysteresis shrunk relative to τ) or ``hold_cycles`` lowered; the effective
-    estimate age limit removed or raised (``risk.max_age_s``, else the loop's
-    ``loop_max_age_s``); a signal's range widened or removed; a signal removed
-    (whether or not an obligation reads it: its missing/type/range check failed
-    closed) or replaced by a constant of the same name; the ``risk`` inputs the
-    monitor accepts widened below τ; the safe pose's joint-speed limit or
-    tolerance raised. Release parameters are compared for every rule in every
-    mode (a manual rule's ``hold_cycles`` and the risk rule's bound τ − δ are what
+    (hysteresis shrunk relative to τ) or ``hold_cycles`` lowered; the effective estimate age limit
+    removed or raised (``risk.max_age_s``, else the loop's ``loop_max_age_s``); a signal's range widened
+    or removed; a signal removed (whether or not an obligation reads it: its missing/type/range check
+    failed closed) or replaced by a constant of the same name; the ``risk`` inputs the
+    monitor accepts widened below τ; the safe pose's joint-speed limit or tolerance raised; the
+    ``restart:`` block or its ``standstill`` input removed. Release parameters are compared for every
+    rule in every mode (a manual rule's ``hold_cycles`` and the risk rule's bound τ − δ are what
     ``acknowledge()`` waits for).
 
     Conditions are judged on meaning: an obligation whose text is unchanged still
@@ -130,7 +147,7 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     first list, each ending in :data:`CANNOT_TELL`; the second list repeats just
     these): the text of a ``require`` or ``when`` that changed (beyond
     whitespace), what a name in an unchanged text stands for, a signal's type, the safe pose's joints, the
-    estimator settings, the ``risk.allow`` opt-outs. ``require: 'true'`` or a
+    estimator settings, the ``risk.allow`` opt-outs, ``restart.start``/``standstill`` changed. ``require: 'true'`` or a
     constant ``min_d: -1`` would otherwise switch a check off unnoticed.
 
     Returns:
@@ -250,6 +267,7 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
                 jn.model_copy(update={"safe_below": jo.safe_below, "unsafe_from": jo.unsafe_from}) != jo):
             unjudged.append("risk.judge settings changed")
     _judge_tier_changes(ro, rn, weak, unjudged)
+    _restart_changes(old, new, weak, unjudged)
     unjudged = [f"{u}: {CANNOT_TELL}" for u in unjudged]
     return weak + unjudged, unjudged
 
