@@ -84,3 +84,16 @@ def test_the_powered_hold_cuts_power_once_the_arm_is_held_with_the_factor():
         assert sim.max_drop_unpowered_m < 0.001
     finally:
         sim.close()
+
+
+@pytest.mark.slow
+def test_scenario_payload_rated_stop0_worst_pose_holds_and_says_why():
+    """Failed first: powered_off true, brakes_escalated false, the pot ended 0.15 m low."""
+    pytest.importorskip("pybullet")
+    from ethimon.sim import check_sim_expectations
+    from tests.sim._scenarios import run_scenario
+    block, res = run_scenario("payload_rated_stop0_worst_pose")
+    assert check_sim_expectations(block, res) == []
+    esc = [r for r in res.trace if r.escalated]
+    assert esc and esc[0].powered and "safety factor 1.5" in esc[0].escalated
+    assert res.dropped == ()

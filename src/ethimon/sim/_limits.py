@@ -37,7 +37,8 @@ from .._robot import (BRAKE_HOLDING_N_M, BRAKE_SAFETY_FACTOR, BRAKE_TABLE, RATED
 
 __all__ = ["RATED_Q_MIN", "RATED_Q_MAX", "RATED_DQ_MAX", "RATED_DDQ_MAX", "RATED_DDDQ_MAX",
            "RATED_SOURCE", "LIMIT_MARGIN_RAD", "BRAKE_ENGAGE_S", "BRAKE_DECEL_RAD_S2", "BRAKE_TORQUE_N_M",
-           "BRAKE_SAFETY_FACTOR", "BRAKE_TABLE", "RATED_PAYLOAD_KG", "brake_problem", "gravity_torque", "out_of_range", "safe_pose_problem"]
+           "BRAKE_SAFETY_FACTOR", "BRAKE_TABLE", "RATED_PAYLOAD_KG", "brake_problem", "gravity_torque",
+           "out_of_range", "safe_pose_problem"]
 
 #: the servo keeps its reference this far inside every rated position limit (rad), and a
 #: stop plans each joint to rest inside it: the tracking error near a limit (0.015 mrad
