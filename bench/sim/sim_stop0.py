@@ -8,8 +8,11 @@ random requested joint speed (0.3 .. 2.6 rad/s), at a random moment of it. Then 
 power off, the brakes (``ethimon._robot.BRAKE_TABLE``, estimates; 30 ms to engage, assumed) hold.
 Measured per run, from the command: time to standstill (every joint < 0.01 rad/s), joint travel
 (largest joint, rad), Cartesian travel of the grasp point (largest distance from where it was, m),
-how far the grasp point sank (m), peak |q̈_j| / rated q̈_max,j, and the furthest any joint went past
-its rated position limit (mrad). Refused power-offs (brakes that cannot hold) are counted.
+how far the grasp point sank after power-off (m) and below where it was at the command (m, any
+power state: a refused power-off's powered hold included), peak |q̈_j| / rated q̈_max,j, and the furthest any joint went past
+its rated position limit (mrad). Refused power-offs (brakes that cannot hold arm + payload with the
+safety factor ``ethimon._robot.BRAKE_SAFETY_FACTOR``: a powered stop 2 instead) are counted; their
+standstill is the powered hold's.
 
     python -m bench.sim.sim_stop0 [--runs 40] [--seed 0] [--out bench/results/sim/sim_stop0.json]
 """
@@ -48,6 +51,7 @@ def stop0_run(rng, moving: bool) -> dict:
                 sim.step()
         q, qd = sim.joint_state()
         ee0 = sim.ee_pose()[0]
+        z0 = z_min = sim._grasp_z()
         v0 = float(np.max(np.abs(qd)))
         load = np.abs(sim.gravity_load()) / sim.brake_torque
         stop = StopController(0, q, qd, 0.25)
@@ -57,7 +61,9 @@ def stop0_run(rng, moving: bool) -> dict:
             sim.step()
             ratio = max(ratio, sim.max_accel_ratio_substep)
             travel_m = max(travel_m, float(np.linalg.norm(sim.ee_pose()[0] - ee0)))
-            if float(np.max(np.abs(sim.joint_state()[1]))) < 0.01 and sim.brakes_engaged:
+            z_min = min(z_min, sim._grasp_z())
+            held = sim.brakes_engaged or (sim.powered and sim.power_off_refused is not None)
+            if float(np.max(np.abs(sim.joint_state()[1]))) < 0.01 and held:
                 if t_still is None:
                     t_still = (k + 1) / 60
             else:
@@ -67,6 +73,7 @@ def stop0_run(rng, moving: bool) -> dict:
                 "brake_load_ratio": round(float(np.max(load)), 3),
                 "time_to_standstill_s": t_still, "joint_travel_rad": round(float(np.max(np.abs(q2 - q))), 4),
                 "ee_travel_m": round(travel_m, 4), "drop_m": round(sim.max_drop_unpowered_m, 4),
+                "hand_drop_m": round(z0 - z_min, 4),
                 "accel_ratio": round(ratio, 3), "past_limit_mrad": round(1000 * sim.max_past_limit_rad, 3),
                 "refused": sim.power_off_refused is not None, "held_at_end": sim.held == "payload"}
     finally:
@@ -83,9 +90,9 @@ def main() -> int:
     rng = np.random.default_rng(args.seed)
     rows = [stop0_run(rng, moving=bool(i % 2)) for i in range(args.runs)]
     keys = ("time_to_standstill_s", "joint_travel_rad", "ee_travel_m", "drop_m", "accel_ratio",
-            "past_limit_mrad", "payload_kg", "brake_load_ratio", "speed_at_command_rad_s")
+            "past_limit_mrad", "hand_drop_m", "payload_kg", "brake_load_ratio", "speed_at_command_rad_s")
     summary = {}
-    print(f"{'stop 0':<10}{'n':>4}  " + "".join(f"{k:>24}" for k in keys[:6]))
+    print(f"{'stop 0':<10}{'n':>4}  " + "".join(f"{k:>24}" for k in keys[:7]))
     for name, sel in (("from_rest", [r for r in rows if not r["moving"]]),
                       ("moving", [r for r in rows if r["moving"]]), ("all", rows)):
         s = {k: _dist([r[k] for r in sel]) for k in keys}
@@ -93,7 +100,7 @@ def main() -> int:
         s["never_still"] = sum(r["time_to_standstill_s"] is None for r in sel)
         summary[name] = s
         print(f"{name:<10}{len(sel):>4}  " + "".join(
-            f"{'%.3f / %.3f' % (s[k]['median'], s[k]['max']) if s[k] else '-':>24}" for k in keys[:6]))
+            f"{'%.3f / %.3f' % (s[k]['median'], s[k]['max']) if s[k] else '-':>24}" for k in keys[:7]))
     out = {"what": __doc__.splitlines()[0], "runs": args.runs, "seed": args.seed,
            "wall_s": round(time.perf_counter() - t0, 1), "columns": "median / max", "summary": summary,
            "runs_detail": rows, "machine": machine_facts()}

@@ -41,7 +41,7 @@ from typing import Any
 from .errors import SpecError
 
 __all__ = ["PANDA_HOME_JOINTS_RAD", "RATED_SOURCE", "RATED_Q_MIN", "RATED_Q_MAX", "RATED_DQ_MAX", "TAU_MAX_N_M",
-           "BRAKE_TABLE", "BRAKE_HOLDING_N_M", "RATED_PAYLOAD_KG", "RATED_PAYLOAD_SOURCE",
+           "BRAKE_TABLE", "BRAKE_HOLDING_N_M", "BRAKE_SAFETY_FACTOR", "RATED_PAYLOAD_KG", "RATED_PAYLOAD_SOURCE",
            "PAYLOAD_OFFSET_M", "GRAVITY_M_S2", "gravity_torque", "gravity_torque_parts", "brake_problem",
            "RATED_DDQ_MAX", "RATED_DDDQ_MAX", "out_of_range", "safe_pose_problem",
            "ROBOTS_DIR", "SHIPPED_ROBOTS", "ROBOT_FORMAT", "Fact", "Robot", "robot_from_data", "shipped_robot",
@@ -325,6 +325,12 @@ BRAKE_TABLE: tuple[tuple[int, float, str], ...] = tuple(
     (j + 1, t, PANDA.source("brake_holding_n_m")) for j, t in enumerate(PANDA.holding_n_m))
 #: holding torque per joint (N·m), joints 1..7 (the numbers of :data:`BRAKE_TABLE`)
 BRAKE_HOLDING_N_M: tuple[float, ...] = tuple(t for _, t, _ in BRAKE_TABLE)
+#: DECISION (the project's lead, issue 32): a brake must hold the gravity load of arm + payload with
+#: this safety factor (holding torque >= factor x load) before a stop 0/1 may leave the arm to it; a
+#: smaller margin lets the joints coast and sink while the brakes engage. The project's choice, in
+#: the spirit of the brake-test margins of ISO 10218-1 / IEC 60204-1 practice (no standard gives
+#: this number). The simulator escalates a stop 0/1 below it to a powered stop 2; lint.brakes uses it.
+BRAKE_SAFETY_FACTOR = 1.5
 
 #: rated payload (kg): Franka Emika, "Panda" product data sheet, "Payload 3 kg"
 RATED_PAYLOAD_KG = PANDA.payload_kg

@@ -51,16 +51,19 @@ def _lint(spec_path, monkeypatch=None, holding=None):
     return Lints.lint_brakes(types.SimpleNamespace(plan=plan_of(spec), spec=spec))
 
 
-def test_lint_brakes_holds_the_rated_payload_with_the_table():
+def test_lint_brakes_judges_the_rated_payload_with_the_safety_factor():
+    """With BRAKE_SAFETY_FACTOR (1.5, issue 32) the table's 87 N·m do not hold the rated 3 kg at the
+    stretched poses (79.3 N·m: 1.10 x): lint.brakes warns and says which factor it used."""
     f = _lint(SPEC)
-    assert f.status == "ok" and "rated 3 kg" in f.message and "slips from 3.9" in f.message
+    assert f.status == "warning" and "rated 3 kg" in f.message and "safety factor 1.5" in f.message
+    assert "from 0.73 kg" in f.message and "87 N·m, 1.10 x" in f.message
 
 
 def test_lint_brakes_names_poses_and_payloads_where_a_stop_would_let_the_arm_fall(monkeypatch):
     f = _lint(SPEC, monkeypatch, WEAK)
     assert f.status == "warning"
     assert "transient_contact" in f.message and "on_fault" in f.message  # the rules that cut power
-    assert "joint 2 needs" in f.message and "from 0.95 kg" in f.message and "[0.00, -1.76" in f.message
+    assert "joint 2 needs" in f.message and "from 0.00 kg" in f.message and "[0.00, -1.76" in f.message
 
 
 def test_lint_brakes_is_quiet_without_a_stop_that_cuts_power(tmp_path, monkeypatch):
@@ -93,14 +96,14 @@ def test_gravity_model_equals_pybullets_inverse_dynamics():
 @pytest.mark.sim
 @pytest.mark.slow
 def test_stop1_with_2_9_kg_stretched_out_holds():
-    """Failed first: joint 2 fell and the pot ended 0.04 m up (on the floor)."""
+    """Failed first: joint 2 fell and the pot ended 0.04 m up (on the floor). Since the brake safety
+    factor (1.5; 87 N·m against 68.6 N·m is 1.27 x) the power-off is refused: held powered."""
     pytest.importorskip("pybullet")
     from ethimon.sim import check_sim_expectations
     block, res = run_scenario("payload_stop1_stretched")
     assert check_sim_expectations(block, res) == []
-    assert not res.powered_at_end and res.max_travel_unpowered_rad < 0.001
-    assert res.max_drop_unpowered_m < 0.001 and res.dropped == ()
-    assert "power off; the brakes hold arm + 2.9 kg (joint 2: 68.6 of 87 N·m)" in res.brake_log[0][1]
+    assert res.powered_at_end and res.brakes_escalated and res.dropped == ()
+    assert "joint 2 needs 68.6 N·m" in res.brake_log[0][1] and "safety factor 1.5" in res.brake_log[0][1]
 
 
 @pytest.mark.sim
@@ -123,9 +126,9 @@ def test_brakes_that_cannot_hold_turn_the_power_off_into_a_powered_hold_with_the
 def test_the_rated_payload_never_falls_at_any_stop_at_the_worst_pose(response):
     """3 kg at joint 2's worst pose, each stop: the arm is held. After a stop 1's power-off it does
     not move (under 1 mm); a stop 2 holds powered (the controlled stop itself lets the grasp point
-    sink under 1 mm; before issue 32 it crept 0.0098 rad at joint 4 and the stop 2 fell as a stop 0); a stop 0's 30 ms coast and a brake with 8 N·m to
-    spare over the 79.3 N·m load let it sag about 0.15 m before it holds (stated in the sim
-    README): never a fall to the floor."""
+    sink under 1 mm; before issue 32 it crept 0.0098 rad at joint 4 and the stop 2 fell as a stop 0).
+    A stop 0 or 1 there is escalated to a powered stop 2: the brake holds the 79.3 N·m load with
+    1.10 x, under BRAKE_SAFETY_FACTOR (before that factor a stop 0 sagged 0.15 m)."""
     pytest.importorskip("pybullet")
     from ethimon.sim import ArmSim, SimObject
     from ethimon.sim._control import StopController
@@ -142,9 +145,9 @@ def test_the_rated_payload_never_falls_at_any_stop_at_the_worst_pose(response):
         for _ in range(120):
             stop.command(sim)
             sim.step()
-        assert sim.power_off_refused is None and sim.held == "pot"
+        assert sim.held == "pot"
         drop = z0 - sim._grasp_z()
-        assert drop < (0.2 if response == "stop_0" else 0.003), drop
-        if response == "stop_1":
-            assert not sim.powered and sim.max_drop_unpowered_m < 0.001
+        assert drop < 0.003, drop
+        if response != "stop_2":  # 87 N·m against 79.3 N·m is under the safety factor 1.5: held powered
+            assert sim.powered and sim.power_off_refused is not None
         assert float(np.max(np.abs(sim.joint_state()[1]))) < 0.01  # held, at rest

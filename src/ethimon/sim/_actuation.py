@@ -8,7 +8,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ._limits import BRAKE_ENGAGE_S, LIMIT_MARGIN_RAD
+from ._limits import BRAKE_ENGAGE_S, BRAKE_SAFETY_FACTOR, LIMIT_MARGIN_RAD
 from ._model import PHYSICS_HZ
 
 from ._cell import (ARM_JOINTS, ARM_MAX_FORCE_N_M, EE_LINK, FINGER_JOINTS, HAND_LINK, _BRAKE_DECEL, _K_POS,
@@ -66,10 +66,13 @@ class _Actuation:
 
         First (issue 32) the gravity load of arm + held payload where the arm is
         (:meth:`gravity_load`) is checked against each joint's brake holding torque
-        (:attr:`brake_torque`, the cell's or the Panda table's): when a brake cannot hold it, power
-        is **not** removed: the arm decelerates within its rated acceleration and holds powered (a
-        stop 2), :attr:`power_off_refused` says why and :attr:`brake_log` has it; later calls keep
-        that hold. Otherwise the motors apply no torque any more. With ``brakes`` (the default, as
+        (:attr:`brake_torque`, the cell's or the Panda table's) with the safety factor
+        :data:`~ethimon._robot.BRAKE_SAFETY_FACTOR` (:meth:`brake_margin_problem`): when a brake
+        cannot hold it with that margin, power is **not** removed: the arm decelerates within its
+        rated acceleration and holds powered (a stop 2), :attr:`power_off_refused` says why and
+        :attr:`brake_log` has it; later calls keep that hold, and remove power only once the arm
+        is at rest (every joint under 0.01 rad/s) where the brakes hold it with the factor (the
+        brakes engaged while the motors hold, no coasting). Otherwise the motors apply no torque any more. With ``brakes`` (the default, as
         on a real Panda) the holding brakes engage :data:`~ethimon.sim._limits.BRAKE_ENGAGE_S`
         later (the joints coast meanwhile), then decelerate each joint at
         :data:`~ethimon.sim._limits.BRAKE_DECEL_RAD_S2` with a friction torque of at most its
@@ -81,11 +84,20 @@ class _Actuation:
         (default: ``stop 1`` with the brakes already engaged, else ``stop 0``).
         """
         why = why or ("stop 1" if brakes_already_engaged else "stop 0")
+        after_hold = False
         if self.power_off_refused is not None and self.powered:
-            self._hold_refused()
-            return
+            # the powered hold of a refused power-off: power goes off only once the arm is at rest
+            # and its brakes hold it there with the safety factor (the brakes engage while the
+            # motors still hold, as a stop 1's); otherwise it stays powered
+            _, qd = self.joint_state()
+            if float(np.max(np.abs(qd))) >= 0.01 or self.brake_margin_problem() is not None:
+                self._hold_refused()
+                return
+            self.power_off_refused = None
+            self._refused_hold = None
+            brakes_already_engaged = after_hold = True
         if self.powered:
-            problem = self.brake_problem_now() if self.brakes else None
+            problem = self.brake_margin_problem() if self.brakes else None
             t = round(self.time_s, 6)
             if problem is not None:
                 self.power_off_refused = (f"{why}: power-off refused, the brakes cannot hold the arm "
@@ -97,8 +109,10 @@ class _Actuation:
                 load = np.abs(self.gravity_load())
                 j = int(np.argmax(load / np.maximum(self.brake_torque, 1e-9)))
                 m, _ = self.payload()
-                self.brake_log.append((t, f"{why}: power off; the brakes hold arm + {m:g} kg (joint {j + 1}: "
-                                          f"{load[j]:.1f} of {self.brake_torque[j]:g} N·m)"))
+                self.brake_log.append((t, f"{why}: power off{' after the powered hold' if after_hold else ''}; "
+                                          f"the brakes hold arm + {m:g} kg with the safety factor "
+                                          f"{BRAKE_SAFETY_FACTOR:g} (joint {j + 1}: {load[j]:.1f} of "
+                                          f"{self.brake_torque[j]:g} N·m)"))
             self.powered = False
             self._off_substeps = 0
             self._brake_hold = None
@@ -108,6 +122,20 @@ class _Actuation:
             if brakes_already_engaged:  # a stop 1 engaged them at standstill, motors holding
                 self._off_substeps = int(math.ceil(BRAKE_ENGAGE_S * PHYSICS_HZ))
         self._apply_unpowered()
+
+    def brake_margin_problem(self) -> str | None:
+        """``None`` when every brake holds the gravity load of arm + held payload where the arm is
+        with :data:`~ethimon._robot.BRAKE_SAFETY_FACTOR` (holding torque >= factor x load); else one
+        sentence per joint short of it: its load, its brake, the margin and the factor."""
+        load = np.abs(self.gravity_load())
+        hold = np.asarray(self.brake_torque, dtype=float)
+        bad = np.flatnonzero(hold < BRAKE_SAFETY_FACTOR * load)
+        if bad.size == 0:
+            return None
+        m, _ = self.payload()
+        return "; ".join(f"joint {j + 1} needs {load[j]:.1f} N·m against gravity (arm + {m:g} kg); its brake "
+                         f"holds {hold[j]:g} N·m: {hold[j] / max(load[j], 1e-9):.2f} x, under the safety factor "
+                         f"{BRAKE_SAFETY_FACTOR:g}" for j in bad)
 
     def _hold_refused(self) -> None:
         """The powered hold of a refused power-off: from the state it had then, every joint

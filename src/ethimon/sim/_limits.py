@@ -14,7 +14,9 @@ decelerate every joint at :data:`BRAKE_DECEL_RAD_S2` (the rated acceleration lim
 assumption) with a friction torque of at most :data:`BRAKE_TORQUE_N_M` (a larger
 external torque slips the brake). The holding torques are data with a source per number
 (:data:`ethimon._robot.BRAKE_TABLE`: estimates, stated as such), and before any power-off the
-simulator checks the gravity load of arm + payload against them (:func:`ethimon._robot.brake_problem`).
+simulator checks the gravity load of arm + payload against them with the project's safety factor
+:data:`BRAKE_SAFETY_FACTOR` (1.5, a decision of the lead, issue 32): less margin escalates the stop
+0/1 to a powered stop 2.
 
 Example:
     >>> from ethimon.sim._limits import RATED_DQ_MAX, out_of_range
@@ -28,13 +30,15 @@ Example:
 
 from __future__ import annotations
 
-from .._robot import (BRAKE_HOLDING_N_M, BRAKE_TABLE, RATED_PAYLOAD_KG, brake_problem, gravity_torque,
+from .._robot import (BRAKE_HOLDING_N_M, BRAKE_SAFETY_FACTOR, BRAKE_TABLE, RATED_PAYLOAD_KG, brake_problem,
+                      gravity_torque,
                       RATED_DDDQ_MAX, RATED_DDQ_MAX, RATED_DQ_MAX, RATED_Q_MAX, RATED_Q_MIN,
                       RATED_SOURCE, out_of_range, safe_pose_problem)
 
 __all__ = ["RATED_Q_MIN", "RATED_Q_MAX", "RATED_DQ_MAX", "RATED_DDQ_MAX", "RATED_DDDQ_MAX",
            "RATED_SOURCE", "LIMIT_MARGIN_RAD", "BRAKE_ENGAGE_S", "BRAKE_DECEL_RAD_S2", "BRAKE_TORQUE_N_M",
-           "BRAKE_TABLE", "RATED_PAYLOAD_KG", "brake_problem", "gravity_torque", "out_of_range", "safe_pose_problem"]
+           "BRAKE_SAFETY_FACTOR", "BRAKE_TABLE", "RATED_PAYLOAD_KG", "brake_problem", "gravity_torque",
+           "out_of_range", "safe_pose_problem"]
 
 #: the servo keeps its reference this far inside every rated position limit (rad), and a
 #: stop plans each joint to rest inside it: the tracking error near a limit (0.015 mrad

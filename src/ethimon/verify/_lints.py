@@ -423,9 +423,11 @@ class Lints(CheckBase):
         """A stop 0/1 cuts motor power and leaves the arm to its brakes: over a grid of poses (the
         spec's safe pose and joints 2-6 across their rated ranges, where gravity loads the joints),
         the gravity load of arm + the rated payload (3 kg at the grasp point) against each joint's
-        brake holding torque (``ethimon._robot.BRAKE_TABLE``, estimates, stated per number). Names
-        the rules that cut power, the poses where a brake would slip and the largest payload the
-        brakes hold at every pose."""
+        brake holding torque (``ethimon._robot.BRAKE_TABLE``, estimates, stated per number), with
+        the project's safety factor ``ethimon._robot.BRAKE_SAFETY_FACTOR`` (1.5: a brake must hold
+        1.5 x the load; the simulator escalates a stop 0/1 with less margin to a powered stop 2).
+        Names the rules that cut power, the poses where a brake holds the load with less than the
+        factor and the largest payload the brakes hold with the factor at every pose."""
         name = "lint.brakes"
         plan = self.plan
         cuts = [ob.id for ob in plan.obligations if ob.response.value in ("stop_0", "stop_1")]
@@ -441,7 +443,10 @@ class Lints(CheckBase):
                            f"{', '.join(cuts)} cut motor power (stop 0/1), but ethimon has a gravity model of the "
                            f"Franka Panda only: whether the {robot.title}'s brakes hold arm + its rated "
                            f"{robot.payload_kg:g} kg is not checked (holding torques: {robot.source('brake_holding_n_m')})")
-        holding, kg, off = _robot.BRAKE_HOLDING_N_M, _robot.RATED_PAYLOAD_KG, _robot.PAYLOAD_OFFSET_M
+        factor = _robot.BRAKE_SAFETY_FACTOR
+        # a brake "holds" a load when its holding torque is at least factor x the load
+        holding = tuple(h / factor for h in _robot.BRAKE_HOLDING_N_M)
+        kg, off = _robot.RATED_PAYLOAD_KG, _robot.PAYLOAD_OFFSET_M
         worst: tuple[float, tuple[float, ...], int, float] | None = None  # (payload held, pose, joint, load)
         falls = []
         n = 0
@@ -459,7 +464,7 @@ class Lints(CheckBase):
                 if worst is None or m_max < worst[0]:
                     worst = (m_max, q, j + 1, abs(a[j] + slope * kg))
                 if m_max < kg:
-                    falls.append((q, j + 1, abs(a[j] + slope * kg), holding[j]))
+                    falls.append((q, j + 1, abs(a[j] + slope * kg), _robot.BRAKE_HOLDING_N_M[j]))
         assert worst is not None
         pose = ", ".join(f"{v:.2f}" for v in worst[1])
         who = ", ".join(cuts)
@@ -468,15 +473,18 @@ class Lints(CheckBase):
             where = ", ".join(f"{v:.2f}" for v in q)
             return Finding("lint", name, WARNING,
                            f"{who} cut motor power (stop 0/1), and at {len(falls)} of {n} poses the brakes "
-                           f"cannot hold arm + the rated {kg:g} kg: the arm would fall (worst: joint {j} needs "
-                           f"{load:.1f} N·m at [{where}] rad, its brake holds {h:g} N·m; "
-                           f"from {worst[0]:.2f} kg at [{pose}] a brake slips). The simulation refuses such a "
-                           f"power-off and holds powered (a stop 2); a real cell needs stronger brakes, a "
-                           f"lighter payload or stop 2 for these rules")
+                           f"cannot hold arm + the rated {kg:g} kg with the safety factor {factor:g} "
+                           f"(ethimon._robot.BRAKE_SAFETY_FACTOR, the project's choice): the arm would sink "
+                           f"or fall (worst: joint {j} needs {load:.1f} N·m at [{where}] rad, its brake holds "
+                           f"{h:g} N·m, {h / max(load, 1e-9):.2f} x; from {worst[0]:.2f} kg at [{pose}] a "
+                           f"brake is under the factor). The simulation refuses such a power-off and holds "
+                           f"powered (a stop 2); a real cell needs stronger brakes, a lighter payload or "
+                           f"stop 2 for these rules")
         return Finding("lint", name, OK,
-                       f"the brakes hold arm + the rated {kg:g} kg at all {n} grid poses after a stop 0/1 "
-                       f"({who}); the first slips from {worst[0]:.2f} kg (joint {worst[2]} at [{pose}] rad; "
-                       f"holding torques are estimates: ethimon._robot.BRAKE_TABLE)")
+                       f"the brakes hold arm + the rated {kg:g} kg with the safety factor {factor:g} at all "
+                       f"{n} grid poses after a stop 0/1 ({who}); the first falls under the factor from "
+                       f"{worst[0]:.2f} kg (joint {worst[2]} at [{pose}] rad; holding torques are estimates: "
+                       f"ethimon._robot.BRAKE_TABLE)")
 
     def lint_fault_gap(self) -> list[Finding]:
         """The fault latch's hold must cover every obligation's window: a fault clears the
