@@ -500,6 +500,9 @@ risk: {threshold: 0.5}
 
 
 def _restart_loop(**kw):
+    # period 1 s: these tests call cycle() by hand; at the 1 ms default a loaded machine's pause between two
+    # calls was a deadline miss, a fault that held the latch (CI flake, stop 36: "fault has held 4 of 10")
+    kw.setdefault("period_s", 1.0)
     return GovernedLoop(ethimon.load_spec_text(SPEC), max_risk_age_s=None, **kw)
 
 
