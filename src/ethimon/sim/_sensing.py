@@ -15,6 +15,10 @@ __all__ = ["_Sensing"]
 class _Sensing:
     """The state and the signals of the cell (a part of :class:`~._arm.ArmSim`)."""
 
+    #: the arm's joint reading of this physics step, set by ``ArmSim.step`` while nothing can
+    #: move the arm before the next ``stepSimulation`` (``None``: ask PyBullet)
+    _js_step: tuple[np.ndarray, np.ndarray] | None = None
+
     # ------------------------------------------------------------ state
 
     def reset_joints(self, q: Sequence[float]) -> None:
@@ -33,6 +37,8 @@ class _Sensing:
 
     def joint_state(self) -> tuple[np.ndarray, np.ndarray]:
         """Measured arm joint positions and velocities (7 each)."""
+        if self._js_step is not None:
+            return self._js_step
         st = self._p.getJointStates(self.robot, ARM_JOINTS, physicsClientId=self.cid)
         return np.array([s[0] for s in st]), np.array([s[1] for s in st])
 
