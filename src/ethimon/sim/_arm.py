@@ -20,7 +20,7 @@ import numpy as np
 from ._limits import BRAKE_TORQUE_N_M
 from ._model import PHYSICS_HZ, Gripper, Human, SimBlock, SimObject
 from ._cell import (ARM_JOINTS, EE_LINK, FINGER_JOINTS, HAND_LINK, HOME_JOINTS_RAD, Segment, _HumanBody, _Q_MAX,
-                    _Q_MIN, _RATED_DDQ, _SLIP_M, _half_height, _half_width, import_pybullet,
+                    _Q_MIN, _RATED_DDQ, _SLIP_M, _cross3, _half_height, _half_width, import_pybullet,
                     physics_only_urdf)
 from ._actuation import _Actuation
 from ._kinematics import _Kinematics
@@ -29,6 +29,10 @@ from ._sensing import _Sensing
 
 __all__ = ["ArmSim", "HOME_JOINTS_RAD", "ARM_JOINTS", "FINGER_JOINTS", "EE_LINK", "BRAKE_TORQUE_N_M", "Segment",
            "import_pybullet"]
+
+#: the link frames ``link_speed`` looks at: links 1..7, hand, grasp frame (the fingers' own
+#: opening and closing left out)
+_LINKS_NOT_FINGERS = tuple(i for i in range(12) if i not in FINGER_JOINTS)
 
 
 class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
@@ -417,12 +421,12 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
         states = p.getLinkStates(self.robot, list(range(12)), computeLinkVelocity=1,
                                  physicsClientId=cid)
         # the fingers' own opening/closing is left out (their frames ride on the hand)
-        best = max(math.sqrt(sum(c * c for c in st[6])) for i, st in enumerate(states)
-                   if i not in FINGER_JOINTS)
+        best = max([math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])  # = sum(c * c for c in v)
+                    for v in [states[i][6] for i in _LINKS_NOT_FINGERS]])
         if self.held is not None:  # rigidly held: the hand's velocity at the object's centre
             hand = states[HAND_LINK]
             pos, _ = p.getBasePositionAndOrientation(self.objects[self.held], physicsClientId=cid)
             r = np.asarray(pos) - np.asarray(hand[0])
-            v = np.asarray(hand[6]) + np.cross(np.asarray(hand[7]), r)
+            v = np.asarray(hand[6]) + _cross3(hand[7], r)
             best = max(best, float(np.linalg.norm(v)))
         return float(best)

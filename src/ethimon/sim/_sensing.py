@@ -7,7 +7,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ._cell import ARM_JOINTS, EE_LINK, FINGER_JOINTS, HAND_LINK, _NO_HUMAN_M
+from ._cell import ARM_JOINTS, EE_LINK, FINGER_JOINTS, HAND_LINK, _NO_HUMAN_M, _cross3
 
 __all__ = ["_Sensing"]
 
@@ -160,7 +160,7 @@ class _Sensing:
         if link < 0:
             return float(d), name, 0.0  # the fixed base does not move
         st = p.getLinkState(self.robot, link, computeLinkVelocity=1, physicsClientId=cid)
-        v = np.asarray(st[6]) + np.cross(np.asarray(st[7]), pa - np.asarray(st[0]))
+        v = np.asarray(st[6]) + _cross3(st[7], pa - np.asarray(st[0]))
         n = pb - pa
         norm = float(np.linalg.norm(n))
         n = n / norm if norm > 1e-9 else -np.asarray(pt[7])  # touching: the contact normal
@@ -183,7 +183,7 @@ class _Sensing:
             "human_distance": float(dist),
             "ee_speed": float(np.linalg.norm(self.ee_velocity())),
             "contact_force": self.contact_force(),
-            "joint_speed_max": float(np.max(np.abs(qd))),
+            "joint_speed_max": float(np.abs(qd).max()),
             "hazard_distance": float(self.hazard_distance()),
             "human_speed": float(speeds[who]) if who is not None else 0.0,
             "robot_speed_toward_human": float(v_r),
