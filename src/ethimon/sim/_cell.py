@@ -136,8 +136,12 @@ class _HumanBody:
     drive: int | None = None  # the constraint that walks a compliant person
 
     def xy_at(self, t: float) -> np.ndarray:
+        cols = self.__dict__.get("_cols")
+        if cols is None or cols[0] is not self.xy:  # x and y as contiguous columns, once (same values)
+            cols = self.__dict__["_cols"] = (self.xy, np.ascontiguousarray(self.xy[:, 0]),
+                                             np.ascontiguousarray(self.xy[:, 1]))
         ts = self.times
-        return np.array([np.interp(t, ts, self.xy[:, 0]), np.interp(t, ts, self.xy[:, 1])])
+        return np.array([np.interp(t, ts, cols[1]), np.interp(t, ts, cols[2])])
 
     def _segment(self, t: float) -> int:
         """Index ``k`` of the segment ``times[k] <= t < times[k+1]`` (-1 before, n-1 after)."""

@@ -28,8 +28,9 @@ class _Kinematics:
         call: the same state as seven ``resetJointState`` calls (checked bit for bit by
         ``bench.sim.sim_check diff``), with one forward-kinematics update instead of seven."""
         self._p.resetJointStatesMultiDof(
-            self.robot, _ARM_JOINT_LIST, [[float(v)] for v in q],
-            _ZERO_VEL if qd is None else [[float(w)] for w in qd], physicsClientId=self.cid)
+            self.robot, _ARM_JOINT_LIST, [[v] for v in np.asarray(q, dtype=float).tolist()],
+            _ZERO_VEL if qd is None else [[w] for w in np.asarray(qd, dtype=float).tolist()],
+            physicsClientId=self.cid)
 
     def solve_ik(self, xyz: Sequence[float], rpy: Sequence[float] | None = None,
                  seed: Sequence[float] | None = None, iterations: int = 6) -> np.ndarray:
@@ -170,11 +171,11 @@ class _Kinematics:
                 for o in obstacles:
                     for b in bodies:
                         ob = min(ob, self.distance(b, o, ob))
-                for link in range(2, 12):
-                    pts = p.getClosestPoints(self.robot, self.plane, ob, linkIndexA=link,
-                                             physicsClientId=cid)
-                    if pts:
-                        ob = min(ob, max(0.0, min(pt[8] for pt in pts)))
+                # links 2..11 to the floor in one query (the base and links 0-1 stand on it)
+                pts = [pt[8] for pt in p.getClosestPoints(self.robot, self.plane, ob, physicsClientId=cid)
+                       if pt[3] >= 2]
+                if pts:
+                    ob = min(ob, max(0.0, min(pts)))
                 if held is not None:
                     pts = p.getClosestPoints(held, self.plane, ob, physicsClientId=cid)
                     if pts:
