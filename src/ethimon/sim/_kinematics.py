@@ -87,39 +87,45 @@ class _Kinematics:
         return p.multiplyTransforms(hs[0], hs[1], *self._held_rel)
 
     def hazard_axis_angles_deg(self, qs: Sequence[Sequence[float]] | None = None, *,
-                               each: bool = False) -> list | None:
+                               each: bool = False, until=None) -> list | None:
         """Angle (deg) between the held object's declared ``hazard_axis`` and the direction from
         the object's centre to each person (the nearest point of their capsule axis), the worst
         (smallest) over every person present (issue 32: every person counts, not only the
         nearest), at each configuration in ``qs`` (default: now; state restored afterwards).
         180 = pointed straight away. ``each=True``: per configuration a dict person -> angle.
+        ``until``: a test of each result; the configurations after the first result it passes
+        are not evaluated (that result is the last in the list).
         ``None`` when no object with a ``hazard_axis`` is held or there is nobody.
         """
         if self.held is None or not self.humans:
             return None
         axis = self.object_specs[self.held].hazard_axis
-        if axis is None or getattr(self, "_held_rel", None) is None:
+        rel = getattr(self, "_held_rel", None)
+        if axis is None or rel is None:
             return None
-        p, cid = self._p, self.cid
+        p, cid, robot = self._p, self.cid, self.robot
         a_obj = np.asarray(axis, dtype=float) / float(np.linalg.norm(axis))
-        people = []
+        people = []  # (name, x, y, lowest, highest point of the capsule's axis)
         for hb in self.humans.values():
             c = self.human_position(hb.spec.name)
             r, h = hb.spec.radius_m, hb.spec.height_m
-            people.append((hb.spec.name, c, max(h / 2 - r, 0.0)))
+            half = max(h / 2 - r, 0.0)
+            people.append((hb.spec.name, c[0], c[1], c[2] - half, c[2] + half))
+        get_link, mul, to_matrix = p.getLinkState, p.multiplyTransforms, p.getMatrixFromQuaternion
+        acos, degrees, sqrt = math.acos, math.degrees, math.sqrt
 
         def angle():
-            pos, orn = self._held_pose_for_hand()
+            hs = get_link(robot, HAND_LINK, computeForwardKinematics=1, physicsClientId=cid)
+            pos, orn = mul(hs[0], hs[1], *rel)  # the held object's pose (_held_pose_for_hand)
+            z_obj = pos[2]
             pos = np.asarray(pos)
-            rot = np.asarray(p.getMatrixFromQuaternion(orn)).reshape(3, 3)
-            a = rot @ a_obj
+            a = np.asarray(to_matrix(orn)).reshape(3, 3) @ a_obj
             per = {}
-            for name, c, half in people:
-                z = min(max(pos[2], c[2] - half), c[2] + half)
-                v = np.array([c[0], c[1], z]) - pos
-                d = float(np.linalg.norm(v))
+            for name, cx, cy, lo, hi in people:
+                v = np.array([cx, cy, min(max(z_obj, lo), hi)]) - pos
+                d = sqrt(float(v.dot(v)))  # = np.linalg.norm(v)
                 cos = float(np.dot(a, v) / d) if d > 1e-9 else 1.0
-                per[name] = math.degrees(math.acos(min(1.0, max(-1.0, cos))))
+                per[name] = degrees(acos(min(1.0, max(-1.0, cos))))
             return per if each else min(per.values())
 
         if qs is None:
@@ -130,6 +136,8 @@ class _Kinematics:
             for q in qs:
                 self._set_arm(q)
                 out.append(angle())
+                if until is not None and until(out[-1]):
+                    break
         finally:
             self._set_arm(q_now, qd_now)
         return out

@@ -392,14 +392,18 @@ class SafePoseController:
         samples than it points at that person now (or than ``_HAZARD_AWAY_DEG``), less
         ``_AXIS_SLACK_DEG``: a blade or spout is never swept through anyone's direction (each
         person judged on their own, issue 32). True without an axis."""
-        per = sim.hazard_axis_angles_deg(samples, each=True)
-        if not per:
-            return True
-        for name, a0 in per[0].items():  # every person, each against where it points at them now
-            floor = min(a0, _HAZARD_AWAY_DEG) - _AXIS_SLACK_DEG
-            if min(a[name] for a in per) < floor - 1e-6:
-                return False
-        return True
+        floors: dict[str, float] = {}
+        turned = []
+
+        def toward(per: dict[str, float]) -> bool:  # the samples stop at the first that fails
+            if not floors:  # every person, each against where it points at them now
+                floors.update((name, min(a0, _HAZARD_AWAY_DEG) - _AXIS_SLACK_DEG) for name, a0 in per.items())
+            if any(per[name] < floor - 1e-6 for name, floor in floors.items()):
+                turned.append(True)
+            return bool(turned)
+
+        per = sim.hazard_axis_angles_deg(samples, each=True, until=toward)
+        return not per or not turned
 
     def _needs(self, now: dict[str, float]) -> tuple[float, float]:
         """The clearances a route from a pose with clearances ``now`` must keep: never nearer
