@@ -16,6 +16,7 @@ __all__ = ["_Kinematics"]
 
 _ARM_JOINT_LIST = list(ARM_JOINTS)
 _ZERO_VEL = [[0.0]] * len(ARM_JOINTS)
+_ALL_LINKS = list(range(12))
 
 
 class _Kinematics:
@@ -142,13 +143,14 @@ class _Kinematics:
             self._set_arm(q_now, qd_now)
         return out
 
-    def probe(self, qs: Sequence[Sequence[float]]) -> list[dict[str, float]]:
+    def probe(self, qs: Sequence[Sequence[float]], until=None) -> list[dict[str, float]]:
         """Clearances of the arm at each joint configuration in ``qs`` (state restored after).
 
         Each result: ``human`` (m, arm or held object to the nearest person), ``obstacle``
         (m, arm or held object to any object the task does not pick, and arm links 3..8 to
         the floor) and ``hazard`` (m, a held hazard-tagged object to the nearest person;
-        10 when none). People stand where they are now.
+        10 when none). People stand where they are now. ``until``: a test of each result; the
+        configurations after the first result it passes are not probed.
         """
         p, cid = self._p, self.cid
         q_now, qd_now = self.joint_state()
@@ -189,6 +191,8 @@ class _Kinematics:
                     if pts:
                         ob = min(ob, max(0.0, min(pt[8] for pt in pts)))
                 out.append({"human": float(h), "obstacle": float(ob), "hazard": float(hz)})
+                if until is not None and until(out[-1]):
+                    break
         finally:
             self._set_arm(q_now, qd_now)
             if held is not None:
@@ -199,17 +203,26 @@ class _Kinematics:
     def link_points(self, q: Sequence[float]) -> np.ndarray:
         """World positions of the link frames (links 1..7, hand, fingers, grasp frame) at ``q``
         (state restored afterwards); with a held object, its position too."""
+        return self.link_points_at([q])[0]
+
+    def link_points_at(self, qs: Sequence[Sequence[float]]) -> list[np.ndarray]:
+        """:meth:`link_points` at each configuration in ``qs``, the state read and restored once."""
         p, cid = self._p, self.cid
         q_now, qd_now = self.joint_state()
-        self._set_arm(q)
-        states = p.getLinkStates(self.robot, list(range(12)), computeForwardKinematics=1,
-                                 physicsClientId=cid)
-        pts = [st[4] for st in states]
-        pose = self._held_pose_for_hand()
-        if pose is not None:
-            pts.append(pose[0])
-        self._set_arm(q_now, qd_now)
-        return np.array(pts, dtype=float)
+        out = []
+        try:
+            for q in qs:
+                self._set_arm(q)
+                states = p.getLinkStates(self.robot, _ALL_LINKS, computeForwardKinematics=1,
+                                         physicsClientId=cid)
+                pts = [st[4] for st in states]
+                pose = self._held_pose_for_hand()
+                if pose is not None:
+                    pts.append(pose[0])
+                out.append(np.array(pts, dtype=float))
+        finally:
+            self._set_arm(q_now, qd_now)
+        return out
 
     def away_from_humans(self, xyz: Sequence[float], step_m: float) -> np.ndarray | None:
         """``xyz`` moved ``step_m`` horizontally away from the nearest person and 0.1 m up

@@ -371,7 +371,8 @@ class SafePoseController:
             smp = self._samples(wps)
             if not self._axis_ok(sim, smp):  # the cheaper check first
                 continue
-            pts = sim.probe(smp)
+            pts = sim.probe(smp, until=lambda c: (c["obstacle"] < 0.02 or c["human"] < need_h - 1e-3
+                                                  or c["hazard"] < need_z - 1e-3))  # stop at the first miss
             h = min(p["human"] for p in pts)
             if min(p["obstacle"] for p in pts) < 0.02 or h < need_h - 1e-3:
                 continue
@@ -421,7 +422,7 @@ class SafePoseController:
         L = float(np.max(np.abs(b - a)))
         if L <= 1e-9:
             return 0.0
-        pts = [sim.link_points(a + (k / 10) * (b - a)) for k in range(11)]
+        pts = sim.link_points_at([a + (k / 10) * (b - a) for k in range(11)])
         return max(float(np.max(np.linalg.norm(q2 - q1, axis=1))) / (L / 10)
                    for q1, q2 in zip(pts, pts[1:]))
 
