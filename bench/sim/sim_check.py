@@ -1,12 +1,14 @@
 """`ethimon check scenarios/ --sim`: how long it takes, and proof that a faster run changes nothing.
 
-    python -m bench.sim.sim_check time [--jobs N] [--runs 1]   # wall time of the CLI, fresh process
+    python -m bench.sim.sim_check time [--jobs N] [--runs 1] [--base SRC]  # wall + CPU time of the CLI
     python -m bench.sim.sim_check dump OUT.json [PATH...]       # every sim scenario's figures + trace hash
     python -m bench.sim.sim_check diff BEFORE.json AFTER.json   # exit 1 on any difference
 
 ``time`` runs the command as a user types it (``-j N`` when given) and records wall time, the
 child's CPU time and the load average before and after (the machine may be shared), writing
-bench/results/sim/sim_check.json. ``dump`` runs every ``sim:`` block serially through
+bench/results/sim/sim_check.json. ``--base SRC`` (another checkout's ``src``, e.g. a ``git
+worktree`` of main) runs that code too, alternating with this one run by run, so before and after
+are measured in one sitting under the same load. ``dump`` runs every ``sim:`` block serially through
 ``ethimon.scenario.simulate_paths`` (public API only, so it also runs against an older checkout:
 ``PYTHONPATH=/other/src``) and stores per scenario its verdict, ``SimResult.summary()`` without
 the wall-clock fields, and a SHA-256 of its whole cycle-by-cycle trace. ``diff`` compares two
@@ -81,7 +83,23 @@ def diff(before: str, after: str) -> int:
     return 1 if bad else 0
 
 
-def timed(jobs: int | None, runs: int) -> int:
+def _run_once(cmd: list[str], src: str | None) -> dict:
+    env = dict(os.environ)
+    if src is not None:
+        env["PYTHONPATH"] = os.path.abspath(src)
+    load0 = os.getloadavg()[0]
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    wall = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    return {"code": "base" if src is not None else "this", "wall_s": round(wall, 2), "cpu_s": round(cpu, 2),
+            "load_start": round(load0, 2), "load_end": round(os.getloadavg()[0], 2), "rc": proc.returncode,
+            "summary": proc.stdout.strip().splitlines()[-1] if proc.stdout.strip() else ""}
+
+
+def timed(jobs: int | None, runs: int, base: str | None = None) -> int:
     from bench import results_dir
     from bench._machine import machine_facts
     cmd = [sys.executable, "-m", "ethimon.cli", "check", "scenarios/", "--sim", "-q"]
@@ -89,21 +107,16 @@ def timed(jobs: int | None, runs: int) -> int:
         cmd += ["-j", str(jobs)]
     out = []
     for _ in range(runs):
-        load0 = os.getloadavg()[0]
-        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        t0 = time.perf_counter()
-        proc = subprocess.run(cmd, capture_output=True, text=True)
-        wall = time.perf_counter() - t0
-        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
-        row = {"wall_s": round(wall, 2), "cpu_s": round(cpu, 2), "load_start": round(load0, 2),
-               "load_end": round(os.getloadavg()[0], 2), "rc": proc.returncode,
-               "summary": proc.stdout.strip().splitlines()[-1] if proc.stdout.strip() else ""}
-        print(json.dumps(row))
-        out.append(row)
+        for src in ((base, None) if base is not None else (None,)):
+            row = _run_once(cmd, src)
+            print(json.dumps(row))
+            out.append(row)
     dest = os.path.join(results_dir("sim"), "sim_check.json")
+    doc = {"command": " ".join(cmd[1:]), "runs": out, "machine": machine_facts()}
+    if base is not None:
+        doc["base_src"] = base
     with open(dest, "w", encoding="utf-8") as f:
-        json.dump({"command": " ".join(cmd[1:]), "runs": out, "machine": machine_facts()}, f, indent=1)
+        json.dump(doc, f, indent=1)
     return 0 if all(r["rc"] == 0 for r in out) else 1
 
 
@@ -113,6 +126,7 @@ def main(argv: list[str] | None = None) -> int:
     t = sub.add_parser("time")
     t.add_argument("--jobs", "-j", type=int, default=None)
     t.add_argument("--runs", type=int, default=1)
+    t.add_argument("--base", default=None, help="another checkout's src/ to time alternately (before vs after)")
     d = sub.add_parser("dump")
     d.add_argument("out")
     d.add_argument("paths", nargs="*")
@@ -124,7 +138,7 @@ def main(argv: list[str] | None = None) -> int:
         return dump(args.out, args.paths)
     if args.what == "diff":
         return diff(args.before, args.after)
-    return timed(args.jobs, args.runs)
+    return timed(args.jobs, args.runs, args.base)
 
 
 if __name__ == "__main__":

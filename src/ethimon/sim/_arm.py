@@ -20,7 +20,7 @@ import numpy as np
 from ._limits import BRAKE_TORQUE_N_M
 from ._model import PHYSICS_HZ, Gripper, Human, SimBlock, SimObject
 from ._cell import (ARM_JOINTS, EE_LINK, FINGER_JOINTS, HAND_LINK, HOME_JOINTS_RAD, Segment, _HumanBody, _Q_MAX,
-                    _Q_MIN, _RATED_DDQ, _SLIP_M, _half_height, _half_width, import_pybullet,
+                    _Q_MIN, _RATED_DDQ, _SLIP_M, _cross3, _half_height, _half_width, import_pybullet,
                     physics_only_urdf)
 from ._actuation import _Actuation
 from ._kinematics import _Kinematics
@@ -29,6 +29,10 @@ from ._sensing import _Sensing
 
 __all__ = ["ArmSim", "HOME_JOINTS_RAD", "ARM_JOINTS", "FINGER_JOINTS", "EE_LINK", "BRAKE_TORQUE_N_M", "Segment",
            "import_pybullet"]
+
+#: the link frames ``link_speed`` looks at: links 1..7, hand, grasp frame (the fingers' own
+#: opening and closing left out)
+_LINKS_NOT_FINGERS = tuple(i for i in range(12) if i not in FINGER_JOINTS)
 
 
 class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
@@ -94,6 +98,7 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
         self.max_velocity: float | None = None
         self.speed_cap: np.ndarray | None = None
         self._hermite = False
+        self._hermite_coef: dict = {}  # (substeps, dt) -> the Hermite weights of each physics step
         self.powered = True
         self._brake_hold: np.ndarray | None = None
         self._off_substeps = 0
@@ -336,33 +341,50 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
         if not self._hermite:
             v0 = v1
         h = 1.0 / PHYSICS_HZ
-        _, qd_prev = self.joint_state()
+        js = self.joint_state()
+        qms, qds = [], [js[1]]
+        refs = None
         compliant = [hb for hb in self.humans.values() if hb.drive is not None]
-        for k in range(1, n + 1):
-            for hb in compliant:
-                self._drive_human(hb, self.time_s - self.dt + k * h)
-            if self.powered:  # interpolate the reference at the physics rate
-                s = k / n
-                s2, s3 = s * s, s * s * s
-                q_ref = ((2 * s3 - 3 * s2 + 1) * q0 + (s3 - 2 * s2 + s) * T * v0
-                         + (-2 * s3 + 3 * s2) * q1 + (s3 - s2) * T * v1)
-                qd_ref = ((6 * s2 - 6 * s) * q0 / T + (3 * s2 - 4 * s + 1) * v0
-                          + (-6 * s2 + 6 * s) * q1 / T + (3 * s2 - 2 * s) * v1)
-                self._q_sub, self._qd_sub = q_ref, qd_ref
-                self._apply_command(q_ref, qd_ref)
-            else:
-                self._apply_unpowered()
-                self._off_substeps += 1
-            p.stepSimulation(physicsClientId=cid)
-            qm, qd = self.joint_state()  # one read per physics step (ndarray.max: no wrapper cost)
-            acc = np.abs(qd - qd_prev) / h
-            qd_prev = qd
-            past = max(float((qm - _Q_MAX).max()), float((_Q_MIN - qm).max()))
+        # the arm's measured state holds until the next physics step (moving people do not
+        # change it): the servo reads it from there instead of asking PyBullet again
+        self._js_step = js
+        try:
+            for k in range(1, n + 1):
+                for hb in compliant:
+                    self._drive_human(hb, self.time_s - self.dt + k * h)
+                if self.powered:  # interpolate the reference at the physics rate
+                    if refs is None:  # every physics step's reference at once (the same numbers)
+                        refs = self._hermite_refs(n, T, q0, v0, q1, v1)
+                    q_ref, qd_ref = refs[0][k - 1], refs[1][k - 1]
+                    self._q_sub, self._qd_sub = q_ref, qd_ref
+                    self._apply_command(q_ref, qd_ref)
+                else:
+                    self._apply_unpowered()
+                    self._off_substeps += 1
+                self._js_step = None
+                p.stepSimulation(physicsClientId=cid)
+                js = self.joint_state()  # one read per physics step
+                self._js_step = js
+                qms.append(js[0])
+                qds.append(js[1])
+        finally:
+            self._js_step = None
+        # the cycle's extremes from every physics step's reading at once (same order of
+        # comparisons as step by step, so NaN and ties come out as before)
+        qm_all, qd_all = np.array(qms), np.array(qds)
+        acc = np.abs(qd_all[1:] - qd_all[:-1]) / h
+        past_hi = (qm_all - _Q_MAX).max(axis=1).tolist()
+        past_lo = (_Q_MIN - qm_all).max(axis=1).tolist()
+        speed = np.abs(qd_all[1:]).max(axis=1).tolist()
+        acc_max = acc.max(axis=1).tolist()
+        ratio = (acc / _RATED_DDQ).max(axis=1).tolist()
+        for k in range(n):
+            past = max(past_hi[k], past_lo[k])
             if past > self.max_past_limit_rad:
                 self.max_past_limit_rad = past
-            peak = max(peak, float(np.abs(qd).max()))
-            peak_a = max(peak_a, float(acc.max()))
-            ratio_a = max(ratio_a, float((acc / _RATED_DDQ).max()))
+            peak = max(peak, speed[k])
+            peak_a = max(peak_a, acc_max[k])
+            ratio_a = max(ratio_a, ratio[k])
         if not self.powered:  # a later re-power starts from the measured state
             self._q_sub, self._qd_sub = self.joint_state()
             self._track_unpowered()
@@ -374,6 +396,24 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
             self.drop("slipped")  # pulled out beyond what the fingers' friction holds
         self.cycle += 1
 
+    def _hermite_refs(self, n: int, T: float, q0, v0, q1, v1) -> tuple[np.ndarray, np.ndarray]:
+        """The cubic Hermite reference (position, velocity) at each of the ``n`` physics steps
+        of a cycle of ``T`` s from ``(q0, v0)`` to ``(q1, v1)``: row ``k - 1`` is step ``k``.
+        Computed for all steps in one go with the same operations, in the same order, as one
+        step at a time (so bit for bit the same numbers)."""
+        c = self._hermite_coef.get((n, T))
+        if c is None:
+            rows = []
+            for k in range(1, n + 1):
+                s = k / n
+                s2, s3 = s * s, s * s * s
+                rows.append((2 * s3 - 3 * s2 + 1, (s3 - 2 * s2 + s) * T, -2 * s3 + 3 * s2, (s3 - s2) * T,
+                             6 * s2 - 6 * s, 3 * s2 - 4 * s + 1, -6 * s2 + 6 * s, 3 * s2 - 2 * s))
+            c = self._hermite_coef[(n, T)] = [np.array(col, dtype=float)[:, None] for col in zip(*rows)]
+        q_ref = c[0] * q0 + c[1] * v0 + c[2] * q1 + c[3] * v1
+        qd_ref = c[4] * q0 / T + c[5] * v0 + c[6] * q1 / T + c[7] * v1
+        return q_ref, qd_ref
+
     def link_speed(self) -> float:
         """Largest linear speed (m/s) of any arm link frame (links 1..7, hand, grasp frame;
         the fingers' own opening and closing left out) or of the held object, now."""
@@ -381,12 +421,12 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
         states = p.getLinkStates(self.robot, list(range(12)), computeLinkVelocity=1,
                                  physicsClientId=cid)
         # the fingers' own opening/closing is left out (their frames ride on the hand)
-        best = max(math.sqrt(sum(c * c for c in st[6])) for i, st in enumerate(states)
-                   if i not in FINGER_JOINTS)
+        best = max([math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])  # = sum(c * c for c in v)
+                    for v in [states[i][6] for i in _LINKS_NOT_FINGERS]])
         if self.held is not None:  # rigidly held: the hand's velocity at the object's centre
             hand = states[HAND_LINK]
             pos, _ = p.getBasePositionAndOrientation(self.objects[self.held], physicsClientId=cid)
             r = np.asarray(pos) - np.asarray(hand[0])
-            v = np.asarray(hand[6]) + np.cross(np.asarray(hand[7]), r)
+            v = np.asarray(hand[6]) + _cross3(hand[7], r)
             best = max(best, float(np.linalg.norm(v)))
         return float(best)

@@ -317,7 +317,7 @@ class TaskController:
         d = self.distance_reading
         if cap is not None and not (d >= cap[0] + cap[2]):  # NaN: no reading, keep the cap
             if self._gain is None:
-                pts = [sim.link_points(self._from + (k / 10) * (seg.q - self._from)) for k in range(11)]
+                pts = sim.link_points_at([self._from + (k / 10) * (seg.q - self._from) for k in range(11)])
                 step = max(float(np.max(np.linalg.norm(b - a, axis=1))) for a, b in zip(pts, pts[1:]))
                 self._gain = 1.3 * 10.0 * step  # per unit path; 1.3: chord vs arc, sampling
             u = min(self.t / self._dur, 1.0) if self._dur > 0 else 1.0

@@ -14,11 +14,24 @@ from ._cell import (ARM_JOINTS, EE_LINK, FLANGE_LINK, HAND_LINK, HOME_JOINTS_RAD
 
 __all__ = ["_Kinematics"]
 
+_ARM_JOINT_LIST = list(ARM_JOINTS)
+_ZERO_VEL = [[0.0]] * len(ARM_JOINTS)
+_ALL_LINKS = list(range(12))
+
 
 class _Kinematics:
     """IK/FK and route probing (a part of :class:`~._arm.ArmSim`)."""
 
     # ------------------------------------------------------------ kinematics
+
+    def _set_arm(self, q: Sequence[float], qd: Sequence[float] | None = None) -> None:
+        """Teleport the 7 arm joints to ``q`` (velocities ``qd``, default 0) in one PyBullet
+        call: the same state as seven ``resetJointState`` calls (checked bit for bit by
+        ``bench.sim.sim_check diff``), with one forward-kinematics update instead of seven."""
+        self._p.resetJointStatesMultiDof(
+            self.robot, _ARM_JOINT_LIST, [[v] for v in np.asarray(q, dtype=float).tolist()],
+            _ZERO_VEL if qd is None else [[w] for w in np.asarray(qd, dtype=float).tolist()],
+            physicsClientId=self.cid)
 
     def solve_ik(self, xyz: Sequence[float], rpy: Sequence[float] | None = None,
                  seed: Sequence[float] | None = None, iterations: int = 6) -> np.ndarray:
@@ -34,8 +47,7 @@ class _Kinematics:
         ranges = (self.upper - self.lower).tolist()
         q = seed_q.copy()
         for _ in range(iterations):
-            for j, v in zip(ARM_JOINTS, q):
-                p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+            self._set_arm(q)
             sol = p.calculateInverseKinematics(
                 self.robot, EE_LINK, list(xyz), orn,
                 lowerLimits=self.lower.tolist() + [0.0, 0.0],
@@ -44,19 +56,15 @@ class _Kinematics:
                 restPoses=list(HOME_JOINTS_RAD) + [0.04, 0.04],
                 maxNumIterations=200, residualThreshold=1e-5, physicsClientId=cid)
             q = np.clip(np.array(sol[:7]), self.lower, self.upper)
-        for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
-            p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+        self._set_arm(q_now, qd_now)
         return q
 
     def fk(self, q: Sequence[float]) -> np.ndarray:
         """Grasp-target position for joint angles ``q`` (state restored afterwards)."""
-        p, cid = self._p, self.cid
         q_now, qd_now = self.joint_state()
-        for j, v in zip(ARM_JOINTS, q):
-            p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+        self._set_arm(q)
         pos, _ = self.ee_pose()
-        for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
-            p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+        self._set_arm(q_now, qd_now)
         return pos
 
     # ------------------------------------------------------------ planning probes
@@ -80,39 +88,45 @@ class _Kinematics:
         return p.multiplyTransforms(hs[0], hs[1], *self._held_rel)
 
     def hazard_axis_angles_deg(self, qs: Sequence[Sequence[float]] | None = None, *,
-                               each: bool = False) -> list | None:
+                               each: bool = False, until=None) -> list | None:
         """Angle (deg) between the held object's declared ``hazard_axis`` and the direction from
         the object's centre to each person (the nearest point of their capsule axis), the worst
         (smallest) over every person present (issue 32: every person counts, not only the
         nearest), at each configuration in ``qs`` (default: now; state restored afterwards).
         180 = pointed straight away. ``each=True``: per configuration a dict person -> angle.
+        ``until``: a test of each result; the configurations after the first result it passes
+        are not evaluated (that result is the last in the list).
         ``None`` when no object with a ``hazard_axis`` is held or there is nobody.
         """
         if self.held is None or not self.humans:
             return None
         axis = self.object_specs[self.held].hazard_axis
-        if axis is None or getattr(self, "_held_rel", None) is None:
+        rel = getattr(self, "_held_rel", None)
+        if axis is None or rel is None:
             return None
-        p, cid = self._p, self.cid
+        p, cid, robot = self._p, self.cid, self.robot
         a_obj = np.asarray(axis, dtype=float) / float(np.linalg.norm(axis))
-        people = []
+        people = []  # (name, x, y, lowest, highest point of the capsule's axis)
         for hb in self.humans.values():
             c = self.human_position(hb.spec.name)
             r, h = hb.spec.radius_m, hb.spec.height_m
-            people.append((hb.spec.name, c, max(h / 2 - r, 0.0)))
+            half = max(h / 2 - r, 0.0)
+            people.append((hb.spec.name, c[0], c[1], c[2] - half, c[2] + half))
+        get_link, mul, to_matrix = p.getLinkState, p.multiplyTransforms, p.getMatrixFromQuaternion
+        acos, degrees, sqrt = math.acos, math.degrees, math.sqrt
 
         def angle():
-            pos, orn = self._held_pose_for_hand()
+            hs = get_link(robot, HAND_LINK, computeForwardKinematics=1, physicsClientId=cid)
+            pos, orn = mul(hs[0], hs[1], *rel)  # the held object's pose (_held_pose_for_hand)
+            z_obj = pos[2]
             pos = np.asarray(pos)
-            rot = np.asarray(p.getMatrixFromQuaternion(orn)).reshape(3, 3)
-            a = rot @ a_obj
+            a = np.asarray(to_matrix(orn)).reshape(3, 3) @ a_obj
             per = {}
-            for name, c, half in people:
-                z = min(max(pos[2], c[2] - half), c[2] + half)
-                v = np.array([c[0], c[1], z]) - pos
-                d = float(np.linalg.norm(v))
+            for name, cx, cy, lo, hi in people:
+                v = np.array([cx, cy, min(max(z_obj, lo), hi)]) - pos
+                d = sqrt(float(v.dot(v)))  # = np.linalg.norm(v)
                 cos = float(np.dot(a, v) / d) if d > 1e-9 else 1.0
-                per[name] = math.degrees(math.acos(min(1.0, max(-1.0, cos))))
+                per[name] = degrees(acos(min(1.0, max(-1.0, cos))))
             return per if each else min(per.values())
 
         if qs is None:
@@ -121,21 +135,22 @@ class _Kinematics:
         out = []
         try:
             for q in qs:
-                for j, v in zip(ARM_JOINTS, q):
-                    p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+                self._set_arm(q)
                 out.append(angle())
+                if until is not None and until(out[-1]):
+                    break
         finally:
-            for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
-                p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+            self._set_arm(q_now, qd_now)
         return out
 
-    def probe(self, qs: Sequence[Sequence[float]]) -> list[dict[str, float]]:
+    def probe(self, qs: Sequence[Sequence[float]], until=None) -> list[dict[str, float]]:
         """Clearances of the arm at each joint configuration in ``qs`` (state restored after).
 
         Each result: ``human`` (m, arm or held object to the nearest person), ``obstacle``
         (m, arm or held object to any object the task does not pick, and arm links 3..8 to
         the floor) and ``hazard`` (m, a held hazard-tagged object to the nearest person;
-        10 when none). People stand where they are now.
+        10 when none). People stand where they are now. ``until``: a test of each result; the
+        configurations after the first result it passes are not probed.
         """
         p, cid = self._p, self.cid
         q_now, qd_now = self.joint_state()
@@ -150,8 +165,7 @@ class _Kinematics:
         out = []
         try:
             for q in qs:
-                for j, v in zip(ARM_JOINTS, q):
-                    p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
+                self._set_arm(q)
                 if held is not None:
                     pose = self._held_pose_for_hand()
                     if pose is not None:
@@ -167,19 +181,20 @@ class _Kinematics:
                 for o in obstacles:
                     for b in bodies:
                         ob = min(ob, self.distance(b, o, ob))
-                for link in range(2, 12):
-                    pts = p.getClosestPoints(self.robot, self.plane, ob, linkIndexA=link,
-                                             physicsClientId=cid)
-                    if pts:
-                        ob = min(ob, max(0.0, min(pt[8] for pt in pts)))
+                # links 2..11 to the floor in one query (the base and links 0-1 stand on it)
+                pts = [pt[8] for pt in p.getClosestPoints(self.robot, self.plane, ob, physicsClientId=cid)
+                       if pt[3] >= 2]
+                if pts:
+                    ob = min(ob, max(0.0, min(pts)))
                 if held is not None:
                     pts = p.getClosestPoints(held, self.plane, ob, physicsClientId=cid)
                     if pts:
                         ob = min(ob, max(0.0, min(pt[8] for pt in pts)))
                 out.append({"human": float(h), "obstacle": float(ob), "hazard": float(hz)})
+                if until is not None and until(out[-1]):
+                    break
         finally:
-            for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
-                p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
+            self._set_arm(q_now, qd_now)
             if held is not None:
                 p.resetBasePositionAndOrientation(held, held_pose[0], held_pose[1], physicsClientId=cid)
                 p.resetBaseVelocity(held, held_vel[0], held_vel[1], physicsClientId=cid)
@@ -188,19 +203,26 @@ class _Kinematics:
     def link_points(self, q: Sequence[float]) -> np.ndarray:
         """World positions of the link frames (links 1..7, hand, fingers, grasp frame) at ``q``
         (state restored afterwards); with a held object, its position too."""
+        return self.link_points_at([q])[0]
+
+    def link_points_at(self, qs: Sequence[Sequence[float]]) -> list[np.ndarray]:
+        """:meth:`link_points` at each configuration in ``qs``, the state read and restored once."""
         p, cid = self._p, self.cid
         q_now, qd_now = self.joint_state()
-        for j, v in zip(ARM_JOINTS, q):
-            p.resetJointState(self.robot, j, float(v), physicsClientId=cid)
-        states = p.getLinkStates(self.robot, list(range(12)), computeForwardKinematics=1,
-                                 physicsClientId=cid)
-        pts = [st[4] for st in states]
-        pose = self._held_pose_for_hand()
-        if pose is not None:
-            pts.append(pose[0])
-        for j, v, w in zip(ARM_JOINTS, q_now, qd_now):
-            p.resetJointState(self.robot, j, float(v), float(w), physicsClientId=cid)
-        return np.array(pts, dtype=float)
+        out = []
+        try:
+            for q in qs:
+                self._set_arm(q)
+                states = p.getLinkStates(self.robot, _ALL_LINKS, computeForwardKinematics=1,
+                                         physicsClientId=cid)
+                pts = [st[4] for st in states]
+                pose = self._held_pose_for_hand()
+                if pose is not None:
+                    pts.append(pose[0])
+                out.append(np.array(pts, dtype=float))
+        finally:
+            self._set_arm(q_now, qd_now)
+        return out
 
     def away_from_humans(self, xyz: Sequence[float], step_m: float) -> np.ndarray | None:
         """``xyz`` moved ``step_m`` horizontally away from the nearest person and 0.1 m up

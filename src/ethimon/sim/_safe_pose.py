@@ -371,7 +371,8 @@ class SafePoseController:
             smp = self._samples(wps)
             if not self._axis_ok(sim, smp):  # the cheaper check first
                 continue
-            pts = sim.probe(smp)
+            pts = sim.probe(smp, until=lambda c: (c["obstacle"] < 0.02 or c["human"] < need_h - 1e-3
+                                                  or c["hazard"] < need_z - 1e-3))  # stop at the first miss
             h = min(p["human"] for p in pts)
             if min(p["obstacle"] for p in pts) < 0.02 or h < need_h - 1e-3:
                 continue
@@ -392,14 +393,18 @@ class SafePoseController:
         samples than it points at that person now (or than ``_HAZARD_AWAY_DEG``), less
         ``_AXIS_SLACK_DEG``: a blade or spout is never swept through anyone's direction (each
         person judged on their own, issue 32). True without an axis."""
-        per = sim.hazard_axis_angles_deg(samples, each=True)
-        if not per:
-            return True
-        for name, a0 in per[0].items():  # every person, each against where it points at them now
-            floor = min(a0, _HAZARD_AWAY_DEG) - _AXIS_SLACK_DEG
-            if min(a[name] for a in per) < floor - 1e-6:
-                return False
-        return True
+        floors: dict[str, float] = {}
+        turned = []
+
+        def toward(per: dict[str, float]) -> bool:  # the samples stop at the first that fails
+            if not floors:  # every person, each against where it points at them now
+                floors.update((name, min(a0, _HAZARD_AWAY_DEG) - _AXIS_SLACK_DEG) for name, a0 in per.items())
+            if any(per[name] < floor - 1e-6 for name, floor in floors.items()):
+                turned.append(True)
+            return bool(turned)
+
+        per = sim.hazard_axis_angles_deg(samples, each=True, until=toward)
+        return not per or not turned
 
     def _needs(self, now: dict[str, float]) -> tuple[float, float]:
         """The clearances a route from a pose with clearances ``now`` must keep: never nearer
@@ -417,7 +422,7 @@ class SafePoseController:
         L = float(np.max(np.abs(b - a)))
         if L <= 1e-9:
             return 0.0
-        pts = [sim.link_points(a + (k / 10) * (b - a)) for k in range(11)]
+        pts = sim.link_points_at([a + (k / 10) * (b - a) for k in range(11)])
         return max(float(np.max(np.linalg.norm(q2 - q1, axis=1))) / (L / 10)
                    for q1, q2 in zip(pts, pts[1:]))
 

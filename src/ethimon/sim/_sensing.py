@@ -7,13 +7,17 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from ._cell import ARM_JOINTS, EE_LINK, FINGER_JOINTS, HAND_LINK, _NO_HUMAN_M
+from ._cell import ARM_JOINTS, EE_LINK, FINGER_JOINTS, HAND_LINK, _NO_HUMAN_M, _cross3
 
 __all__ = ["_Sensing"]
 
 
 class _Sensing:
     """The state and the signals of the cell (a part of :class:`~._arm.ArmSim`)."""
+
+    #: the arm's joint reading of this physics step, set by ``ArmSim.step`` while nothing can
+    #: move the arm before the next ``stepSimulation`` (``None``: ask PyBullet)
+    _js_step: tuple[np.ndarray, np.ndarray] | None = None
 
     # ------------------------------------------------------------ state
 
@@ -33,6 +37,8 @@ class _Sensing:
 
     def joint_state(self) -> tuple[np.ndarray, np.ndarray]:
         """Measured arm joint positions and velocities (7 each)."""
+        if self._js_step is not None:
+            return self._js_step
         st = self._p.getJointStates(self.robot, ARM_JOINTS, physicsClientId=self.cid)
         return np.array([s[0] for s in st]), np.array([s[1] for s in st])
 
@@ -154,7 +160,7 @@ class _Sensing:
         if link < 0:
             return float(d), name, 0.0  # the fixed base does not move
         st = p.getLinkState(self.robot, link, computeLinkVelocity=1, physicsClientId=cid)
-        v = np.asarray(st[6]) + np.cross(np.asarray(st[7]), pa - np.asarray(st[0]))
+        v = np.asarray(st[6]) + _cross3(st[7], pa - np.asarray(st[0]))
         n = pb - pa
         norm = float(np.linalg.norm(n))
         n = n / norm if norm > 1e-9 else -np.asarray(pt[7])  # touching: the contact normal
@@ -177,7 +183,7 @@ class _Sensing:
             "human_distance": float(dist),
             "ee_speed": float(np.linalg.norm(self.ee_velocity())),
             "contact_force": self.contact_force(),
-            "joint_speed_max": float(np.max(np.abs(qd))),
+            "joint_speed_max": float(np.abs(qd).max()),
             "hazard_distance": float(self.hazard_distance()),
             "human_speed": float(speeds[who]) if who is not None else 0.0,
             "robot_speed_toward_human": float(v_r),
