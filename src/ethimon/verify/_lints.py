@@ -249,7 +249,7 @@ def vacuous(u: Unrolling) -> list[Finding]:
             ms = u.budget.check_ms()
             if ms <= 0:
                 out.append(u.budget.unreached("lint", "lint.vacuous",
-                                          f"{len(obs) - i} of {len(obs)} obligations not checked for vacuity"))
+                                              f"{len(obs) - i} of {len(obs)} obligations not checked for vacuity"))
                 break
             s.set("timeout", ms)
             s.push()
@@ -336,8 +336,8 @@ def contradictions(u: Unrolling) -> list[Finding]:
     pairs = [(a, b) for a, b in itertools.combinations(alone_ok, 2) if comp[a.id] == comp[b.id]]
     for i, (a, b) in enumerate(pairs):
         if u.budget.out_of_budget():
-            out.append(u.budget.unreached("lint", "lint.contradiction", f"{len(pairs) - i} of {len(pairs)} pairs of "
-                                                                    f"obligations not checked"))
+            out.append(u.budget.unreached("lint", "lint.contradiction",
+                                          f"{len(pairs) - i} of {len(pairs)} pairs of obligations not checked"))
             return done(out)
         n = cycles([a, b])
         st, _ = window_search(u, holds([a, b]), [a.id, b.id], n)

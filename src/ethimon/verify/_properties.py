@@ -268,7 +268,7 @@ def defined(u: Unrolling, ob) -> Finding:
     enc = Unrolled(u.plan, k, prefix=f"{ob.id}.")
     for t in range(k):
         st, model, why = u.budget.solve(z3.Not(enc.obligation_defined(ob, t)),
-                                    *[enc.obligation_defined(ob, j) for j in range(t)], enc=enc)
+                                        *[enc.obligation_defined(ob, j) for j in range(t)], enc=enc)
         if st == "sat":
             cex = u.counterexample(
                 name, model, enc, t, {"fault": False},
@@ -301,10 +301,10 @@ def _defined_in_floats(u: Unrolling, ob, k: int) -> Finding:
     fenc = FloatUnrolled(u.plan, k, prefix=f"{ob.id}.f.")
     for t in range(k):
         st, model, why = u.budget.solve_fp(z3.Not(fenc.obligation_defined(ob, t)),
-                                       *[fenc.obligation_defined(ob, j) for j in range(t)], enc=fenc)
+                                           *[fenc.obligation_defined(ob, j) for j in range(t)], enc=fenc)
         if st == "sat":
             cex = u.counterexample(name, model, fenc, t, {"fault": False},
-                                      lambda d: any(f.kind == "internal" for f in d.faults))
+                                   lambda d: any(f.kind == "internal" for f in d.faults))
             if cex.confirmed:
                 return Finding("property", name, REFUTED,
                                f"evaluation fails in floating point on in-range input at cycle {t} (a "
