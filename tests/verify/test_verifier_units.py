@@ -103,3 +103,13 @@ def test_a_spent_budget_marks_what_a_check_left_undecided():
     assert Budget(None, 1.5).check_ms() == 1500 and Budget(10.0, 20.0).check_ms() <= 10_000
     assert u.budget.unreached("lint", "lint.y").message == (f"{BUDGET_NOTE}: not checked; the run's budget "
                                                              f"(--budget-s 60) was spent")
+
+
+def test_checks_build_no_encoding_of_their_own():
+    """Every z3 trace a check uses comes from its unrolling (``enc``/``dt``, or ``trace``,
+    ``float_trace``, ``only_trace`` for another horizon), so the plan is translated in one place."""
+    for mod in (_properties, _lints, _tiers):
+        text = inspect.getsource(mod)
+        for made in ("Unrolled(", "FloatUnrolled(", "decision_trace(", "Unrolling("):
+            assert made not in text, (mod.__name__, made)
+    assert inspect.getsource(_verifier).count("Unrolling(") == 1  # the Verifier builds the one unrolling

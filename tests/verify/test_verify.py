@@ -240,7 +240,7 @@ obligations:
 
 def test_a_wrong_model_is_caught_by_the_replay(monkeypatch):
     """If the z3 model of the decision logic were wrong, its counterexample would not replay."""
-    from ethimon.verify import _encode, _properties, _unrolling
+    from ethimon.verify import _encode, _unrolling
 
     real_trace = _encode.decision_trace
 
@@ -250,7 +250,6 @@ def test_a_wrong_model_is_caught_by_the_replay(monkeypatch):
         return dt
     import z3
     monkeypatch.setattr(_unrolling, "decision_trace", broken)
-    monkeypatch.setattr(_properties, "decision_trace", broken)
     rep = verify_spec(os.path.join(SPECS, "governor.yaml"))
     f = rep.finding("risk.override")
     assert f.status == "refuted"

@@ -333,7 +333,7 @@ obligations:
 @pytest.mark.slow
 def test_response_proof_by_one_obligation_still_refutes_a_wrong_model(monkeypatch):
     """The per-obligation proof over-approximates; when it cannot prove, the whole trace decides."""
-    from ethimon.verify import _encode, _properties, _unrolling
+    from ethimon.verify import _encode, _unrolling
     real_trace = _encode.decision_trace
 
     def forgets_obligations(enc, **kw):  # a model whose override ignores every violation
@@ -342,7 +342,6 @@ def test_response_proof_by_one_obligation_still_refutes_a_wrong_model(monkeypatc
                        for o, f, v in zip(dt.override, dt.risk_fires, dt.violated)]
         return dt
     monkeypatch.setattr(_unrolling, "decision_trace", forgets_obligations)
-    monkeypatch.setattr(_properties, "decision_trace", forgets_obligations)
     rep = verify_spec(_spec(_many(3)))
     f = rep.finding("o0.response")
     assert f.status == "refuted" and not f.counterexample.confirmed, format_table(rep)

@@ -106,7 +106,7 @@ def window_search(u: Unrolling, goal, ids, s: int) -> tuple[str, Any]:
     why_unknown = ""
 
     def attempt(p: int, free: bool = False):
-        enc = Unrolled(u.plan, p + s, prefix=f"w{'f' if free else p}.", free_history=free)
+        enc = u.trace(p + s, prefix=f"w{'f' if free else p}.", free_history=free)
         goals = [enc.all_defined(p + s - 1)] + [goal(enc, t) for t in range(p, p + s)]
         st, model, why = u.budget.solve(*goals, enc=enc)
         if st == "sat" and not free:  # prefer a run whose comparisons are clear of their boundaries
@@ -191,7 +191,7 @@ def release(u: Unrolling) -> Finding:
                 return Finding("lint", name, WARNING,
                                never.replace(f"{hold} consecutive", f"even {short} consecutive"))
         # ... and a run that repeats one input is a witness once its windows are full
-        enc = Unrolled(u.plan, P + 1, prefix="wc.")
+        enc = u.trace(P + 1, prefix="wc.")
         same = [enc.sig[t][sg] == enc.sig[0][sg] for t in range(1, P + 1) for sg in enc.sig[0]]
         same += [enc.R[t] == enc.R[0] for t in range(1, P + 1)]
         st, model, why = u.budget.solve(*same, enc.all_defined(P), goal(enc, P), *enc.decisive(), enc=enc)
@@ -235,7 +235,7 @@ def vacuous(u: Unrolling) -> list[Finding]:
     obs = u.plan.obligations
     if obs:
         k = min(max(u.need[ob.id] for ob in obs), u.max_unroll)
-        enc = Unrolled(u.plan, k, prefix="v.")
+        enc = u.trace(k, prefix="v.")
         upto = []  # every obligation defined at cycles 0 .. t
         acc = z3.BoolVal(True)
         for t in range(k):

@@ -14,7 +14,7 @@ from ..compiler._risk_formula import risk_bounds, risk_from_p_unsafe, two_class_
 from ..runtime import Monitor
 from ..language._expr import walk
 from ._checks import _SEV_NAME, BUDGET_NOTE, Check, _fmt
-from ._encode import FloatUnrolled, Unrolled, decision_trace, real, rules_of, z3_value
+from ._encode import real, rules_of, z3_value
 from ._report import OK, PROVED, PROVED_REAL, REFUTED, SKIPPED, UNKNOWN, Counterexample, Finding
 from ._tiers import has_tiers, tier_checks
 from ._unrolling import Unrolling
@@ -158,7 +158,7 @@ def _decision_check(u: Unrolling, name: str, bad_at, expect_for, broken, proved_
     """
     if only is not None:
         enc = u.enc
-        dt_i = decision_trace(enc, prefix=f"only{only}.", only=only)
+        dt_i = u.only_trace(only)
         ob = u.plan.obligations[only]
         terms = [z3.And(z3.And([enc.obligation_defined(ob, j) for j in range(t + 1)]), b)
                  if assume_defined else b for t in range(u.k) if (b := bad_at(dt_i, t)) is not None]
@@ -265,7 +265,7 @@ def _fault_replay(u: Unrolling) -> str:
 def defined(u: Unrolling, ob) -> Finding:
     name = f"{ob.id}.defined"
     k = min(u.need[ob.id], u.max_unroll)
-    enc = Unrolled(u.plan, k, prefix=f"{ob.id}.")
+    enc = u.trace(k, prefix=f"{ob.id}.")
     for t in range(k):
         st, model, why = u.budget.solve(z3.Not(enc.obligation_defined(ob, t)),
                                         *[enc.obligation_defined(ob, j) for j in range(t)], enc=enc)
@@ -298,7 +298,7 @@ def _defined_in_floats(u: Unrolling, ob, k: int) -> Finding:
         return Finding("property", name, PROVED, what + " (in doubles too: every divisor's real value stays "
                        "farther from 0 than rounding can move it, every sqrt/separation_distance argument "
                        "is >= 0 without subtraction, nothing overflows)")
-    fenc = FloatUnrolled(u.plan, k, prefix=f"{ob.id}.f.")
+    fenc = u.float_trace(k, prefix=f"{ob.id}.f.")
     for t in range(k):
         st, model, why = u.budget.solve_fp(z3.Not(fenc.obligation_defined(ob, t)),
                                            *[fenc.obligation_defined(ob, j) for j in range(t)], enc=fenc)

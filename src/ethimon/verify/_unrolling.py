@@ -1,7 +1,8 @@
 """One spec's plan unrolled over the horizon ``ethimon verify`` needs (imports z3): the plan, each
 obligation's look-back, the horizon ``k``, the shared z3 encoding and decision trace (built once,
-on first use), and the way back from a z3 model to frames replayed in a real :class:`Monitor`.
-Every check (``_properties.py``, ``_lints.py``, ``_tiers.py``) runs over it."""
+on first use), the further traces some checks need, and the way back from a z3 model to frames
+replayed in a real :class:`Monitor`. Every check (``_properties.py``, ``_lints.py``,
+``_tiers.py``) runs over it; none builds an encoding of its own."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from ..compiler._risk_formula import risk_range
 from ..language import Spec
 from ..runtime import Monitor
 from ._checks import Budget
-from ._encode import DecisionTrace, Unrolled, decision_trace, lookback, release_below, z3_value
+from ._encode import DecisionTrace, FloatUnrolled, Unrolled, decision_trace, lookback, release_below, z3_value
 from ._report import Counterexample
 from ._tiers import base_spec
 
@@ -106,6 +107,21 @@ class Unrolling:
         if self._dt is None:
             self._dt = decision_trace(self.enc)
         return self._dt
+
+    def only_trace(self, i: int) -> DecisionTrace:
+        """The decision logic over :attr:`enc` with obligation ``i`` alone encoded (the others' verdicts
+        and latches free: an over-approximation, see :func:`~._encode.decision_trace`)."""
+        return decision_trace(self.enc, prefix=f"only{i}.", only=i)
+
+    # -- further traces of the same plan (another horizon, their own variable names) -------------
+    def trace(self, k: int, *, prefix: str, free_history: bool = False) -> Unrolled:
+        """A trace of ``k`` cycles of the plan in the reals, its variables named ``prefix...``
+        (``free_history``: the first cycle is any point of a longer run)."""
+        return Unrolled(self.plan, k, prefix=prefix, free_history=free_history)
+
+    def float_trace(self, k: int, *, prefix: str) -> FloatUnrolled:
+        """A trace of ``k`` cycles of the plan in the monitor's IEEE-754 doubles."""
+        return FloatUnrolled(self.plan, k, prefix=prefix)
 
     def solve_dt(self, *goals) -> tuple[str, z3.ModelRef | None, str]:
         """:meth:`Budget.solve` over the shared decision trace, with one incremental solver for every decision check.
