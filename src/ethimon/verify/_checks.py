@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Union
+from typing import TYPE_CHECKING, Any, Union
 
 import z3
 
@@ -16,7 +16,6 @@ from ._report import SKIPPED, UNKNOWN, Finding
 
 if TYPE_CHECKING:  # pragma: no cover
     from ._encode import Unrolled
-    from ._unrolling import Unrolling
 
 __all__ = ["Budget", "Check", "BUDGET_NOTE"]
 
@@ -111,7 +110,8 @@ class Budget:
         return "unknown", None, s.reason_unknown()
 
 
-CheckFn = Callable[["Unrolling"], Union[Finding, list[Finding]]]
+#: ``fn(unrolling)`` of a :class:`Check` (an :class:`~._unrolling.Unrolling`, which imports this module)
+CheckFn = Callable[[Any], Union[Finding, list[Finding]]]
 
 
 class Check:
@@ -133,7 +133,7 @@ class Check:
     def __repr__(self) -> str:
         return f"Check({self.kind!r}, {self.name!r})"
 
-    def run(self, u: Unrolling) -> list[Finding]:
+    def run(self, u: Any) -> list[Finding]:
         """The findings of this check over ``u``; when the budget ran out while it ran, an
         undecided finding says so (its message starts with :data:`BUDGET_NOTE`)."""
         t0 = time.perf_counter()
