@@ -44,11 +44,11 @@ def test_the_rated_payload_is_held_at_the_worst_pose():
 
 def _lint(spec_path, monkeypatch=None, holding=None):
     from ethimon.compiler._plans import plan_of
-    from ethimon.verify._lints import Lints
+    from ethimon.verify._lints import brakes
     if holding is not None:
         monkeypatch.setattr(_robot, "BRAKE_HOLDING_N_M", holding)
     spec = ethimon.load_spec(str(spec_path))
-    return Lints.lint_brakes(types.SimpleNamespace(plan=plan_of(spec), spec=spec))
+    return brakes(types.SimpleNamespace(plan=plan_of(spec), spec=spec))
 
 
 def test_lint_brakes_judges_the_rated_payload_with_the_safety_factor():

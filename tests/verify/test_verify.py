@@ -240,7 +240,7 @@ obligations:
 
 def test_a_wrong_model_is_caught_by_the_replay(monkeypatch):
     """If the z3 model of the decision logic were wrong, its counterexample would not replay."""
-    from ethimon.verify import _checks, _encode, _properties
+    from ethimon.verify import _encode, _unrolling
 
     real_trace = _encode.decision_trace
 
@@ -249,8 +249,7 @@ def test_a_wrong_model_is_caught_by_the_replay(monkeypatch):
         dt.override = [z3.And(o, z3.Not(f)) for o, f in zip(dt.override, dt.risk_fires)]
         return dt
     import z3
-    monkeypatch.setattr(_checks, "decision_trace", broken)
-    monkeypatch.setattr(_properties, "decision_trace", broken)
+    monkeypatch.setattr(_unrolling, "decision_trace", broken)
     rep = verify_spec(os.path.join(SPECS, "governor.yaml"))
     f = rep.finding("risk.override")
     assert f.status == "refuted"

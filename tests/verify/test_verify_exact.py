@@ -260,14 +260,14 @@ def _many(n: int) -> str:
 
 @pytest.mark.slow
 def test_budget_cuts_the_run_and_reports_what_it_did_not_reach(monkeypatch):
-    from ethimon.verify import _checks, _verifier
-    real_resume = _verifier.Verifier.prop_resume_explained
+    from ethimon.verify import _checks, _properties
+    real_resume = _properties.resume_explained
 
-    def resume_then_spend(self):  # the budget runs out while this check runs
-        f = real_resume(self)
-        self.deadline = _checks.time.perf_counter() - 1.0
+    def resume_then_spend(u):  # the budget runs out while this check runs
+        f = real_resume(u)
+        u.budget.deadline = _checks.time.perf_counter() - 1.0
         return f
-    monkeypatch.setattr(_verifier.Verifier, "prop_resume_explained", resume_then_spend)
+    monkeypatch.setattr(_properties, "resume_explained", resume_then_spend)
     rep = verify_spec(_spec(_many(6)), budget_s=60)
     assert rep.finding("o5.response").status == "proved"
     assert rep.finding("resume.explained").status == "proved"
@@ -333,7 +333,7 @@ obligations:
 @pytest.mark.slow
 def test_response_proof_by_one_obligation_still_refutes_a_wrong_model(monkeypatch):
     """The per-obligation proof over-approximates; when it cannot prove, the whole trace decides."""
-    from ethimon.verify import _checks, _encode, _properties
+    from ethimon.verify import _encode, _unrolling
     real_trace = _encode.decision_trace
 
     def forgets_obligations(enc, **kw):  # a model whose override ignores every violation
@@ -341,8 +341,7 @@ def test_response_proof_by_one_obligation_still_refutes_a_wrong_model(monkeypatc
         dt.override = [z3.And(o, z3.Or(f, z3.Not(z3.Or(v)) if v else z3.BoolVal(True)))
                        for o, f, v in zip(dt.override, dt.risk_fires, dt.violated)]
         return dt
-    monkeypatch.setattr(_checks, "decision_trace", forgets_obligations)
-    monkeypatch.setattr(_properties, "decision_trace", forgets_obligations)
+    monkeypatch.setattr(_unrolling, "decision_trace", forgets_obligations)
     rep = verify_spec(_spec(_many(3)))
     f = rep.finding("o0.response")
     assert f.status == "refuted" and not f.counterexample.confirmed, format_table(rep)
@@ -368,7 +367,7 @@ obligations:
 """)
     v = Verifier(spec, path="t", timeout_s=20, max_unroll=32)
     obs = v.plan.obligations
-    P = v._window_cycles([ob.id for ob in obs])
+    P = v.unrolling.window_cycles([ob.id for ob in obs])
     rng = random.Random("free-history")
     values = [0.0, 0.1, 0.3, 0.6, 0.85, 0.95, 1.0]
     checked = 0
@@ -387,7 +386,7 @@ obligations:
                 for t, f in enumerate(run[first - P:end + 1]):
                     pins += [enc.sig[t]["x"] == real(f["x"]), enc.sig[t]["y"] == real(f["y"]), enc.R[t] == 0]
                 goals = [z3.Not(enc.violated(ob, t)) for t in range(P, P + s) for ob in obs]
-                st, _, why = v.solve(enc.all_defined(P + s - 1), *goals, *pins, enc=enc)
+                st, _, why = v.budget.solve(enc.all_defined(P + s - 1), *goals, *pins, enc=enc)
                 assert st == "sat", (run, first, end, why)
                 checked += 1
     assert checked > 50

@@ -24,9 +24,10 @@ from ..compiler._risk_formula import tier_outcome
 from ..runtime import Monitor
 from ..language import Response, Spec
 from ._encode import real, risk_input_range
+from ._checks import Check
 from ._report import OK, PROVED, REFUTED, UNKNOWN, WARNING, Finding
 
-__all__ = ["has_tiers", "base_spec", "tier_properties", "lint_confirm_band"]
+__all__ = ["has_tiers", "base_spec", "tier_checks", "lint_confirm_band"]
 
 
 _STOP_2 = Response.STOP_2.severity
@@ -90,8 +91,8 @@ class _Cycle:
         self.base_sev = z3.If(z3.And(base_fires, self.L < self.risk_sev), z3.IntVal(self.risk_sev), self.L)
 
 
-def _prove(ck, name: str, cyc: _Cycle, claim, what: str, *extra) -> Finding:
-    st, model, why = ck.solve(*cyc.domain, *extra, z3.Not(claim))
+def _prove(u, name: str, cyc: _Cycle, claim, what: str, *extra) -> Finding:
+    st, model, why = u.budget.solve(*cyc.domain, *extra, z3.Not(claim))
     if st == "unsat":
         return Finding("property", name, PROVED, what)
     if st == "sat":
@@ -110,86 +111,86 @@ def ck_val(model, v) -> Any:
     return float(x.as_fraction()) if z3.is_rational_value(x) else str(x)
 
 
-def tier_properties(ck) -> list[tuple[str, Any]]:
-    """``(name, check)`` of every tier property for the checker ``ck`` (its ``full_spec`` has tiers)."""
-    spec: Spec = ck.full_spec
+def tier_checks(u) -> list[Check]:
+    """Every tier property over the unrolling ``u`` (its ``full_spec`` has tiers), in report order."""
+    spec: Spec = u.full_spec
     r = spec.risk
     band = r.confirm_threshold is not None
     judge = bool(r.judge_list)
     hold_on = judge and r.judge_may_hold_above_tau is not None
     cuts = r.judge_cuts()
-    out: list[tuple[str, Any]] = []
+    out: list[Check] = []
 
     def cyc(tag=""):
-        return _Cycle(spec, ck.full_plan, tag)
+        return _Cycle(spec, u.full_plan, tag)
 
-    def stop():
+    def stop(u) -> Finding:
         c = cyc()
         if not hold_on:
-            return _prove(ck, "tier.stop", c, z3.Implies(c.R >= c.tau, z3.And(c.override, c.sev >= c.risk_sev)),
+            return _prove(u, "tier.stop", c, z3.Implies(c.R >= c.tau, z3.And(c.override, c.sev >= c.risk_sev)),
                           f"R_e >= tau => override ({r.response} or more) whatever the judge says")
         ceil = r.judge_may_hold_above_tau.ceiling
         claim = z3.And(z3.Implies(z3.And(c.R >= c.tau, z3.Not(c.safe)), z3.And(c.override, c.sev >= c.risk_sev)),
                        z3.Implies(c.R >= c.ceiling, z3.And(c.override, c.sev >= c.risk_sev)))
-        return _prove(ck, "tier.stop", c, claim,
+        return _prove(u, "tier.stop", c, claim,
                       f"R_e >= tau without a safe verdict, or R_e >= ceiling {ceil:g} whatever the judge says => "
                       f"override ({r.response} or more)")
-    out.append(("tier.stop", lambda: ck._timed(stop)))
+    out.append(Check("property", "tier.stop", stop))
     if hold_on:
-        def hold_above():
+        def hold_above(u) -> Finding:
             c = cyc()
             claim = z3.Implies(z3.And(c.R >= c.tau, z3.Not(c.conf)), z3.And(c.override, c.sev >= _STOP_2))
-            return _prove(ck, "tier.hold_above_tau", c, claim,
+            return _prove(u, "tier.hold_above_tau", c, claim,
                           f"judge_may_hold_above_tau (ceiling {r.judge_may_hold_above_tau.ceiling:g}): at R_e >= tau "
                           "a safe verdict gives at most a confirm hold (stop_2 or more): never execute without a "
                           "person's confirmation of that text")
-        out.append(("tier.hold_above_tau", lambda: ck._timed(hold_above)))
+        out.append(Check("property", "tier.hold_above_tau", hold_above))
     if band:
-        def hold():
+        def hold(u) -> Finding:
             c = cyc()
             no_safe = z3.And(z3.Not(c.safe), z3.Not(c.conf), c.in_band)
             claim = z3.And(z3.Implies(no_safe, c.override),
                            z3.Implies(z3.And(no_safe, z3.Not(c.unsafe)), c.sev >= _STOP_2),
                            z3.Implies(z3.And(c.in_band, z3.Not(c.jk), z3.Not(c.conf)), c.sev >= _STOP_2))
-            return _prove(ck, "tier.band", c, claim,
+            return _prove(u, "tier.band", c, claim,
                           "tau_confirm <= R_e < tau without a safe verdict or a confirmation => override; unsure or "
                           "no judgement (timeout, error, malformed, none) => hold (stop_2 or more): never execute "
                           "on a missing judgement")
-        out.append(("tier.band", lambda: ck._timed(hold)))
+        out.append(Check("property", "tier.band", hold))
     if judge:
-        def unsafe():
+        def unsafe(u) -> Finding:
             c = cyc()
-            return _prove(ck, "tier.judge_unsafe", c, z3.Implies(c.unsafe, z3.And(c.override, c.sev >= c.risk_sev)),
+            return _prove(u, "tier.judge_unsafe", c, z3.Implies(c.unsafe, z3.And(c.override, c.sev >= c.risk_sev)),
                           f"an unsafe verdict (p_judge >= {cuts[1]:g}) => override ({r.response} or more) "
                           f"at any R_e")
-        out.append(("tier.judge_unsafe", lambda: ck._timed(unsafe)))
+        out.append(Check("property", "tier.judge_unsafe", unsafe))
 
-        def raise_only():
+        def raise_only(u) -> Finding:
             c = cyc()
             below = c.R < (real(r.confirm_threshold) if band else c.tau)
             # the same cycle with no judgement: the judgement can only add overrides below the band
             nj = z3.substitute(z3.And(c.override, c.sev >= 0), (c.jk, z3.BoolVal(False)))
             nj_sev = z3.substitute(c.sev, (c.jk, z3.BoolVal(False)))
             claim = z3.Implies(below, z3.And(z3.Implies(nj, c.override), c.sev >= nj_sev))
-            return _prove(ck, "tier.raise_only", c, claim,
+            return _prove(u, "tier.raise_only", c, claim,
                           "below tau_confirm a judgement never lowers the decision: with any verdict the override "
                           "and its severity are at least those with no judgement")
-        out.append(("tier.raise_only", lambda: ck._timed(raise_only)))
+        out.append(Check("property", "tier.raise_only", raise_only))
 
-    def adds_only():
+    def adds_only(u) -> Finding:
         c = cyc()
         if hold_on:  # the hold lowers a stop's severity to stop_2 (held for a person), never to execute
             claim = z3.And(z3.Implies(z3.And(c.base_override, z3.Not(c.conf)), c.override),
                            z3.Or(c.sev >= c.base_sev, c.held))
-            return _prove(ck, "tier.adds_only", c, claim,
+            return _prove(u, "tier.adds_only", c, claim,
                           "the tier rules only add overrides to the spec without them, except that a held text "
                           "(judge_may_hold_above_tau) is stop_2 until a person confirms it")
         claim = z3.And(z3.Implies(c.base_override, c.override), c.sev >= c.base_sev)
-        return _prove(ck, "tier.adds_only", c, claim,
+        return _prove(u, "tier.adds_only", c, claim,
                       "the tier rules only add overrides to the spec without them (its properties above hold "
                       "with the tiers too)")
-    out.append(("tier.adds_only", lambda: ck._timed(adds_only)))
-    out.append(("tier.agrees", lambda: ck._timed(lambda: agrees(ck))))
+    out.append(Check("property", "tier.adds_only", adds_only))
+    out.append(Check("property", "tier.agrees", agrees))
     return out
 
 
@@ -212,19 +213,19 @@ def _points(spec: Spec, plan) -> tuple[list[float], list[float | None]]:
     return sorted(x for x in rs if lo <= x <= hi), [None, *sorted(js)]
 
 
-def agrees(ck) -> Finding:
+def agrees(u) -> Finding:
     """Fresh monitors on every threshold boundary fire what the encoding says (confirmed or not)."""
-    spec: Spec = ck.full_spec
-    rs, js = _points(spec, ck.full_plan)
-    c = _Cycle(spec, ck.full_plan)
+    spec: Spec = u.full_spec
+    rs, js = _points(spec, u.full_plan)
+    c = _Cycle(spec, u.full_plan)
     r = spec.risk
     cuts = r.judge_cuts()
     hold = r.judge_may_hold_above_tau if cuts is not None else None
     n = 0
     for R, jp, confirmed in itertools.product(rs, js, (False, True)):
-        m = Monitor(ck.full_plan, margins=False)
+        m = Monitor(u.full_plan, margins=False)
         frame: dict[str, Any] = {sig.name: (True if sig.kind == "bool" else min(max(0.0, sig.lo), sig.hi))
-                                 for sig in ck.full_plan.signals}
+                                 for sig in u.full_plan.signals}
         if r.max_age_s is not None:
             frame["risk_age_s"] = 0.0
         if confirmed:  # a confirmation needs the band (or a held text): confirm one first, same task
@@ -261,14 +262,15 @@ def agrees(ck) -> Finding:
                    f"the Monitor fires what the encoding says (and tier_outcome agrees) at {n} boundary points")
 
 
-def lint_confirm_band(ck) -> Finding:
-    spec: Spec = ck.full_spec
+def lint_confirm_band(u) -> Finding:
+    """Where the confirm band lies in the reachable R_e (and what ``judge_may_hold_above_tau`` does)."""
+    spec: Spec = u.full_spec
     r = spec.risk
     name = "lint.confirm_band"
     if r.confirm_threshold is None:
         return Finding("lint", name, OK, "no confirm band" + (" (the judge can only stop)" if r.judge_list else "")
                        + _hold_note(r))
-    lo, hi = ck.risk_range()  # reachable R_e (the tiers do not change the formula)
+    lo, hi = u.risk_range()  # reachable R_e (the tiers do not change the formula)
     tc, tau = float(r.confirm_threshold), float(r.threshold)
     if tc >= tau:  # pragma: no cover - the spec model rejects it
         return Finding("lint", name, WARNING, f"tau_confirm={tc:g} is not below tau={tau:g}")
