@@ -54,7 +54,7 @@ __all__ = [
     "Node", "Num", "Seconds", "BoolLit", "Name", "Unary", "Binary", "Call", "ExprSyntaxError",
     "parse_expr", "BINARY_OPS", "COMPARISON_MARGINS", "MARGIN_SHAPES", "comparison_margin",
     "CONNECTIVE_MARGINS", "connective_margin", "FUNCTIONS", "TEMPORAL", "walk", "to_source",
-    "SEPARATION_PARAMS", "separation_distance",
+    "SEPARATION_PARAMS", "separation_distance", "is_temporal",
 ]
 
 
@@ -508,6 +508,12 @@ def parse_expr(src: str) -> Node:
         raise ExprSyntaxError(f"expression is too long ({len(src)} characters)", MAX_EXPR_CHARS,
                               f"at most {MAX_EXPR_CHARS}")
     return _Parser(src).parse()
+
+
+def is_temporal(node: Node) -> bool:
+    """Whether ``node`` is a temporal operator (its row reads the past), by the operator table now."""
+    row = node.row
+    return row is not None and row.family == "temporal"
 
 
 def walk(node: Node):

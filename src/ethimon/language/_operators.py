@@ -74,7 +74,7 @@ class Operator:
     args: tuple[str, ...]
     result: str
     unit: str
-    lookback: str
+    lookback: str = "none"
     may_raise: str | None = None
     optional: int = 0
     variadic: int = 0

@@ -74,9 +74,9 @@ from typing import Any
 
 from ..compiler._plan import RISK_NAME, Plan
 from ..compiler import plan_of
-from ..language._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call,
+from ..language._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, Binary, BoolLit, Call,
                           Name, Node, Num, Unary, comparison_margin, connective_margin, separation_distance,
-                          walk)
+                          is_temporal, walk)
 from ..language._visit import ExprVisitor
 from ..language import SEVERITY_ORDER, Response, Spec
 from ..compiler._risk_formula import decimal_reading, risk_from_p_unsafe, risk_from_probs, risk_range
@@ -331,7 +331,7 @@ class ReferenceMonitor:
                 for n in walk(root) if isinstance(n, Name) and n.id in names}
 
     def _has_temporal(self, ob) -> bool:
-        return any(isinstance(n, Call) and n.func in TEMPORAL
+        return any(is_temporal(n)
                    for root in (ob.when, ob.require) if root is not None for n in walk(root))
 
     def _touch_temporal(self, t: int) -> None:
