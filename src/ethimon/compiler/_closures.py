@@ -434,14 +434,14 @@ def build_machine(plan: Plan) -> Machine:
 
 
 def _may_raise(node: Node) -> bool:
-    """Whether evaluating ``node`` can raise on finite float inputs: a division (by zero),
-    ``sqrt`` (of a negative) or ``separation_distance`` (a negative argument) somewhere in it.
-    ``+ - *``, comparisons, connectives, ``abs``/``min``/``max`` and slot reads never raise
-    (overflow gives inf, inf - inf NaN: values, not exceptions)."""
+    """Whether evaluating ``node`` can raise on finite float inputs: an operator whose row in the
+    operator table says so (``may_raise``: a division by zero, ``sqrt`` of a negative, a negative
+    ``separation_distance`` argument) somewhere in it. ``+ - *``, comparisons, connectives,
+    ``abs``/``min``/``max`` and slot reads never raise (overflow gives inf, inf - inf NaN: values,
+    not exceptions)."""
     for n in walk(node):
-        if isinstance(n, Binary) and n.op == "/":
-            return True
-        if isinstance(n, Call) and n.func in ("sqrt", "separation_distance"):
+        row = n.row
+        if row is not None and row.may_raise:
             return True
     return False
 

@@ -9,10 +9,10 @@ import difflib
 import math
 
 from ..errors import SpecError
-from ..language._expr import (SEPARATION_PARAMS, Binary, BoolLit, Call, ExprSyntaxError, Name,
+from ..language._expr import (SEPARATION_PARAMS, UNIT_RULES, Binary, BoolLit, Call, ExprSyntaxError, Name,
                           Node, Num, Seconds, Unary, parse_expr, separation_distance)
 from ..language import Constant, Response, Spec, seconds_to_cycles
-from ..language._operators import OPERATORS, UNIT_RULES, Operator
+from ..language import OPERATORS, Operator
 from ._plan import BOOL, MAX_WINDOW, RISK_NAME, ObligationPlan, Plan, RuleRelease, SignalSlot, Ty
 from ._risk_formula import release_bound
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit

@@ -48,13 +48,13 @@ import unicodedata
 from dataclasses import dataclass
 
 from ..errors import ExprSyntaxError
-from ._operators import MARGIN_SHAPES, OPERATORS, SEPARATION_PARAMS, Operator, operator_of, separation_distance
+from ._operators import MARGIN_SHAPES, OPERATORS, SEPARATION_PARAMS, UNIT_RULES, Operator, operator_of, separation_distance
 
 __all__ = [
     "Node", "Num", "Seconds", "BoolLit", "Name", "Unary", "Binary", "Call", "ExprSyntaxError",
     "parse_expr", "BINARY_OPS", "COMPARISON_MARGINS", "MARGIN_SHAPES", "comparison_margin",
     "CONNECTIVE_MARGINS", "connective_margin", "FUNCTIONS", "TEMPORAL", "walk", "to_source",
-    "SEPARATION_PARAMS", "separation_distance", "is_temporal",
+    "SEPARATION_PARAMS", "separation_distance", "is_temporal", "UNIT_RULES",
 ]
 
 
