@@ -13,7 +13,7 @@ from ..language._expr import (SEPARATION_PARAMS, UNIT_RULES, Binary, BoolLit, Ca
                           Node, Num, Seconds, Unary, parse_expr, separation_distance)
 from ..language import Constant, Response, Spec, seconds_to_cycles
 from ..language import OPERATORS, Operator
-from ._plan import BOOL, MAX_WINDOW, RISK_NAME, ObligationPlan, Plan, RuleRelease, SignalSlot, Ty
+from ._plan import BOOL, MAX_WINDOW, RISK_NAME, LatchRule, ObligationPlan, Plan, RiskPlan, SignalSlot, Tiers, Ty
 from ._risk_formula import release_bound
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit
 
@@ -426,11 +426,19 @@ def compile_plan(spec: Spec) -> Plan:
     r = spec.risk
     exact, cut = release_bound(r.threshold, r.release.hysteresis)
     fmode, fhold = spec.fault_release()
+    risk_rule = LatchRule("risk", Response(r.response), r.release.mode == "manual", int(r.release.hold_cycles))
+    risk_plan = RiskPlan(float(r.threshold), exact, cut, float(r.alpha), float(r.beta), float(r.gamma), int(r.classes),
+                         int(r.unsafe_index), r.variance, None if r.max_age_s is None else float(r.max_age_s),
+                         risk_rule)
+    cuts = r.judge_cuts()  # risk.judge, or risk.judges (their consensus is the judge input)
+    hold = r.judge_may_hold_above_tau
+    tiers = Tiers(None if r.confirm_threshold is None else float(r.confirm_threshold),
+                  None if cuts is None else (float(cuts[0]), float(cuts[1])),
+                  float(hold.ceiling) if hold is not None and cuts is not None else None)
     return Plan(spec=spec, signals=tuple(signals), risk_slot=len(signals), constants=dict(ck.consts),
                 obligations=tuple(obligations), temporal=tuple(ck.temporal), types=ck.types,
-                windows=ck.windows, window_seconds=ck.seconds, rate_hz=spec.rate_hz, slots=slots, risk=r, on_fault=Response(spec.on_fault),
-                threshold=float(r.threshold), release_exact=exact,
-                release_cut=cut,
-                risk_rule=RuleRelease("risk", Response(r.response), r.release.mode == "manual",
-                                      int(r.release.hold_cycles)),
-                fault_rule=RuleRelease("fault", Response(spec.on_fault), fmode == "manual", int(fhold)))
+                windows=ck.windows, window_seconds=ck.seconds, rate_hz=spec.rate_hz, slots=slots, risk=r,
+                on_fault=Response(spec.on_fault), threshold=float(r.threshold), release_exact=exact,
+                release_cut=cut, risk_rule=risk_rule,
+                fault_rule=LatchRule("fault", Response(spec.on_fault), fmode == "manual", int(fhold)),
+                risk_plan=risk_plan, tiers=tiers)
