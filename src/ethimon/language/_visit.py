@@ -8,11 +8,12 @@ and implements every method of :data:`PROTOCOL`; :meth:`ExprVisitor.visit` dispa
 built once per class (by node type, then by operator or function name), never by an ``isinstance``
 chain per call.
 
-The methods are derived from the language's own tables (:data:`~ethimon.language._expr.BINARY_OPS`,
-:data:`~ethimon.language._expr.FUNCTIONS`, :data:`UNARY_OPS`), and an entry added there without a
-method here fails at import; a method added here is abstract, so a back-end that lacks it cannot be
-instantiated; ``tests/compiler/test_interpreter_coverage.py`` names what each back-end lacks
-(:func:`missing_methods`) and evaluates one expression per entry on all four.
+The methods are derived from the operator table (:data:`~ethimon.language._operators.OPERATORS`):
+one abstract ``visit_<name>`` per row, generated on :class:`ExprVisitor`, so a back-end that lacks
+one cannot be instantiated; ``tests/compiler/test_interpreter_coverage.py`` names what each back-end
+lacks (:func:`missing_methods`, read from the table now) and evaluates one expression per entry on
+all four. :class:`ExprAnalysis` is the base of analyses that care about a few entries: every
+method defaults to visiting the operands.
 """
 
 from __future__ import annotations
