@@ -3,10 +3,10 @@
 The four interpreters of the AST (the compiled closures, the reference interpreter, the offline
 checker, the z3 encoder in both arithmetics) implement :class:`ethimon.language._visit.ExprVisitor`.
 For every node kind, unary and binary operator (``BINARY_OPS``), function and temporal operator
-(``FUNCTIONS``) this checks that each back-end has its method (introspection) and that one small
+(``FUNCTIONS``), all rows of ``OPERATORS``, this checks that each back-end has its method (introspection) and that one small
 expression using it gives the same verdicts and margins on the monitor, the reference and the
 offline checker, cycle by cycle, and the same values in z3 with the inputs pinned to the trace's.
-An entry added to a table without a back-end method fails here (shown with a fake entry).
+A row added to the operator table without a back-end method fails here (shown with fake rows).
 """
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ from ethimon.compiler._closures import _Gen
 from ethimon.offline import check_trace
 from ethimon.offline._eval import Evaluator
 from ethimon.language._expr import BINARY_OPS, FUNCTIONS, Binary, walk
+from ethimon.language._operators import OPERATORS, Operator
 from ethimon.language._visit import PROTOCOL, _protocol, missing_methods
 from ethimon.testing import ReferenceMonitor
 from ethimon.testing._reference import _Semantics
@@ -103,24 +104,30 @@ def coverage_problems() -> list[str]:
 
 def test_every_backend_implements_every_entry():
     assert coverage_problems() == []
-    assert set(EXAMPLES) == set(PROTOCOL.values())
+    assert set(EXAMPLES) >= set(PROTOCOL.values())
+    assert set(_protocol().values()) <= set(EXAMPLES)
     assert {key for kind, key in PROTOCOL if kind == "binary"} == set(BINARY_OPS)
     assert {key for kind, key in PROTOCOL if kind == "call"} == set(FUNCTIONS)
 
 
-@pytest.mark.parametrize("table,entry,method", [
-    (FUNCTIONS, "fake", "visit_fake"),                      # a function (or temporal operator)
-    (BINARY_OPS, "<>", "no method name"),                   # an operator written with symbols
-    (BINARY_OPS, "xor", "visit_xor"),                       # an operator written as a word
+@pytest.mark.parametrize("row,method", [
+    (Operator("fake", "fake", "call", "function", ("num",), "num", "keep"), "visit_fake"),       # a function
+    (Operator("xor", "xor", "binary", "logic", ("bool", "bool"), "bool", "none"), "visit_xor"),  # a word
+    (Operator("approx", "~=", "binary", "cmp", ("num", "num"), "bool", "same"), "visit_approx"),  # symbols
 ])
-def test_an_entry_without_backend_methods_fails(monkeypatch, table, entry, method):
-    monkeypatch.setitem(table, entry, (1, 1) if table is FUNCTIONS else ("logic", None))
+def test_an_entry_without_backend_methods_fails(monkeypatch, row, method):
+    monkeypatch.setitem(OPERATORS, row.name, row)
     problems = coverage_problems()
     for name in _backends():
         assert any(p.startswith(f"{name}: ") and method in p for p in problems), (name, problems)
-    assert any("no example expression" in p and repr(entry) in p for p in problems)
+    assert any("no example expression" in p and repr(row.symbol) in p for p in problems)
     with pytest.raises(AssertionError, match=method):
         test_every_backend_implements_every_entry()
+
+
+def test_an_operator_row_without_a_method_word_is_refused():
+    with pytest.raises(ValueError, match="not a word"):
+        Operator("<>", "<>", "binary", "cmp", ("num", "num"), "bool", "same")
 
 
 def test_visit_dispatches_by_table_not_by_isinstance():

@@ -17,8 +17,8 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..language._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call, Name,
-                          Node, Num, Unary, separation_distance, walk)
+from ..language._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, Binary, BoolLit, Call, Name,
+                          Node, Num, Unary, is_temporal, separation_distance, walk)
 from ..language._visit import ExprVisitor
 from ._machines import bounded_margin, held_machine, once_machine, prev_machine, since_machine
 from ._plan import Plan
@@ -186,7 +186,7 @@ class _Gen(ExprVisitor):
             if node.id in self.consts:
                 return ("c", self.consts[node.id])
             return ("r", self.vals, self.slots[node.id])
-        if isinstance(node, Call) and node.func in TEMPORAL:
+        if is_temporal(node):
             return ("r", self.tv, self.tindex[id(node)])
         if isinstance(node, Unary) and node.op == "-" and isinstance(node.operand, Num):
             return ("c", -node.operand.value)
@@ -434,14 +434,14 @@ def build_machine(plan: Plan) -> Machine:
 
 
 def _may_raise(node: Node) -> bool:
-    """Whether evaluating ``node`` can raise on finite float inputs: a division (by zero),
-    ``sqrt`` (of a negative) or ``separation_distance`` (a negative argument) somewhere in it.
-    ``+ - *``, comparisons, connectives, ``abs``/``min``/``max`` and slot reads never raise
-    (overflow gives inf, inf - inf NaN: values, not exceptions)."""
+    """Whether evaluating ``node`` can raise on finite float inputs: an operator whose row in the
+    operator table says so (``may_raise``: a division by zero, ``sqrt`` of a negative, a negative
+    ``separation_distance`` argument) somewhere in it. ``+ - *``, comparisons, connectives,
+    ``abs``/``min``/``max`` and slot reads never raise (overflow gives inf, inf - inf NaN: values,
+    not exceptions)."""
     for n in walk(node):
-        if isinstance(n, Binary) and n.op == "/":
-            return True
-        if isinstance(n, Call) and n.func in ("sqrt", "separation_distance"):
+        row = n.row
+        if row is not None and row.may_raise:
             return True
     return False
 

@@ -12,12 +12,14 @@ from __future__ import annotations
 import warnings
 from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import cached_property
 
 from ..language._expr import Call, Node
 from ..language import Response, RiskConfig, Spec
+from ._risk_formula import risk_range
 from ._units import Unit, format_unit
 
-__all__ = ["Plan", "ObligationPlan", "SignalSlot", "RuleRelease", "Ty", "BOOL", "RISK_NAME", "MAX_WINDOW"]
+__all__ = ["Plan", "ObligationPlan", "SignalSlot", "LatchRule", "RiskPlan", "Tiers", "Ty", "BOOL", "RISK_NAME", "MAX_WINDOW"]
 
 RISK_NAME = "risk"
 MAX_WINDOW = 1_000_000
@@ -50,8 +52,11 @@ class SignalSlot:
 
 
 @dataclass(frozen=True)
-class RuleRelease:
+class LatchRule:
     """One rule's latch, resolved once (defaults filled in): what it does and how it releases.
+
+    (Not the spec's ``release:`` block of a rule, :class:`ethimon.language.RuleRelease`, from which
+    it is resolved: this is its compiled form, one per latch of the monitor.)
 
     Attributes:
         name: the rule: an obligation id, ``"risk"``, ``"fault"``, ``"judge"`` or ``"confirm"``.
@@ -73,6 +78,71 @@ class RuleRelease:
     def mode(self) -> str:
         """``"manual"`` or ``"auto"``, as the spec writes it."""
         return "manual" if self.manual else "auto"
+
+
+@dataclass(frozen=True)
+class RiskPlan:
+    """The whole risk rule, resolved once: what the monitor reads of R_e and how it judges it.
+
+    Attributes:
+        threshold: τ, the rule fires at ``R_e >= threshold``.
+        release_exact: the exact release bound τ − δ (the spec's decimals, as a fraction).
+        release_cut: its float test: a float R_e is below τ − δ exactly when ``R_e < release_cut``.
+        alpha, beta, gamma: the formula's weights (R_e = α·p_unsafe + β·(1 − max p) + γ·Var(p)).
+        classes: K, the classifier's number of classes.
+        unsafe_index: the index of the unsafe class in ``p``.
+        variance: ``"sample"`` or ``"population"``.
+        max_age_s: the spec's ``risk.max_age_s`` (``None``: the caller's limit, or none).
+        latch: the rule's latch (:class:`LatchRule`: response, manual, hold).
+    """
+
+    threshold: float
+    release_exact: Fraction
+    release_cut: float
+    alpha: float
+    beta: float
+    gamma: float
+    classes: int
+    unsafe_index: int
+    variance: str
+    max_age_s: float | None
+    latch: "LatchRule"
+
+    @cached_property
+    def reachable(self) -> tuple[float, float]:
+        """The exact ``(lo, hi)`` of R_e over every probability vector (``risk_range``; computed on
+        first use and kept: it takes seconds for hundreds of classes)."""
+        return risk_range(self.alpha, self.beta, self.gamma, self.variance, self.classes)
+
+    @cached_property
+    def accepted(self) -> tuple[float, float]:
+        """The ``risk`` inputs the monitor accepts: ``(min(0, lo), max(1, hi))`` of :attr:`reachable`,
+        the one place this range is written."""
+        lo, hi = self.reachable
+        return min(0.0, lo), max(1.0, hi)
+
+
+@dataclass(frozen=True)
+class Tiers:
+    """The tiers of the risk rule, resolved once (all ``None``: none; the monitor then runs without them).
+
+    Attributes:
+        confirm_threshold: the confirm band's lower edge (``risk.confirm_threshold``): a person
+            confirms a text with ``confirm_threshold <= R_e < τ``.
+        judge_cuts: ``(safe_below, unsafe_from)`` applied to the ``judge`` input (one judge's, or the
+            strictest of several in consensus).
+        hold_ceiling: ``risk.judge_may_hold_above_tau``'s ceiling, only with a judge: a safe verdict
+            turns ``τ <= R_e < ceiling`` into a confirm hold.
+    """
+
+    confirm_threshold: float | None = None
+    judge_cuts: tuple[float, float] | None = None
+    hold_ceiling: float | None = None
+
+    @property
+    def on(self) -> bool:
+        """Whether the spec has a tier (a confirm band or a judge)."""
+        return self.confirm_threshold is not None or self.judge_cuts is not None
 
 
 @dataclass(frozen=True)
@@ -98,12 +168,12 @@ class ObligationPlan:
         return self.release_mode == "manual"
 
     @property
-    def rule(self) -> RuleRelease:
-        """This obligation's latch as a :class:`RuleRelease`."""
-        return RuleRelease(self.id, self.response, self.manual, self.release_hold)
+    def rule(self) -> LatchRule:
+        """This obligation's latch as a :class:`LatchRule`."""
+        return LatchRule(self.id, self.response, self.manual, self.release_hold)
 
 
-@dataclass
+@dataclass(frozen=True)
 class Plan:
     """The compiled, checked form of a spec.
 
@@ -127,7 +197,12 @@ class Plan:
         threshold: τ, the risk rule fires at ``R_e >= threshold``.
         release_exact: the exact release bound τ − δ (the spec's decimals, as a fraction).
         release_cut: the float test of it: a float R_e is below τ − δ exactly when ``R_e < release_cut``.
-        risk_rule, fault_rule: the risk rule's and the fault latch's :class:`RuleRelease`.
+        risk_rule, fault_rule: the risk rule's and the fault latch's :class:`LatchRule`.
+        risk_plan: the whole risk rule (:class:`RiskPlan`: τ, the exact cut, the weights, K, the
+            variance, the accepted range, the max age, its latch), read instead of ``spec.risk``.
+        tiers: the confirm band and the judge (:class:`Tiers`).
+
+    The plan is frozen: built once by :func:`~ethimon.compiler.compile_plan`, never changed.
 
     Every consumer (monitor, reference, offline, z3, lints) reads releases, holds, severities,
     τ and the cut from here (:meth:`rules`), never again from the spec.
@@ -153,31 +228,34 @@ class Plan:
     threshold: float = None  # type: ignore[assignment]
     release_exact: Fraction = None  # type: ignore[assignment]
     release_cut: float = None  # type: ignore[assignment]
-    risk_rule: RuleRelease = None  # type: ignore[assignment]
-    fault_rule: RuleRelease = None  # type: ignore[assignment]
+    risk_rule: LatchRule = None  # type: ignore[assignment]
+    fault_rule: LatchRule = None  # type: ignore[assignment]
+    risk_plan: RiskPlan = None  # type: ignore[assignment]
+    tiers: Tiers = None  # type: ignore[assignment]
 
     def __post_init__(self) -> None:
-        missing = [k for k in ("threshold", "release_exact", "release_cut", "risk_rule", "fault_rule")
+        missing = [k for k in ("threshold", "release_exact", "release_cut", "risk_rule", "fault_rule", "risk_plan",
+                               "tiers")
                    if getattr(self, k) is None]
         if missing:
             raise TypeError(f"a Plan is built by compile_plan(spec); missing: {', '.join(missing)}")
 
-    def rules(self) -> tuple[RuleRelease, ...]:
+    def rules(self) -> tuple[LatchRule, ...]:
         """Every latch in the monitor's order: the obligations, ``risk``, ``fault``, ``judge``
         (the judge's unsafe verdict: the risk rule's response and release) and ``confirm`` (the
         confirm band: stop 2, released automatically, the risk rule's hold). The names are unique
         (the spec reserves the last four as obligation ids)."""
         r = self.risk_rule
         return tuple(ob.rule for ob in self.obligations) + (
-            r, self.fault_rule, RuleRelease("judge", r.response, r.manual, r.hold),
-            RuleRelease("confirm", Response.STOP_2, False, r.hold))
+            r, self.fault_rule, LatchRule("judge", r.response, r.manual, r.hold),
+            LatchRule("confirm", Response.STOP_2, False, r.hold))
 
     @property
     def fault_release(self) -> tuple[str, int]:
         """``(mode, hold_cycles)`` of the fault latch: ``(fault_rule.mode, fault_rule.hold)``.
 
         .. deprecated:: Unreleased
-            Nothing reads it; read :attr:`fault_rule` (a :class:`RuleRelease`) instead.
+            Nothing reads it; read :attr:`fault_rule` (a :class:`LatchRule`) instead.
         """
         warnings.warn("Plan.fault_release is deprecated: read Plan.fault_rule (.mode, .hold)",
                       DeprecationWarning, stacklevel=2)

@@ -9,7 +9,7 @@ spec (``model_copy``, ``deepcopy``, a pickle) is another spec and compiles its o
 
 from __future__ import annotations
 
-from ..language._expr import TEMPORAL, Call, Name, walk
+from ..language._expr import Name, is_temporal, walk
 from ..language import Spec
 from ._plan import Plan
 from ._typecheck import compile_plan
@@ -51,7 +51,7 @@ def stateless_slots(plan: Plan, ob) -> frozenset[int] | None:
         if root is None:
             continue
         for node in walk(root):
-            if isinstance(node, Call) and node.func in TEMPORAL:
+            if is_temporal(node):
                 return None
             if isinstance(node, Name) and node.id in slots:
                 used.add(slots[node.id])

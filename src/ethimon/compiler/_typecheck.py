@@ -9,10 +9,11 @@ import difflib
 import math
 
 from ..errors import SpecError
-from ..language._expr import (FUNCTIONS, SEPARATION_PARAMS, Binary, BoolLit, Call, ExprSyntaxError, Name,
+from ..language._expr import (SEPARATION_PARAMS, UNIT_RULES, Binary, BoolLit, Call, ExprSyntaxError, Name,
                           Node, Num, Seconds, Unary, parse_expr, separation_distance)
 from ..language import Constant, Response, Spec, seconds_to_cycles
-from ._plan import BOOL, MAX_WINDOW, RISK_NAME, ObligationPlan, Plan, RuleRelease, SignalSlot, Ty
+from ..language import OPERATORS, Operator
+from ._plan import BOOL, MAX_WINDOW, RISK_NAME, LatchRule, ObligationPlan, Plan, RiskPlan, SignalSlot, Tiers, Ty
 from ._risk_formula import release_bound
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit
 
@@ -154,7 +155,7 @@ class _Checker:
                 close = difflib.get_close_matches(node.id, known, n=1, cutoff=0.6)
                 if close:
                     hint = f"did you mean {close[0]!r}?"
-                elif node.id in FUNCTIONS:
+                elif node.id in _functions():
                     hint = f"{node.id} is a function: {node.id}(...)"
                 else:
                     hint = "declare it under 'signals:' or 'constants:'" + (
@@ -163,57 +164,130 @@ class _Checker:
             if node.id in self.consts:
                 self.folded[id(node)] = self.consts[node.id]
             return ty
-        if isinstance(node, Unary):
-            if node.op == "not":
-                self.need(node.operand, "bool", "'not'")
-                return BOOL
-            ty = self.need(node.operand, "num", "unary '-'")
-            if id(node.operand) in self.folded:
-                self.fold(node, -self.folded[id(node.operand)])
-            return ty
-        if isinstance(node, Binary):
-            op = node.op
-            if op in ("and", "or", "implies"):
-                self.need(node.left, "bool", f"'{op}'")
-                self.need(node.right, "bool", f"'{op}'")
-                return BOOL
-            if op in ("==", "!="):
-                a, b = self.check(node.left), self.check(node.right)
-                if a.kind != b.kind:
-                    raise self.err(node, f"cannot compare {a.show()} with {b.show()} in {self.snippet(node)!r}")
-                if a.kind == "num":
-                    self.same_unit(node, a, b, f"'{op}'")
-                return BOOL
-            if op in ("<", "<=", ">", ">="):
-                a = self.need(node.left, "num", f"'{op}'")
-                b = self.need(node.right, "num", f"'{op}'")
-                self.same_unit(node, a, b, f"'{op}'")
-                return BOOL
-            a = self.need(node.left, "num", f"'{op}'")
-            b = self.need(node.right, "num", f"'{op}'")
-            x, y = self.folded.get(id(node.left)), self.folded.get(id(node.right))
-            if op == "/" and y == 0:
-                what = "" if isinstance(node.right, Num) else f": {self.snippet(node.right)!r} is always {y}"
-                raise self.err(node.right, f"division by zero{what}",
-                               hint="the divisor is a constant 0, so every cycle would fail closed")
-            if x is not None and y is not None:
-                self.fold(node, x + y if op == "+" else x - y if op == "-" else x * y if op == "*" else x / y)
-            if op in ("+", "-"):
-                return Ty("num", self.same_unit(node, a, b, f"'{op}'"))
-            if op == "*":
-                return Ty("num", mul(a.unit, b.unit) if a.unit is not None and b.unit is not None
-                          else (a.unit if b.unit is None and _is_literal(node.right) else
-                                b.unit if a.unit is None and _is_literal(node.left) else None))
-            if op == "/":
-                if a.unit is not None and b.unit is not None:
-                    return Ty("num", div(a.unit, b.unit))
-                if b.unit is None and _is_literal(node.right):
-                    return Ty("num", a.unit)
-                return Ty("num", None)
-            raise self.err(node, f"unknown operator {op!r}")  # pragma: no cover
-        if isinstance(node, Call):
-            return self.check_call(node)
-        raise self.err(node, "unsupported expression")  # pragma: no cover
+        row = node.row
+        if row is None and isinstance(node, Call):
+            functions = _functions()
+            close = difflib.get_close_matches(node.func, functions, n=1)
+            hint = f"did you mean {close[0]!r}?" if close else f"functions: {', '.join(functions)}"
+            raise self.err(node, f"unknown function {node.func!r}", hint=hint)
+        if row is None:
+            raise self.err(node, "unsupported expression")  # pragma: no cover
+        return self.check_row(node, row)
+
+    # -- the rows of the operator table --------------------------------------
+    def check_row(self, node: Node, row: Operator) -> Ty:
+        """Check an operator or call by its row: arity, then its unit rule (which checks the
+        operands' kinds and sets the windows), then, for a temporal row, its window."""
+        args = node.children
+        if row.kind == "call" and not row.min_args <= len(args) <= row.max_args:
+            lo, hi = row.min_args, row.max_args
+            want = str(lo) if lo == hi else f"{lo} to {hi}"
+            raise self.err(node, f"{row.symbol}() takes {want} arguments, got {len(args)}",
+                           hint=_SEPARATION_HINT if row.unit == "separation" else None)
+        ty = _UNIT_RULES[row.unit](self, node, row)
+        if row.family == "temporal":
+            self.temporal.append(node)  # children were checked (and appended) first
+        return ty
+
+    def operands(self, node: Node, row: Operator) -> list[Ty | None]:
+        """Each operand checked against its kind in the row (``any``: checked, any type); a window
+        bound checked and its cycles recorded (``None`` in the result)."""
+        out: list[Ty | None] = []
+        windowed = False
+        for i, arg in enumerate(node.children):
+            kind = row.arg_kind(i)
+            if kind == "window":
+                self.windows[id(node)] = self.bound(node, arg, row.symbol)  # type: ignore[arg-type]
+                windowed = True
+                out.append(None)
+            else:
+                out.append(self.check(arg) if kind == "any" else self.need(arg, kind, row.label))
+        if row.lookback == "window" and not windowed:
+            self.windows[id(node)] = None  # an optional window left out: unbounded
+        elif row.lookback == "one":
+            self.windows[id(node)] = 1
+        return out
+
+    def fold_row(self, node: Node, row: Operator) -> None:
+        """Fold a numeric row's value when every operand is a constant."""
+        vals = [self.folded.get(id(a)) for a in node.children]
+        if row.fn is not None and row.result == "num" and all(v is not None for v in vals):
+            self.fold(node, row.fn(*vals))
+
+    def rule_none(self, node: Node, row: Operator) -> Ty:
+        self.operands(node, row)
+        return BOOL
+
+    def rule_keep(self, node: Node, row: Operator) -> Ty:
+        ty = self.operands(node, row)[0]
+        self.fold_row(node, row)
+        return ty  # type: ignore[return-value]
+
+    def rule_same(self, node: Node, row: Operator) -> Ty:
+        """Operands in one unit: a comparison is a condition, arithmetic and min/max keep the unit."""
+        tys = self.operands(node, row)
+        self.fold_row(node, row)
+        unit = tys[0].unit  # type: ignore[union-attr]
+        for arg, ty in zip(node.children[1:], tys[1:]):
+            unit = self.same_unit(node if row.kind == "binary" else arg, Ty("num", unit), ty, row.label)  # type: ignore[arg-type]
+        return BOOL if row.result == "bool" else Ty("num", unit)
+
+    def rule_compare(self, node: Node, row: Operator) -> Ty:
+        a, b = self.operands(node, row)
+        if a.kind != b.kind:  # type: ignore[union-attr]
+            raise self.err(node, f"cannot compare {a.show()} with {b.show()} in {self.snippet(node)!r}")  # type: ignore[union-attr]
+        if a.kind == "num":  # type: ignore[union-attr]
+            self.same_unit(node, a, b, row.label)  # type: ignore[arg-type]
+        return BOOL
+
+    def rule_mul(self, node: Node, row: Operator) -> Ty:
+        a, b = self.operands(node, row)
+        self.fold_row(node, row)
+        left, right = node.children
+        return Ty("num", mul(a.unit, b.unit) if a.unit is not None and b.unit is not None  # type: ignore[union-attr]
+                  else (a.unit if b.unit is None and _is_literal(right) else  # type: ignore[union-attr]
+                        b.unit if a.unit is None and _is_literal(left) else None))  # type: ignore[union-attr]
+
+    def rule_div(self, node: Node, row: Operator) -> Ty:
+        a, b = self.operands(node, row)
+        right = node.children[1]
+        y = self.folded.get(id(right))
+        if y == 0:
+            what = "" if isinstance(right, Num) else f": {self.snippet(right)!r} is always {y}"
+            raise self.err(right, f"division by zero{what}",
+                           hint="the divisor is a constant 0, so every cycle would fail closed")
+        self.fold_row(node, row)
+        if a.unit is not None and b.unit is not None:  # type: ignore[union-attr]
+            return Ty("num", div(a.unit, b.unit))  # type: ignore[union-attr]
+        if b.unit is None and _is_literal(right):  # type: ignore[union-attr]
+            return Ty("num", a.unit)  # type: ignore[union-attr]
+        return Ty("num", None)
+
+    def rule_sqrt(self, node: Node, row: Operator) -> Ty:
+        (ty,) = self.operands(node, row)
+        arg = node.children[0]
+        v = self.folded.get(id(arg))
+        if v is not None and v < 0:
+            raise self.err(arg, f"square root of a negative constant: {self.snippet(arg)!r} is always {v}",
+                           hint="sqrt() of a negative number fails, so every cycle would fail closed")
+        self.fold_row(node, row)
+        try:
+            return Ty("num", sqrt_unit(ty.unit))  # type: ignore[union-attr]
+        except ValueError as exc:
+            raise self.err(node, str(exc)) from None
+
+    def rule_prev(self, node: Node, row: Operator) -> Ty:
+        """``prev(e[, init])``: the operand's type; the initial value of the same kind and unit."""
+        tys = self.operands(node, row)
+        ty = tys[0]
+        if len(tys) == 2:
+            ity = tys[1]
+            init = node.children[1]
+            if ity.kind != ty.kind:  # type: ignore[union-attr]
+                raise self.err(init, f"prev() initial value must be {ty.show()}, got {ity.show()}")  # type: ignore[union-attr]
+            if ty.kind == "num":  # type: ignore[union-attr]
+                self.same_unit(init, ty, ity, "prev()")  # type: ignore[arg-type]
+        return ty  # type: ignore[return-value]
 
     def bound(self, node: Call, arg: Node, fname: str) -> int:
         if isinstance(arg, Seconds) or (isinstance(arg, Name) and arg.id in self.consts
@@ -263,7 +337,7 @@ class _Checker:
         self.seconds[id(node)] = float(value)
         return n
 
-    def check_separation(self, node: Call) -> Ty:
+    def check_separation(self, node: Call, row: Operator | None = None) -> Ty:
         """``separation_distance(v_h, v_r, T_r, T_s, S_s, C, Z_d, Z_r)``: each argument a number in its
         parameter's unit (speeds m/s, times s, distances m; an unknown unit passes) and not a negative
         constant; the result is a distance [m]."""
@@ -289,69 +363,13 @@ class _Checker:
             self.fold(node, separation_distance(*vals))
         return Ty("num", _SEPARATION_UNITS["S_s"])
 
-    def check_call(self, node: Call) -> Ty:
-        f = node.func
-        if f not in FUNCTIONS:
-            close = difflib.get_close_matches(f, list(FUNCTIONS), n=1)
-            hint = f"did you mean {close[0]!r}?" if close else f"functions: {', '.join(FUNCTIONS)}"
-            raise self.err(node, f"unknown function {f!r}", hint=hint)
-        lo, hi = FUNCTIONS[f]
-        nargs = len(node.args)
-        if not lo <= nargs <= hi:
-            want = str(lo) if lo == hi else f"{lo} to {hi}"
-            raise self.err(node, f"{f}() takes {want} arguments, got {nargs}",
-                           hint=_SEPARATION_HINT if f == "separation_distance" else None)
-        args = node.args
-        if f == "abs":
-            ty = self.need(args[0], "num", "abs()")
-            if id(args[0]) in self.folded:
-                self.fold(node, abs(self.folded[id(args[0])]))
-            return ty
-        if f == "sqrt":
-            ty = self.need(args[0], "num", "sqrt()")
-            v = self.folded.get(id(args[0]))
-            if v is not None:
-                if v < 0:
-                    raise self.err(args[0], f"square root of a negative constant: {self.snippet(args[0])!r} "
-                                            f"is always {v}",
-                                   hint="sqrt() of a negative number fails, so every cycle would fail closed")
-                self.fold(node, math.sqrt(v))
-            try:
-                return Ty("num", sqrt_unit(ty.unit))
-            except ValueError as exc:
-                raise self.err(node, str(exc)) from None
-        if f == "separation_distance":
-            return self.check_separation(node)
-        if f in ("min", "max"):
-            tys = [self.need(a, "num", f"{f}()") for a in args]
-            unit = tys[0].unit
-            for a, t in zip(args[1:], tys[1:]):
-                unit = self.same_unit(a, Ty("num", unit), t, f"{f}()")
-            vals = [self.folded.get(id(a)) for a in args]
-            if all(v is not None for v in vals):
-                self.fold(node, (min if f == "min" else max)(vals))
-            return Ty("num", unit)
-        # temporal operators
-        if f == "prev":
-            ty = self.check(args[0])
-            if nargs == 2:
-                ity = self.check(args[1])
-                if ity.kind != ty.kind:
-                    raise self.err(args[1], f"prev() initial value must be {ty.show()}, got {ity.show()}")
-                if ty.kind == "num":
-                    self.same_unit(args[1], ty, ity, "prev()")
-            self.windows[id(node)] = 1
-        elif f in ("held", "once"):
-            self.need(args[0], "bool", f"{f}()")
-            self.windows[id(node)] = self.bound(node, args[1], f)
-            ty = BOOL
-        else:  # since
-            self.need(args[0], "bool", "since()")
-            self.need(args[1], "bool", "since()")
-            self.windows[id(node)] = self.bound(node, args[2], f) if nargs == 3 else None
-            ty = BOOL
-        self.temporal.append(node)  # children were checked (and appended) first
-        return ty
+
+
+_UNIT_RULES = {"none": _Checker.rule_none, "same": _Checker.rule_same, "keep": _Checker.rule_keep,
+               "mul": _Checker.rule_mul, "div": _Checker.rule_div, "sqrt": _Checker.rule_sqrt,
+               "compare": _Checker.rule_compare, "separation": _Checker.check_separation,
+               "prev": _Checker.rule_prev}
+assert set(_UNIT_RULES) == set(UNIT_RULES), "every unit rule of the operator table has its method here"
 
 
 _SEPARATION_UNITS = {sym: parse_unit(u) for sym, u, _ in SEPARATION_PARAMS}
@@ -360,19 +378,17 @@ _SEPARATION_HINT = ("separation_distance(" + ", ".join(f"{sym} [{u}]" for sym, u
                     + "): S_p = v_h*(T_r + T_s) + v_r*T_r + S_s + C + Z_d + Z_r (ISO/TS 15066)")
 
 
+def _functions() -> list[str]:
+    """The functions of the operator table as it is now, in its order."""
+    return [op.symbol for op in OPERATORS.values() if op.kind == "call"]
+
+
 def _children(node: Node) -> tuple[Node, ...]:
     """Operands the type rules check through :meth:`_Checker.check` (not window bounds)."""
-    if isinstance(node, Unary):
-        return (node.operand,)
-    if isinstance(node, Binary):
-        return (node.left, node.right)
-    if isinstance(node, Call):
-        if node.func in ("held", "once"):
-            return node.args[:1]
-        if node.func == "since":
-            return node.args[:2]
-        return node.args
-    return ()
+    row = node.row
+    if row is None:
+        return node.children
+    return tuple(a for i, a in enumerate(node.children) if row.arg_kind(i) != "window")
 
 
 def _is_literal(node: Node) -> bool:
@@ -410,11 +426,19 @@ def compile_plan(spec: Spec) -> Plan:
     r = spec.risk
     exact, cut = release_bound(r.threshold, r.release.hysteresis)
     fmode, fhold = spec.fault_release()
+    risk_rule = LatchRule("risk", Response(r.response), r.release.mode == "manual", int(r.release.hold_cycles))
+    risk_plan = RiskPlan(float(r.threshold), exact, cut, float(r.alpha), float(r.beta), float(r.gamma), int(r.classes),
+                         int(r.unsafe_index), r.variance, None if r.max_age_s is None else float(r.max_age_s),
+                         risk_rule)
+    cuts = r.judge_cuts()  # risk.judge, or risk.judges (their consensus is the judge input)
+    hold = r.judge_may_hold_above_tau
+    tiers = Tiers(None if r.confirm_threshold is None else float(r.confirm_threshold),
+                  None if cuts is None else (float(cuts[0]), float(cuts[1])),
+                  float(hold.ceiling) if hold is not None and cuts is not None else None)
     return Plan(spec=spec, signals=tuple(signals), risk_slot=len(signals), constants=dict(ck.consts),
                 obligations=tuple(obligations), temporal=tuple(ck.temporal), types=ck.types,
-                windows=ck.windows, window_seconds=ck.seconds, rate_hz=spec.rate_hz, slots=slots, risk=r, on_fault=Response(spec.on_fault),
-                threshold=float(r.threshold), release_exact=exact,
-                release_cut=cut,
-                risk_rule=RuleRelease("risk", Response(r.response), r.release.mode == "manual",
-                                      int(r.release.hold_cycles)),
-                fault_rule=RuleRelease("fault", Response(spec.on_fault), fmode == "manual", int(fhold)))
+                windows=ck.windows, window_seconds=ck.seconds, rate_hz=spec.rate_hz, slots=slots, risk=r,
+                on_fault=Response(spec.on_fault), threshold=float(r.threshold), release_exact=exact,
+                release_cut=cut, risk_rule=risk_rule,
+                fault_rule=LatchRule("fault", Response(spec.on_fault), fmode == "manual", int(fhold)),
+                risk_plan=risk_plan, tiers=tiers)

@@ -3,10 +3,11 @@
 from ..errors import ExprSyntaxError
 from ._expr import parse_expr
 from ._load import parse_spec_file, parse_spec_text
+from ._operators import OPERATORS, Operator
 from ._model import (DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, SEVERITY_ORDER, VARIANCE_MODES, Constant, Obligation,
                      OnFault, Release, Response, RiskConfig, RuleRelease, SafePose, Signal, Spec)
 from ._time import seconds_to_cycles
 
 __all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "SEVERITY_ORDER", "VARIANCE_MODES", "Constant",
-           "ExprSyntaxError", "Obligation", "OnFault", "Release", "Response", "RiskConfig", "RuleRelease", "SafePose",
+           "ExprSyntaxError", "OPERATORS", "Obligation", "OnFault", "Operator", "Release", "Response", "RiskConfig", "RuleRelease", "SafePose",
            "Signal", "Spec", "parse_expr", "parse_spec_file", "parse_spec_text", "seconds_to_cycles"]

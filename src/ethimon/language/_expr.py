@@ -43,18 +43,18 @@ depends on it), one tree level per term.
 from __future__ import annotations
 
 import math
-import operator
 import re
 import unicodedata
 from dataclasses import dataclass
 
 from ..errors import ExprSyntaxError
+from ._operators import MARGIN_SHAPES, OPERATORS, SEPARATION_PARAMS, UNIT_RULES, Operator, operator_of, separation_distance
 
 __all__ = [
     "Node", "Num", "Seconds", "BoolLit", "Name", "Unary", "Binary", "Call", "ExprSyntaxError",
     "parse_expr", "BINARY_OPS", "COMPARISON_MARGINS", "MARGIN_SHAPES", "comparison_margin",
     "CONNECTIVE_MARGINS", "connective_margin", "FUNCTIONS", "TEMPORAL", "walk", "to_source",
-    "SEPARATION_PARAMS", "separation_distance",
+    "SEPARATION_PARAMS", "separation_distance", "is_temporal", "UNIT_RULES",
 ]
 
 
@@ -62,6 +62,17 @@ __all__ = [
 class Node:
     start: int
     end: int
+
+    @property
+    def children(self) -> tuple[Node, ...]:
+        """The operands, left to right (a leaf has none)."""
+        return ()
+
+    @property
+    def row(self) -> Operator | None:
+        """This node's entry of :data:`~ethimon.language._operators.OPERATORS` (``None``: a leaf,
+        or a call of an unknown function, which the checker refuses)."""
+        return None
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,12 +107,28 @@ class Unary(Node):
     op: str  # "-" or "not"
     operand: Node
 
+    @property
+    def children(self) -> tuple[Node, ...]:
+        return (self.operand,)
+
+    @property
+    def row(self) -> Operator | None:
+        return operator_of("unary", self.op)
+
 
 @dataclass(frozen=True, eq=False)
 class Binary(Node):
     op: str
     left: Node
     right: Node
+
+    @property
+    def children(self) -> tuple[Node, ...]:
+        return (self.left, self.right)
+
+    @property
+    def row(self) -> Operator | None:
+        return operator_of("binary", self.op)
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,39 +137,37 @@ class Call(Node):
     args: tuple[Node, ...]
     name_end: int = 0
 
+    @property
+    def children(self) -> tuple[Node, ...]:
+        return self.args
 
-#: name -> (min args, max args)
-FUNCTIONS: dict[str, tuple[int, int]] = {
-    "abs": (1, 1), "min": (2, 16), "max": (2, 16), "sqrt": (1, 1),
-    "prev": (1, 2), "held": (2, 2), "once": (2, 2), "since": (2, 3),
-    "separation_distance": (8, 8),
-}
-TEMPORAL = frozenset({"prev", "held", "once", "since"})
+    @property
+    def row(self) -> Operator | None:
+        return operator_of("call", self.func)
+
+
+#: name -> (min args, max args): the functions of :data:`~ethimon.language._operators.OPERATORS`
+FUNCTIONS: dict[str, tuple[int, int]] = {op.symbol: (op.min_args, op.max_args)
+                                         for op in OPERATORS.values() if op.kind == "call"}
+#: the operators that read the past (their rows' ``lookback`` is not ``"none"``)
+TEMPORAL = frozenset(op.symbol for op in OPERATORS.values() if op.family == "temporal")
 KEYWORDS = frozenset({"and", "or", "not", "implies", "true", "false"})
 COMPARISONS = ("<=", ">=", "==", "!=", "<", ">")
 
-#: The one table of binary operators: op -> (kind, function of the two operand values).
+#: The binary operators, derived from :data:`OPERATORS`: op -> (family, function of the two operand values).
 #: ``cmp`` and ``arith`` apply the function to both values (Python floats in the reference
 #: interpreter, z3 terms in the SMT encoder: the same ``operator`` call builds either);
 #: ``logic`` connectives have no function, each interpreter short-circuits them its own way.
-BINARY_OPS: dict[str, tuple[str, object]] = {
-    "<": ("cmp", operator.lt), "<=": ("cmp", operator.le), ">": ("cmp", operator.gt),
-    ">=": ("cmp", operator.ge), "==": ("cmp", operator.eq), "!=": ("cmp", operator.ne),
-    "+": ("arith", operator.add), "-": ("arith", operator.sub), "*": ("arith", operator.mul),
-    "/": ("arith", operator.truediv),
-    "and": ("logic", None), "or": ("logic", None), "implies": ("logic", None),
-}
+BINARY_OPS: dict[str, tuple[str, object]] = {op.symbol: (op.family, op.fn)
+                                             for op in OPERATORS.values() if op.kind == "binary"}
 assert set(COMPARISONS) == {op for op, (kind, _) in BINARY_OPS.items() if kind == "cmp"}
 
-#: The one table of comparison margins (robustness: > 0 holds, < 0 fails, the distance to the
-#: boundary): op -> shape, one of ``MARGIN_SHAPES``, with ``a`` the left and ``b`` the right
+#: The comparison margins (robustness: > 0 holds, < 0 fails, the distance to the boundary), the
+#: rows' ``margin``: op -> shape, one of ``MARGIN_SHAPES``, with ``a`` the left and ``b`` the right
 #: operand's value. ``"b - a"`` subtracts in that order (never ``-(a - b)``: a tie is +0.0).
 #: The compiled closures pick one specialised closure per shape at compile time; the reference
 #: interpreter and the offline checker call :func:`comparison_margin` (floats or numpy arrays).
-MARGIN_SHAPES = ("a - b", "b - a", "|a - b|", "-|a - b|")
-COMPARISON_MARGINS: dict[str, str] = {
-    "<": "b - a", "<=": "b - a", ">": "a - b", ">=": "a - b", "==": "-|a - b|", "!=": "|a - b|",
-}
+COMPARISON_MARGINS: dict[str, str] = {op.symbol: op.margin for op in OPERATORS.values() if op.family == "cmp"}
 assert set(COMPARISON_MARGINS) == set(COMPARISONS) and set(COMPARISON_MARGINS.values()) <= set(MARGIN_SHAPES)
 
 
@@ -158,14 +183,13 @@ def comparison_margin(op: str, a, b):
     return -abs(a - b)
 
 
-#: The one table of the connectives' margins: op -> (how the two margins combine, whether the left
-#: operand's margin is negated first). ``"min"``/``"max"`` are Python's ``min(l, r)``/``max(l, r)``:
+#: The connectives' margins, the rows' ``margin``: op -> (how the two margins combine, whether the
+#: left operand's margin is negated first). ``"min"``/``"max"`` are Python's ``min(l, r)``/``max(l, r)``:
 #: the left margin unless the right one is strictly smaller/larger (so a NaN on the left is kept, a
 #: NaN on the right is not; the offline checker picks the same way with ``numpy.where``).
 #: ``not e`` negates the margin of ``e``.
-CONNECTIVE_MARGINS: dict[str, tuple[str, bool]] = {
-    "and": ("min", False), "or": ("max", False), "implies": ("max", True),
-}
+CONNECTIVE_MARGINS: dict[str, tuple[str, bool]] = {op.symbol: op.margin for op in OPERATORS.values()
+                                                   if op.family == "logic"}
 assert set(CONNECTIVE_MARGINS) == {op for op, (kind, _) in BINARY_OPS.items() if kind == "logic"}
 
 
@@ -175,38 +199,6 @@ def connective_margin(op: str, left: float, right: float) -> float:
     if negate_left:
         left = -left
     return min(left, right) if combine == "min" else max(left, right)
-
-#: The parameters of ``separation_distance``, in call order: (symbol of ISO/TS 15066:2016, unit, meaning).
-SEPARATION_PARAMS: tuple[tuple[str, str, str], ...] = (
-    ("v_h", "m/s", "speed of the human toward the robot"),
-    ("v_r", "m/s", "speed of the robot toward the human"),
-    ("T_r", "s", "reaction time of the robot system"),
-    ("T_s", "s", "stopping time of the robot"),
-    ("S_s", "m", "stopping distance of the robot"),
-    ("C", "m", "intrusion distance (ISO 13855, from reach)"),
-    ("Z_d", "m", "position uncertainty of the human (sensor)"),
-    ("Z_r", "m", "position uncertainty of the robot"),
-)
-
-
-def separation_distance(v_h, v_r, T_r, T_s, S_s, C, Z_d, Z_r):  # noqa: N803 - the standard's symbols
-    """The protective separation distance S_p of ISO/TS 15066:2016, clause 5.5.4, with constant speeds.
-
-    ``S_p = S_h + S_r + S_s + C + Z_d + Z_r`` (formula (1)) with ``S_h = v_h·(T_r + T_s)`` and
-    ``S_r = v_r·T_r``: formula (2) when the human and the robot keep constant speeds over the
-    reaction and stopping time (the integrals of the speeds become products). Summed left to
-    right in exactly this order, with ``+`` and ``*`` only, so the same call gives the same
-    float in the compiled monitor and the reference interpreter, the same array in the offline
-    checker and the same term in the z3 encoder.
-
-    The caller checks that every argument is ``>= 0`` (each backend in its own way): a negative
-    (or NaN) argument is an evaluation error, never a silently smaller distance.
-
-    Example:
-        >>> round(separation_distance(1.6, 0.5, 0.1, 0.3, 0.2, 0.1, 0.04, 0.01), 12)
-        1.04
-    """
-    return v_h * (T_r + T_s) + v_r * T_r + S_s + C + Z_d + Z_r
 
 
 # ASCII only: in a str pattern, \d and \s would also match "٥", "５" and U+00A0
@@ -516,6 +508,12 @@ def parse_expr(src: str) -> Node:
         raise ExprSyntaxError(f"expression is too long ({len(src)} characters)", MAX_EXPR_CHARS,
                               f"at most {MAX_EXPR_CHARS}")
     return _Parser(src).parse()
+
+
+def is_temporal(node: Node) -> bool:
+    """Whether ``node`` is a temporal operator (its row reads the past), by the operator table now."""
+    row = node.row
+    return row is not None and row.family == "temporal"
 
 
 def walk(node: Node):

@@ -8,58 +8,55 @@ and implements every method of :data:`PROTOCOL`; :meth:`ExprVisitor.visit` dispa
 built once per class (by node type, then by operator or function name), never by an ``isinstance``
 chain per call.
 
-The methods are derived from the language's own tables (:data:`~ethimon.language._expr.BINARY_OPS`,
-:data:`~ethimon.language._expr.FUNCTIONS`, :data:`UNARY_OPS`), and an entry added there without a
-method here fails at import; a method added here is abstract, so a back-end that lacks it cannot be
-instantiated; ``tests/compiler/test_interpreter_coverage.py`` names what each back-end lacks
-(:func:`missing_methods`) and evaluates one expression per entry on all four.
+The methods are derived from the operator table (:data:`~ethimon.language._operators.OPERATORS`):
+one abstract ``visit_<name>`` per row, generated on :class:`ExprVisitor`, so a back-end that lacks
+one cannot be instantiated; ``tests/compiler/test_interpreter_coverage.py`` names what each back-end
+lacks (:func:`missing_methods`, read from the table now) and evaluates one expression per entry on
+all four. :class:`ExprAnalysis` is the base of analyses that care about a few entries: every
+method defaults to visiting the operands.
 """
 
 from __future__ import annotations
 
-from abc import ABC, abstractmethod
+from abc import ABC, abstractmethod, update_abstractmethods
 from operator import attrgetter
 
-from ._expr import BINARY_OPS, FUNCTIONS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary
+from ._expr import Binary, BoolLit, Call, Name, Node, Num, Unary
+from ._operators import OPERATORS, Operator
 
-__all__ = ["ExprVisitor", "PROTOCOL", "UNARY_OPS", "OP_WORDS", "method_of", "missing_methods"]
+__all__ = ["ExprVisitor", "ExprAnalysis", "PROTOCOL", "UNARY_OPS", "OP_WORDS", "method_of", "missing_methods"]
 
-#: the parser's two unary operators (``-x``; ``not e``)
-UNARY_OPS = ("-", "not")
-#: the method word of each operator written with symbols (words such as ``and`` are their own)
-OP_WORDS: dict[str, str] = {
-    "-": "neg", "<": "lt", "<=": "le", ">": "gt", ">=": "ge", "==": "eq", "!=": "ne",
-    "+": "add", "*": "mul", "/": "div",
-}
-_BINARY_WORDS = {**OP_WORDS, "-": "sub"}  # binary "-" is a subtraction, unary "-" a negation
+#: the parser's two unary operators (``-x``; ``not e``), read from the table
+UNARY_OPS = tuple(op.symbol for op in OPERATORS.values() if op.kind == "unary")
+#: the method word of each operator written with symbols (words such as ``and`` are their own), read
+#: from the table (unary ``-`` is ``neg``; binary ``-`` is ``sub``, see :func:`method_of`)
+OP_WORDS: dict[str, str] = {op.symbol: op.name for op in OPERATORS.values()
+                            if op.kind != "call" and op.symbol != op.name and op.name != "sub"}
+_LEAF_KEYS = ("num", "bool", "name")
 
 
 def method_of(kind: str, key: str) -> str | None:
     """The visitor method of a leaf (``kind`` ``"leaf"``: ``num``, ``bool``, ``name``), a unary or
     binary operator (``"unary"``/``"binary"``, ``key`` the operator) or a function (``"call"``);
-    ``None`` for an operator written with symbols that has no word in :data:`OP_WORDS`."""
+    ``None`` for an entry that is not in :data:`~ethimon.language._operators.OPERATORS`."""
     if kind == "leaf":
         return f"visit_{key}"
-    if kind == "call":
-        return f"visit_{key}" if key.isidentifier() else None
-    words = OP_WORDS if kind == "unary" else _BINARY_WORDS
-    word = words.get(key, key if key.isidentifier() else None)
-    return None if word is None else f"visit_{word}"
+    for op in OPERATORS.values():
+        if op.kind == kind and op.symbol == key:
+            return op.method
+    return None
 
 
 def _protocol() -> dict[tuple[str, str], str | None]:
-    """(kind, key) -> method name, read from the language's tables as they are now."""
-    out: dict[tuple[str, str], str | None] = {("leaf", k): method_of("leaf", k) for k in ("num", "bool", "name")}
-    out.update({("unary", op): method_of("unary", op) for op in UNARY_OPS})
-    out.update({("binary", op): method_of("binary", op) for op in BINARY_OPS})
-    out.update({("call", f): method_of("call", f) for f in FUNCTIONS})
+    """(kind, key) -> method name, read from the operator table as it is now."""
+    out: dict[tuple[str, str], str | None] = {("leaf", k): f"visit_{k}" for k in _LEAF_KEYS}
+    out.update({(op.kind, op.symbol): op.method for op in OPERATORS.values()})
     return out
 
 
 #: every entry of the language -> the method each back-end implements (temporal operators included)
 PROTOCOL: dict[tuple[str, str], str] = _protocol()  # type: ignore[assignment]
 assert None not in PROTOCOL.values() and len(set(PROTOCOL.values())) == len(PROTOCOL), PROTOCOL
-assert TEMPORAL <= set(FUNCTIONS)
 
 _LEAVES = {Num: "num", BoolLit: "bool", Name: "name"}
 _KEY = {Unary: ("unary", attrgetter("op")), Binary: ("binary", attrgetter("op")), Call: ("call", attrgetter("func"))}
@@ -87,7 +84,8 @@ class ExprVisitor(ABC):
     def __init_subclass__(cls, **kwargs) -> None:
         super().__init_subclass__(**kwargs)
         cls._by_type = {t: getattr(cls, method_of("leaf", k)) for t, k in _LEAVES.items()}
-        cls._by_key = {key: getattr(cls, name) for key, name in PROTOCOL.items() if key[0] != "leaf"}
+        cls._by_key = {key: getattr(cls, name) for key, name in _protocol().items()
+                       if key[0] != "leaf" and hasattr(cls, name)}
 
     def visit(self, node: Node, *args):
         """Interpret ``node`` by the method of its kind (see the class docstring)."""
@@ -111,87 +109,60 @@ class ExprVisitor(ABC):
     def visit_name(self, node: Name, *args):
         """A signal, a constant or ``risk`` (R_e)."""
 
-    # -- unary operators -------------------------------------------------------------
-    @abstractmethod
-    def visit_neg(self, node: Unary, *args): ...
-
-    @abstractmethod
-    def visit_not(self, node: Unary, *args): ...
-
-    # -- binary operators (BINARY_OPS) -----------------------------------------------
-    @abstractmethod
-    def visit_lt(self, node: Binary, *args): ...
-
-    @abstractmethod
-    def visit_le(self, node: Binary, *args): ...
-
-    @abstractmethod
-    def visit_gt(self, node: Binary, *args): ...
-
-    @abstractmethod
-    def visit_ge(self, node: Binary, *args): ...
-
-    @abstractmethod
-    def visit_eq(self, node: Binary, *args): ...
-
-    @abstractmethod
-    def visit_ne(self, node: Binary, *args): ...
-
-    @abstractmethod
-    def visit_add(self, node: Binary, *args): ...
-
-    @abstractmethod
-    def visit_sub(self, node: Binary, *args): ...
-
-    @abstractmethod
-    def visit_mul(self, node: Binary, *args): ...
-
-    @abstractmethod
-    def visit_div(self, node: Binary, *args): ...
-
-    @abstractmethod
-    def visit_and(self, node: Binary, *args): ...
-
-    @abstractmethod
-    def visit_or(self, node: Binary, *args): ...
-
-    @abstractmethod
-    def visit_implies(self, node: Binary, *args): ...
-
-    # -- functions (FUNCTIONS) -------------------------------------------------------
-    @abstractmethod
-    def visit_abs(self, node: Call, *args): ...
-
-    @abstractmethod
-    def visit_min(self, node: Call, *args): ...
-
-    @abstractmethod
-    def visit_max(self, node: Call, *args): ...
-
-    @abstractmethod
-    def visit_sqrt(self, node: Call, *args): ...
-
-    @abstractmethod
-    def visit_separation_distance(self, node: Call, *args): ...
-
-    # -- temporal operators (TEMPORAL) -----------------------------------------------
-    @abstractmethod
-    def visit_prev(self, node: Call, *args): ...
-
-    @abstractmethod
-    def visit_held(self, node: Call, *args): ...
-
-    @abstractmethod
-    def visit_once(self, node: Call, *args): ...
-
-    @abstractmethod
-    def visit_since(self, node: Call, *args): ...
+    # one abstract visit_<name> per row of the operator table: generated below (_declare)
 
 
+def _abstract(op: Operator):
+    def method(self, node, *args): ...
+    method.__name__ = method.__qualname__ = op.method
+    method.__doc__ = f"{op.kind} {op.symbol!r}" + (f": {op.doc}" if op.doc else "")
+    return abstractmethod(method)
+
+
+def _declare(cls: type) -> None:
+    """One abstract ``visit_<name>`` per row of the operator table on ``cls`` (the protocol)."""
+    for op in OPERATORS.values():
+        if op.method not in vars(cls):
+            setattr(cls, op.method, _abstract(op))
+    update_abstractmethods(cls)
+
+
+_declare(ExprVisitor)
 _DECLARED = {name for name in vars(ExprVisitor) if name.startswith("visit_")} - {"visit"}
 assert _DECLARED == set(PROTOCOL.values()), (
-    f"the protocol and the language's tables differ: methods without an entry "
+    f"the protocol and the operator table differ: methods without an entry "
     f"{sorted(_DECLARED - set(PROTOCOL.values()))}, entries without a method {sorted(set(PROTOCOL.values()) - _DECLARED)}")
+
+
+class ExprAnalysis(ExprVisitor):
+    """Base of an analysis of the AST that cares about a few entries only: every method defaults to
+    :meth:`generic`, which visits the node's operands (:attr:`~ethimon.language._expr.Node.children`)
+    and hands their results to :meth:`combine` (default: ``None``). Override the methods of the
+    entries that matter and :meth:`combine`; an entry added to the table later is covered by the
+    default (an interpreter, which must evaluate every entry, subclasses :class:`ExprVisitor`).
+    """
+
+    def visit(self, node: Node, *args):
+        method = self._by_type.get(type(node))
+        if method is None:
+            kind, key = _KEY.get(type(node), (None, None))
+            method = self._by_key.get((kind, key(node))) if kind is not None else None
+            if method is None:
+                return self.generic(node, *args)
+        return method(self, node, *args)
+
+    def generic(self, node: Node, *args):
+        """Visit the operands of ``node`` and combine their results."""
+        return self.combine(node, [self.visit(child, *args) for child in node.children], *args)
+
+    def combine(self, node: Node, results: list, *args):
+        return None
+
+
+for _name in ("visit_num", "visit_bool", "visit_name", *PROTOCOL.values()):
+    if _name not in vars(ExprAnalysis):
+        setattr(ExprAnalysis, _name, ExprAnalysis.generic)
+update_abstractmethods(ExprAnalysis)
 
 
 def missing_methods(cls: type) -> list[str]:

@@ -74,12 +74,12 @@ from typing import Any
 
 from ..compiler._plan import RISK_NAME, Plan
 from ..compiler import plan_of
-from ..language._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, TEMPORAL, Binary, BoolLit, Call,
+from ..language._expr import (BINARY_OPS, COMPARISON_MARGINS, CONNECTIVE_MARGINS, Binary, BoolLit, Call,
                           Name, Node, Num, Unary, comparison_margin, connective_margin, separation_distance,
-                          walk)
+                          is_temporal, walk)
 from ..language._visit import ExprVisitor
 from ..language import SEVERITY_ORDER, Response, Spec
-from ..compiler._risk_formula import decimal_reading, risk_from_p_unsafe, risk_from_probs, risk_range
+from ..compiler._risk_formula import decimal_reading, risk_from_p_unsafe, risk_from_probs
 from ..runtime import Decision, Fault
 # the monitor's own input rules (what counts as a number, a flag, a probability vector): the
 # reference must read inputs exactly as the monitor does, so it uses the same private helpers
@@ -331,7 +331,7 @@ class ReferenceMonitor:
                 for n in walk(root) if isinstance(n, Name) and n.id in names}
 
     def _has_temporal(self, ob) -> bool:
-        return any(isinstance(n, Call) and n.func in TEMPORAL
+        return any(is_temporal(n)
                    for root in (ob.when, ob.require) if root is not None for n in walk(root))
 
     def _touch_temporal(self, t: int) -> None:
@@ -357,9 +357,8 @@ class ReferenceMonitor:
 
     # -- a cycle -------------------------------------------------------------------
     def _risk(self, signals) -> tuple[float | None, str | None]:
-        r = self.spec.risk
-        lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)
-        lo, hi = min(0.0, lo), max(1.0, hi)
+        r = self.plan.risk_plan  # the whole risk rule, resolved once (weights, K, variance, accepted range)
+        lo, hi = self.plan.risk_plan.accepted  # the range the monitor accepts, resolved once by the plan
         if signals.get("risk") is not None:
             v = as_number(signals["risk"])
             if v is not None and lo <= v <= hi:

@@ -90,19 +90,10 @@ def risk_input_range(plan: Plan) -> tuple[float, float]:
 
 def lookback(plan: Plan, node: Node) -> int:
     """Extra past cycles ``node`` reads (``None`` windows count as 1: their state is one bit)."""
-    if isinstance(node, Call):
-        inner = max((lookback(plan, a) for a in node.args), default=0)
-        if node.func == "prev":
-            return 1 + inner
-        if node.func in ("held", "once", "since"):
-            n = plan.windows.get(id(node))
-            return (n - 1 if n is not None else 1) + inner
-        return inner
-    if isinstance(node, Unary):
-        return lookback(plan, node.operand)
-    if isinstance(node, Binary):
-        return max(lookback(plan, node.left), lookback(plan, node.right))
-    return 0
+    # derived from the operator table: each row's lookback (language/_operators.py, Operator.cycles_back)
+    inner = max((lookback(plan, child) for child in node.children), default=0)
+    row = node.row
+    return inner if row is None else inner + row.cycles_back(plan.windows.get(id(node)))
 
 
 class Unrolled(ExprVisitor):
