@@ -87,7 +87,7 @@ class Monitor:
 
     __slots__ = ("spec", "plan", "obligation_ids", "_m", "_vals", "_sig", "_fsig", "_rslot", "_ucall", "_vcall",
                  "_obs", "_stateless", "_margins_on", "_margin_fns", "_mcall", "_nan_margins",
-                 "_tau", "_release_cut", "_risk_free", "_cycle", "_hist0", "_risk", "_tiers", "_latches")
+                 "_tau", "_release_cut", "_risk_free", "_cycle", "_hist0", "_risk", "_tiers", "_latches", "_hot")
 
     def __init__(self, plan: Plan | Spec, *, margins: bool = True, max_age_s: float | None = None) -> None:
         plan = plan_of(plan)
@@ -134,6 +134,10 @@ class Monitor:
         self._tiers = Tiers(plan, latches.ji, latches.ci)
         self._cycle = 0
         self._hist0 = 0  # the cycle from which the temporal history runs (set by a reset or a fault)
+        # what step reads every cycle, bound once: step unpacks it into locals in one go (none of it is
+        # ever rebound; the lists and the parts change in place)
+        self._hot = (self._fsig, self._vals, self._risk, self._tiers, latches, self._rslot, self._ucall,
+                     self._vcall, self._obs, self._mcall if margins else None, self._tau, self.obligation_ids)
 
     # -- public state ----------------------------------------------------------------
     @property
@@ -174,11 +178,10 @@ class Monitor:
         r = None
         try:
             get = signals.get
-            vals = self._vals
-            risk, tiers = self._risk, self._tiers  # the parts step reads, bound once
+            fsig, vals, risk, tiers, latches, rslot, ucall, vcall, obs, mcall, tau, ids = self._hot
             faults = None
             bad = None  # slots whose input is unusable this cycle (fault path only)
-            for k, name, slot, is_bool, lo, hi in self._fsig:
+            for k, name, slot, is_bool, lo, hi in fsig:
                 v = get(name)
                 if is_bool:
                     if v is True or v is False:
@@ -207,19 +210,19 @@ class Monitor:
                 r, why = None, Fault("internal", f"R_e={r!r} is not finite")
             if why is not None:
                 (faults := faults or []).append(why)
-                (bad := bad or []).append(self._rslot)
+                (bad := bad or []).append(rslot)
             max_age = risk.max_age
             if max_age is not None:
                 age = get("risk_age_s")
                 a = None if age is None else as_number(age)
                 if age is None:
                     (faults := faults or []).append(risk.age_missing)
-                    (bad := bad or []).append(self._rslot)
+                    (bad := bad or []).append(rslot)
                 elif a is None or not 0.0 <= a <= max_age:
                     (faults := faults or []).append(Fault(
                         "stale",
                         f"risk estimate is stale or its age is invalid: {age!r} s > max_age_s {max_age:g}", "risk_age_s"))
-                    (bad := bad or []).append(self._rslot)
+                    (bad := bad or []).append(rslot)
             jp = None
             if tiers.judge_on:  # the judge's p_unsafe, or None: no judgement (a normal state)
                 jin = get("judge")
@@ -234,21 +237,20 @@ class Monitor:
                 if pend is not None:  # inputs awaited after the start or a new task text
                     return self._pending(cycle, faults, bad, pend, r)
                 return self._fault(cycle, tuple(faults), r, bad)
-            vals[self._rslot] = r
-            self._ucall()
+            vals[rslot] = r
+            ucall()
             violations = None
             hits = None  # latched only once every obligation was judged (a later one may raise)
-            vs = self._vcall()  # each verdict is a bool
+            vs = vcall()  # each verdict is a bool
             if True in vs:
                 violations = []
                 hits = []
-                for (fn, oid, s, i), v in zip(self._obs, vs):
+                for (fn, oid, s, i), v in zip(obs, vs):
                     if v:
                         violations.append(oid)
                         hits.append(i)
-            latches = self._latches
             held = False
-            if r >= self._tau and not (held := (tiers.hold_hi is not None and r < tiers.hold_hi and jp is not None
+            if r >= tau and not (held := (tiers.hold_hi is not None and r < tiers.hold_hi and jp is not None
                                                 and jp < tiers.jsafe)):
                 if violations is None:
                     violations = ["risk"]
@@ -274,18 +276,18 @@ class Monitor:
                         latches.n += 1
                     run[i] = -1
             margins = _EMPTY
-            if self._margins_on:
-                margins = self._mcall()  # a margin that cannot be computed is NaN
+            if mcall is not None:
+                margins = mcall()  # a margin that cannot be computed is NaN
             if not latches.n:  # ids: the obligation-id tuple by reference (Decision.margin reads it)
-                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY, False, self.obligation_ids)
+                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY, False, ids)
             sev, awaiting = latches.release_pass(r < self._release_cut or held)  # held: the confirm latch holds
             if violations is not None:
                 return Decision(True, _RESPONSES[sev], tuple(violations), margins, r, cycle, False, _EMPTY,
-                                awaiting, self.obligation_ids, _EMPTY, latches.names, latches.lat[:])
+                                awaiting, ids, _EMPTY, latches.names, latches.lat[:])
             if not latches.n:  # the last latch released this cycle
-                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY, False, self.obligation_ids)
+                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY, False, ids)
             return Decision(True, _RESPONSES[sev], _EMPTY, margins, r, cycle, True, _EMPTY, awaiting,
-                            self.obligation_ids, _EMPTY, latches.names, latches.lat[:])
+                            ids, _EMPTY, latches.names, latches.lat[:])
         except BaseException as exc:  # fail closed: nothing escapes into the control loop, not even
             # a KeyboardInterrupt raised by a hostile input's __float__: the arm is told to stop instead
             try:
