@@ -121,10 +121,11 @@ def test_verify_proves_the_hold_and_lint_names_it(tmp_path):
 @pytest.mark.slow
 def test_verify_refutes_a_monitor_whose_judge_executes_above_tau(tmp_path, monkeypatch):
     pytest.importorskip("z3")
-    real_tier = ethimon.Monitor._tier
+    from ethimon.runtime._tiers import Tiers
+    real_tier = Tiers.tier
 
     def lax(self, r, jp, get):  # a regression: the held text executes on the judge's word alone
         out = real_tier(self, r, jp, get)
-        return None if out is not None and out[0] == "confirm" and r >= self._tau else out
-    monkeypatch.setattr(ethimon.Monitor, "_tier", lax)
+        return None if out is not None and out[0] == "confirm" and r >= self.tau else out
+    monkeypatch.setattr(Tiers, "tier", lax)
     assert _verify(HOLD_SPEC, tmp_path)["tier.agrees"].status == "refuted"

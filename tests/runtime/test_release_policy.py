@@ -277,11 +277,11 @@ def test_decision_equality_and_repr_carry_awaiting_release():
 def test_step_stays_allocation_free_of_new_objects_per_rule_while_latched():
     """The release pass works in preallocated slots: the latch lists are the same objects."""
     m = ethimon.Monitor(spec())
-    lat, run = m._lat, m._run
+    lat, run = m._latches.lat, m._latches.run
     m.step(ok(f=300.0, d=0.3))
     for _ in range(50):
         m.step(ok())
-    assert m._lat is lat and m._run is run and len(lat) == len(m.obligation_ids) + 5  # + risk, fault, judge, confirm, pending
+    assert m._latches.lat is lat and m._latches.run is run and len(lat) == len(m.obligation_ids) + 5  # + risk, fault, judge, confirm, pending
 
 
 # -- verify and lint ------------------------------------------------------------------------------
@@ -319,12 +319,13 @@ def test_lint_warns_on_a_risk_stop_1_that_releases_by_itself():
 @pytest.mark.slow
 def test_model_agrees_is_refuted_when_the_monitor_releases_a_manual_rule(monkeypatch):
     """A broken monitor (manual rules releasing by themselves) disagrees with the decision model."""
-    orig = ethimon.Monitor._release_pass
+    from ethimon.runtime._latches import Latches
+    orig = Latches.release_pass
 
     def broken(self, below):
-        self._manual = tuple(False for _ in self._manual)
+        self.manual = tuple(False for _ in self.manual)
         return orig(self, below)
-    monkeypatch.setattr(ethimon.Monitor, "_release_pass", broken)
+    monkeypatch.setattr(Latches, "release_pass", broken)
     s = ethimon.load_spec_text(BASE.replace("hold_cycles: 3", "hold_cycles: 1") + OBS, "rp.yaml")
     rep = verify_spec(s)  # hold 1: the model's short sampled traces (2 cycles) reach a release
     f = rep.finding("model.agrees")

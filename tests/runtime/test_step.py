@@ -226,8 +226,8 @@ def test_bounded_response_margin_is_quantitative_and_recovers():
 
 def test_non_finite_risk_is_a_fault(monkeypatch):
     """R_e is checked after it is computed, whatever produced it."""
-    import ethimon.runtime._monitor as mm
-    monkeypatch.setattr(mm, "risk_from_probs", lambda *a, **k: math.nan)
+    import ethimon.runtime._risk_input as ri
+    monkeypatch.setattr(ri, "risk_from_probs", lambda *a, **k: math.nan)
     d = mon().step(good(p_unsafe=None, p=(0.5, 0.5)))
     assert d.override and d.risk is None and any("not finite" in f.message for f in d.faults)
 
@@ -300,7 +300,7 @@ def test_verify_assumes_the_risk_inputs_the_monitor_accepts(classes, weights):
                                   f"gamma: {g}, threshold: 0.5, allow: {{weights: test}}}}}}")
     m = ethimon.Monitor(spec)
     lo, hi = risk_input_range(m.plan)
-    assert (lo, hi) == (m._rlo, m._rhi)
+    assert (lo, hi) == (m._risk.lo, m._risk.hi)
     assert not m.step({"risk": hi}).faults and m.step({"risk": math.nextafter(hi, math.inf)}).faults
 
 

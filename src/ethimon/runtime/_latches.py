@@ -1,64 +1,65 @@
-"""The monitor's latches: one per rule, what holds them (public state), their release count after a
-valid cycle, the operator's acknowledgement, a forced release, and carrying latches over a reload."""
+"""The monitor's latches, an object of their own: one per rule, what holds them, their release count
+after a valid cycle, what an acknowledgement may release, and carrying latches over a reload."""
 
 from __future__ import annotations
 
-from typing import Any
-
-from ..language import SEVERITY_ORDER
+from ..compiler import Plan
+from ..language import SEVERITY_ORDER, Response
 from ._decision import Acknowledgement
 
-_NO_TASK = object()  # acknowledge() without a task_id: confirm the last cycle's text
 
+class Latches:
+    """One latch per rule in preallocated slots, owned here (a part of :class:`~ethimon.runtime.Monitor`).
 
-class _Latches:
-    """Latch state and release (a base of :class:`~ethimon.runtime.Monitor`)."""
+    The rules in order: the obligations, then ``risk``, ``fault``, ``judge``, ``confirm`` and
+    ``pending`` (the last three never latch unless the spec sets ``risk.judge``,
+    ``risk.confirm_threshold`` or the loop passes ``pending_s``). ``lat[k]``: the rule's severity
+    while latched, else 0; ``run[k]``: consecutive cycles its release condition has held (-1: it
+    fired this cycle); ``since[k]``: the cycle it latched at; ``n``: how many are latched.
+    ``Monitor.step`` binds the lists to locals and latches in place (the hot path).
+    """
 
-    __slots__ = ()
+    __slots__ = ("lat", "run", "since", "n", "sevs", "holds", "manual", "names",
+                 "ri", "fi", "ji", "ci", "pi", "nsrc", "risk_sev", "fault_sev")
 
-    @property
-    def latched(self) -> bool:
-        """Whether an override is latched right now."""
-        return self._nlat > 0
+    def __init__(self, plan: Plan) -> None:
+        n = len(plan.obligations)
+        self.ri, self.fi, self.ji, self.ci, self.pi, self.nsrc = n, n + 1, n + 2, n + 3, n + 4, n + 5
+        self.names = tuple(ob.id for ob in plan.obligations) + ("risk", "fault", "judge", "confirm", "pending")
+        # the confirm latch is released automatically once the band no longer holds the text (the
+        # judge said safe, R_e left the band) or at once by acknowledge(): the confirmation itself;
+        # the pending hold (stop 2: an input awaited after the start or a new task text, see
+        # Monitor.step's ``pending_s``) releases by itself on the first cycle with every input usable
+        rules = plan.rules()  # obligations, risk, fault, judge, confirm: the order above
+        self.holds = tuple(rule.hold for rule in rules) + (1,)
+        self.manual = tuple(rule.manual for rule in rules) + (False,)
+        self.sevs = tuple(rule.severity for rule in rules) + (Response.STOP_2.severity,)
+        self.risk_sev = plan.risk_rule.severity
+        self.fault_sev = plan.fault_rule.severity
+        self.since = [0] * (n + 5)
+        self.lat = [0] * (n + 5)
+        self.run = [0] * (n + 5)
+        self.n = 0
 
-    @property
-    def latched_rules(self) -> tuple[str, ...]:
-        """The rules whose latch holds the override now: obligation ids, ``"risk"``, ``"fault"``."""
-        return tuple(name for name, s in zip(self._names, self._lat) if s)
+    def rules(self) -> tuple[str, ...]:
+        """The names of the rules latched now."""
+        return tuple(name for name, s in zip(self.names, self.lat) if s)
 
     def holding(self) -> tuple[dict, ...]:
-        """What holds the override now: one JSON-ready dict per latched rule, the most severe first
-        (empty when nothing is latched). O(rules); nothing is computed while nothing is latched.
-
-        Each dict: ``rule`` (an obligation id, ``"risk"``, ``"fault"``, ``"judge"``, ``"confirm"`` or
-        ``"pending"``), ``response``, ``since_cycle`` (the cycle it latched), ``release`` (how it is
-        released: ``"auto"`` after ``hold_cycles`` clean cycles in a row, ``"estimate"``: by itself once
-        the awaited inputs arrive, ``"acknowledge"``: an operator's :meth:`acknowledge` once its
-        condition has held ``hold_cycles`` cycles, ``"confirm"``: an acknowledgement confirms the text, or
-        it releases by itself once the band no longer holds it), ``hold_cycles``, ``held_cycles`` (its
-        count so far), ``acknowledge`` (whether :meth:`acknowledge` releases it) and ``how`` (one line
-        for a person).
-
-        Example:
-            >>> import ethimon
-            >>> m = ethimon.Monitor(ethimon.load_spec_text("{ethimon: 1, name: demo}"))
-            >>> _ = m.step({})  # no risk input: a fault
-            >>> [(h["rule"], h["release"], h["acknowledge"]) for h in m.holding()]
-            [('fault', 'acknowledge', True)]
-        """
-        if not self._nlat:
+        """What holds the override now, the most severe first (see :meth:`Monitor.holding`)."""
+        if not self.n:
             return ()
-        lat, run, holds, manual, names, since = self._lat, self._run, self._holds, self._manual, self._names, self._since
+        lat, run, holds, manual, names, since = self.lat, self.run, self.holds, self.manual, self.names, self.since
         out = []
-        for k in range(self._nsrc):
+        for k in range(self.nsrc):
             s = lat[k]
             if not s:
                 continue
             n, c = holds[k], max(run[k], 0)
-            if k == self._pi:
+            if k == self.pi:
                 how, text = "estimate", ("by itself on the first cycle with every awaited input usable (the task "
                                          "text's risk estimate, a signal not seen since the start)")
-            elif k == self._ci:
+            elif k == self.ci:
                 how, text = "confirm", ("an acknowledgement confirms the text in the band; or by itself once the "
                                         "band no longer holds it (the judge said safe, R_e left the band)")
             elif manual[k]:
@@ -68,151 +69,93 @@ class _Latches:
                 how, text = "auto", f"by itself after {n} clean cycles in a row ({c} of {n} now)"
             out.append({"rule": names[k], "response": SEVERITY_ORDER[s].value, "since_cycle": since[k],
                         "release": how, "hold_cycles": n, "held_cycles": c,
-                        "acknowledge": bool(manual[k]) or k == self._ci, "how": text, "_sev": s})
+                        "acknowledge": bool(manual[k]) or k == self.ci, "how": text, "_sev": s})
         out.sort(key=lambda h: -h["_sev"])
         for h in out:
             del h["_sev"]
         return tuple(out)
 
-    @property
-    def history_cycles(self) -> int:
-        """How many of the last cycles the temporal history spans (since the start, a :meth:`reset` or a
-        fault cycle, which restarts it)."""
-        return self._cycle - self._hist0
-
-    @property
-    def pending_responses(self) -> tuple[str, ...]:
-        """The obligations whose bounded response is due: ``when`` fired, ``require`` not met yet,
-        ``within_cycles`` not yet passed (a fresh monitor would forget the deadline)."""
-        return tuple(oid for oid, due in self._m.pending if due())
-
-    def carry_latches(self, rules) -> None:
-        """Latch ``rules`` (names as in :attr:`latched_rules` of the monitor this one replaces) here,
-        each with this monitor's response and release for it, its release count at 0: the release
-        condition must hold its ``hold_cycles`` again, and a manual rule still needs :meth:`acknowledge`.
+    def carry(self, rules, cycle: int, spec_name: str) -> None:
+        """Latch ``rules`` (by name) at ``cycle``, each release count at 0 (see :meth:`Monitor.carry_latches`).
 
         Raises:
-            ValueError: a name that is no rule of this monitor (nothing is latched then).
+            ValueError: a name that is no rule here (nothing is latched then).
         """
-        idx = {n: k for k, n in enumerate(self._names)}
+        idx = {n: k for k, n in enumerate(self.names)}
         missing = [n for n in rules if n not in idx]
         if missing:
-            raise ValueError(f"no rule {', '.join(map(repr, missing))} in spec {self.spec.name!r}")
+            raise ValueError(f"no rule {', '.join(map(repr, missing))} in spec {spec_name!r}")
         for n in rules:
             k = idx[n]
-            if not self._lat[k]:
-                self._lat[k] = self._sevs[k]
-                self._since[k] = self._cycle
-                self._nlat += 1
-            self._run[k] = 0
+            self.latch(k, cycle)
+            self.run[k] = 0
 
-    def _clear(self) -> None:
-        for k in range(self._nsrc):
-            self._lat[k] = 0
-            self._run[k] = 0
-        self._nlat = 0
-        self._confirmed = False
+    def latch(self, k: int, cycle: int) -> None:
+        """Latch rule ``k`` with its own response, unless it is latched already (then its cycle stays)."""
+        if not self.lat[k]:
+            self.lat[k] = self.sevs[k]
+            self.since[k] = cycle
+            self.n += 1
 
-    def reset(self) -> None:
-        """Start a fresh trace: cycle 0, no latch, empty temporal history."""
-        self._m.reset()
-        self._cycle = 0
-        self._hist0 = 0
-        self._clear()
+    def clear(self) -> None:
+        """Release every latch, counts at 0."""
+        for k in range(self.nsrc):
+            self.lat[k] = 0
+            self.run[k] = 0
+        self.n = 0
 
-    def release(self) -> None:
-        """Force the release of every latch, automatic and manual, with no check (commissioning,
-        tests); an operator acknowledges with :meth:`acknowledge`, which checks.
-
-        Temporal history is kept; the next :meth:`step` still overrides if a
-        rule is violated or an input is bad.
-        """
-        self._clear()
-
-    def acknowledge(self, task_id: Any = _NO_TASK) -> Acknowledgement:
-        """An operator's acknowledgement: release the rules latched with ``release: manual``.
-
-        Refused (nothing is released) while any of them has not met its release
-        condition on the last ``hold_cycles`` consecutive cycles: the obligation held,
-        R_e < τ − δ for the risk rule, no fault for the fault latch. Automatic latches
-        keep their own rule. A latched ``"confirm"`` (the confirm band) needs no count: the
-        acknowledgement is the confirmation, and it holds for the last cycle's ``task_id`` until
-        that changes, R_e leaves the band, or a cycle faults (refused while that cycle gave no
-        ``task_id``: a confirmation bound to no text would hold for every text in the band). Takes effect from the next :meth:`step`, which overrides
-        again if a rule is violated or an input is bad.
-
-        Args:
-            task_id: the ``task_id`` of the text the operator was shown. While ``"confirm"`` is
-                latched and this names another text than the last cycle's (the planner replaced
-                it meanwhile), nothing is released: a person confirms only what they saw. Omitted:
-                the last cycle's text is confirmed.
-
-        Returns:
-            An :class:`~ethimon.runtime.Acknowledgement`: ``released`` (also its truth
-            value), the rules released or refused, and a message for the operator.
-
-        Example:
-            >>> import ethimon
-            >>> m = ethimon.Monitor(ethimon.load_spec_text('''
-            ... ethimon: 1
-            ... name: demo
-            ... signals: {contact_force: {unit: N, range: [0, 1000]}}
-            ... obligations:
-            ...   - {id: contact, require: contact_force <= 140, response: stop_0}
-            ... risk: {release: {hold_cycles: 2}}
-            ... '''))
-            >>> m.step({"p_unsafe": 0.0, "contact_force": 300.0}).response
-            <Response.STOP_0: 'stop_0'>
-            >>> m.acknowledge().message
-            'refused: contact still fails'
-            >>> for _ in range(2):
-            ...     d = m.step({"p_unsafe": 0.0, "contact_force": 0.0})
-            >>> d.override, d.awaiting_release, bool(m.acknowledge())
-            (True, True, True)
-            >>> m.step({"p_unsafe": 0.0, "contact_force": 0.0}).override
-            False
-        """
-        lat, run, holds, manual, names = self._lat, self._run, self._holds, self._manual, self._names
-        ready = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] >= holds[k]]
-        ci = self._ci
-        waiting = [k for k in range(self._nsrc) if lat[k] and manual[k] and run[k] < holds[k]]
-        if waiting:
-            return Acknowledgement(False, tuple(names[k] for k in waiting), "refused: " + "; ".join(
-                f"{names[k]} still fails" if run[k] <= 0 else
-                f"{names[k]} has held {run[k]} of {holds[k]} cycles" for k in waiting))
-        if lat[ci]:  # the confirm band: the acknowledgement is its release condition
-            if task_id is not _NO_TASK and task_id != self._last_task:
-                return Acknowledgement(False, (names[ci],), "refused: confirm is for the task in the band now, "
-                                       "not the one acknowledged (the task text changed since it was shown)")
-            if self._last_task is None:  # bound to nothing, it would hold for every text in the band
-                return Acknowledgement(False, (names[ci],), "refused: confirm needs the task_id of the text "
-                                       "in the band (none was given this cycle) to bind the confirmation to")
-            ready.append(ci)
-        if not ready:
-            return Acknowledgement(False, (), "nothing awaits an acknowledgement" + (
-                " (the override is held by automatic releases)" if self._nlat else ""))
-        for k in ready:
-            lat[k] = 0
+    def latch_fault(self, k: int | None, cycle: int) -> int:
+        """Latch the fault rule (or rule ``k``: the pending hold) at ``cycle``; every release count restarts
+        (the cycle is not a clean one). Returns the most severe latched response."""
+        lat, run = self.lat, self.run
+        fi = self.fi if k is None else k
+        if not lat[fi]:
+            lat[fi] = self.fault_sev if k is None else self.sevs[k]
+            self.since[fi] = cycle
+            self.n += 1
+        sev = 0
+        for k in range(self.nsrc):
             run[k] = 0
-        self._nlat -= len(ready)
-        if ci in ready:  # the text in the band is confirmed until it changes
-            self._confirmed = True
-            self._ctask = self._last_task
-        return Acknowledgement(True, tuple(names[k] for k in ready),
-                               "released: " + ", ".join(names[k] for k in ready))
+            if lat[k] > sev:
+                sev = lat[k]
+        return sev
 
-    def _release_pass(self, below: bool) -> tuple[int, bool]:
+    def refusal(self) -> Acknowledgement | None:
+        """The refused acknowledgement while a manual rule has not met its release condition, else ``None``."""
+        lat, run, holds, manual, names = self.lat, self.run, self.holds, self.manual, self.names
+        waiting = [k for k in range(self.nsrc) if lat[k] and manual[k] and run[k] < holds[k]]
+        if not waiting:
+            return None
+        return Acknowledgement(False, tuple(names[k] for k in waiting), "refused: " + "; ".join(
+            f"{names[k]} still fails" if run[k] <= 0 else
+            f"{names[k]} has held {run[k]} of {holds[k]} cycles" for k in waiting))
+
+    def ready(self) -> list[int]:
+        """The manual rules an acknowledgement releases now (each met its release condition)."""
+        lat, run, holds, manual = self.lat, self.run, self.holds, self.manual
+        return [k for k in range(self.nsrc) if lat[k] and manual[k] and run[k] >= holds[k]]
+
+    def unlatch(self, ks: list[int]) -> None:
+        """Release the latched rules ``ks`` (an acknowledgement's)."""
+        for k in ks:
+            self.lat[k] = 0
+            self.run[k] = 0
+        self.n -= len(ks)
+
+    def release_pass(self, below: bool) -> tuple[int, bool]:
         """After a valid cycle: count each latched rule's release condition, release the
         automatic ones whose count reached their hold. O(rules), only while latched.
+
+        ``below``: R_e is below the release cut τ − δ (or the confirm latch holds the text).
 
         Returns:
             ``(severity still latched, awaiting_release)``.
         """
-        lat, run, holds, manual = self._lat, self._run, self._holds, self._manual
-        ri, ci = self._ri, self._ci
+        lat, run, holds, manual = self.lat, self.run, self.holds, self.manual
+        ri, ci = self.ri, self.ci
         sev = 0
         n_manual = ready = 0
-        for k in range(self._nsrc):
+        for k in range(self.nsrc):
             s = lat[k]
             if not s:
                 continue
@@ -225,7 +168,7 @@ class _Latches:
                     if not manual[k]:
                         lat[k] = 0
                         run[k] = 0
-                        self._nlat -= 1
+                        self.n -= 1
                         continue
                     c = holds[k]  # a manual count stops at its hold: ready for acknowledge()
             run[k] = c
