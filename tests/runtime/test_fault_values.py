@@ -106,7 +106,7 @@ def _loop(spec_text, config=LoopConfig(period_s=10.0), **kw):
 
 
 def test_staleness_is_judged_once_by_the_monitor_with_the_loop_limit_as_fallback():
-    loop, clock = _loop(SPEC.replace(", max_age_s: 0.2", ""), max_risk_age_s=0.3)
+    loop, clock = _loop(SPEC.replace(", max_age_s: 0.2", ""), config=LoopConfig(period_s=10.0, max_risk_age_s=0.3))
     assert loop.monitor.max_age_s == 0.3
     assert not loop.cycle({"d": 3.0, "ok": True}).override
     clock.advance(1.0)
