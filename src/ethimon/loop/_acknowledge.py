@@ -38,6 +38,21 @@ def _true(v: Any) -> bool:
     return v is True or (type(v).__name__ == "bool_" and bool(v))
 
 
+class _Request:
+    """An operator's request waiting for the loop thread: its answer is set, then ``done``."""
+
+    __slots__ = ("operator", "reason", "done", "answer", "task", "kind")
+
+    def __init__(self, operator: str, reason: str, task: str | None, kind: str) -> None:
+        self.operator, self.reason, self.task, self.kind = operator, reason, task, kind
+        self.done = threading.Event()
+        self.answer: Acknowledgement | None = None
+
+    def settle(self, a: Acknowledgement) -> None:
+        self.answer = a
+        self.done.set()
+
+
 class AckGate:
     """The acknowledgement gate: the requests waiting for the loop thread and the restart rules.
 
@@ -45,8 +60,8 @@ class AckGate:
         clear: ``(signal, minimum)`` (:attr:`LoopConfig.acknowledge_clear`): a manual reset and a start are
             refused while that reading was missing or below the minimum on the last cycle.
 
-    A request is ``[operator, reason, done event, answer, task_sha256, kind]`` (kind ``"acknowledge"`` or
-    ``"start"``); the loop thread applies the queue between two cycles (:meth:`GovernedLoop._ack_now`).
+    A request (kind ``"acknowledge"`` or ``"start"``) waits in :attr:`queue`; the loop thread applies the
+    queue between two cycles (``GovernedLoop._ack_now``).
     """
 
     __slots__ = ("clear", "refused", "queue", "lock", "awaiting_start", "start_prev", "own_decision")
@@ -58,7 +73,7 @@ class AckGate:
         #: authentication sets it (``holding()`` then says that only a person at the loop can release)
         self.refused: str | None = None
         #: requests waiting for the loop thread
-        self.queue: list[list[Any]] = []
+        self.queue: list[_Request] = []
         self.lock = threading.Lock()
         #: the monitor cycle of the accepted acknowledgement whose start is awaited (``None``: none awaited)
         self.awaiting_start: int | None = None
@@ -73,7 +88,7 @@ class AckGate:
 
     # ------------------------------------------------------------------ requests
     @staticmethod
-    def request(operator: str, reason: str, task_sha256: str | None, kind: str) -> list[Any]:
+    def request(operator: str, reason: str, task_sha256: str | None, kind: str) -> _Request:
         """A checked request (a ``ValueError`` for a bad operator, reason or task hash)."""
         verb = "acknowledge" if kind == "acknowledge" else "start_motion"
         if not (isinstance(operator, str) and operator.strip()):
@@ -82,22 +97,22 @@ class AckGate:
             raise ValueError(f"reason must be a string, got {type(reason).__name__}")
         if task_sha256 is not None and not isinstance(task_sha256, str):
             raise ValueError(f"task_sha256 must be a hex string, got {type(task_sha256).__name__}")
-        return [operator, reason, threading.Event(), None, task_sha256, kind]
+        return _Request(operator, reason, task_sha256, kind)
 
-    def wait(self, req: list[Any], timeout_s: float) -> Acknowledgement:
+    def wait(self, req: _Request, timeout_s: float) -> Acknowledgement:
         """Queue ``req`` for the running loop thread and wait up to ``timeout_s`` for its answer."""
         with self.lock:
             self.queue.append(req)
-        if req[2].wait(timeout_s):
-            return req[3]
+        if req.done.wait(timeout_s):
+            return req.answer
         with self.lock:
             if req in self.queue:
                 self.queue.remove(req)
                 return Acknowledgement(False, (), f"refused: the loop did not apply it within {timeout_s:g} s")
-        req[2].wait()  # the loop took it just now: its answer follows at once
-        return req[3]
+        req.done.wait()  # the loop took it just now: its answer follows at once
+        return req.answer
 
-    def take(self) -> list[list[Any]]:
+    def take(self) -> list[_Request]:
         """The queued requests, in order (the queue is emptied)."""
         with self.lock:
             todo, self.queue = self.queue, []
@@ -139,13 +154,13 @@ class AckGate:
         return ""
 
     # ------------------------------------------------------------------ applied by the loop thread
-    def apply(self, req: list[Any], m: Monitor, last: Decision | None, inputs: Mapping[str, Any], sink: AuditSink,
+    def apply(self, req: _Request, m: Monitor, last: Decision | None, inputs: Mapping[str, Any], sink: AuditSink,
               feed: RiskFeed | None, loop_cycle: int, latch_t: dict[int, float]) -> None:
         """Answer ``req`` (its event set): an acknowledgement to the monitor ``m``, or a start."""
-        if req[5] == "start":
+        if req.kind == "start":
             self._start_now(req, m, inputs, sink, loop_cycle)
             return
-        operator, reason, done, _, task, _kind = req
+        operator, reason, task = req.operator, req.reason, req.task
         held = sink.refusal()
         why = self.restart_refusal(m.spec, last, inputs)
         if held is not None:
@@ -172,8 +187,7 @@ class AckGate:
             latch_t[self.awaiting_start] = time.time()  # holding()'s since_t_unix
             self.start_prev = True  # a start input already on does not count: it must rise
             a = Acknowledgement(True, a.rules, f"{a.message}; {self.waiting_text(m.spec)}")
-        req[3] = a
-        done.set()
+        req.settle(a)
 
     # ------------------------------------------------------------------ the start after a reset
     @staticmethod
@@ -197,9 +211,9 @@ class AckGate:
             return "the monitor overrides on the last cycle: " + (", ".join(why) or "override")
         return self.clear_refusal(inputs)
 
-    def _start_now(self, req: list[Any], m: Monitor, inputs: Mapping[str, Any], sink: AuditSink,
+    def _start_now(self, req: _Request, m: Monitor, inputs: Mapping[str, Any], sink: AuditSink,
                    loop_cycle: int) -> None:
-        operator, reason, done = req[0], req[1], req[2]
+        operator, reason = req.operator, req.reason
         held = sink.refusal()
         why = self._start_refusal(m.spec, inputs)
         if held is not None:
@@ -214,8 +228,7 @@ class AckGate:
             a = sink.durable(a)
             if a.released:
                 self.awaiting_start = None
-        req[3] = a
-        done.set()
+        req.settle(a)
 
     def hold(self, d: Decision, inputs: Mapping[str, Any], spec: Spec) -> Decision:
         """This cycle's decision while an acknowledged stop waits for its start (called by the loop only
@@ -227,7 +240,7 @@ class AckGate:
             on = _true(inputs.get(st))
             if on and not self.start_prev:
                 with self.lock:
-                    self.queue.append([f"start input {st}", "rising edge", threading.Event(), None, None, "start"])
+                    self.queue.append(_Request(f"start input {st}", "rising edge", None, "start"))
             self.start_prev = on
         resp = d.response if d.response.severity >= _STOP_2.severity else _STOP_2
         h = _RestartHold(True, resp, d.violations, d.margins, d.risk, d.cycle, d.latched, d.faults,

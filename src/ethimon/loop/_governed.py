@@ -340,18 +340,18 @@ class GovernedLoop:
         """
         return self._submit(AckGate.request(operator, reason, None, "start"), timeout_s)
 
-    def _submit(self, req: list[Any], timeout_s: float) -> Acknowledgement:
+    def _submit(self, req: Any, timeout_s: float) -> Acknowledgement:
         t = self._thread
         if self._running and t is not None and t is not threading.current_thread():
             return self._gate.wait(req, timeout_s)
         self._ack_now(req)
-        return req[3]
+        return req.answer
 
     def _apply_acks(self) -> None:
         for req in self._gate.take():
             self._ack_now(req)
 
-    def _ack_now(self, req: list[Any]) -> None:
+    def _ack_now(self, req: Any) -> None:
         """Apply one request to the monitor (in the loop thread, between two cycles)."""
         self._gate.apply(req, self.monitor, self.last_decision, self._last_inputs, self._sink, self._feed,
                          self.stats.cycles, self._latch_t)
