@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 
 import ethimon
 from ethimon.errors import SpecError
-from ethimon.loop import GovernedLoop
+from ethimon.loop import GovernedLoop, LoopConfig
 from ethimon.loop._weakenings import weakenings
 
 CONDS = ["x >= c", "x >= 1", "y <= 3", "b implies x >= 0.5", "held(x > 2, 2) or y < 4", "once(y > 4, 3) implies x < 6",
@@ -202,7 +202,7 @@ def test_a_reload_accepting_what_the_old_spec_overrides_on_is_refused(pair, data
     note(f"trace: {trace}; new accepts at cycles {missed}")
     weak, _ = weakenings(old, new)
     assert weak, "the new spec accepts what the old overrides on, and no weakening was found"
-    loop = GovernedLoop(ethimon.Monitor(old), period_s=0.001, max_risk_age_s=None)
+    loop = GovernedLoop(ethimon.Monitor(old), config=LoopConfig(period_s=0.001, max_risk_age_s=None))
     res = loop.reload(new)
     assert not res.ok and "weakens monitoring" in res.error
 
@@ -226,8 +226,8 @@ def _same_spec_and_trace(draw):
 
 
 def _decisions(spec, trace, reload_at=None, again=None):
-    loop = GovernedLoop(ethimon.Monitor(spec, margins=False), period_s=1.0, max_risk_age_s=None,
-                        clock=lambda: 0.0)
+    loop = GovernedLoop(ethimon.Monitor(spec, margins=False),
+                        clock=lambda: 0.0, config=LoopConfig(period_s=1.0, max_risk_age_s=None))
     out, res, latched = [], None, ()
     for t, f in enumerate(trace):
         if t == reload_at:

@@ -30,7 +30,7 @@ import ethimon
 from bench import RESULTS
 from bench._machine import machine_facts
 from ethimon.audit import AuditLog, verify_log
-from ethimon.loop import AsyncRiskSource, GovernedLoop
+from ethimon.loop import AsyncRiskSource, GovernedLoop, LoopConfig
 
 
 class SleepyEstimator:
@@ -101,9 +101,9 @@ def main() -> int:
                    meta={"spec_sha256": ethimon.audit.spec_hash(spec), "model_id": src.model_id})
     period = 1.0 / args.rate
     deadline = None if args.deadline_ms is None else args.deadline_ms / 1000.0
-    loop = GovernedLoop(ethimon.Monitor(spec), signals=signals, risk=src, period_s=period, deadline_s=deadline,
-                        max_risk_age_s=args.max_age_ms / 1000.0, audit=log,
-                        audit_every_cycle=args.audit_every_cycle, on_decision=on_decision)
+    loop = GovernedLoop(ethimon.Monitor(spec), signals=signals, risk=src, audit=log, on_decision=on_decision,
+                        config=LoopConfig(period_s=period, deadline_s=deadline, max_risk_age_s=args.max_age_ms / 1000.0,
+                                          audit_every_cycle=args.audit_every_cycle))
     load_start = os.getloadavg()
     ru0 = resource.getrusage(resource.RUSAGE_SELF)
     cpu0, wall0 = time.process_time(), time.perf_counter()

@@ -8,7 +8,7 @@ import pytest
 
 import ethimon
 from ethimon.audit import AuditLog, read_log
-from ethimon.loop import GovernedLoop
+from ethimon.loop import GovernedLoop, LoopConfig
 
 SPEC = """\
 ethimon: 1
@@ -28,7 +28,8 @@ obligations:
 
 def _records(tmp_path, steps):
     log = AuditLog(tmp_path / "a.jsonl")
-    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), audit=log, period_s=1.0, deadline_s=100.0)
+    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), audit=log,
+                        config=LoopConfig(period_s=1.0, deadline_s=100.0))
     decisions = [loop.cycle({**s, "p_unsafe": 0.0}) for s in steps]
     log.close()
     return decisions, [r for r in read_log(tmp_path / "a.jsonl") if r.get("kind") == "decision"]

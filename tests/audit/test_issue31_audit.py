@@ -11,7 +11,7 @@ from pathlib import Path
 import ethimon
 from ethimon.audit import AuditLog, read_log, verify_log
 from ethimon.audit._log import canonical
-from ethimon.loop import GovernedLoop
+from ethimon.loop import GovernedLoop, LoopConfig
 from tests._cli import call_cli
 from tests._estimators import FakeClock
 
@@ -116,7 +116,7 @@ def test_release_is_applied_only_after_its_acknowledge_record_is_durable(tmp_pat
     p = tmp_path / "ack.jsonl"
     log = _SlowLog(p, fsync="interval")
     clock = FakeClock()
-    loop = GovernedLoop(SPEC, max_risk_age_s=None, audit=log, clock=clock, period_s=0.001)
+    loop = GovernedLoop(SPEC, audit=log, clock=clock, config=LoopConfig(max_risk_age_s=None, period_s=0.001))
     for f in (300.0, 0.0, 0.0):
         clock.advance(0.001)
         loop.cycle({"contact_force": f, "p_unsafe": 0.0})

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import ethimon
 from ethimon.io import LiveMonitor, MemoryChannel, Recording, Sample
-from ethimon.loop import GovernedLoop
+from ethimon.loop import GovernedLoop, LoopConfig
 from ethimon.replay import recorded_data, replay_data
 
 from tests._estimators import FakeClock
@@ -53,8 +53,8 @@ def live_on_grid(samples, spec_, mapping, grid_ns, s0):
     sample delivered once its receive time has come; its decisions and the LiveMonitor."""
     clock = FakeClock(grid_ns[s0] / 1e9)
     ch = MemoryChannel(clock=clock)
-    loop = GovernedLoop(ethimon.Monitor(spec_), period_s=1.0 / float(mapping.rate_hz), deadline_s=1e6,
-                        stall_s=1e6, clock=clock)
+    loop = GovernedLoop(ethimon.Monitor(spec_), clock=clock,
+                        config=LoopConfig(period_s=1.0 / float(mapping.rate_hz), deadline_s=1e6, stall_s=1e6))
     live = LiveMonitor(loop, mapping, ch, record=True)
     todo = sorted(samples, key=lambda s: s.t_log)
     i, out = 0, []

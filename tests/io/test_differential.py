@@ -10,7 +10,7 @@ import pytest
 
 from ethimon.errors import BagError, SpecError
 from ethimon.io import LiveMonitor, MemoryChannel, load_mapping_text
-from ethimon.loop import GovernedLoop
+from ethimon.loop import GovernedLoop, LoopConfig
 
 from tests.io._drive import MAPPING, S, spec, verdicts
 
@@ -47,12 +47,12 @@ def test_a_bool_drives_a_bool_signal_alike_and_is_refused_on_a_number_alike():
         verdicts(samples, bad)
     assert "a bool is not a number" in str(e.value)
     # live, the transport knows the field is a bool before any message: the same message, located
-    loop = GovernedLoop(spec(), period_s=0.01)
+    loop = GovernedLoop(spec(), config=LoopConfig(period_s=0.01))
     with pytest.raises(SpecError) as e2:
         LiveMonitor(loop, load_mapping_text(bad, "m.yaml"), MemoryChannel(), kinds={"dist": "bool"})
     assert e.value.message.split(": a bool")[0].split("(")[0] in str(e2.value) and "m.yaml:" in str(e2.value)
     # and a bool arriving unannounced is an invalid input live (the cycle fails closed)
-    loop = GovernedLoop(spec(), period_s=0.01)
+    loop = GovernedLoop(spec(), config=LoopConfig(period_s=0.01))
     ch = MemoryChannel(clock=lambda: 1.0)
     lm = LiveMonitor(loop, load_mapping_text(bad, "m.yaml"), ch)
     for s in _base(t_end=0.1):

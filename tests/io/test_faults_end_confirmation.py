@@ -9,7 +9,7 @@ from __future__ import annotations
 import pytest
 
 import ethimon
-from ethimon.loop import AsyncRiskSource, GovernedLoop
+from ethimon.loop import AsyncRiskSource, GovernedLoop, LoopConfig
 from ethimon.runtime import Fault
 
 from tests._estimators import FakeClock, ScriptedEstimator
@@ -35,7 +35,8 @@ def _confirmed_loop():
     clock = FakeClock()
     src = AsyncRiskSource(ScriptedEstimator((0.55, 0.45)), text="carry the tray", clock=clock, start=False)
     src.poll_once()
-    loop = GovernedLoop(ethimon.load_spec_text(BAND), risk=src, period_s=0.01, deadline_s=0.01, clock=clock)
+    loop = GovernedLoop(ethimon.load_spec_text(BAND), risk=src, clock=clock,
+                        config=LoopConfig(period_s=0.01, deadline_s=0.01))
     assert "confirm" in loop.cycle({"d": 2.0}).violations
     assert loop.acknowledge("op-1", reason="read it").released
     assert not loop.cycle({"d": 2.0}).override  # confirmed: the arm may run it

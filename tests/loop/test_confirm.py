@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import ethimon
 from ethimon.audit import AuditLog, read_log
-from ethimon.loop import AsyncRiskSource, GovernedLoop
+from ethimon.loop import AsyncRiskSource, GovernedLoop, LoopConfig
 from ethimon.risk import text_sha256
 from ethimon.testing import ReferenceMonitor
 
@@ -60,8 +60,8 @@ def test_loop_confirms_only_the_text_the_operator_names(tmp_path):
     src = AsyncRiskSource(ScriptedEstimator(band), text="carry the tray", clock=clock, start=False)
     src.poll_once()
     log = AuditLog(tmp_path / "a.jsonl")
-    loop = GovernedLoop(ethimon.load_spec_text(BAND_ONLY), risk=src, period_s=0.001, deadline_s=10.0,
-                        clock=clock, audit=log)
+    loop = GovernedLoop(ethimon.load_spec_text(BAND_ONLY), risk=src,
+                        clock=clock, audit=log, config=LoopConfig(period_s=0.001, deadline_s=10.0))
     shown = src.text
     assert "confirm" in loop.cycle({"d": 2.0}).violations
     src.set_text("carry the knife to the child")  # the planner's next text, also in the band
@@ -122,8 +122,8 @@ def test_a_text_change_during_the_cycle_never_pairs_one_texts_risk_with_anothers
     src = _Racing(_ByText(), text=B_LOW, clock=clock, start=False)
     src.poll_once()
     judge = AsyncJudgeSource(_Judge(), start=False)
-    loop = GovernedLoop(ethimon.load_spec_text(JUDGED), risk=src, judge=judge, period_s=0.001,
-                        deadline_s=10.0, clock=clock)
+    loop = GovernedLoop(ethimon.load_spec_text(JUDGED), risk=src, judge=judge,
+                        clock=clock, config=LoopConfig(period_s=0.001, deadline_s=10.0))
     loop.cycle({"d": 2.0})
     judge.work_once()  # B judged safe, cached
     assert not loop.cycle({"d": 2.0}).override

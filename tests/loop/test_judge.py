@@ -6,7 +6,7 @@ import pytest
 
 import ethimon
 from ethimon.audit import AuditLog, read_log
-from ethimon.loop import AsyncJudgeSource, AsyncRiskSource, GovernedLoop
+from ethimon.loop import AsyncJudgeSource, AsyncRiskSource, GovernedLoop, LoopConfig
 from ethimon.risk import Judge
 
 from tests._estimators import FakeClock, ScriptedEstimator, wait_for
@@ -43,7 +43,8 @@ def _loop(url, model, probs, tmp_path, text="carry the tray to the table"):
     src = AsyncRiskSource(ScriptedEstimator(probs), text=text, clock=clock, start=False)
     src.poll_once()
     log = AuditLog(tmp_path / "a.jsonl")
-    loop = GovernedLoop(_spec(url, model), risk=src, period_s=0.001, deadline_s=10.0, clock=clock, audit=log)
+    loop = GovernedLoop(_spec(url, model), risk=src, clock=clock, audit=log,
+                        config=LoopConfig(period_s=0.001, deadline_s=10.0))
     return loop, src, log
 
 
@@ -100,7 +101,7 @@ def test_no_judge_the_band_is_a_person_s(tmp_path):
     src = AsyncRiskSource(ScriptedEstimator(BAND), text="t", clock=clock, start=False)
     src.poll_once()
     spec = _spec("http://127.0.0.1:9/v1", "m")
-    loop = GovernedLoop(spec, risk=src, period_s=0.001, deadline_s=10.0, clock=clock, judge=None)
+    loop = GovernedLoop(spec, risk=src, clock=clock, judge=None, config=LoopConfig(period_s=0.001, deadline_s=10.0))
     assert loop.judge is None
     for _ in range(3):
         assert loop.cycle({"judge": 0.0}).violations == ("confirm",)  # a judge key in the signals is dropped
@@ -114,8 +115,9 @@ def test_api_key_never_reaches_the_audit_log(server, tmp_path, monkeypatch):
     src = AsyncRiskSource(ScriptedEstimator(BAND), text="t", clock=clock, start=False)
     src.poll_once()
     log = AuditLog(tmp_path / "k.jsonl")
-    loop = GovernedLoop(_spec(server, "p=0.05"), risk=src, period_s=0.001, deadline_s=10.0, clock=clock, audit=log,
-                        judge=Judge(server, "p=0.05", api_key_env="ETHIMON_LOOP_KEY", canaries=None))
+    loop = GovernedLoop(_spec(server, "p=0.05"), risk=src, clock=clock, audit=log,
+                        judge=Judge(server, "p=0.05", api_key_env="ETHIMON_LOOP_KEY", canaries=None),
+                        config=LoopConfig(period_s=0.001, deadline_s=10.0))
     loop.cycle({})
     assert wait_for(lambda: loop.judge.result("t") is not None)
     for _ in range(3):
@@ -166,8 +168,9 @@ def test_a_key_with_a_newline_never_reaches_the_audit_log(server, tmp_path, monk
     src = AsyncRiskSource(ScriptedEstimator(BAND), text="t", clock=clock, start=False)
     src.poll_once()
     log = AuditLog(tmp_path / "n.jsonl")
-    loop = GovernedLoop(_spec(server, "p=0.05"), risk=src, period_s=0.001, deadline_s=10.0, clock=clock, audit=log,
-                        judge=Judge(server, "p=0.05", api_key_env="ETHIMON_LOOP_KEY", canaries=None))
+    loop = GovernedLoop(_spec(server, "p=0.05"), risk=src, clock=clock, audit=log,
+                        judge=Judge(server, "p=0.05", api_key_env="ETHIMON_LOOP_KEY", canaries=None),
+                        config=LoopConfig(period_s=0.001, deadline_s=10.0))
     loop.cycle({})
     assert wait_for(lambda: loop.judge.result("t") is not None)
     for _ in range(3):

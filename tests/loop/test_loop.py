@@ -16,7 +16,7 @@ import pytest
 import ethimon
 from ethimon import Response
 from ethimon.audit import AuditLog, read_log, spec_hash, verify_log
-from ethimon.loop import AsyncRiskSource, GovernedLoop, ProcessEstimator, Watchdog
+from ethimon.loop import AsyncRiskSource, GovernedLoop, LoopConfig, ProcessEstimator, Watchdog
 from tests._estimators import FakeClock, ScriptedEstimator, wait_for
 from ethimon import GovernedLoop
 
@@ -42,10 +42,10 @@ def _source(clock, probs=(0.95, 0.05), text="wipe the table"):
     return src
 
 
-def _loop(clock=None, spec=CELL, **kw):
+def _loop(clock=None, spec=CELL, config=LoopConfig(period_s=0.001), **kw):
     clock = clock or FakeClock()
     kw.setdefault("risk", _source(clock))
-    return GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(spec)), period_s=0.001, clock=clock, **kw), clock
+    return GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(spec)), clock=clock, config=config, **kw), clock
 
 
 # ---------------------------------------------------------------- AsyncRiskSource
@@ -177,7 +177,7 @@ def test_missed_deadline_is_a_fault_with_reason():
 
 
 def test_late_call_is_a_missed_deadline_and_override_latches_until_release():
-    loop, clock = _loop(risk=None, deadline_s=0.0015)
+    loop, clock = _loop(risk=None, config=LoopConfig(period_s=0.001, deadline_s=0.0015))
     inputs = {**SAFE, "p_unsafe": 0.05, "risk_age_s": 0.0}
     assert not loop.cycle(inputs).override
     clock.advance(0.001)
@@ -217,9 +217,8 @@ def test_signal_source_raising_is_a_fault():
 
 def test_run_paces_cycles_with_injected_sleep():
     clock = FakeClock()
-    loop, _ = _loop(clock, sleep=clock.advance, signals=lambda: SAFE)
-    loop.risk = None
-    loop._signals = lambda: {**SAFE, "p_unsafe": 0.05, "risk_age_s": 0.0}
+    loop, _ = _loop(clock, sleep=clock.advance, risk=None,
+                    signals=lambda: {**SAFE, "p_unsafe": 0.05, "risk_age_s": 0.0})
     stats = loop.run(duration_s=0.1)
     assert 95 <= stats.cycles <= 101 and stats.deadline_misses == 0 and stats.overrides == 0
 
@@ -229,8 +228,8 @@ def test_run_in_thread_real_time_smoke():
     est = ScriptedEstimator()
     src = AsyncRiskSource(est, text="t", rate_hz=50.0)
     assert wait_for(lambda: src.fault is None)
-    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(CELL)), risk=src, period_s=0.002,
-                        deadline_s=0.05, signals=lambda: SAFE)
+    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(CELL)), risk=src,
+                        signals=lambda: SAFE, config=LoopConfig(period_s=0.002, deadline_s=0.05))
     loop.start(duration_s=0.3)
     loop._thread.join(5.0)
     src.stop()
@@ -254,8 +253,9 @@ def test_watchdog_fires_once_per_stall():
 def test_watchdog_thread_reports_a_stalled_loop(tmp_path):
     stalls = []
     log = AuditLog(tmp_path / "w.jsonl")
-    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(CELL)), period_s=0.001, watchdog_s=0.02,
-                        on_stall=stalls.append, audit=log, deadline_s=10.0)
+    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(CELL)),
+                        on_stall=stalls.append, audit=log,
+                        config=LoopConfig(period_s=0.001, watchdog_s=0.02, deadline_s=10.0))
     inputs = {**SAFE, "p_unsafe": 0.05, "risk_age_s": 0.0}
     gate = threading.Event()
     calls = []
@@ -323,14 +323,14 @@ def test_invalid_reload_is_rejected_and_old_spec_keeps_running(tmp_path, text):
 
 
 def test_reload_verification_hook_can_reject(tmp_path):
-    loop, _ = _loop(verify=lambda spec: False)
+    loop, _ = _loop(config=LoopConfig(period_s=0.001, verify=lambda spec: False))
     res = loop.reload(ethimon.load_spec_text(CELL))
     assert not res.ok and "verification failed" in res.error
 
     def strict(spec):
         raise ethimon.SpecError("obligation keep_away is vacuous")
 
-    loop, _ = _loop(verify=strict)
+    loop, _ = _loop(config=LoopConfig(period_s=0.001, verify=strict))
     res = loop.reload(ethimon.load_spec_text(CELL))
     assert not res.ok and "vacuous" in res.error
 
@@ -338,12 +338,12 @@ def test_reload_verification_hook_can_reject(tmp_path):
 @pytest.mark.slow
 def test_reload_smt_verification_rejects_a_refuted_spec(tmp_path):
     pytest.importorskip("z3")
-    loop, _ = _loop(verify="smt")
+    loop, _ = _loop(config=LoopConfig(period_s=0.001, verify="smt"))
     assert loop.reload(ethimon.load_spec_text(CELL)).ok
     res = loop.reload(ROOT / "tests" / "verify_fixtures" / "refuted_division.yaml", allow_weaker=True)
     assert not res.ok and "verification failed" in res.error and "refuted" in res.error
     with pytest.raises(ValueError):
-        _loop(verify="z4")
+        _loop(config=LoopConfig(period_s=0.001, verify="z4"))
 
 
 def test_reload_carries_a_latched_override_over(tmp_path):
@@ -413,7 +413,7 @@ def test_loop_logs_which_input_faults_when_it_changes(tmp_path):
 def test_loop_can_log_every_cycle(tmp_path):
     p = tmp_path / "e.jsonl"
     log = AuditLog(p, fsync="never")
-    loop, clock = _loop(audit=log, audit_every_cycle=True)
+    loop, clock = _loop(audit=log, config=LoopConfig(period_s=0.001, audit_every_cycle=True))
     for _ in range(50):
         clock.advance(0.001)
         loop.cycle(SAFE)
@@ -463,9 +463,9 @@ def test_loop_acknowledge_from_another_thread_is_applied_between_cycles():
         gate.clear()
         clock.advance(w)
 
-    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(FAULTY)), period_s=0.001, clock=clock,
+    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(FAULTY)), clock=clock,
                         sleep=sleep, risk=_source(clock), signals=lambda: next(script, SAFE),
-                        on_decision=ran.append, stall_s=10.0)
+                        on_decision=ran.append, config=LoopConfig(period_s=0.001, stall_s=10.0))
     loop.start()
     for _ in range(4):                                    # let four cycles run: the fault latch has held 2 clean
         gate.set()
@@ -475,7 +475,7 @@ def test_loop_acknowledge_from_another_thread_is_applied_between_cycles():
     box = {}
     t = threading.Thread(target=lambda: box.setdefault("a", loop.acknowledge("ops", timeout_s=5.0)))
     t.start()
-    assert wait_for(lambda: loop._acks, 2.0)              # queued while the loop sleeps, not applied under it
+    assert wait_for(lambda: loop._gate.queue, 2.0)              # queued while the loop sleeps, not applied under it
     assert loop.monitor.latched_rules == ("fault",) and "a" not in box
     gate.set()                                            # next cycle: applied before its step
     t.join(5.0)
@@ -499,11 +499,11 @@ risk: {threshold: 0.5}
 """
 
 
-def _restart_loop(**kw):
+def _restart_loop(acknowledge_clear=None, **kw):
     # period 1 s: these tests call cycle() by hand; at the 1 ms default a loaded machine's pause between two
     # calls was a deadline miss, a fault that held the latch (CI flake, stop 36: "fault has held 4 of 10")
-    kw.setdefault("period_s", 1.0)
-    return GovernedLoop(ethimon.load_spec_text(SPEC), max_risk_age_s=None, **kw)
+    return GovernedLoop(ethimon.load_spec_text(SPEC), config=LoopConfig(period_s=1.0, max_risk_age_s=None,
+                                                                         acknowledge_clear=acknowledge_clear), **kw)
 
 
 def _cycle(loop, d, f):

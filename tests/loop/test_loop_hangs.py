@@ -23,7 +23,7 @@ import ethimon
 from ethimon.audit import AuditFormatError, AuditLog, read_log, verify_log
 from ethimon.audit import _log
 from ethimon.audit._log import GENESIS, canonical, record_hash
-from ethimon.loop import AsyncRiskSource, GovernedLoop, ProcessEstimator, Watchdog
+from ethimon.loop import AsyncRiskSource, GovernedLoop, LoopConfig, ProcessEstimator, Watchdog
 
 from tests._estimators import FakeClock, ScriptedEstimator, run_in_thread, wait_for
 from tests.loop.test_loop import CELL, SAFE
@@ -38,7 +38,8 @@ def _loop(clock=None, spec=CELL, **kw):
         src = AsyncRiskSource(ScriptedEstimator(), text="wipe the table", clock=clock, start=False)
         src.poll_once()
         kw["risk"] = src
-    return GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(spec)), period_s=0.001, clock=clock, **kw), clock
+    return GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(spec)), clock=clock,
+                        config=LoopConfig(period_s=0.001), **kw), clock
 
 
 def _gate_writer(log):
@@ -356,9 +357,10 @@ def test_an_estimator_holding_the_gil_is_reported_as_a_stall():
     stalls = []
     try:
         assert wait_for(lambda: src.fault is None)
-        loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(CELL)), risk=src, period_s=0.002,
-                            deadline_s=0.02, max_risk_age_s=None, watchdog_s=0.05, on_stall=stalls.append,
-                            signals=lambda: SAFE)
+        loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(CELL)), risk=src,
+                            on_stall=stalls.append,
+                            signals=lambda: SAFE,
+                            config=LoopConfig(period_s=0.002, deadline_s=0.02, max_risk_age_s=None, watchdog_s=0.05))
         decisions = []
         loop._on_decision = decisions.append
         loop.start()
@@ -377,9 +379,9 @@ def test_an_estimator_holding_the_gil_is_reported_as_a_stall():
 def test_a_factory_string_runs_the_estimator_in_a_child_process(tmp_path):
     env = {"PYTHONPATH": str(ROOT / "tests")}
     log = AuditLog(tmp_path / "p.jsonl")
-    loop = GovernedLoop(ethimon.load_spec_text(CELL), risk="_estimators:ScriptedEstimator",
-                        risk_kwargs={"probs": [0.9, 0.1]}, risk_env=env, period_s=0.001, audit=log,
-                        deadline_s=1e6, stall_s=1e6)  # cycles called by hand, seconds apart
+    loop = GovernedLoop(ethimon.load_spec_text(CELL), audit=log,
+                        risk=ProcessEstimator("_estimators:ScriptedEstimator", {"probs": [0.9, 0.1]}, env=env),
+                        config=LoopConfig(period_s=0.001, deadline_s=1e6, stall_s=1e6))  # cycles called by hand, seconds apart
     try:
         assert isinstance(loop.risk, AsyncRiskSource) and isinstance(loop.risk.estimator, ProcessEstimator)
         assert loop.risk.isolated and loop.risk.text is None

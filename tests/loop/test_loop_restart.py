@@ -14,7 +14,7 @@ import pytest
 import ethimon
 from ethimon import Response
 from ethimon.errors import SpecError
-from ethimon.loop import GovernedLoop
+from ethimon.loop import GovernedLoop, LoopConfig
 from tests._estimators import FakeClock
 
 SPEC = """\
@@ -52,7 +52,7 @@ class _Records:
 
 def _loop(restart="restart: {start: command}", **kw):
     spec = ethimon.load_spec_text(SPEC % restart)
-    return GovernedLoop(ethimon.Monitor(spec), period_s=0.001, clock=FakeClock(), **kw)
+    return GovernedLoop(ethimon.Monitor(spec), clock=FakeClock(), config=LoopConfig(period_s=0.001), **kw)
 
 
 def _latched_then_clear(loop, clear=CLEAR):

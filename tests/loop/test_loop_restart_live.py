@@ -8,7 +8,7 @@ import json
 
 import ethimon
 from ethimon.io import AckRequest, LiveMonitor, MemoryChannel, load_mapping_text
-from ethimon.loop import GovernedLoop
+from ethimon.loop import GovernedLoop, LoopConfig
 from tests._estimators import FakeClock
 
 SPEC = """
@@ -38,8 +38,8 @@ signals:
 def test_ros2_path_gates_the_acknowledgement_on_standstill_and_holds_until_the_start_input_rises():
     clock = FakeClock(100.0)
     ch = MemoryChannel(clock=clock)
-    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), period_s=0.01, deadline_s=1e6,
-                        stall_s=1e6, clock=clock)
+    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)),
+                        clock=clock, config=LoopConfig(period_s=0.01, deadline_s=1e6, stall_s=1e6))
     LiveMonitor(loop, load_mapping_text(MAPPING), ch)
 
     def cycle(**values):

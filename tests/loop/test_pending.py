@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 import ethimon
-from ethimon.loop import AsyncRiskSource, GovernedLoop
+from ethimon.loop import AsyncRiskSource, GovernedLoop, LoopConfig
 
 ROOT = Path(__file__).resolve().parents[2]
 SPEC = ROOT / "examples" / "replay" / "spec.yaml"
@@ -31,8 +31,8 @@ class Clock:
 
 def _loop(clock=None):
     src = AsyncRiskSource(Fixed(), text=TEXT, start=False, **({"clock": clock} if clock else {}))
-    return src, GovernedLoop(ethimon.load_spec(SPEC), risk=src, period_s=0.001, signals=lambda: HEALTHY,
-                             deadline_s=60.0, stall_s=60.0)
+    return src, GovernedLoop(ethimon.load_spec(SPEC), risk=src, signals=lambda: HEALTHY,
+                             config=LoopConfig(period_s=0.001, deadline_s=60.0, stall_s=60.0))
 
 
 def test_start_is_a_pending_hold_released_by_the_estimate():
@@ -74,7 +74,7 @@ def test_a_crashed_estimator_stays_a_fault():
         def probs(self, text):
             raise RuntimeError("boom")
     src = AsyncRiskSource(Broken(), text=TEXT, start=False)
-    loop = GovernedLoop(ethimon.load_spec(SPEC), risk=src, period_s=1.0, deadline_s=60.0)
+    loop = GovernedLoop(ethimon.load_spec(SPEC), risk=src, config=LoopConfig(period_s=1.0, deadline_s=60.0))
     src.poll_once()
     d = loop.cycle(HEALTHY)
     assert d.override and any(f.kind == "estimator" for f in d.faults)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import pytest
 import ethimon
 from ethimon.audit import AuditLog, read_log
-from ethimon.loop import GovernedLoop
+from ethimon.loop import GovernedLoop, LoopConfig
 from ethimon.loop._weakenings import weakenings
 from tests._estimators import FakeClock
 
@@ -37,7 +37,8 @@ def _spec(mode="auto", fault="manual"):
 
 def _loop(spec, **kw):
     clock = FakeClock()
-    return GovernedLoop(ethimon.Monitor(spec), period_s=0.001, clock=clock, max_risk_age_s=None, **kw), clock
+    return GovernedLoop(ethimon.Monitor(spec), clock=clock,
+                        config=LoopConfig(period_s=0.001, max_risk_age_s=None), **kw), clock
 
 
 SAFE = {"d": 2.0, "f": 0.0, "p_unsafe": 0.0}
@@ -179,7 +180,7 @@ QUIET = {"trigger": False, "moving": True, "p_unsafe": 0.0}
 
 def _run(reload_at):
     spec = ethimon.load_spec_text(SPEC)
-    loop = GovernedLoop(ethimon.Monitor(spec), period_s=1.0, deadline_s=100.0)
+    loop = GovernedLoop(ethimon.Monitor(spec), config=LoopConfig(period_s=1.0, deadline_s=100.0))
     out, results = [loop.cycle({"trigger": True, "moving": True, "p_unsafe": 0.0}).override], []
     for i in range(8):
         if i == reload_at:
@@ -202,7 +203,7 @@ def test_reload_while_a_bounded_response_is_due_keeps_the_deadline():
 
 def test_reload_at_the_swap_is_refused_when_a_response_became_due_meanwhile():
     spec = ethimon.load_spec_text(SPEC)
-    loop = GovernedLoop(ethimon.Monitor(spec), period_s=1.0, deadline_s=100.0)
+    loop = GovernedLoop(ethimon.Monitor(spec), config=LoopConfig(period_s=1.0, deadline_s=100.0))
     loop.cycle(QUIET)
     res = loop.reload(spec)  # nothing due now: accepted
     assert res.ok
@@ -231,7 +232,7 @@ obligations:
 def test_a_reload_of_the_same_file_keeps_an_event_held_by_once(tmp_path):
     path = tmp_path / "once.yaml"
     path.write_text(_ONCE)
-    loop = GovernedLoop(ethimon.load_spec(path), period_s=1.0, deadline_s=60.0)
+    loop = GovernedLoop(ethimon.load_spec(path), config=LoopConfig(period_s=1.0, deadline_s=60.0))
     assert not loop.cycle({"x": 1.0, "y": 5.0, "p_unsafe": 0.0}).override  # the event
     assert loop.reload(path).ok
     d = loop.cycle({"x": 7.0, "y": 0.0, "p_unsafe": 0.0})  # swapped in before this cycle
@@ -243,8 +244,8 @@ def test_a_reload_of_the_same_file_keeps_an_event_held_by_once(tmp_path):
 def test_a_reload_that_cannot_carry_an_unbounded_window_is_refused_and_audited(tmp_path):
     from ethimon.loop import _reload
     text = _ONCE.replace('once(y > 4, 3)', 'since(y > 4, x > 8)')
-    loop = GovernedLoop(ethimon.load_spec_text(text), period_s=1.0, deadline_s=60.0)
-    loop._history = __import__("collections").deque(loop._history, maxlen=2)
+    loop = GovernedLoop(ethimon.load_spec_text(text), config=LoopConfig(period_s=1.0, deadline_s=60.0))
+    loop._reloader.history = __import__("collections").deque(loop._reloader.history, maxlen=2)
     for _ in range(3):
         loop.cycle({"x": 1.0, "y": 5.0, "p_unsafe": 0.0})
     res = loop.reload(ethimon.load_spec_text(text))

@@ -59,7 +59,7 @@ def test_governed_loop_reads_a_sources_own_faults():
     """A signal source may return a mapping with a ``faults`` attribute (ethimon.ros2 reports stale
     topics and foreign publishers there): each fails the cycle closed, with its kind and subject."""
     import ethimon
-    from ethimon.loop import GovernedLoop
+    from ethimon.loop import GovernedLoop, LoopConfig
     from ethimon.runtime import Fault
 
     spec = ethimon.load_spec_text("ethimon: 1\nname: s\nsignals:\n  v: {unit: m/s, range: [0, 10]}\n"
@@ -69,11 +69,11 @@ def test_governed_loop_reads_a_sources_own_faults():
         faults = ()
 
     good = Frame(v=1.0, p_unsafe=0.05)
-    loop = GovernedLoop(ethimon.Monitor(spec), signals=lambda: good, period_s=1.0)
+    loop = GovernedLoop(ethimon.Monitor(spec), signals=lambda: good, config=LoopConfig(period_s=1.0))
     assert not loop.cycle().override
     bad = Frame(v=1.0, p_unsafe=0.05)
     bad.faults = (Fault("stale", "v: stale (last /v message 0.3 s old, max_age_s 0.1)", "v"), "plain text")
-    loop2 = GovernedLoop(ethimon.Monitor(spec), signals=lambda: bad, period_s=1.0)
+    loop2 = GovernedLoop(ethimon.Monitor(spec), signals=lambda: bad, config=LoopConfig(period_s=1.0))
     d = loop2.cycle()
     assert d.override and [(f.kind, f.subject) for f in d.faults] == [("stale", "v"), ("signals", "")]
 

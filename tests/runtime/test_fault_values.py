@@ -9,7 +9,7 @@ import pytest
 
 import ethimon
 from ethimon.audit import AuditLog, read_log, verify_log
-from ethimon.loop import AsyncRiskSource, GovernedLoop
+from ethimon.loop import AsyncRiskSource, GovernedLoop, LoopConfig
 from ethimon.runtime import FAULT_KINDS, Fault
 
 from tests._estimators import FakeClock, ScriptedEstimator
@@ -98,15 +98,15 @@ def test_the_missing_signal_fault_is_built_once_not_per_cycle():
 
 
 # ---------------------------------------------------------------- one judge, one limit
-def _loop(spec_text, **kw):
+def _loop(spec_text, config=LoopConfig(period_s=10.0), **kw):
     clock = FakeClock()
     src = AsyncRiskSource(ScriptedEstimator(), text="t", clock=clock, start=False)
     src.poll_once()
-    return GovernedLoop(ethimon.Monitor(_spec(spec_text)), risk=src, clock=clock, period_s=10.0, **kw), clock
+    return GovernedLoop(ethimon.Monitor(_spec(spec_text)), risk=src, clock=clock, config=config, **kw), clock
 
 
 def test_staleness_is_judged_once_by_the_monitor_with_the_loop_limit_as_fallback():
-    loop, clock = _loop(SPEC.replace(", max_age_s: 0.2", ""), max_risk_age_s=0.3)
+    loop, clock = _loop(SPEC.replace(", max_age_s: 0.2", ""), config=LoopConfig(period_s=10.0, max_risk_age_s=0.3))
     assert loop.monitor.max_age_s == 0.3
     assert not loop.cycle({"d": 3.0, "ok": True}).override
     clock.advance(1.0)
@@ -116,7 +116,7 @@ def test_staleness_is_judged_once_by_the_monitor_with_the_loop_limit_as_fallback
 
 
 def test_the_spec_age_limit_wins_over_the_loop_setting():
-    loop, clock = _loop(SPEC, max_risk_age_s=5.0)
+    loop, clock = _loop(SPEC, config=LoopConfig(period_s=10.0, max_risk_age_s=5.0))
     assert loop.monitor.max_age_s == 0.2
     clock.advance(0.3)
     d = loop.cycle({"d": 3.0, "ok": True})
@@ -125,7 +125,7 @@ def test_the_spec_age_limit_wins_over_the_loop_setting():
 
 def test_without_a_risk_source_the_loop_sets_no_age_limit():
     spec = _spec(SPEC.replace(", max_age_s: 0.2", ""))
-    loop = GovernedLoop(ethimon.Monitor(spec), clock=FakeClock(), period_s=10.0, max_risk_age_s=0.3)
+    loop = GovernedLoop(ethimon.Monitor(spec), clock=FakeClock(), config=LoopConfig(period_s=10.0, max_risk_age_s=0.3))
     assert loop.monitor.max_age_s is None
     assert not loop.cycle({"d": 3.0, "ok": True, "p_unsafe": 0.05}).override
 
@@ -135,7 +135,7 @@ def test_probabilities_are_judged_once_by_the_monitor():
     est = ScriptedEstimator(mode="nan")
     src = AsyncRiskSource(est, text="t", clock=clock, start=False)
     assert src.poll_once().fault is None  # the source only reads the output into floats
-    loop = GovernedLoop(ethimon.Monitor(_spec()), risk=src, clock=clock, period_s=10.0)
+    loop = GovernedLoop(ethimon.Monitor(_spec()), risk=src, clock=clock, config=LoopConfig(period_s=10.0))
     d = loop.cycle({"d": 3.0, "ok": True})
     assert [f.kind for f in d.faults] == ["invalid"] and d.faults[0].message.startswith("p contains nan")
     assert loop.stats.risk_faults == 1
@@ -146,7 +146,7 @@ def test_audit_records_fault_messages_and_kinds(tmp_path):
     src = AsyncRiskSource(ScriptedEstimator(), text="t", clock=clock, start=False)
     src.poll_once()
     log = AuditLog(tmp_path / "a.jsonl")
-    loop = GovernedLoop(ethimon.Monitor(_spec()), risk=src, audit=log, clock=clock, period_s=10.0)
+    loop = GovernedLoop(ethimon.Monitor(_spec()), risk=src, audit=log, clock=clock, config=LoopConfig(period_s=10.0))
     loop.cycle({"d": 3.0, "ok": True})
     loop.cycle({"d": 11.0, "ok": True})
     loop.cycle({"d": 12.0, "ok": True})  # same kinds, another number: no new state, no new record

@@ -9,7 +9,7 @@ import pytest
 import ethimon
 from ethimon import Response
 from ethimon.audit import AuditLog, read_log, verify_log
-from ethimon.loop import AsyncRiskSource, GovernedLoop
+from ethimon.loop import AsyncRiskSource, GovernedLoop, LoopConfig
 
 from tests._estimators import FakeClock, ScriptedEstimator, wait_for
 
@@ -38,7 +38,7 @@ def _run(tmp_path, *, estimator=None, signals=GOOD, cycles=3, clock=None, poll=T
             src.poll_once()
     log = AuditLog(tmp_path / "audit.jsonl")
     loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), risk=src, audit=log, clock=clock,
-                        period_s=0.001, **kw)
+                        config=LoopConfig(period_s=0.001), **kw)
     out = []
     for _ in range(cycles):
         clock.advance(0.001)
@@ -91,8 +91,8 @@ def test_estimator_hang_past_deadline_overrides(tmp_path):
     est = ScriptedEstimator(mode="hang")
     src = AsyncRiskSource(est, text="t", rate_hz=50.0, hang_timeout_s=0.05)
     log = AuditLog(tmp_path / "audit.jsonl")
-    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), risk=src, audit=log, period_s=0.001,
-                        deadline_s=1.0)
+    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), risk=src, audit=log,
+                        config=LoopConfig(period_s=0.001, deadline_s=1.0))
     try:
         assert wait_for(lambda: (src.fault or "").startswith("risk estimator hung"))
         d = loop.cycle(GOOD)
@@ -119,7 +119,7 @@ def test_stale_estimate_overrides(tmp_path):
     src.poll_once()
     log = AuditLog(tmp_path / "audit.jsonl")
     loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), risk=src, audit=log, clock=clock,
-                        period_s=1.0)
+                        config=LoopConfig(period_s=1.0))
     assert not loop.cycle(GOOD).override
     clock.advance(0.5)
     d = loop.cycle(GOOD)
@@ -141,7 +141,8 @@ def test_loop_enforces_max_age_when_spec_has_none(tmp_path):
     src = AsyncRiskSource(ScriptedEstimator(), text="t", clock=clock, start=False)
     src.poll_once()
     spec = ethimon.load_spec_text(SPEC.replace(", max_age_s: 0.2", ""))
-    loop = GovernedLoop(ethimon.Monitor(spec), risk=src, clock=clock, period_s=10.0, max_risk_age_s=0.3)
+    loop = GovernedLoop(ethimon.Monitor(spec), risk=src, clock=clock,
+                        config=LoopConfig(period_s=10.0, max_risk_age_s=0.3))
     assert not loop.cycle(GOOD).override
     clock.advance(1.0)
     d = loop.cycle(GOOD)
@@ -193,7 +194,7 @@ def test_simulator_raising_mid_run_overrides(tmp_path):
     src.poll_once()
     log = AuditLog(tmp_path / "audit.jsonl")
     loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), risk=src, signals=sim_step, audit=log,
-                        clock=clock, sleep=clock.advance, period_s=0.001)
+                        clock=clock, sleep=clock.advance, config=LoopConfig(period_s=0.001))
     loop.run(cycles=5)
     log.close()
     assert loop.last_decision.override
@@ -214,7 +215,7 @@ def test_missed_deadline_overrides_and_is_logged(tmp_path):
     src.poll_once()
     log = AuditLog(tmp_path / "audit.jsonl")
     loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), risk=src, signals=slow, audit=log,
-                        clock=clock, period_s=0.001)
+                        clock=clock, config=LoopConfig(period_s=0.001))
     d = loop.cycle()
     assert d.override and d.response is Response.STOP_1
     log.close()
@@ -231,7 +232,7 @@ def test_full_audit_queue_overrides_and_the_drop_is_recorded(tmp_path):
     real = log._write
     log._write = lambda recs, force_sync=False: (gate.wait(5.0), real(recs, force_sync))
     loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), risk=src, audit=log, clock=clock,
-                        period_s=0.001, audit_every_cycle=True)
+                        config=LoopConfig(period_s=0.001, audit_every_cycle=True))
     decisions = []
     for _ in range(10):
         clock.advance(0.001)
@@ -254,8 +255,8 @@ def test_on_decision_callback_raising_overrides_next_cycle(tmp_path):
     def actuator(d):
         raise ConnectionError("franka: communication_constraints_violation")
 
-    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), risk=src, clock=clock, period_s=0.001,
-                        on_decision=actuator)
+    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), risk=src, clock=clock,
+                        on_decision=actuator, config=LoopConfig(period_s=0.001))
     loop.cycle(GOOD)
     clock.advance(0.001)
     d = loop.cycle(GOOD)

@@ -12,7 +12,7 @@ pytest.importorskip("foxglove")
 pytest.importorskip("websockets")
 
 import ethimon  # noqa: E402
-from ethimon.loop import GovernedLoop  # noqa: E402
+from ethimon.loop import GovernedLoop, LoopConfig  # noqa: E402
 from ethimon.view import DECISION, FAULTS, INPUTS, MARGINS, RISK, FoxgloveView, VerdictChannels, parse_address  # noqa: E402
 
 from ._client import FoxgloveClient  # noqa: E402
@@ -54,7 +54,7 @@ def _cycle(client: FoxgloveClient) -> dict[str, dict]:
 
 
 def test_a_protocol_client_sees_named_margins_risk_and_the_latch() -> None:
-    loop = GovernedLoop(ethimon.load_spec_text(SPEC), foxglove=0, period_s=1.0)
+    loop = GovernedLoop(ethimon.load_spec_text(SPEC), foxglove=0, config=LoopConfig(period_s=1.0))
     client = FoxgloveClient(loop.foxglove.url)
     try:
         assert client.ws.subprotocol in ("foxglove.sdk.v1", "foxglove.websocket.v1")
@@ -115,7 +115,7 @@ def test_a_loop_feeds_its_view_once_per_cycle_and_closes_it() -> None:
         def put(self, d, inputs):
             seen.append((d.cycle, inputs.get("speed")))
 
-    loop = GovernedLoop(ethimon.load_spec_text(SPEC), foxglove=Sink(), period_s=1.0)
+    loop = GovernedLoop(ethimon.load_spec_text(SPEC), foxglove=Sink(), config=LoopConfig(period_s=1.0))
     loop.cycle(OK)
     loop.cycle({**OK, "speed": 2.0})
     assert seen == [(0, 0.25), (1, 2.0)]
@@ -126,7 +126,7 @@ def test_a_view_that_raises_fails_closed_on_the_next_cycle() -> None:
         def put(self, d, inputs):
             raise RuntimeError("viewer gone")
 
-    loop = GovernedLoop(ethimon.load_spec_text(SPEC), foxglove=Broken(), period_s=1.0)
+    loop = GovernedLoop(ethimon.load_spec_text(SPEC), foxglove=Broken(), config=LoopConfig(period_s=1.0))
     loop.cycle(OK)
     d = loop.cycle(OK)
     assert d.override and [f.kind for f in d.faults] == ["callback"] and "viewer gone" in d.faults[0].message
@@ -159,7 +159,7 @@ def test_wait_subscribed_settles_until_a_clients_last_subscription() -> None:
     """Regression (CI, stop 35): ``ethimon replay --foxglove`` started after the FIRST channel of a client's
     subscription and published before the second was registered, so the client missed messages. With
     ``settle_s`` the wait lasts until subscriptions stop coming."""
-    loop = GovernedLoop(ethimon.load_spec_text(SPEC), foxglove=0, period_s=1.0)
+    loop = GovernedLoop(ethimon.load_spec_text(SPEC), foxglove=0, config=LoopConfig(period_s=1.0))
     client = FoxgloveClient(loop.foxglove.url)
     try:
         client.handshake(set(TOPICS))

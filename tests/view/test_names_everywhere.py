@@ -9,7 +9,7 @@ import pytest
 
 import ethimon
 from ethimon.audit import AuditLog, read_log
-from ethimon.loop import GovernedLoop
+from ethimon.loop import GovernedLoop, LoopConfig
 
 SPEC = """
 ethimon: 1
@@ -32,7 +32,7 @@ def test_ros2_decision_json_names_the_latched_rules() -> None:
 
 def test_loop_audit_records_name_the_latched_rules(tmp_path) -> None:
     log = AuditLog(tmp_path / "a.jsonl")
-    loop = GovernedLoop(ethimon.load_spec_text(SPEC), audit=log, period_s=1.0)
+    loop = GovernedLoop(ethimon.load_spec_text(SPEC), audit=log, config=LoopConfig(period_s=1.0))
     for a in (2.0, 0.5, 2.0, 2.0, 2.0, 2.0):
         loop.cycle({"a": a, "risk": 0.1})
     log.close()

@@ -1,4 +1,5 @@
-"""The governed control loop: async risk estimator, watchdog, hot spec reload.
+"""The governed control loop: a pacer holding an async risk feed, an acknowledgement gate, a reloader and
+an audit sink, configured by one :class:`LoopConfig`.
 
 The risk estimator is slow (10–50 Hz) and the monitor fast (up to 1 kHz), so
 they run apart: :class:`AsyncRiskSource` runs the estimator in its own thread
@@ -15,9 +16,15 @@ raises; an audit log that is closed, broken, full or behind its lag bounds.
 The one loop::
 
     loop = GovernedLoop(Monitor(load_spec("specs/governor.yaml")), signals=read_sensors,
-                        risk=AsyncRiskSource(load_estimator(), text=task), period_s=0.001,
-                        audit=AuditLog("run.jsonl"))
+                        risk=AsyncRiskSource(load_estimator(), text=task), audit=AuditLog("run.jsonl"),
+                        config=LoopConfig(period_s=0.001))
     loop.run(duration_s=60)      # or call loop.cycle() from your own timer
+
+The parts, each owning its state: the risk feed (``_feed.RiskFeed``: the risk source, the judge and the
+task text they read), the acknowledgement gate (:class:`AckGate`: the requests waiting for the loop
+thread, the restart rules), the reloader (:class:`Reloader`: the pending swap, the recorded inputs) and
+the audit sink (``_sink.AuditSink``: the log, its health, the last logged state). The pacer owns the
+schedule, the counters and the signals seen; it calls each part with what it needs.
 
 A spec is reloaded with :meth:`GovernedLoop.reload`: compiled (and optionally
 verified) in the caller's thread, swapped in between two cycles; an invalid
@@ -41,27 +48,32 @@ boundary), loads its own copy of the model and costs a process start.
 from __future__ import annotations
 
 import math
+import os
 import threading
 import time
-from collections import deque
 from collections.abc import Callable, Mapping
+from concurrent.futures import Future
 from typing import Any
 
-from ..audit import spec_hash
 from ..errors import EthimonError
-from ..runtime import Decision, Fault, Monitor
 from ..language import Spec
-from ._acknowledge import _Acknowledging
+from ..runtime import Acknowledgement, Decision, Fault, Monitor
+from ._acknowledge import AckGate
+from ._config import LoopConfig
+from ._feed import RiskFeed
 from ._process import ProcessEstimator
-from ._reload import ReloadResult, _Reloading, _verify_smt, history_len
+from ._reload import ReloadResult, Reloader
+from ._sink import AuditSink
 from ._source import AsyncJudgeSource, AsyncRiskSource, RiskReading
 from ._stats import LoopStats
 from ._watchdog import Watchdog
 
 __all__ = ["GovernedLoop", "ReloadResult"]
 
+_DEFAULT = LoopConfig()
 
-class GovernedLoop(_Acknowledging, _Reloading):
+
+class GovernedLoop:
     """Steps a :class:`~ethimon.Monitor` at a fixed rate with async risk, a deadline and an audit trail.
 
     Args:
@@ -72,37 +84,16 @@ class GovernedLoop(_Acknowledging, _Reloading):
             source that judges its own inputs: ``ethimon.ros2`` reports stale topics there).
         risk: an :class:`AsyncRiskSource`; each cycle feeds its latest ``p`` and
             ``risk_age_s`` (and drops any ``risk``/``p_unsafe`` keys from the signals).
-            A ``"module:function"`` string (or a :class:`ProcessEstimator`) builds one
-            around an estimator in a **child process** (the recommended form: an
-            estimator in a child cannot freeze the loop by holding the GIL); its task
-            text starts as ``None`` (fail closed) until ``loop.risk.set_text(...)``.
-            Without it, the signals must carry the risk input themselves.
-        risk_kwargs: JSON-ready keyword arguments for a ``risk`` factory string.
-        risk_env: extra environment variables for that child process.
-        period_s: control period (0.001 = 1 kHz).
-        deadline_s: a decision ready later than ``scheduled start + deadline_s`` is a
-            missed deadline, which is a fault (default: ``period_s``).
-        stall_s: a gap longer than this between the end of one cycle and the start
-            of the next (the loop, or the whole interpreter, was frozen) is a stall:
-            the resuming cycle overrides and ``stats.stalls`` counts it (default:
-            ``period_s + deadline_s``).
-        max_risk_age_s: oldest usable estimate when the spec has no ``risk.max_age_s``
-            (and the monitor was not built with its own ``max_age_s``): the loop sets it on
-            the monitor, which alone judges the age, with one limit (see
-            :attr:`~ethimon.Monitor.max_age_s`). ``None``: no limit here. Used only with a
-            ``risk`` source.
+            A ``"module:function"`` string (or a :class:`ProcessEstimator`, which also takes the
+            factory's JSON arguments and environment) builds one around an estimator in a
+            **child process** (the recommended form: an estimator in a child cannot freeze the loop
+            by holding the GIL); its task text starts as ``None`` (fail closed) until
+            ``loop.risk.set_text(...)``. Without it, the signals must carry the risk input themselves.
         audit: an :class:`~ethimon.audit.AuditLog`; state changes are always logged.
             Every cycle overrides while the log is unusable (its ``fault``: closed,
             writer failed or dead, writer behind its lag bounds) or refused a record.
-        audit_every_cycle: log every cycle, not just state changes.
-        verify: check run on a reloaded spec before the swap: a callable
-            ``verify(spec)`` (raising or returning ``False`` rejects it), or ``"smt"``
-            for :func:`ethimon.verify.verify_spec` (z3; any refuted or unproved
-            property rejects the spec). ``None``: compile only.
-        watchdog_s: if set, a :class:`Watchdog` thread calls ``on_stall`` (and logs a
-            fault) when no cycle completes for this long.
-        on_stall: the watchdog callback (e.g. trigger the hardware stop).
-        on_decision: called with each cycle's decision (keep it quick).
+        config: a :class:`LoopConfig`: period, deadline, stall limit, risk age, watchdog, audit of every
+            cycle, the clearance a manual reset needs, the check a reloaded spec must pass.
         judge: the judge tier (``risk.judge``, ``risk.confirm_threshold``): ``"spec"`` (default) builds a
             :class:`~ethimon.risk.Judge` from the spec's ``risk.judge`` when it has one and there is a
             ``risk`` source; a :class:`~ethimon.risk.Judge` or an :class:`AsyncJudgeSource`; ``None``: no
@@ -111,8 +102,8 @@ class GovernedLoop(_Acknowledging, _Reloading):
             judgement, so in the band the arm holds. Each cycle feeds ``judge`` (its p_unsafe) and
             ``task_id`` (the text's sha256, to which an operator's confirmation is bound); every judge
             answer is a ``judge`` audit record (hash, model, verdict, latency, status; never the key).
-        clock: time source in seconds (``time.perf_counter``; inject one in tests).
-        sleep: how :meth:`run` waits (``time.sleep``).
+        on_stall: the watchdog callback (``config.watchdog_s``; e.g. trigger the hardware stop).
+        on_decision: called with each cycle's decision (keep it quick).
         foxglove: a live Foxglove view of every cycle (decision, margins by rule, R_e against τ and
             τ_confirm, the judge/confirm state, every input; the ``--mcap`` file's channels):
             ``"[HOST:]PORT"`` or a port (``0``: a free one) starts a
@@ -120,16 +111,21 @@ class GovernedLoop(_Acknowledging, _Reloading):
             :meth:`stop`), or pass your own (any object with ``put(decision, inputs)``). It is fed once
             per cycle without blocking: a bounded queue whose oldest cycle is dropped, and counted, when
             a viewer falls behind. ``pip install 'ethimon[foxglove]'``.
+        clock: time source in seconds (``time.perf_counter``; inject one in tests).
+        sleep: how :meth:`run` waits (``time.sleep``).
+        reloader: the :class:`Reloader` to use (default: one built from ``config.verify``).
+        gate: the :class:`AckGate` to use (default: one built from ``config.acknowledge_clear``).
 
     Example:
         >>> import ethimon
+        >>> from ethimon.loop import LoopConfig
         >>> spec = ethimon.load_spec_text("{ethimon: 1, name: demo}")
         >>> class Fixed:
         ...     def probs(self, text):
         ...         return (0.95, 0.05)
         >>> src = AsyncRiskSource(Fixed(), text="wipe the table", start=False)
         >>> _ = src.poll_once()
-        >>> loop = GovernedLoop(ethimon.Monitor(spec), risk=src, period_s=1.0)
+        >>> loop = GovernedLoop(ethimon.Monitor(spec), risk=src, config=LoopConfig(period_s=1.0))
         >>> loop.cycle({}).override
         False
         >>> src.set_text("new task")      # no estimate for it yet: the pending hold (stop 2)
@@ -138,78 +134,47 @@ class GovernedLoop(_Acknowledging, _Reloading):
     """
 
     def __init__(self, monitor: Monitor | Spec, *, signals: Callable[[], Mapping[str, Any]] | None = None,
-                 risk: AsyncRiskSource | ProcessEstimator | str | None = None,
-                 risk_kwargs: Mapping[str, Any] | None = None, risk_env: Mapping[str, str] | None = None,
-                 period_s: float = 0.001, deadline_s: float | None = None, stall_s: float | None = None,
-                 max_risk_age_s: float | None = 0.5, audit: Any = None, audit_every_cycle: bool = False,
-                 verify: Callable[[Spec], Any] | str | None = None, watchdog_s: float | None = None,
+                 risk: AsyncRiskSource | ProcessEstimator | str | None = None, audit: Any = None,
+                 config: LoopConfig = _DEFAULT, judge: Any = "spec",
                  on_stall: Callable[[str], None] | None = None,
-                 on_decision: Callable[[Decision], None] | None = None,
+                 on_decision: Callable[[Decision], None] | None = None, foxglove: Any = None,
                  clock: Callable[[], float] = time.perf_counter, sleep: Callable[[float], None] = time.sleep,
-                 judge: Any = "spec", acknowledge_clear: tuple[str, float] | None = None,
-                 foxglove: Any = None) -> None:
+                 reloader: Reloader | None = None, gate: AckGate | None = None) -> None:
         if isinstance(monitor, Spec):
             monitor = Monitor(monitor)
         if not isinstance(monitor, Monitor):
             raise TypeError(f"GovernedLoop needs a Monitor or a Spec, got {type(monitor).__name__}")
-        if not (isinstance(period_s, (int, float)) and period_s > 0 and math.isfinite(period_s)):
-            raise ValueError(f"period_s={period_s!r}; expected a positive number of seconds")
+        if not isinstance(config, LoopConfig):
+            raise TypeError(f"config must be a LoopConfig (ethimon.loop.LoopConfig), got {type(config).__name__}")
+        if reloader is not None and config.verify is not None:
+            raise ValueError("config.verify and reloader= both given: set verify on the Reloader, or drop reloader=")
+        if gate is not None and config.acknowledge_clear is not None:
+            raise ValueError("config.acknowledge_clear and gate= both given: set clear on the AckGate, or drop gate=")
+        #: the settings this loop runs with
+        self.config = config
         self.monitor = monitor
-        self.period_s = float(period_s)
-        self.deadline_s = float(deadline_s) if deadline_s is not None else self.period_s
-        if not self.deadline_s > 0:
-            raise ValueError(f"deadline_s={deadline_s!r}; expected > 0")
-        self.stall_s = float(stall_s) if stall_s is not None else self.period_s + self.deadline_s
-        if not self.stall_s > 0:
-            raise ValueError(f"stall_s={stall_s!r}; expected > 0")
-        self.max_risk_age_s = max_risk_age_s
-        if isinstance(risk, str):
-            risk = ProcessEstimator(risk, risk_kwargs, env=risk_env)
-        elif risk_kwargs is not None or risk_env is not None:
-            raise ValueError("risk_kwargs/risk_env need risk='module:function'")
-        if isinstance(risk, ProcessEstimator):
-            risk = AsyncRiskSource(risk, text=None)
-        if risk is not None and not callable(getattr(risk, "snapshot", None)):
-            raise TypeError(f"risk must be an AsyncRiskSource, a ProcessEstimator or 'module:function', "
-                            f"got {type(risk).__name__}")
-        self.risk = risk
-        self._judge_from_spec = isinstance(judge, str)
-        if isinstance(judge, str):
+        self.period_s = float(config.period_s)
+        self.deadline_s = config.deadline
+        self.stall_s = config.stall
+        self.stats = LoopStats()
+        #: the audit sink (the log: :attr:`audit`)
+        self._sink = AuditSink(audit, config.audit_every_cycle, self.stats)
+        #: the risk feed (``None``: the signals carry the risk input)
+        self._feed: RiskFeed | None = None
+        if risk is not None:
+            self._feed = RiskFeed(risk, judge, monitor, config.max_risk_age_s)
+        elif isinstance(judge, str):
             if judge != "spec":
                 raise ValueError(f"judge={judge!r}; expected 'spec', None, a Judge or an AsyncJudgeSource")
-            judge = None
-            if risk is not None and monitor.plan.risk.judge_list:  # risk.judge or risk.judges
-                from ..risk import load_judge_for
-                judge = load_judge_for(monitor.spec)
-        if judge is not None and not isinstance(judge, AsyncJudgeSource):
-            judge = AsyncJudgeSource(judge)
-        if judge is not None and risk is None:
+        elif judge is not None:
             raise ValueError("a judge needs a risk source (its task text is what the judge reads)")
-        #: the judge tier's source (:class:`AsyncJudgeSource`), or ``None``
-        self.judge: AsyncJudgeSource | None = judge
-        self._task_text: str | None = None
-        self._task_key: str | None = None
-        self.audit = audit
-        self.audit_every_cycle = bool(audit_every_cycle)
-        self.stats = LoopStats()
+        self._gate = gate if gate is not None else AckGate(config.acknowledge_clear)
+        self._gate.check(monitor.spec)
+        self._reloader = reloader if reloader is not None else Reloader(config.verify)
+        self._reloader.track(monitor.plan)
         self.last_decision: Decision | None = None
         self._last_inputs: Mapping[str, Any] = {}
-        if acknowledge_clear is not None:
-            ok = (isinstance(acknowledge_clear, tuple) and len(acknowledge_clear) == 2
-                  and isinstance(acknowledge_clear[0], str) and acknowledge_clear[0] in monitor.spec.signals
-                  and isinstance(acknowledge_clear[1], (int, float)) and not isinstance(acknowledge_clear[1], bool)
-                  and math.isfinite(acknowledge_clear[1]) and acknowledge_clear[1] >= 0)
-            if not ok:
-                raise ValueError(f"acknowledge_clear={acknowledge_clear!r}; expected (signal of the spec, minimum "
-                                 f">= 0), e.g. ('human_distance', 1.5): the protective distance a manual reset needs")
-        #: (signal, minimum): a manual reset is refused while that reading is missing or below it
-        self.acknowledge_clear = acknowledge_clear
         self._signals = signals
-        if verify == "smt":
-            verify = _verify_smt
-        elif verify is not None and not callable(verify):
-            raise ValueError(f"verify={verify!r}; expected None, 'smt' or a callable verify(spec)")
-        self._verify = verify
         self._on_decision = on_decision
         #: the live Foxglove view fed each cycle (``None``: none); ``_own_view``: this loop started it
         self.foxglove: Any = None
@@ -222,55 +187,72 @@ class GovernedLoop(_Acknowledging, _Reloading):
         self._clock = clock
         self._sleep = sleep
         self._next: float | None = None  # scheduled start of the next cycle
-        self._pending: tuple[Monitor, ReloadResult, str] | None = None
-        #: operator acknowledgements waiting for the loop thread: [operator, reason, done event, answer]
-        self._acks: list[list[Any]] = []
-        self._acks_lock = threading.Lock()
         self._running = False
-        self._reload_lock = threading.Lock()
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
-        self._state_key: tuple | None = None
-        self._audit_failed = False
         self._stall_reason: Fault | None = None
         self._last_end: float | None = None  # end of the previous cycle (stall detection)
-        self._spec_hash_fn = spec_hash
-        self.spec_sha256 = spec_hash(monitor.spec)
-        # staleness is judged by the monitor alone, with one limit: the spec's risk.max_age_s, else
-        # the monitor's own max_age_s, else (with a risk source) this loop's max_risk_age_s
-        self._age_fallback: float | None = None
-        if risk is not None:
-            own = monitor.max_age_s if monitor.plan.risk.max_age_s is None else None
-            self._age_fallback = own if own is not None else max_risk_age_s
-            if monitor.max_age_s is None and self._age_fallback is not None:
-                monitor.set_max_age(self._age_fallback)
+        self.spec_sha256 = self._reloader.spec_hash(monitor.spec)
         self._ids = monitor.obligation_ids
-        #: the signals not seen yet since the start (awaited: a pending hold, see _await_signals)
+        #: the signals not seen yet since the start (awaited: a pending hold, see _gone)
         self._signal_names = tuple(monitor.spec.signals)
         self._unseen = set(self._signal_names)
-        self._latch_t: dict[int, float] = {}
-        self._history: deque = deque(maxlen=history_len(monitor.plan))  # the last cycles' inputs  # monitor cycle -> wall time, for cycles that set a latch
-        #: why acknowledgements cannot reach this loop's monitor (``None``: they can); a node without
-        #: authentication sets it (``holding()`` then says that only a person at the loop can release)
-        self.acknowledge_refused: str | None = None
+        self._latch_t: dict[int, float] = {}  # monitor cycle -> wall time, for cycles that set a latch
         self.watchdog: Watchdog | None = None
-        if watchdog_s is not None:
-            self.watchdog = Watchdog(watchdog_s, self._stalled)
-            self._user_on_stall = on_stall
-        isolation = None
-        if risk is not None:
-            isolation = "process" if getattr(risk, "isolated", False) else "thread"
-        self.estimator_isolation = isolation
-        self._log("start", spec=monitor.spec.name, spec_sha256=self.spec_sha256,
-                  model_id=risk.model_id if risk is not None else None, period_s=self.period_s,
-                  deadline_s=self.deadline_s, stall_s=self.stall_s, obligations=list(self._ids),
-                  estimator_isolation=isolation)
+        self._user_on_stall = on_stall
+        if config.watchdog_s is not None:
+            self.watchdog = Watchdog(config.watchdog_s, self._stalled)
+        feed = self._feed
+        #: ``"process"``, ``"thread"`` or ``None`` (no risk source): where the estimator runs
+        self.estimator_isolation = feed.isolation if feed is not None else None
+        self._sink.append("start", spec=monitor.spec.name, spec_sha256=self.spec_sha256,
+                          model_id=feed.model_id if feed is not None else None, period_s=self.period_s,
+                          deadline_s=self.deadline_s, stall_s=self.stall_s, obligations=list(self._ids),
+                          estimator_isolation=self.estimator_isolation)
 
-    # ------------------------------------------------------------------ properties
+    # ------------------------------------------------------------------ the parts, read by name
     @property
     def spec(self) -> Spec:
         """The spec running now."""
         return self.monitor.spec
+
+    @property
+    def risk(self) -> AsyncRiskSource | None:
+        """The risk source (``None``: the signals carry the risk input)."""
+        return self._feed.risk if self._feed is not None else None
+
+    @property
+    def judge(self) -> AsyncJudgeSource | None:
+        """The judge tier's source (:class:`AsyncJudgeSource`), or ``None``."""
+        return self._feed.judge if self._feed is not None else None
+
+    @property
+    def audit(self) -> Any:
+        """The audit log (``None``: none)."""
+        return self._sink.log
+
+    @property
+    def max_risk_age_s(self) -> float | None:
+        return self.config.max_risk_age_s
+
+    @property
+    def audit_every_cycle(self) -> bool:
+        return self._sink.every_cycle
+
+    @property
+    def acknowledge_clear(self) -> tuple[str, float] | None:
+        """(signal, minimum): a manual reset is refused while that reading is missing or below it."""
+        return self._gate.clear
+
+    @property
+    def acknowledge_refused(self) -> str | None:
+        """Why acknowledgements cannot reach this loop's monitor (``None``: they can); a node without
+        authentication sets it (:meth:`holding` then says that only a person at the loop can release)."""
+        return self._gate.refused
+
+    @acknowledge_refused.setter
+    def acknowledge_refused(self, why: str | None) -> None:
+        self._gate.refused = why
 
     def holding(self, acknowledge_refused: str | None = None) -> list[dict]:
         """What holds the arm now: :meth:`Monitor.holding <ethimon.Monitor.holding>` (one dict per latched
@@ -283,7 +265,8 @@ class GovernedLoop(_Acknowledging, _Reloading):
                 released by ``"person"`` (at the loop: an authenticated acknowledgement or a restart), and its
                 ``how`` says why.
         """
-        refused = acknowledge_refused if acknowledge_refused is not None else self.acknowledge_refused
+        gate = self._gate
+        refused = acknowledge_refused if acknowledge_refused is not None else gate.refused
         out = []
         times = self._latch_t
         for h in self.monitor.holding():
@@ -293,9 +276,9 @@ class GovernedLoop(_Acknowledging, _Reloading):
                 h["release"] = "person"
                 h["how"] += f"; acknowledgements are refused here ({refused}): only a person at the loop releases it"
             out.append(h)
-        if self._awaiting_start is not None:  # after the monitor's own latches (most severe first)
-            h = self._restart_holding()
-            h["since_t_unix"] = times.get(self._awaiting_start)
+        if gate.awaiting_start is not None:  # after the monitor's own latches (most severe first)
+            h = gate.holding(self.monitor.spec)
+            h["since_t_unix"] = times.get(gate.awaiting_start)
             h["acknowledge_allowed"] = False
             out.append(h)
         return out
@@ -305,6 +288,173 @@ class GovernedLoop(_Acknowledging, _Reloading):
         """:meth:`holding` in one line for a person ("" when the arm is free)."""
         return "; ".join(f"{h['rule']} ({h['response']}) since cycle {h['since_cycle']}, released {h['how']}"
                          for h in self.holding())
+
+    # ------------------------------------------------------------------ operator release (the gate)
+    def acknowledge(self, operator: str, *, reason: str = "", timeout_s: float = 2.0,
+                    task_sha256: str | None = None) -> Acknowledgement:
+        """An operator's acknowledgement of the manual latches, checked and audited.
+
+        :meth:`Monitor.acknowledge` through the loop: while :meth:`run` drives the
+        monitor in another thread, the request is applied by the loop thread
+        between two cycles (never during a step) and this call waits up to
+        ``timeout_s`` for it; otherwise it is applied now. The monitor refuses it
+        (releases nothing) while a manual rule has not held its release condition
+        for its ``hold_cycles``. Every request, accepted or refused, is an
+        ``acknowledge`` record in the audit log (operator, reason, result,
+        monitor cycle); a request is refused without touching the monitor while
+        the audit log reports a fault, so no release goes unrecorded. With a spec ``restart:`` block,
+        also refused while its ``standstill`` input was false or missing on the last cycle (the stop has
+        not completed), and an accepted one starts nothing: the loop holds until :meth:`start_motion`
+        or the spec's start input rises.
+
+        Args:
+            operator: who acknowledges (a name or badge id; required).
+            reason: why, in the operator's words (kept in the audit log).
+            timeout_s: how long to wait for a running loop to apply it.
+            task_sha256: the sha256 of the task text the operator was shown (``ethimon.risk.text_sha256``).
+                While the confirm band holds, a confirmation naming another text than the one the loop
+                holds when it applies the request (the planner replaced it meanwhile) is refused.
+                ``None``: the text held then is confirmed (the audit record names it).
+
+        Returns:
+            The :class:`~ethimon.runtime.Acknowledgement`; refused if the loop did
+            not apply it within ``timeout_s``.
+        """
+        return self._submit(AckGate.request(operator, reason, task_sha256, "acknowledge"), timeout_s)
+
+    def start_motion(self, operator: str, *, reason: str = "", timeout_s: float = 2.0) -> Acknowledgement:
+        """The separate start after an accepted acknowledgement (a spec ``restart: {start: command}``).
+
+        With a spec ``restart:`` block an accepted acknowledgement of a manual latch is a reset that
+        never starts motion: every cycle after it overrides (at least stop 2; ``"restart"`` among the
+        decision's ``latched_rules``, its reason in :meth:`holding` and ``Decision.reasons``) until this
+        start, or the rising edge of the spec's start input (``restart: {start: <bool input>}``; the
+        edge is taken at the next cycle, as this call is). Refused, and not remembered, while no
+        acknowledged stop waits for a start, while the last cycle's monitor decision overrides (a rule
+        fires or holds, a fault) or, with ``acknowledge_clear``, a person is inside the protective
+        distance, and while the audit log cannot record it. Applied between two cycles like
+        :meth:`acknowledge`, audited as a ``start_motion`` record; motion resumes from the next cycle.
+
+        Returns:
+            The :class:`~ethimon.runtime.Acknowledgement` (``released``: started; ``message`` says why not).
+        """
+        return self._submit(AckGate.request(operator, reason, None, "start"), timeout_s)
+
+    def _submit(self, req: Any, timeout_s: float) -> Acknowledgement:
+        t = self._thread
+        if self._running and t is not None and t is not threading.current_thread():
+            return self._gate.wait(req, timeout_s)
+        self._ack_now(req)
+        return req.answer
+
+    def _apply_acks(self) -> None:
+        for req in self._gate.take():
+            self._ack_now(req)
+
+    def _ack_now(self, req: Any) -> None:
+        """Apply one request to the monitor (in the loop thread, between two cycles)."""
+        self._gate.apply(req, self.monitor, self.last_decision, self._last_inputs, self._sink, self._feed,
+                         self.stats.cycles, self._latch_t)
+
+    # ------------------------------------------------------------------ reload (the reloader)
+    def reload(self, source: str | os.PathLike | Spec, *, allow_weaker: bool = False) -> ReloadResult:
+        """Compile (and verify) a new spec in the calling thread, then swap it in between cycles.
+
+        Trust model: whoever can call ``reload`` can change what is monitored,
+        but not *silently weaken* it. A spec that weakens monitoring compared
+        with the running one (see :func:`weakenings`: an obligation removed, τ
+        raised, the release made easier, a response or ``on_fault`` made less
+        severe, ``max_age_s`` removed or raised, a signal range widened, ...) is
+        refused unless ``allow_weaker=True``; the refusal and an allowed
+        weakening are both recorded in the audit log with the list of
+        weakenings. A change whose direction cannot be told field by field (the
+        text of a condition beyond whitespace, a constant's value, a signal's
+        type, the safe pose's joints, the estimator settings) counts as a
+        possible weakening: refused the same way, listed with
+        "cannot tell whether this change weakens monitoring" (and in ``unjudged``).
+
+        Latches are carried by identity: every rule latched in the running monitor
+        when the swap happens is latched in the new one (a manual rule stays latched
+        until acknowledged there; every release count restarts). That needs the rule
+        in the new spec with the same id, response and release (mode, ``hold_cycles``;
+        for the risk rule its bound τ − δ too); a reload that cannot map a latched
+        rule is refused (also with ``allow_weaker=True``), here or, if the rule latched
+        meanwhile, at the swap (``ok`` turns ``False``; the audit log says why), and
+        the running spec stays.
+
+        Args:
+            source: a spec file path, or a loaded :class:`~ethimon.Spec`.
+            allow_weaker: accept a spec that weakens monitoring (a deliberate,
+                recorded decision).
+
+        Returns:
+            A :class:`ReloadResult`. Rejected (``ok=False``, old spec keeps
+            running) if it does not load, compile or verify, or weakens
+            monitoring without ``allow_weaker``. Both outcomes are recorded in
+            the audit log, and so is the swap itself.
+        """
+        fallback = self._feed.age_fallback if self._feed is not None else None
+        res, new = self._reloader.prepare(self.monitor, source, allow_weaker, fallback)
+        weak, unjudged = list(res.weakened), list(res.unjudged)
+        if new is None:
+            self.stats.reloads_rejected += 1
+            self._sink.append("reload", status="rejected", source=res.source, error=res.error,
+                              running_spec_sha256=self.spec_sha256, weakened=weak, unjudged=unjudged)
+            return res
+        old = self._reloader.queue(new, res)
+        if old is not None:
+            self._sink.append("reload", status="superseded", source=old[2], spec_sha256=old[1].spec_sha256)
+        self._sink.append("reload", status="accepted", source=res.source, spec_sha256=res.spec_sha256,
+                          running_spec_sha256=self.spec_sha256, allow_weaker=bool(allow_weaker), weakened=weak,
+                          unjudged=unjudged)
+        return res
+
+    def reload_async(self, source: str | os.PathLike | Spec, *, allow_weaker: bool = False) -> Future:
+        """:meth:`reload` in a helper thread; the future's result is the :class:`ReloadResult`."""
+        fut: Future = Future()
+
+        def work() -> None:
+            try:
+                fut.set_result(self.reload(source, allow_weaker=allow_weaker))
+            except BaseException as exc:  # pragma: no cover - reload() catches everything
+                fut.set_exception(exc)
+
+        threading.Thread(target=work, name="ethimon-reload", daemon=True).start()
+        return fut
+
+    def _apply_reload(self) -> None:
+        """Swap a pending spec in (the loop thread, before a cycle), or refuse it at the swap."""
+        pending = self._reloader.take()
+        if pending is None:
+            return
+        new, res, label = pending
+        old = self.monitor
+        latched = old.latched_rules
+        error, _ = self._reloader.carry(old, new)
+        sink = self._sink
+        if error:
+            res.ok = False
+            res.error = error[:4000]
+            self.stats.reloads_rejected += 1
+            sink.append("reload", status="rejected", stage="swap", source=label, spec_sha256=res.spec_sha256,
+                        error=res.error, running_spec_sha256=self.spec_sha256, latched=list(latched),
+                        loop_cycle=self.stats.cycles)
+            res.settled.set()
+            return
+        self.monitor = new
+        self._reloader.track(new.plan)
+        old_hash, self.spec_sha256 = self.spec_sha256, res.spec_sha256
+        self._ids = new.obligation_ids
+        sink.state_key = None
+        if self._feed is not None:
+            self._feed.swap(old, new)
+        self.stats.reloads_applied += 1
+        res.applied_at_cycle = self.stats.cycles
+        sink.append("reload", status="applied", source=label, spec_sha256=res.spec_sha256,
+                    previous_spec_sha256=old_hash, loop_cycle=self.stats.cycles, carried_latch=bool(latched),
+                    carried_rules=list(latched))
+        res.applied.set()
+        res.settled.set()
 
     # ------------------------------------------------------------------ one cycle
     def cycle(self, signals: Mapping[str, Any] | None = None) -> Decision:
@@ -319,12 +469,14 @@ class GovernedLoop(_Acknowledging, _Reloading):
         clock = self._clock
         now = clock()
         sched = self._next if self._next is not None else now
-        if self._pending is not None:
+        if self._reloader.pending is not None:
             self._apply_reload()
-        if self._acks:
+        gate = self._gate
+        if gate.queue:
             self._apply_acks()
         m = self.monitor
         st = self.stats
+        sink = self._sink
         reasons: list[Fault] = []
         if self.watchdog is not None:
             # a stall its thread could not report (it was frozen too) fires now, into this cycle
@@ -338,7 +490,7 @@ class GovernedLoop(_Acknowledging, _Reloading):
                 reasons.append(Fault("stall", f"control loop stalled for {gap * 1e3:.1f} ms before cycle "
                                      f"{st.cycles} (stall_s {self.stall_s * 1e3:g} ms): no decision was made "
                                      "meanwhile"))
-        afault = self._audit_health()
+        afault = sink.health()
         if afault:
             reasons.append(Fault("audit", afault))
             st.audit_faults += 1
@@ -355,44 +507,20 @@ class GovernedLoop(_Acknowledging, _Reloading):
             reasons.append(Fault("signals", f"signal source raised {type(exc).__name__}: {exc}"[:300]))
             inputs = {}
         reading = None
-        if self.risk is not None:
-            text = None
-            try:
-                # the text read before and after the estimate: a set_text() in between (the planner's
-                # thread) would pair one text's R_e with another text's judge verdict and task_id
-                text = self.risk.text
-                reading = self.risk.snapshot()
-                if reading.fault is None and self.risk.text is not text:
-                    reading = RiskReading(None, math.inf, "the task text changed while its estimate was read",
-                                          reading.count)
-            except Exception as exc:  # noqa: BLE001
-                reading = RiskReading(None, math.inf, f"risk source failed: {type(exc).__name__}: {exc}", 0)
-            inputs.pop("risk", None)
-            inputs.pop("p_unsafe", None)
-            inputs.pop("pending_s", None)  # the loop owns it: what it awaits
-            if reading.fault is None:
-                inputs["p"] = reading.probs  # judged by the monitor (one rule for every risk input)
-                inputs["risk_age_s"] = reading.age_s  # judged by the monitor (one age limit)
-            else:
-                inputs.pop("p", None)
-                inputs.pop("risk_age_s", None)
-                if reading.pending_s is not None and not self._gone(inputs):
-                    inputs["pending_s"] = reading.pending_s  # awaited: the monitor holds (stop 2) or fails closed
-                else:
-                    reasons.append(Fault("estimator", reading.fault))
-            if self.judge is not None or m.plan.risk.confirm_threshold is not None:
-                self._tier_inputs(inputs, text)
+        feed = self._feed
+        if feed is not None:
+            reading = feed.read(inputs, m, reasons, self._gone, sink, st.cycles)
         if self._unseen and "pending_s" not in inputs and not self._gone(inputs):
             inputs["pending_s"] = 0.0  # a signal not seen since the start: awaited, no limit
         d = m.step(inputs)
-        self._history.append(inputs)  # a reload rebuilds the new monitor's temporal history from these
+        self._reloader.record(inputs)  # a reload rebuilds the new monitor's temporal history from these
         self._last_inputs = inputs
         if self._stall_reason is not None:
             reasons.append(self._stall_reason)
             self._stall_reason = None
-        if self._audit_failed:
+        if sink.failed:
             reasons.append(Fault("audit", f"audit log failed or its queue is full, or its writer is behind its "
-                                 f"lag bounds ({self.stats.audit_drops} records refused)"))
+                                 f"lag bounds ({st.audit_drops} records refused)"))
         end = clock()
         late = end - sched
         if late > self.deadline_s:
@@ -402,8 +530,8 @@ class GovernedLoop(_Acknowledging, _Reloading):
             self.stats.deadline_misses += 1
         if reasons:
             d = m.fault(*reasons, decision=d)
-        if self._awaiting_start is not None:  # an acknowledged stop waits for the spec's start (restart:)
-            d = self._restart_hold(d, inputs)
+        if gate.awaiting_start is not None:  # an acknowledged stop waits for the spec's start (restart:)
+            d = gate.hold(d, inputs, m.spec)
         st.cycles += 1
         if end - now > st.max_cycle_s:
             st.max_cycle_s = end - now
@@ -433,8 +561,9 @@ class GovernedLoop(_Acknowledging, _Reloading):
             st.skipped_slots += k - 1
             nxt = sched + k * P
         self._next = nxt
-        if self.audit is not None:
-            self._audit(d, inputs, reading)
+        if sink.log is not None:
+            sink.decision(d, inputs, reading, self._ids, self.spec_sha256,
+                          feed.model_id if feed is not None else None)
         self._last_end = clock()
         self.last_decision = d
         if self._on_decision is not None:
@@ -471,73 +600,6 @@ class GovernedLoop(_Acknowledging, _Reloading):
                 del times[c]
         times[cycle] = time.time()
 
-    def _tier_inputs(self, inputs: dict, text: str | None) -> None:
-        """``task_id`` (the hash of ``text``, the task text this cycle's estimate is for) and the judge's
-        answer for it (asked once per text)."""
-        if text is not self._task_text:
-            self._task_text = text
-            self._task_key = None if text is None else AsyncJudgeSource.key(text)
-            if self.judge is not None:
-                self.judge.ask(text, self._task_key)
-        inputs["task_id"] = self._task_key  # the loop owns these two inputs
-        j = self.judge
-        if j is None:
-            inputs.pop("judge", None)
-            return
-        jr = j.result(text, self._task_key) if text is not None else None
-        inputs["judge"] = jr.p_unsafe if jr is not None else None
-        if j._log:  # unlocked peek; drain() takes the lock
-            for res in j.drain():
-                self._log("judge", loop_cycle=self.stats.cycles, **res.audit_fields())
-
-    def _audit(self, d: Decision, inputs: dict, reading: RiskReading | None) -> None:
-        key = (d.override, d.response, d.violations, tuple((f.kind, f.subject) for f in d.faults) if d.faults else (),
-               d.latched_rules)  # a rule released while another holds the override is a change too
-        if not self.audit_every_cycle and key == self._state_key:
-            return
-        prev = self._state_key
-        self._state_key = key
-        event = "cycle"
-        if prev is None or prev[0] != d.override:
-            event = "override_on" if d.override else "override_off"
-        elif key != prev:
-            event = "change"
-        ok = self._log("decision", event=event, loop_cycle=self.stats.cycles - 1, cycle=d.cycle,
-                       override=d.override, response=d.response.value, violations=list(d.violations),
-                       faults=[f.message for f in d.faults], fault_kinds=[f.kind for f in d.faults],
-                       latched=d.latched, latched_rules=list(d.latched_rules), risk=d.risk,
-                       margins=dict(zip(self._ids, d.margins)) if d.margins else {},
-                       inputs=inputs, risk_age_s=reading.age_s if reading is not None else None,
-                       spec_sha256=self.spec_sha256,
-                       model_id=self.risk.model_id if self.risk is not None else None)
-        if not ok:
-            self._state_key = None  # log the state again once the queue has room
-
-    def _audit_health(self) -> str | None:
-        """What the audit log reports as its fault (its ``fault`` text), or ``None`` when healthy or absent."""
-        if self.audit is None:
-            return None
-        try:
-            afault = getattr(self.audit, "fault", None)
-        except Exception as exc:  # noqa: BLE001 - a broken log is a fault, not a crash
-            return f"audit log health check raised {type(exc).__name__}: {exc}"[:300]
-        return afault if isinstance(afault, str) and afault else None
-
-    def _log(self, kind: str, **fields: Any) -> bool:
-        if self.audit is None:
-            return True
-        try:
-            ok = bool(self.audit.append(kind, **fields))
-        except Exception:  # noqa: BLE001 - a broken log is a fault, not a crash
-            ok = False
-        if ok:
-            self.stats.audit_records += 1
-            self._audit_failed = False
-        else:
-            self.stats.audit_drops += 1
-            self._audit_failed = True
-        return ok
-
     # ------------------------------------------------------------------ running
     def run(self, duration_s: float | None = None, *, cycles: int | None = None) -> LoopStats:
         """Run cycles at ``period_s`` until ``duration_s``, ``cycles`` or :meth:`stop`.
@@ -573,7 +635,7 @@ class GovernedLoop(_Acknowledging, _Reloading):
                 self.stats.held_by = f"? ({type(exc).__name__})"
             if self.watchdog is not None:
                 self.watchdog.stop()
-            if self._acks:
+            if self._gate.queue:
                 self._apply_acks()  # nobody waits forever for a loop that has ended
         return self.stats
 
@@ -596,12 +658,11 @@ class GovernedLoop(_Acknowledging, _Reloading):
 
     def _stalled(self, reason: str) -> None:
         self._stall_reason = Fault("stall", reason)
-        self._log("fault", reason=reason, source="watchdog")
-        cb = getattr(self, "_user_on_stall", None)
+        self._sink.append("fault", reason=reason, source="watchdog")
+        cb = self._user_on_stall
         if cb is not None:
             cb(reason)
 
-    # acknowledge: loop/_acknowledge.py; reload: loop/_reload.py
     def __repr__(self) -> str:
         return (f"GovernedLoop(spec={self.spec.name!r}, period_s={self.period_s:g}, "
                 f"cycles={self.stats.cycles}, misses={self.stats.deadline_misses})")

@@ -1,25 +1,27 @@
-"""Hot spec reload of a :class:`~ethimon.loop.GovernedLoop`: compiled (and verified) in the caller's
+"""The reloader of a :class:`~ethimon.loop.GovernedLoop`: a new spec compiled (and verified) in the caller's
 thread, refused if it weakens monitoring or cannot carry a latch or a due response, swapped in between
-two cycles; its outcome is a :class:`ReloadResult`."""
+two cycles; its outcome is a :class:`ReloadResult`. :class:`Reloader` owns the pending swap and the
+recorded inputs a new monitor's temporal history is rebuilt from."""
 
 from __future__ import annotations
 
 import os
 import threading
 from collections import deque
-from concurrent.futures import Future
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 from .._api import load_spec
+from ..audit import spec_hash
 from ..compiler import Plan
 from ..language._expr import TEMPORAL, Call, walk  # the names and windows a reloaded obligation reads
 from ..errors import EthimonError
 from ..runtime import Monitor
 from ..language import Spec
-from ._source import AsyncJudgeSource
 from ._weakenings import unmapped_latches, weakenings
 
-__all__ = ["ReloadResult"]
+__all__ = ["ReloadResult", "Reloader"]
 
 
 @dataclass
@@ -121,126 +123,88 @@ def _verify_smt(spec: Spec) -> None:
         raise EthimonError("verification failed: " + ("; ".join(bad) if bad else str(rep.error)))
 
 
-class _Reloading:
-    """:meth:`reload`, :meth:`reload_async` and the swap between cycles (a base of ``GovernedLoop``)."""
+class Reloader:
+    """The hot reload of a loop's spec: checks a new spec against the running one, keeps it pending until
+    the loop thread swaps it in between two cycles, and records the inputs of the last cycles so that the
+    new monitor starts with the running one's temporal history.
 
-    def reload(self, source: str | os.PathLike | Spec, *, allow_weaker: bool = False) -> ReloadResult:
-        """Compile (and verify) a new spec in the calling thread, then swap it in between cycles.
+    Args:
+        verify: the check a new spec must pass (:attr:`LoopConfig.verify`): a callable ``verify(spec)``
+            (raising or returning ``False`` rejects it), ``"smt"`` (z3) or ``None`` (compile only).
+    """
 
-        Trust model: whoever can call ``reload`` can change what is monitored,
-        but not *silently weaken* it. A spec that weakens monitoring compared
-        with the running one (see :func:`weakenings`: an obligation removed, τ
-        raised, the release made easier, a response or ``on_fault`` made less
-        severe, ``max_age_s`` removed or raised, a signal range widened, ...) is
-        refused unless ``allow_weaker=True``; the refusal and an allowed
-        weakening are both recorded in the audit log with the list of
-        weakenings. A change whose direction cannot be told field by field (the
-        text of a condition beyond whitespace, a constant's value, a signal's
-        type, the safe pose's joints, the estimator settings) counts as a
-        possible weakening: refused the same way, listed with
-        "cannot tell whether this change weakens monitoring" (and in ``unjudged``).
+    __slots__ = ("verify", "history", "pending", "lock", "spec_hash")
 
-        Latches are carried by identity: every rule latched in the running monitor
-        when the swap happens is latched in the new one (a manual rule stays latched
-        until acknowledged there; every release count restarts). That needs the rule
-        in the new spec with the same id, response and release (mode, ``hold_cycles``;
-        for the risk rule its bound τ − δ too); a reload that cannot map a latched
-        rule is refused (also with ``allow_weaker=True``), here or, if the rule latched
-        meanwhile, at the swap (``ok`` turns ``False``; the audit log says why), and
-        the running spec stays.
+    def __init__(self, verify: Callable[[Spec], Any] | str | None = None) -> None:
+        if verify == "smt":
+            verify = _verify_smt
+        elif verify is not None and not callable(verify):
+            raise ValueError(f"verify={verify!r}; expected None, 'smt' or a callable verify(spec)")
+        self.verify = verify
+        #: the last cycles' inputs (:meth:`record`), sized by :meth:`track`
+        self.history: deque = deque(maxlen=64)
+        #: ``(new monitor, result, source label)`` waiting for the swap, or ``None``
+        self.pending: tuple[Monitor, ReloadResult, str] | None = None
+        self.lock = threading.Lock()
+        self.spec_hash: Callable[[Spec], str] = spec_hash
 
-        Args:
-            source: a spec file path, or a loaded :class:`~ethimon.Spec`.
-            allow_weaker: accept a spec that weakens monitoring (a deliberate,
-                recorded decision).
+    def track(self, plan: Plan) -> None:
+        """Keep as many recorded cycles as ``plan``'s windows need (the recorded ones stay)."""
+        self.history = deque(self.history, maxlen=history_len(plan))
 
-        Returns:
-            A :class:`ReloadResult`. Rejected (``ok=False``, old spec keeps
-            running) if it does not load, compile or verify, or weakens
-            monitoring without ``allow_weaker``. Both outcomes are recorded in
-            the audit log, and so is the swap itself.
-        """
+    def record(self, inputs: Mapping[str, Any]) -> None:
+        """One cycle's inputs (a reload rebuilds the new monitor's temporal history from these)."""
+        self.history.append(inputs)
+
+    def prepare(self, running: Monitor, source: str | os.PathLike | Spec, allow_weaker: bool,
+                age_fallback: float | None) -> tuple[ReloadResult, Monitor | None]:
+        """Load, compile, compare and verify ``source`` against the ``running`` monitor (never raises): the
+        result, and the new monitor when accepted."""
         label = "<Spec>" if isinstance(source, Spec) else os.fspath(source)
         weak: tuple[str, ...] = ()
         unjudged: tuple[str, ...] = ()
         try:
             spec = source if isinstance(source, Spec) else load_spec(source)
-            new = Monitor(spec, margins=self.monitor._margins_on, max_age_s=self._age_fallback)
-            w, u = weakenings(self.monitor.spec, spec, loop_max_age_s=self._age_fallback)
+            new = Monitor(spec, margins=running._margins_on, max_age_s=age_fallback)
+            w, u = weakenings(running.spec, spec, loop_max_age_s=age_fallback)
             weak, unjudged = tuple(w), tuple(u)
             if weak and not allow_weaker:
                 raise EthimonError("reload refused: the new spec weakens monitoring: " + "; ".join(weak)
                                    + ". The running spec stays; pass allow_weaker=True to accept a weaker spec")
             # checked again at the swap, against the latches held then (allow_weaker does not waive it)
-            cannot = unmapped_latches(self.monitor.spec, spec, self.monitor.latched_rules)
+            cannot = unmapped_latches(running.spec, spec, running.latched_rules)
             if cannot:
                 raise EthimonError(_latch_refusal(cannot))
-            due = self.monitor.pending_responses  # checked again at the swap, like the latches
+            due = running.pending_responses  # checked again at the swap, like the latches
             if due:
                 raise EthimonError(_due_refusal(due))
-            if self._verify is not None:
-                verdict = self._verify(spec)
+            if self.verify is not None:
+                verdict = self.verify(spec)
                 if verdict is False:
                     raise EthimonError("verification failed")
-            h = self._spec_hash_fn(spec)
+            h = self.spec_hash(spec)
         except Exception as exc:  # noqa: BLE001 - rejected, never raised into the loop's owner
             msg = str(exc) if isinstance(exc, EthimonError) else f"{type(exc).__name__}: {exc}"
-            res = ReloadResult(False, label, None, msg[:4000], weakened=weak, unjudged=unjudged)
-            self.stats.reloads_rejected += 1
-            self._log("reload", status="rejected", source=label, error=res.error,
-                      running_spec_sha256=self.spec_sha256, weakened=list(weak), unjudged=list(unjudged))
-            return res
-        res = ReloadResult(True, label, h, weakened=weak, unjudged=unjudged)
-        with self._reload_lock:
-            old = self._pending
-            self._pending = (new, res, label)
+            return ReloadResult(False, label, None, msg[:4000], weakened=weak, unjudged=unjudged), None
+        return ReloadResult(True, label, h, weakened=weak, unjudged=unjudged), new
+
+    def queue(self, new: Monitor, res: ReloadResult) -> tuple[Monitor, ReloadResult, str] | None:
+        """Make ``new`` the pending swap; the one it supersedes (settled, never applied), if any."""
+        with self.lock:
+            old = self.pending
+            self.pending = (new, res, res.source)
         if old is not None:
             old[1].settled.set()  # never applied: its wait_applied() returns False now
-            self._log("reload", status="superseded", source=old[2], spec_sha256=old[1].spec_sha256)
-        self._log("reload", status="accepted", source=label, spec_sha256=h, running_spec_sha256=self.spec_sha256,
-                  allow_weaker=bool(allow_weaker), weakened=list(weak), unjudged=list(unjudged))
-        return res
+        return old
 
-    def reload_async(self, source: str | os.PathLike | Spec, *, allow_weaker: bool = False) -> Future:
-        """:meth:`reload` in a helper thread; the future's result is the :class:`ReloadResult`."""
-        fut: Future = Future()
+    def take(self) -> tuple[Monitor, ReloadResult, str] | None:
+        with self.lock:
+            pending, self.pending = self.pending, None
+        return pending
 
-        def work() -> None:
-            try:
-                fut.set_result(self.reload(source, allow_weaker=allow_weaker))
-            except BaseException as exc:  # pragma: no cover - reload() catches everything
-                fut.set_exception(exc)
-
-        threading.Thread(target=work, name="ethimon-reload", daemon=True).start()
-        return fut
-
-    def _carry_history(self, old: Monitor, new: Monitor) -> str:
-        """Rebuild ``new``'s temporal history: step it through the recorded inputs of the cycles that make
-        up ``old``'s history (as if it had run them), then release what those cycles latched (the running
-        latches are carried next) and continue ``old``'s cycle count. '' when done, else why it cannot be."""
-        held = old._cycle - old._hist0  # cycles since the running monitor's history last restarted
-        buf = self._history
-        need = history_depth(new.plan)
-        k = min(held, len(buf))
-        if k < held and (need is None or need > k):
-            return _history_refusal(held, k, need)
-        if need is not None:
-            k = min(k, need)
-        for inputs in list(buf)[len(buf) - k:] if k else ():
-            new.step(inputs)
-        new.release()
-        h = new._cycle - new._hist0
-        new._cycle = old._cycle
-        new._hist0 = new._cycle - h
-        return ""
-
-    def _apply_reload(self) -> None:
-        with self._reload_lock:
-            pending, self._pending = self._pending, None
-        if pending is None:
-            return
-        new, res, label = pending
-        old = self.monitor
+    def carry(self, old: Monitor, new: Monitor) -> tuple[str, str]:
+        """Carry ``old``'s temporal history and latches over to ``new`` (never raises): ``('', '')`` when
+        done, else (the refusal text for the result, its cause)."""
         latched = old.latched_rules
         try:
             cannot = unmapped_latches(old.spec, new.spec, latched)
@@ -261,33 +225,29 @@ class _Reloading:
                         new._since[new._names.index(name)] = old._since[old._names.index(name)]
             except Exception as exc:  # noqa: BLE001 - what cannot be carried keeps the old spec
                 cannot = [f"carrying the history and latches raised {type(exc).__name__}: {exc}"]
-        if cannot or due:
-            res.ok = False
-            res.error = ((cannot[0] if cannot[0].startswith("reload refused: the running monitor's temporal")
-                          else _latch_refusal(cannot)) if cannot else _due_refusal(due))[:4000]
-            self.stats.reloads_rejected += 1
-            self._log("reload", status="rejected", stage="swap", source=label, spec_sha256=res.spec_sha256,
-                      error=res.error, running_spec_sha256=self.spec_sha256, latched=list(latched),
-                      loop_cycle=self.stats.cycles)
-            res.settled.set()
-            return
-        self.monitor = new
-        self._history = deque(self._history, maxlen=history_len(new.plan))
-        old_hash, self.spec_sha256 = self.spec_sha256, res.spec_sha256
-        self._ids = new.obligation_ids
-        self._state_key = None
-        if self._judge_from_spec and self.risk is not None and (new.plan.risk.judge_list != old.plan.risk.judge_list):
-            # the judge the new spec names (or none); its texts are asked again
-            if self.judge is not None:
-                self.judge.stop(timeout=0.0)
-            from ..risk import load_judge_for
-            j = load_judge_for(new.spec)
-            self.judge = AsyncJudgeSource(j) if j is not None else None
-            self._task_text = self._task_key = None
-        self.stats.reloads_applied += 1
-        res.applied_at_cycle = self.stats.cycles
-        self._log("reload", status="applied", source=label, spec_sha256=res.spec_sha256,
-                  previous_spec_sha256=old_hash, loop_cycle=self.stats.cycles, carried_latch=bool(latched),
-                  carried_rules=list(latched))
-        res.applied.set()
-        res.settled.set()
+        if cannot:
+            return (cannot[0] if cannot[0].startswith("reload refused: the running monitor's temporal")
+                    else _latch_refusal(cannot)), "cannot"
+        if due:
+            return _due_refusal(due), "due"
+        return "", ""
+
+    def _carry_history(self, old: Monitor, new: Monitor) -> str:
+        """Rebuild ``new``'s temporal history: step it through the recorded inputs of the cycles that make
+        up ``old``'s history (as if it had run them), then release what those cycles latched (the running
+        latches are carried next) and continue ``old``'s cycle count. '' when done, else why it cannot be."""
+        held = old._cycle - old._hist0  # cycles since the running monitor's history last restarted
+        buf = self.history
+        need = history_depth(new.plan)
+        k = min(held, len(buf))
+        if k < held and (need is None or need > k):
+            return _history_refusal(held, k, need)
+        if need is not None:
+            k = min(k, need)
+        for inputs in list(buf)[len(buf) - k:] if k else ():
+            new.step(inputs)
+        new.release()
+        h = new._cycle - new._hist0
+        new._cycle = old._cycle
+        new._hist0 = new._cycle - h
+        return ""

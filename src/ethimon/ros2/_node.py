@@ -50,7 +50,7 @@ from ..io import LiveMonitor, Mapping, SignalMap, check_against_spec, decision_j
 from ..io import mapping_error as _merr
 from ..io import parse_field_path
 from ..io import ByName
-from ..loop import AsyncRiskSource, GovernedLoop, LoopStats, ProcessEstimator
+from ..loop import AsyncRiskSource, GovernedLoop, LoopConfig, LoopStats, ProcessEstimator
 from ..runtime import Decision, Monitor
 from ..language import Spec
 from ._channel import (ACK_RESULT_TOPIC, ACK_TOPIC, DECISION_TOPIC, OVERRIDE_TOPIC, DdsChannel, Subscription)
@@ -140,9 +140,10 @@ class Ros2Monitor:
         if watchdog_s is None:
             watchdog_s = max(0.05, 5 * period)
         try:
-            self.loop = GovernedLoop(Monitor(spec), risk=risk, period_s=period, audit=audit,
-                                     on_decision=on_decision, watchdog_s=watchdog_s, on_stall=self._stalled,
-                                     **loop_kwargs)
+            cfg = {k: loop_kwargs.pop(k) for k in LoopConfig.__dataclass_fields__ if k in loop_kwargs}
+            self.loop = GovernedLoop(Monitor(spec), risk=risk, audit=audit, on_decision=on_decision,
+                                     config=LoopConfig(period_s=period, watchdog_s=watchdog_s, **cfg),
+                                     on_stall=self._stalled, **loop_kwargs)
             self._dds = DdsChannel(self._subs, self.types, domain_id, config if config is not None else cyclone_config(
                 interface=interface, peers=tuple(peers), multicast=multicast, enclave=enclave),
                 period_s=period, deadline_cycles=mapping.ros2.deadline_cycles, publishers=mapping.ros2.publishers,
