@@ -74,12 +74,12 @@ def as_estimator(x: Any = None, *, spec: Any = None, **load_kw: Any) -> ProbsEst
         from ._estimator import load_estimator, load_estimator_for
         if x is not None:
             d = Path(x)
-            if not d.is_dir():
+            if not d.is_dir() and (spec is None or (isinstance(x, str) and ":" in x and not d.exists())):
                 from ..errors import ModelError
                 code = isinstance(x, str) and ":" in x and not d.exists()
                 raise ModelError(f"{x}: not a model directory" + (
                     "; an estimator is named by its directory, never by code ('module:function')" if code else ""))
-            load_kw = {**load_kw, "model_dir": str(d)}
+            load_kw = {**load_kw, "model_dir": str(d)}   # with a spec: load_estimator_for says whose model
         return load_estimator_for(spec, **load_kw) if spec is not None else load_estimator(**load_kw)
     if hasattr(x, "probs") and callable(x.probs):
         return x
