@@ -71,7 +71,8 @@ def as_estimator(x: Any = None, *, spec: Any = None, **load_kw: Any) -> ProbsEst
         (0.9, 0.1)
     """
     if x is None or isinstance(x, (str, os.PathLike)):
-        from ._estimator import load_estimator, load_estimator_for
+        from .. import risk as R   # the package's names (what a test may monkeypatch), loaded lazily
+        load_estimator, load_estimator_for = R.load_estimator, R.load_estimator_for
         if x is not None:
             d = Path(x)
             if not d.is_dir() and (spec is None or (isinstance(x, str) and ":" in x and not d.exists())):
