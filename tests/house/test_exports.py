@@ -52,7 +52,7 @@ PUBLIC: dict[str, list[str]] = {
                      "load_estimator_for", "risk_bounds", "risk_from_p_unsafe", "risk_from_probs",
                      "OUTCOMES", "judge_verdict", "tier_outcome", "BUILTIN_JUDGE_PROMPT", "JUDGE_STATUSES", "Judge",
                      "JudgePanel", "JudgeResult", "injection_signs", "load_canaries", "load_judge_for", "parse_judge_reply",
-                     "text_sha256"],
+                     "text_sha256", "Encoder", "register_encoder", "as_estimator"],
     "ethimon.ros2": ["ACK_RESULT_TOPIC", "ACK_TOPIC", "DECISION_TOPIC", "DEFAULT", "ENCLAVE_FILES", "MessageTypes",
                      "OVERRIDE_TOPIC", "QosProfile", "Ros2Monitor", "SENSOR_DATA", "cyclone_config", "dds_topic",
                      "dds_type", "decision_json", "normalize_type", "ros_topic", "run_ros2", "security_available",

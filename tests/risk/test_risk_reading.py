@@ -159,11 +159,17 @@ class _FakeModel:
     """p_unsafe high iff ``DANGER`` is in the focus part of a sequence (after the first [SEP] of a pair)."""
 
     model_id, max_length, truncation, temperature, unsafe_index = "fake", 32, "head_tail", 1.0, 1
-    session = None
+    backend, labels, jit = "fake", ("safe", "unsafe"), False     # an ethimon.risk.Encoder
 
     def __init__(self):
         self.tokenizer = _FakeTok()
         self.rows = 0
+
+    def encode(self, views):
+        return self.tokenizer.encode_view_windows(views, self.max_length, self.truncation)
+
+    def trace(self):
+        return False
 
     def logits(self, seqs):
         out = []

@@ -38,10 +38,9 @@ class TaskScorer:
             exc.__traceback__ = exc.__context__ = exc.__cause__ = None
             raise exc
         try:
-            from ..risk import default_threads, load_estimator_for  # lazy: torch only when a text must be scored
+            from ..risk import as_estimator, default_threads  # lazy: torch only when a text must be scored
             # texts are scored one at a time: one thread (torch's default of 2 spins on busy cores)
-            self._probs = load_estimator_for(self.spec, model_dir=self.model_dir,
-                                             num_threads=default_threads(1)).probs
+            self._probs = as_estimator(self.model_dir, spec=self.spec, num_threads=default_threads(1)).probs
         except Exception as exc:
             self._failed = exc
             raise
@@ -56,7 +55,8 @@ class _Lazy:
     """Scores task texts: ``score`` if given, else the spec's estimator (loaded on the first text)."""
 
     def __init__(self, spec: Spec, score: Scorer | None) -> None:
-        self.fn = score if score is not None else TaskScorer(spec)
+        # an estimator object is taken too (ethimon.risk.as_estimator's forms): its probs scores
+        self.fn = TaskScorer(spec) if score is None else score.probs if hasattr(score, "probs") else score
 
     def score(self, text: str, k: int) -> tuple[tuple[float, ...] | None, str | None]:
         load = getattr(self.fn, "load", None)

@@ -11,6 +11,8 @@ from ._estimator import (DEFAULT_TAU, ProbsEstimator, RiskEstimate, RiskEstimato
                          default_threads, estimator_kwargs, load_estimator, load_estimator_for)
 from ._formula import OUTCOMES, VARIANCE_MODES, judge_verdict, risk_bounds, risk_from_p_unsafe, risk_from_probs, tier_outcome
 from ._canaries import load_canaries
+from ._encoder import Encoder, register_encoder
+from ._provide import as_estimator
 from ._judge import BUILTIN_JUDGE_PROMPT, JUDGE_STATUSES, Judge, JudgeResult, injection_signs, parse_judge_reply, text_sha256
 from ._judge_tier import JudgePanel, load_judge_for
 
@@ -18,4 +20,4 @@ __all__ = ["DEFAULT_TAU", "VARIANCE_MODES", "ProbsEstimator", "RiskEstimate", "R
            "default_model_dir", "default_threads", "estimator_kwargs", "load_estimator", "load_estimator_for", "risk_bounds", "risk_from_p_unsafe",
            "risk_from_probs", "OUTCOMES", "judge_verdict", "tier_outcome", "BUILTIN_JUDGE_PROMPT", "JUDGE_STATUSES",
            "Judge", "JudgePanel", "JudgeResult", "injection_signs", "load_canaries", "load_judge_for", "parse_judge_reply",
-           "text_sha256"]
+           "text_sha256", "Encoder", "register_encoder", "as_estimator"]

@@ -333,6 +333,8 @@ def trace_for_inference(module: nn.Module, tokenizer, max_length: int, truncatio
 # ---------------------------------------------------------------- loading
 @dataclass
 class LoadedModel:
+    """The torch back-end of the risk estimator: an ``ethimon.risk._encoder.Encoder``."""
+
     module: Any
     tokenizer: Any
     max_length: int
@@ -341,6 +343,27 @@ class LoadedModel:
     unsafe_index: int
     model_id: str
     manifest: dict = field(default_factory=dict)
+    #: the K class names (the manifest's ``labels``, a HF config's ``id2label``, else the defaults)
+    labels: tuple = ()
+    backend: str = "torch"
+    #: whether :meth:`trace` swapped in a TorchScript-frozen copy
+    jit: bool = False
+
+    def encode(self, views: list[tuple[str, str]]) -> list[list[list[int]]]:
+        return encode_view_windows(self.tokenizer, views, self.max_length, self.truncation)
+
+    def logits(self, seqs: list[list[int]]) -> list[list[float]]:
+        ids, mask = collate(seqs, self.tokenizer.pad_token_id or 0)
+        with torch.inference_mode():
+            return self.module(ids, mask).float().tolist()
+
+    def trace(self) -> bool:
+        """Run a TorchScript-frozen copy checked against the eager module (:func:`trace_for_inference`);
+        raises if tracing fails or disagrees (the caller keeps the eager module)."""
+        if not self.jit:
+            self.module = trace_for_inference(self.module, self.tokenizer, self.max_length, self.truncation)
+            self.jit = True
+        return self.jit
 
 
 def load_adapter_tensors(adapter: Path) -> dict:
@@ -415,9 +438,15 @@ def load_model(model_dir: str | os.PathLike, *, max_length: int | None = None) -
         src = f"max_length={ml}" if max_length else f"{mp}: 'max_length' = {ml}"
         raise ModelError(f"{src}: more tokens than the base model's {pos} positions ({base_dir / 'config.json'})")
     name = manifest.get("name", d.name)
+    from ._encoder import default_labels
     return LoadedModel(module, tokenizer, ml, manifest.get("truncation", "head_tail"),
                        float(manifest.get("temperature", 1.0)), manifest.get("unsafe_index", num_labels - 1),
-                       f"{name}@{got[:12]}", manifest)
+                       f"{name}@{got[:12]}", manifest, tuple(manifest.get("labels") or default_labels(num_labels)))
+
+
+def _labels(config: dict, n: int) -> tuple[str, ...]:
+    from ._encoder import hf_labels
+    return hf_labels(config, n)
 
 
 def _load_hf_dir(d: Path, max_length: int | None) -> LoadedModel:
@@ -446,6 +475,8 @@ def _load_hf_dir(d: Path, max_length: int | None) -> LoadedModel:
     ml = int(max_length or min(512, limit if isinstance(limit, int) and limit < 100000 else 512, pos or 512))
     if pos is not None and ml > pos:
         raise ModelError(f"max_length={ml}: more tokens than the {pos} positions of {d / 'config.json'}")
-    return LoadedModel(HFClassifier(model), tokenizer, ml, "head", 1.0, n - 1, f"{d.name}@{digest}")
+    return LoadedModel(HFClassifier(model), tokenizer, ml, "head", 1.0, n - 1, f"{d.name}@{digest}",
+                       labels=_labels(config, n))
+
 
 

@@ -37,9 +37,10 @@ class ProbsEstimator(Protocol):
     def probs(self, text: str) -> Sequence[float]: ...
 
 QUANTIZE_MODES = (None, "fp32", "int8")
-#: inference backends: ``onnx`` (ONNX Runtime + tokenizers, no torch in the process), ``torch``
-#: (torch + transformers, what training uses), ``auto`` (ONNX when onnxruntime is installed and the
-#: model has an ONNX form, else torch)
+#: inference backends (the encoders registered in ``_encoder``): ``onnx`` (ONNX Runtime + tokenizers,
+#: no torch in the process), ``torch`` (torch + transformers, what training uses), ``auto`` (the model
+#: directory's ``"encoder"``, else ONNX when onnxruntime is installed and the model has an ONNX form,
+#: else torch)
 BACKENDS = ("auto", "onnx", "torch")
 
 #: rows an estimator scores eagerly at most before it traces itself (``jit=None``). Tracing
@@ -83,7 +84,7 @@ class RiskEstimate:
     """One risk estimate of a task text.
 
     Attributes:
-        p: class probabilities ``(p_safe, p_unsafe)``.
+        p: the K class probabilities (two classes: ``(p_safe, p_unsafe)``).
         p_unsafe: probability of the unsafe class.
         risk: R_e by the spec's formula.
         latency_s: wall time of this call (cache hits included).
@@ -93,7 +94,7 @@ class RiskEstimate:
             monitor's ``risk_age_s`` is ``time.monotonic() - t_monotonic``.
     """
 
-    p: tuple[float, float]
+    p: tuple[float, ...]
     p_unsafe: float
     risk: float
     latency_s: float
@@ -183,7 +184,7 @@ class RiskEstimator:
         #: in context and the instruction after a scene, and takes the riskiest; ``"flat"`` the text only
         self.reading = reading
         self._m = loaded
-        self._cache: OrderedDict[str, tuple[float, float]] = OrderedDict()
+        self._cache: OrderedDict[str, tuple[float, ...]] = OrderedDict()
         self._cache_size = int(cache_size)
         self._batch_size = int(batch_size)
         self._lock = threading.RLock()
@@ -194,17 +195,25 @@ class RiskEstimator:
         self.max_length = loaded.max_length
         self.truncation = loaded.truncation
         self.temperature = loaded.temperature
-        #: ``"onnx"`` (ONNX Runtime, no torch) or ``"torch"``
-        self.backend = "onnx" if hasattr(loaded, "session") else "torch"
+        #: the registered name of the encoder that runs (``"onnx"``: ONNX Runtime, no torch; ``"torch"``)
+        self.backend = loaded.backend
+        #: the K class names; :meth:`probs` returns K probabilities in this order
+        self.labels = tuple(loaded.labels)
         #: sha256 of the ONNX graph that runs (``None`` on torch), for audit logs
         self.graph_sha256 = getattr(loaded, "graph_sha256", None)
         #: whether the model runs as a TorchScript-frozen copy (see :meth:`trace`; never on ONNX)
-        self.jit = False
+        self.jit = bool(loaded.jit)
         self._trace_after = trace_after
         self._rows = 0
+        #: raw logits of every view scored, keyed by its content (context and focus): a plan read again
+        #: with one more step, or a step shared by texts, is scored once (bounded like the text cache)
+        self._views: OrderedDict[str, tuple[float, ...]] = OrderedDict()
+        self._views_size = 8 * self._cache_size
+        #: where p_unsafe is in what :meth:`probs` returns (1 for two classes: ``(p_safe, p_unsafe)``)
+        self.unsafe_at = _at(loaded.unsafe_index, len(self.labels))
 
     # -------------------------------------------------------------- public
-    def probs(self, text: str) -> tuple[float, float]:
+    def probs(self, text: str) -> tuple[float, ...]:
         """``(p_safe, p_unsafe)`` of one text (cached).
 
         Raises:
@@ -223,14 +232,14 @@ class RiskEstimator:
                 return hit
         return self._infer([key])[0]
 
-    def probs_batch(self, texts: list[str]) -> list[tuple[float, float]]:
+    def probs_batch(self, texts: list[str]) -> list[tuple[float, ...]]:
         """Probabilities of many texts; uncached ones run in length-sorted batches."""
         keys = []
         for t in texts:
             if not isinstance(t, str):
                 raise TypeError(f"texts must be strings, got {type(t).__name__}")
             keys.append(normalize_text(t))
-        out: dict[str, tuple[float, float]] = {}
+        out: dict[str, tuple[float, ...]] = {}
         with self._lock:
             for k in keys:
                 hit = self._cache.get(k)
@@ -257,9 +266,9 @@ class RiskEstimator:
         t0 = time.perf_counter()
         h0 = self._hits
         p = self.probs(text)
-        risk = risk_from_probs(p, alpha, beta, gamma, variance)
-        return RiskEstimate(p, p[1], risk, time.perf_counter() - t0, self._hits != h0, self.model_id,
-                            time.monotonic())
+        risk = risk_from_probs(p, alpha, beta, gamma, variance, self.unsafe_at)
+        return RiskEstimate(p, p[self.unsafe_at], risk, time.perf_counter() - t0, self._hits != h0,
+                            self.model_id, time.monotonic())
 
     def cache_info(self) -> dict[str, int]:
         """``{"hits", "misses", "size", "maxsize"}`` of the LRU cache."""
@@ -269,6 +278,7 @@ class RiskEstimator:
     def cache_clear(self) -> None:
         with self._lock:
             self._cache.clear()
+            self._views.clear()
             self._hits = self._misses = 0
 
     def trace(self) -> bool:
@@ -282,17 +292,16 @@ class RiskEstimator:
         """
         with self._lock:
             self._trace_after = None
-            if self.jit or self.backend == "onnx":  # an ONNX graph is optimised when its session starts
+            if self.jit:
                 return self.jit
-            from . import _backend as B
-            m = self._m
             try:
-                m.module = B.trace_for_inference(m.module, m.tokenizer, m.max_length, m.truncation)
-                self.jit = True
+                self.jit = bool(self._m.trace())
             except Exception as exc:  # noqa: BLE001 - any tracing failure: keep the eager model
                 import warnings
                 warnings.warn(f"TorchScript tracing of the risk model failed ({type(exc).__name__}: {exc}); "
                               "using the eager model (same results, slower)", RuntimeWarning, stacklevel=2)
+            if self.jit:
+                self._views.clear()   # the traced copy agrees within 1e-4, not bit for bit
             return self.jit
 
     def logits_batch(self, texts: list[str], *, progress: bool = False,
@@ -317,7 +326,7 @@ class RiskEstimator:
             if bar is not None:
                 bar.close()
 
-    def read(self, text: str) -> list[tuple[View, tuple[float, float]]]:
+    def read(self, text: str) -> list[tuple[View, tuple[float, ...]]]:
         """Every view of ``text`` this estimator scores (see ``ethimon.risk._reading``) with its
         ``(p_safe, p_unsafe)``, uncached; the riskiest one gives :meth:`probs`."""
         vs = views(normalize_text(text), self.reading)
@@ -333,7 +342,8 @@ class RiskEstimator:
         "words": [(word, drop), ...]}``, words sorted by drop, largest first.
         """
         scored = self.read(text)
-        best = max(range(len(scored)), key=lambda i: scored[i][1][1])
+        at = self.unsafe_at
+        best = max(range(len(scored)), key=lambda i: scored[i][1][at])
         v, p = scored[best]
         words = v.focus.split()
         occl = [View(" ".join(words[:j] + words[j + 1:]), v.context, v.kind, v.index)
@@ -341,17 +351,17 @@ class RiskEstimator:
         drops = []
         if occl:
             for j, q in enumerate(self._forward_views(occl, raw=False)):
-                drops.append((words[j], p[1] - q[1]))
+                drops.append((words[j], p[at] - q[at]))
             drops.sort(key=lambda wd: -wd[1])
 
-        def row(vv: View, pp: tuple[float, float]) -> dict[str, Any]:
+        def row(vv: View, pp: tuple[float, ...]) -> dict[str, Any]:
             return {"kind": vv.kind, "index": vv.index, "focus": vv.focus, "context": vv.context,
-                    "p_unsafe": pp[1]}
-        return {"p": p, "p_unsafe": p[1], "driver": row(v, p), "views": [row(a, b) for a, b in scored],
+                    "p_unsafe": pp[at]}
+        return {"p": p, "p_unsafe": p[at], "driver": row(v, p), "views": [row(a, b) for a, b in scored],
                 "words": drops[:max(0, int(top_words))], "reading": self.reading}
 
     # -------------------------------------------------------------- internals
-    def _infer(self, keys: list[str]) -> list[tuple[float, float]]:
+    def _infer(self, keys: list[str]) -> list[tuple[float, ...]]:
         probs = [p for p, _v, _q in self._score(keys, raw=False)]
         with self._lock:
             self._misses += len(keys)
@@ -383,12 +393,13 @@ class RiskEstimator:
         logits = self._forward_views(flat, raw=True, on_batch=progress if on_batch is not None else None)
         T = self._m.temperature
         ui = self._m.unsafe_index
+        at = self.unsafe_at
         out = []
         for ids in owner:
             best, best_p = ids[0], None
             for j in ids:
                 p = _tempered(logits[j], T, ui)
-                if best_p is None or p[1] > best_p[1]:
+                if best_p is None or p[at] > best_p[at]:
                     best, best_p = j, p
             out.append((logits[best] if raw else best_p, flat[best], best_p))
         return out
@@ -398,16 +409,44 @@ class RiskEstimator:
         return self._forward_views([View(k) for k in keys], raw, on_batch)
 
     def _forward_views(self, vs: list[View], raw: bool, on_batch: Any = None) -> list:
-        if self.backend == "onnx":
-            return self._forward_onnx(vs, raw, on_batch)
-        from . import _backend as B
-        torch = B.torch
-        m = self._m
+        """The one estimator loop, for every back-end: per view, the raw logits (``raw``) or the K
+        probabilities at the temperature of its riskiest window.
+
+        A view already scored (the same context and focus: a step of a plan read again with one more
+        step, a step two texts share) is taken from the view cache; the others are encoded once, run in
+        length-sorted batches, checked finite and cached. Any failure raises
+        :class:`RiskInferenceError` (fail closed) and caches nothing.
+        """
         if not vs:
             return []
+        enc = self._m
+        keys = [v.key() for v in vs]
+        got: dict[str, tuple[float, ...]] = {}
+        with self._lock:
+            if self._views_size > 0:
+                for k in keys:
+                    hit = self._views.get(k)
+                    if hit is not None:
+                        self._views.move_to_end(k)
+                        got[k] = hit
+        todo: dict[str, View] = {}
+        for k, v in zip(keys, vs):
+            if k not in got and k not in todo:
+                todo[k] = v
+        if on_batch is not None and len(todo) != len(vs):   # a progress bar counts the views asked for
+            on_batch = (lambda cb, share: (lambda n: cb(n * share)))(on_batch, len(vs) / max(1, len(todo)))
+        if todo:
+            got.update(zip(todo, self._run(list(todo.values()), on_batch)))
+        if raw:
+            return [list(got[k]) for k in keys]
+        T, ui = enc.temperature, enc.unsafe_index
+        return [_tempered(got[k], T, ui) for k in keys]
+
+    def _run(self, vs: list[View], on_batch: Any = None) -> list[tuple[float, ...]]:
+        """Per view (none cached), the raw logits of its riskiest window; cached when all are finite."""
+        enc = self._m
         try:
-            wins = B.encode_view_windows(m.tokenizer, [(v.context, v.focus) for v in vs], m.max_length,
-                                         m.truncation)
+            wins = enc.encode([(v.context, v.focus) for v in vs])
         except Exception as exc:  # noqa: BLE001
             raise RiskInferenceError(f"tokenisation failed: {exc}") from exc
         seqs, owner = _flatten(wins)
@@ -415,83 +454,43 @@ class RiskEstimator:
             on_batch = (lambda cb, share: (lambda n: cb(n * share)))(on_batch, len(vs) / len(seqs))
         order = sorted(range(len(seqs)), key=lambda i: len(seqs[i]))
         results: list = [None] * len(seqs)
-        pad = m.tokenizer.pad_token_id or 0
-        ui = m.unsafe_index
+        k = len(self.labels)
         with self._lock:
             if self._trace_after is not None and self._rows + len(seqs) > self._trace_after:
                 self.trace()          # lazily: before the pass that takes the count past trace_after
             self._rows += len(seqs)
             try:
-                with torch.inference_mode():
-                    for idx in _batches(order, seqs, self._batch_size):
-                        ids, mask = B.collate([seqs[i] for i in idx], pad)
-                        logits = m.module(ids, mask).float()
-                        if raw:
-                            rows = logits.tolist()
-                        else:
-                            pr = torch.softmax(logits / m.temperature, dim=-1)
-                            pu = pr[:, ui]
-                            rows = list(zip((1.0 - pu).tolist(), pu.tolist()))
-                        for i, r in zip(idx, rows):
-                            results[i] = r
-                        if on_batch is not None:
-                            on_batch(len(idx))
+                for idx in _batches(order, seqs, self._batch_size):
+                    rows = enc.logits([seqs[i] for i in idx])
+                    rows = rows.tolist() if hasattr(rows, "tolist") else rows
+                    if len(rows) != len(idx):
+                        raise ValueError(f"{len(rows)} rows of logits for {len(idx)} sequences")
+                    for i, r in zip(idx, rows):
+                        r = tuple(float(x) for x in r)
+                        if len(r) != k:
+                            raise ValueError(f"logits of {len(r)} classes; the model has {k} labels {self.labels}")
+                        results[i] = r
+                    if on_batch is not None:
+                        on_batch(len(idx))
             except RiskInferenceError:
                 raise
             except Exception as exc:  # noqa: BLE001 - fail closed on anything
                 raise RiskInferenceError(f"risk inference failed: {type(exc).__name__}: {exc}") from exc
-        return self._riskiest(results, owner, raw)
-
-    def _riskiest(self, results: list, owner: list[list[int]], raw: bool) -> list:
-        """Per view, the result of its riskiest window (most views have one); NaN/inf anywhere fails."""
-        for r in results:
-            if not all(math.isfinite(v) for v in r):
-                raise RiskInferenceError("risk inference produced NaN/inf; treat the command as unsafe")
-        out = []
-        T, ui = self._m.temperature, self._m.unsafe_index
-        for ids in owner:
-            if len(ids) == 1:
-                best = ids[0]
-            else:
-                best = max(ids, key=lambda j: _tempered(results[j], T, ui)[1] if raw else results[j][1])
-            out.append(tuple(results[best]) if not raw else results[best])
+            for r in results:
+                if not all(math.isfinite(v) for v in r):
+                    raise RiskInferenceError("risk inference produced NaN/inf; treat the command as unsafe")
+            T, ui = self._m.temperature, self._m.unsafe_index
+            out = []
+            for ids in owner:   # per view, its riskiest window (most views have one)
+                best = ids[0] if len(ids) == 1 else max(ids, key=lambda j: _tempered(results[j], T, ui)[_at(ui, k)])
+                out.append(results[best])
+            if self._views_size > 0:
+                for v, r in zip(vs, out):
+                    self._views[v.key()] = r
+                    self._views.move_to_end(v.key())
+                while len(self._views) > self._views_size:
+                    self._views.popitem(last=False)
         return out
-
-    def _forward_onnx(self, vs: list[View], raw: bool, on_batch: Any = None) -> list:
-        """As :meth:`_forward_views`, through ONNX Runtime (numpy arrays, no torch)."""
-        import numpy as np
-        m = self._m
-        if not vs:
-            return []
-        try:
-            wins = m.tokenizer.encode_view_windows([(v.context, v.focus) for v in vs], m.max_length, m.truncation)
-        except Exception as exc:  # noqa: BLE001
-            raise RiskInferenceError(f"tokenisation failed: {exc}") from exc
-        seqs, owner = _flatten(wins)
-        if on_batch is not None and len(seqs) != len(vs):   # a progress bar counts views, not windows
-            on_batch = (lambda cb, share: (lambda n: cb(n * share)))(on_batch, len(vs) / len(seqs))
-        order = sorted(range(len(seqs)), key=lambda i: len(seqs[i]))
-        results: list = [None] * len(seqs)
-        ui = m.unsafe_index
-        with self._lock:
-            self._rows += len(seqs)
-            try:
-                for idx in _batches(order, seqs, self._batch_size):
-                    logits = np.asarray(m.logits([seqs[i] for i in idx]), dtype=np.float64)
-                    if raw:
-                        rows = logits.tolist()
-                    else:
-                        z = logits / m.temperature
-                        e = np.exp(z - z.max(axis=1, keepdims=True))
-                        pu = e[:, ui] / e.sum(axis=1)
-                        rows = list(zip((1.0 - pu).tolist(), pu.tolist()))
-                    for i, r in zip(idx, rows):
-                        results[i] = r
-                    if on_batch is not None:
-                        on_batch(len(idx))
-            except Exception as exc:  # noqa: BLE001 - fail closed on anything
-                raise RiskInferenceError(f"risk inference failed: {type(exc).__name__}: {exc}") from exc
-        return self._riskiest(results, owner, raw)
 
 
 def _flatten(wins: list[list[list[int]]]) -> tuple[list[list[int]], list[list[int]]]:
@@ -528,15 +527,28 @@ def _batches(order: list[int], seqs: list[list[int]], size: int) -> list[list[in
     return out
 
 
-def _tempered(logits: Sequence[float], temperature: float, unsafe_index: int) -> tuple[float, float]:
-    """``(1 - p_unsafe, p_unsafe)`` of one row of raw logits at ``temperature`` (a stable softmax)."""
+def _tempered(logits: Sequence[float], temperature: float, unsafe_index: int) -> tuple[float, ...]:
+    """The K probabilities of one row of raw logits at ``temperature`` (a stable softmax).
+
+    Two classes: exactly ``(1 - p_unsafe, p_unsafe)``, whichever index the unsafe class has (what
+    every estimator has returned: ``p[1]`` is p_unsafe, the spec's default ``unsafe_index`` -1).
+    K > 2 classes: the K probabilities in the model's class order (``p[unsafe_index]`` is p_unsafe).
+    """
     z = [x / temperature for x in logits]
     top = max(z)
     e = [math.exp(x - top) for x in z]
-    pu = e[unsafe_index] / sum(e)
+    total = sum(e)
+    pu = e[unsafe_index] / total
     if not math.isfinite(pu):
         raise RiskInferenceError("risk inference produced NaN/inf; treat the command as unsafe")
-    return (1.0 - pu, pu)
+    if len(e) == 2:
+        return (1.0 - pu, pu)
+    return tuple(x / total for x in e)
+
+
+def _at(unsafe_index: int, k: int) -> int:
+    """Where p_unsafe is in what :func:`_tempered` returns for ``k`` classes."""
+    return 1 if k == 2 else unsafe_index % k
 
 
 def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None = None,
@@ -615,14 +627,14 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
     if temperature is not None and (isinstance(temperature, bool) or not (isinstance(temperature, (int, float))
                                         and math.isfinite(temperature) and temperature > 0)):
         raise ValueError(f"temperature={temperature!r}; expected a finite number > 0")
-    if backend not in BACKENDS:
-        raise ValueError(f"backend={backend!r}; expected one of {BACKENDS}")
+    from ._encoder import encoder_names
+    if backend != "auto" and backend not in encoder_names():
+        raise ValueError(f"backend={backend!r}; expected one of {('auto',) + encoder_names()}")
     if model_dir is None:
         model_dir = default_model_dir()
         check_default_manifest(Path(model_dir))
-    loaded = _load_onnx(model_dir, backend, quantize, max_length, num_threads) if backend != "torch" else None
-    if loaded is None:
-        loaded = _load_torch(model_dir, backend, quantize, max_length, num_threads)
+    from ._encoder import load_encoder
+    loaded = load_encoder(model_dir, backend, quantize=quantize, max_length=max_length, num_threads=num_threads)
     if temperature is not None:
         loaded.temperature = float(temperature)
     est = RiskEstimator(loaded, cache_size=cache_size, batch_size=batch_size, quantized=quantize,
@@ -630,46 +642,6 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
     if jit:
         est.trace()
     return est
-
-
-def _load_onnx(model_dir, backend: str, quantize, max_length, num_threads) -> Any:
-    """The ONNX form of ``model_dir``, or ``None`` where ``auto`` should use torch."""
-    from ..errors import DependencyNotInstalled, ModelError
-    try:
-        from . import _onnx as O
-    except DependencyNotInstalled:
-        if backend == "onnx":
-            raise
-        return None
-    try:
-        return O.load_onnx_model(model_dir, max_length=max_length, quantize=quantize, num_threads=num_threads)
-    except O._NoGraph as exc:  # never a trust failure: those are ModelError and propagate
-        if backend == "onnx":
-            raise ModelError(f"{model_dir}: no ONNX form: {exc}; write one with `ethimon export {model_dir}` "
-                             "(needs torch once) or use backend torch") from None
-        return None
-
-
-def _load_torch(model_dir, backend: str, quantize, max_length, num_threads) -> Any:
-    from ..errors import DependencyNotInstalled
-    try:
-        from . import _backend as B
-    except DependencyNotInstalled as exc:
-        if backend == "auto":
-            raise DependencyNotInstalled(
-                f"{exc}; or, without torch, ONNX Runtime: pip install \"ethimon[risk]\" (the ONNX backend runs "
-                f"the shipped model and BERT/DistilBERT directories, others after `ethimon export`)") from exc
-        raise
-    if num_threads is not None:
-        B.torch.set_num_threads(int(num_threads))
-    loaded = B.load_model(model_dir, max_length=max_length)
-    if quantize == "int8":
-        import warnings
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            loaded.module = B.torch.ao.quantization.quantize_dynamic(
-                loaded.module, {B.nn.Linear}, dtype=B.torch.qint8)
-    return loaded
 
 
 def estimator_kwargs(spec: Any) -> dict[str, Any]:

