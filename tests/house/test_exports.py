@@ -162,23 +162,3 @@ def test_reaches_into_other_packages_internals_are_reviewed():
             if here not in allowed:
                 bad.append(f"{path.relative_to(SRC.parent)}:{line}: {here} imports {target}")
     assert bad == [], "use the package's public names, or review the reach in INTERNAL_REACHES:\n" + "\n".join(bad)
-
-
-def test_the_old_spec_module_serves_the_language_for_one_release():
-    """``ethimon.spec`` (stage 1's name before ``ethimon.language``) imports silently and serves the same objects."""
-    import warnings
-
-    import ethimon.language
-    import ethimon.spec
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        importlib.reload(ethimon.spec)  # importing it warns nothing
-    assert ethimon.spec.__all__ == ethimon.language.__all__
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        assert ethimon.spec.Spec is ethimon.language.Spec and ethimon.spec.load_spec is ethimon.load_spec
-        from ethimon.spec import parse_expr
-    assert parse_expr is ethimon.language.parse_expr
-    assert [w.category for w in caught] == [DeprecationWarning] * 3
-    with pytest.raises(AttributeError):
-        ethimon.spec.no_such_name  # noqa: B018

@@ -7,7 +7,6 @@ own modules are always allowed):
     language                YAML → validated Spec, the expression parser (stage 1)
     compiler                names, types, units → Plan → closures; the R_e formula
     _api                    load_spec = language + compiler in one call
-    spec                    deprecated alias of language (one release): its names, load_spec
     runtime                 Monitor.step → Decision (never loads files)
     audit, risk, sim,       beside each other above runtime: none imports another
       verify, testing       (testing: ReferenceMonitor, the test oracle)
@@ -45,7 +44,6 @@ ALLOWED: dict[str, set[str]] = {
     "language": _LOW,
     "compiler": _LANGUAGE,
     "_api": _COMPILED,
-    "spec": _LANGUAGE | {"_api"},
     "runtime": _COMPILED,
     "audit": _BESIDE,
     "view": _BESIDE,

@@ -50,7 +50,17 @@ def _build_parser() -> argparse.ArgumentParser:
                 continue
             raise
         getattr(module, fn)(sub)
+    _whole_flags_only(p)
     return p
+
+
+def _whole_flags_only(p: argparse.ArgumentParser) -> None:
+    """No prefix abbreviations (``--duration`` is not ``--duration-s``): a flag is spelt out or unknown."""
+    p.allow_abbrev = False
+    for a in p._actions:
+        if isinstance(a, argparse._SubParsersAction):
+            for child in a.choices.values():
+                _whole_flags_only(child)
 
 
 def _cmd_schema(args: argparse.Namespace) -> int:

@@ -14,7 +14,7 @@ import signal
 import sys
 import threading
 
-from ._common import add_deprecated_alias, emit_json, err, open_audit_log
+from ._common import emit_json, err, open_audit_log
 
 __all__ = ["add_ros2_parsers", "cmd_ros2"]
 
@@ -32,7 +32,6 @@ def add_ros2_parsers(sub) -> None:
                    help="ROS 2 domain id (default: $ROS_DOMAIN_ID, else 0)")
     p.add_argument("--duration-s", type=float, default=None, metavar="S", help="stop after S seconds (default: "
                    "run until Ctrl-C / SIGTERM)")
-    add_deprecated_alias(p, "--duration", "--duration-s", type=float, metavar="S")
     p.add_argument("--interface", metavar="NAME|ADDR", help="network interface for DDS (e.g. eth0, lo, or its "
                    "address); default: Cyclone's configuration (CYCLONEDDS_URI)")
     p.add_argument("--peer", action="append", default=[], metavar="ADDR",
