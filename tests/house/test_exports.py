@@ -21,8 +21,9 @@ SRC = Path(ethimon.__file__).resolve().parent
 #: the reviewed public API, package by package
 PUBLIC: dict[str, list[str]] = {
     "ethimon": ["AsyncRiskSource", "Decision", "DependencyNotInstalled", "EthimonError", "Fault", "GovernedLoop",
-                "ModelError", "Monitor", "ProcessEstimator", "Response", "Spec", "SpecError", "__version__",
-                "load_spec", "load_spec_text", "risk_from_p_unsafe", "risk_from_probs"],
+                "ModelError", "Monitor", "Outcome", "ProcessEstimator", "Ray", "Report", "Response", "Serial", "Spec",
+                "SpecError", "Unit", "__version__", "load_spec", "load_spec_text", "risk_from_p_unsafe",
+                "risk_from_probs", "run"],
     "ethimon.errors": ["AuditFormatError", "AuditTampered", "BagError", "DependencyNotInstalled", "EthimonError",
                        "ExprSyntaxError", "ModelError", "RiskInferenceError", "Ros2Error", "SimError", "SpecError"],
     "ethimon.audit": ["AuditFormatError", "AuditLag", "AuditLog", "AuditReport", "AuditTampered", "FSYNC_POLICIES",
@@ -30,8 +31,7 @@ PUBLIC: dict[str, list[str]] = {
                       "spec_hash", "verify_log"],
     "ethimon.cli": ["main"],
     "ethimon.compiler": ["ObligationPlan", "Plan", "SignalSlot", "compile_plan", "plan_of", "stateless_slots"],
-    "ethimon.fleet": ["DEFAULT_LOCAL_CPUS", "Failure", "check_address", "check_file_timeout", "check_paths",
-                      "map_files", "plain", "replay_records"],
+    "ethimon.fleet": ["Ray", "check_paths", "plain", "replay_records"],
     "ethimon.gym": ["MonitorWrapper", "PANDA_ENV_ID", "PANDA_RATED_JOINT_SPEED_RAD_S", "PANDA_SPEC_PATH",
                     "PandaCellEnv", "panda_signals", "panda_spec"],
     "ethimon.language": ["Constant", "DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "ExprSyntaxError", "Obligation",
@@ -143,8 +143,8 @@ INTERNAL_REACHES: dict[str, tuple[set[str], str]] = {
     "risk._reading": ({"cli"}, "check_length: ethimon risk's batch mode refuses an over-long line alone"),
     "sim._arm": ({"gym"}, "the Panda cell env drives the simulated arm directly"),
     "verify._policy": ({"_lint"}, "lint's release-policy warnings (no z3)"),
-    "replay._record": ({"cli", "fleet"}, "one bag's record, shared by the serial loop and the Ray workers"),
-    "scenario._session": ({"fleet"}, "the skipped-file rows of a check report"),
+    "replay._record": ({"cli", "fleet"}, "one bag's record and replay_records, the unit function of a replay run "
+                                         "(serial or on Ray)"),
 }
 
 

@@ -10,7 +10,7 @@ from typing import Any
 from ..errors import SpecError
 
 __all__ = ["err", "ERROR_PREFIX", "write_report", "emit_report", "emit_json", "Progress", "add_ray_options",
-           "ray_options", "ray_target"]
+           "ray_options", "ray_target", "executor_of"]
 
 #: the one prefix of a CLI error that is not located in a file (located ones read ``path:line:col: ...``)
 ERROR_PREFIX = "ethimon: error: "
@@ -151,6 +151,21 @@ def ray_options(args, paths_attr: str) -> tuple[tuple[str | None, int | None] | 
     from ..fleet import check_file_timeout
     ray = ray_target(args, paths_attr)
     return ray, check_file_timeout(args.file_timeout_s, on_ray=ray is not None)
+
+
+def executor_of(args, paths_attr: str) -> Any:
+    """The executor of :func:`ethimon.run` the options of :func:`add_ray_options` ask for: ``Serial()``
+    without ``--ray``, else ``fleet.Ray(address, num_cpus=workers, file_timeout=...)``.
+
+    Raises:
+        EthimonError: as :func:`ray_options`.
+    """
+    ray, file_timeout = ray_options(args, paths_attr)
+    if ray is None:
+        from .._batch import Serial
+        return Serial()
+    from ..fleet import Ray
+    return Ray(ray[0], num_cpus=ray[1], file_timeout=file_timeout)
 
 
 def ray_target(args, paths_attr: str) -> tuple[str | None, int | None] | None:

@@ -144,13 +144,14 @@ def cmd_replay(args: argparse.Namespace) -> int:
             if ray is None:
                 scorer = TaskScorer(spec, model_dir=args.model)
                 report = replay_paths(args.bags, spec, mapping, score=scorer, audit=audit, mcap=args.mcap,
-                                      on_bag=lambda i, n, b: (bar.new(b), progress(i, n, b)),
-                                      on_progress=bar, foxglove=view, foxglove_speed=args.foxglove_speed)
+                                      on_progress=lambda i, n, b: (bar.new(b), progress(i, n, b)),
+                                      on_messages=bar, foxglove=view, foxglove_speed=args.foxglove_speed)
             else:  # the same records, each bag on a Ray worker
-                from ..fleet import replay_records
+                from ..fleet import Ray
+                from ..replay._record import replay_records
                 report = ReplayReport(replay_records(
-                    args.bags, spec=args.spec, mapping=args.mapping, model_dir=args.model, on_bag=progress,
-                    address=ray[0], num_cpus=ray[1], file_timeout=file_timeout))
+                    args.bags, spec=args.spec, mapping=args.mapping, model_dir=args.model, on_progress=progress,
+                    executor=Ray(ray[0], num_cpus=ray[1], file_timeout=file_timeout)))
     except OSError as exc:
         return err(f"--mcap {args.mcap}: {exc.strerror or exc}")
     finally:

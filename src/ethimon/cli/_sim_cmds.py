@@ -59,7 +59,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     try:
         with Progress("simulate", enabled=not (json_to_stdout or args.gui)) as progress:
             report = simulate_paths(args.paths, model_dir=args.model, record_dir=args.record, gui=args.gui,
-                                    on_file=progress)
+                                    on_progress=progress)
     except DependencyNotInstalled as exc:
         return err(str(exc))
     runs = [o for o in report.outcomes if o.status in ("PASS", "FAIL")]
