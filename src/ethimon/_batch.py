@@ -4,7 +4,8 @@ Every "run over many files" of ethimon (``check``, ``simulate``, ``replay``, ``v
 :func:`run` over :class:`Unit` s: one file, one unit. A unit function returns its file's result and
 reports a bad file in that result (an ERROR row, an error record); the runner turns anything it still
 raises into an error :class:`Outcome` for that unit, so one unit never stops the others (but
-:class:`~ethimon.errors.DependencyNotInstalled`, which no unit could get past, stops the run).
+:class:`~ethimon.errors.DependencyNotInstalled`, which no unit could get past, and a ``BrokenPipeError``,
+stdout closed, stop the run).
 
 The executor decides where units run: :class:`Serial` here, one after the other (a unit's function
 may then be any callable); ``ethimon.fleet.Ray`` on a Ray cluster (then a module-level function of
@@ -147,8 +148,8 @@ class Serial:
                 on_progress(i, total, u.label)
             try:
                 out.append(Outcome(u.label, u.fn(*u.args)))
-            except DependencyNotInstalled:
-                raise  # a missing extra: no unit can run
+            except (DependencyNotInstalled, BrokenPipeError):
+                raise  # a missing extra: no unit can run; stdout closed: no one reads the rest
             except Exception as exc:  # noqa: BLE001 - one unit's failure; the others still run
                 out.append(Outcome(u.label, error=internal_error(exc)))
         if on_progress is not None:

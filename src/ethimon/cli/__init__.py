@@ -76,14 +76,13 @@ def _cmd_schema(args: argparse.Namespace) -> int:
 
 
 def _cmd_lint(args: argparse.Namespace) -> int:
-    from .._lint import iter_lint
+    from .._batch import run
+    from .._lint import LintLine, lint_units
     rc = 0
-    for line in iter_lint(args.paths, mapping=getattr(args, "mapping", None)):
-        if line.kind == "error":
-            print(line.text, file=sys.stderr)
-            rc = 2
-        else:
-            print(line.text)
+    for o in run(lint_units(args.paths, mapping=getattr(args, "mapping", None))).outcomes:
+        for line in o.value if o.ok else [LintLine(o.label, "error", o.lines()[0])]:
+            print(line.text, file=sys.stderr if line.kind == "error" else sys.stdout)
+            rc = 2 if line.kind == "error" else rc
     return rc
 
 
