@@ -24,11 +24,9 @@ from .language import Response, Spec
 
 __version__ = "0.1.0"
 
-__all__ = [
-    "AsyncRiskSource", "Decision", "DependencyNotInstalled", "EthimonError", "Fault", "GovernedLoop", "ModelError",
-    "Monitor", "Outcome", "ProcessEstimator", "Ray", "Report", "Response", "Serial", "Spec", "SpecError", "Unit",
-    "__version__", "load_spec", "load_spec_text", "risk_from_p_unsafe", "risk_from_probs", "run",
-]
+__all__ = ["Decision", "DependencyNotInstalled", "EthimonError", "Fault", "GovernedLoop", "ModelError",
+           "Monitor", "Outcome", "ProcessEstimator", "Ray", "Report", "Response", "Serial", "Spec",
+           "SpecError", "Unit", "__version__", "load_spec", "load_spec_text", "run"]
 
 #: names served on first use: from :mod:`ethimon.loop` (it starts threads and pulls in the audit log) and
 #: the Ray executor of :func:`run` from :mod:`ethimon.fleet` (Ray itself is imported when a run starts)

@@ -16,5 +16,5 @@ from ._stats import LoopStats
 from ._watchdog import Watchdog
 from ._weakenings import CANNOT_TELL, weakenings
 
-__all__ = ["AsyncJudgeSource", "AsyncRiskSource", "CANNOT_TELL", "GovernedLoop", "LoopStats", "ProcessEstimator",
-           "ReloadResult", "RiskReading", "Watchdog", "weakenings"]
+__all__ = ["AsyncJudgeSource", "AsyncRiskSource", "GovernedLoop", "LoopStats", "ProcessEstimator",
+           "ReloadResult"]
