@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 import ethimon
-from ethimon.cli import _build_parser, main
+from ethimon.cli import _build_parser
 
 # concept: (spec-or-mapping YAML key path, Python attribute path, [(command, flag)], JSON key)
 #   the YAML and attribute paths are the same words by rule; a JSON key may be the symbol (tau for

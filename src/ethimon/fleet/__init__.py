@@ -26,7 +26,7 @@ installed) at the same paths, e.g. a shared file system.
 from __future__ import annotations
 
 from ._executor import Ray
-from ._ray import DEFAULT_LOCAL_CPUS, Failure, check_address, check_file_timeout, map_files, plain
+from ._ray import DEFAULT_LOCAL_CPUS, Failure, check_address, check_file_timeout, map_files, plain  # noqa: F401
 from ._run import check_paths, replay_records
 
 __all__ = ["Ray", "check_paths", "plain", "replay_records"]

@@ -173,10 +173,12 @@ def replay_unit(run_id: str, bag: str, spec_path: str, mapping_path: str, model_
 
 
 def _replay_setup(spec_path: str, mapping_path: str, model_dir: str | None) -> tuple[Any, Any, Any]:
-    from .. import _api
+    from ..compiler import plan_of
+    from ..language import parse_spec_file
     from ._mapping import check_against_spec, load_mapping
     from ._scoring import TaskScorer
-    spec = _api.load_spec(spec_path)
+    spec = parse_spec_file(spec_path)
+    plan_of(spec)  # compiled now, as ethimon.load_spec does
     mapping = load_mapping(mapping_path)
     check_against_spec(mapping, spec)
     return spec, mapping, TaskScorer(spec, model_dir=model_dir)
