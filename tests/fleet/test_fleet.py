@@ -257,7 +257,7 @@ def test_a_hanging_worker_times_out_and_its_task_is_cancelled(ray_local, tmp_pat
 
 def _hang_on_s1(run_id: str, path: str, sim: bool, model_dir: str | None):
     """``check_unit``, but the file s1.yaml never finishes."""
-    from ethimon.scenario._units import check_unit
+    from ethimon.scenario._session import check_unit
     if path.endswith("s1.yaml"):
         time.sleep(60)
     return check_unit(run_id, path, sim, model_dir)
@@ -265,9 +265,9 @@ def _hang_on_s1(run_id: str, path: str, sim: bool, model_dir: str | None):
 
 def test_check_file_timeout_is_one_error_row(ray_local, tmp_path, capsys, monkeypatch):
     import ray.cloudpickle
-    from ethimon.scenario import _units
+    from ethimon.scenario import _session
     ray.cloudpickle.register_pickle_by_value(sys.modules[__name__])
-    monkeypatch.setattr(_units, "check_unit", _hang_on_s1)
+    monkeypatch.setattr(_session, "check_unit", _hang_on_s1)
     d = _scenarios(tmp_path / "sc")
     rc_serial, _, _ = _main(capsys, "check", str(d), "--json", str(tmp_path / "serial.json"))
     rc, _, err = _main(capsys, "check", str(d), "--json", str(tmp_path / "ray.json"), "--ray", "--file-timeout-s", "8")

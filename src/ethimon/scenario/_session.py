@@ -23,8 +23,8 @@ from ._model import Scenario
 from .._files import scan_yaml_files
 from ._run import RISK_KEYS, needs_text_risk, override_expectations
 
-__all__ = ["CheckOutcome", "CheckReport", "ScenarioSession", "check_paths", "simulate_paths", "error_line",
-           "internal_error", "sim_risk_inputs"]
+__all__ = ["CheckOutcome", "CheckReport", "ScenarioSession", "check_paths", "check_unit", "simulate_paths",
+           "error_line", "internal_error", "sim_risk_inputs"]
 
 #: ``on_progress(done, total, path)``: ``ethimon.run``'s one progress callback: before each file (``path`` is
 #: starting, ``done`` files are finished) and once at the end with ``done == total`` and ``path == ""``
@@ -484,7 +484,6 @@ def _check_elsewhere(files, sim: bool, model_dir: str | None, executor: Any,
     import uuid
 
     from .._batch import Unit, run
-    from ._units import check_unit, outcome_from_plain
     todo = [path for path, reason in files if reason is None]
     skipped = len(files) - len(todo)
 
@@ -495,7 +494,7 @@ def _check_elsewhere(files, sim: bool, model_dir: str | None, executor: Any,
     run_id = uuid.uuid4().hex
     got = iter(run([Unit(check_unit, (run_id, p, sim, model_dir), p) for p in todo], executor, progress).outcomes)
     return [[_skipped(path, reason)] if reason is not None
-            else _rows_of(next(got), lambda v: [outcome_from_plain(d) for d in v]) for path, reason in files]
+            else _rows_of(next(got), lambda v: [CheckOutcome(**d) for d in v]) for path, reason in files]
 
 
 def _run_pending_sims(rows: list[list[CheckOutcome]], session: ScenarioSession, jobs: int,
@@ -522,6 +521,27 @@ def _run_pending_sims(rows: list[list[CheckOutcome]], session: ScenarioSession, 
     finally:
         if pool is not None:
             pool.close()
+
+
+_STATE: dict[str, Any] = {}  # "check" -> (key, session) of the run this process works for now
+
+
+def outcome_as_plain(o: CheckOutcome) -> dict[str, Any]:
+    """A :class:`CheckOutcome` as plain data (its ``result`` object is left out)."""
+    from .._batch import plain
+    return plain({"name": o.name, "path": o.path, "status": o.status, "expected": o.expected, "got": o.got,
+                  "first_override_cycle": o.first_override_cycle, "messages": list(o.messages),
+                  "record": o.record})
+
+
+def check_unit(run_id: str, path: str, sim: bool, model_dir: str | None) -> list[dict[str, Any]]:
+    """The unit of ``ethimon check`` on another process (``ethimon.run`` with ``fleet.Ray``): one file's
+    outcomes as plain dicts (never raises for a bad file). A process keeps the specs and risk model of the
+    run it works for (``run_id``), so a model loads once per worker, not once per file."""
+    got = _STATE.get("check")
+    if got is None or got[0] != (run_id, model_dir):  # a new run: drop the previous run's specs and models
+        got = _STATE["check"] = ((run_id, model_dir), ScenarioSession(model_dir=model_dir))
+    return [outcome_as_plain(o) for o in got[1].check_file(path, sim=sim)]
 
 
 _WORKER_SESSION: ScenarioSession | None = None
