@@ -8,12 +8,15 @@ The one loop::
     if decision.override:
         ...  # drive to spec.safe_pose now
 
-``import ethimon`` never imports torch or pybullet.
+Many files at once: ``ethimon.run(units, executor=ethimon.Serial() | ethimon.Ray(...), on_progress)``.
+
+``import ethimon`` never imports torch, pybullet or ray.
 """
 
 from __future__ import annotations
 
 from ._api import load_spec, load_spec_text
+from ._batch import Outcome, Report, Serial, Unit, run
 from .errors import DependencyNotInstalled, EthimonError, ModelError, SpecError
 from .compiler._risk_formula import risk_from_p_unsafe, risk_from_probs
 from .runtime import Decision, Fault, Monitor
@@ -21,14 +24,13 @@ from .language import Response, Spec
 
 __version__ = "0.1.0"
 
-__all__ = [
-    "AsyncRiskSource", "Decision", "DependencyNotInstalled", "EthimonError", "Fault", "GovernedLoop", "ModelError",
-    "Monitor", "ProcessEstimator", "Response", "Spec", "SpecError", "__version__", "load_spec",
-    "load_spec_text", "risk_from_p_unsafe", "risk_from_probs",
-]
+__all__ = ["Decision", "DependencyNotInstalled", "EthimonError", "Fault", "GovernedLoop", "ModelError",
+           "Monitor", "Outcome", "ProcessEstimator", "Ray", "Report", "Response", "Serial", "Spec",
+           "SpecError", "Unit", "__version__", "load_spec", "load_spec_text", "run"]
 
-#: names served from :mod:`ethimon.loop` on first use (it starts threads and pulls in the audit log)
-_LAZY = {"AsyncRiskSource": "loop", "GovernedLoop": "loop", "ProcessEstimator": "loop"}
+#: names served on first use: from :mod:`ethimon.loop` (it starts threads and pulls in the audit log) and
+#: the Ray executor of :func:`run` from :mod:`ethimon.fleet` (Ray itself is imported when a run starts)
+_LAZY = {"AsyncRiskSource": "loop", "GovernedLoop": "loop", "ProcessEstimator": "loop", "Ray": "fleet"}
 
 
 def __getattr__(name: str):

@@ -8,12 +8,13 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 
 from . import _api
+from ._batch import Unit
 from ._files import scan_yaml_files
 from .scenario import error_line
 from .language import Spec
 from .verify._policy import release_policy_warnings  # no z3
 
-__all__ = ["LintLine", "LintReport", "iter_lint", "lint_paths", "lint_safe_pose"]
+__all__ = ["LintLine", "LintReport", "iter_lint", "lint_paths", "lint_safe_pose", "lint_unit", "lint_units"]
 
 #: the kinds of :class:`LintLine`; an ``"error"`` line makes the exit code 2
 LINE_KINDS = ("ok", "skipped", "warning", "error")
@@ -62,6 +63,43 @@ def lint_safe_pose(spec: Spec) -> None:
                                      f"({robot.source('position_min_rad')}; robot: {spec.robot}, docs/robots.md)")
 
 
+def lint_unit(path: str, skipped: str | None = None, mapping: str | None = None) -> list[LintLine]:
+    """The unit of ``ethimon lint`` (one unit of :func:`ethimon.run`): the lines of one spec file (``skipped``:
+    why a file found in a folder is passed over). Never raises for a bad spec: it is an ``"error"`` line."""
+    if skipped is not None:  # a FIFO, socket or device in a folder: never opened
+        return [LintLine(path, "skipped", f"{path}: skipped: {skipped}")]
+    out: list[LintLine] = []
+    try:
+        spec = _api.load_spec(path)
+        lint_safe_pose(spec)
+        out.append(LintLine(path, "ok", f"{path}: ok ({spec.name}, {len(spec.obligations)} obligations)"))
+        for w in release_policy_warnings(spec):
+            out.append(LintLine(path, "warning", f"{path}: warning: {w}"))
+        from .risk._estimator import model_tau_warnings  # no torch
+        for w in model_tau_warnings(spec):
+            out.append(LintLine(path, "warning", f"{path}: warning: {w}"))
+        if mapping:
+            from .replay import check_against_spec, lint_mapping, load_mapping
+            m = load_mapping(mapping)
+            check_against_spec(m, spec)
+            for w in lint_mapping(m, spec):
+                out.append(LintLine(mapping, "warning", f"{mapping}: warning: {w}"))
+    except Exception as exc:  # noqa: BLE001 - one bad file is one line; the others are still linted
+        out.append(LintLine(path, "error", error_line(path, exc)))
+    return out
+
+
+def lint_units(paths: Iterable[str | os.PathLike], *, mapping: str | None = None) -> list[Unit]:
+    """One :func:`lint_unit` per spec file under ``paths`` (folders scanned now).
+
+    Raises:
+        SpecError: a path that does not exist or is not a regular file or folder, or a folder
+            with no spec files.
+    """
+    return [Unit(lint_unit, (path, skipped, mapping), path)
+            for path, skipped in scan_yaml_files([os.fspath(p) for p in paths], what="spec", command="ethimon lint")]
+
+
 def iter_lint(paths: Iterable[str | os.PathLike], *, mapping: str | None = None) -> Iterator[LintLine]:
     """The lines of :func:`lint_paths`, one spec at a time (a CLI prints each as it comes).
 
@@ -70,27 +108,8 @@ def iter_lint(paths: Iterable[str | os.PathLike], *, mapping: str | None = None)
             with no spec files (before any line); a problem with one spec file is an
             ``"error"`` line, and the others are still linted.
     """
-    for path, skipped in scan_yaml_files([os.fspath(p) for p in paths], what="spec", command="ethimon lint"):
-        if skipped is not None:  # a FIFO, socket or device in a folder: never opened
-            yield LintLine(path, "skipped", f"{path}: skipped: {skipped}")
-            continue
-        try:
-            spec = _api.load_spec(path)
-            lint_safe_pose(spec)
-            yield LintLine(path, "ok", f"{path}: ok ({spec.name}, {len(spec.obligations)} obligations)")
-            for w in release_policy_warnings(spec):
-                yield LintLine(path, "warning", f"{path}: warning: {w}")
-            from .risk._estimator import model_tau_warnings  # no torch
-            for w in model_tau_warnings(spec):
-                yield LintLine(path, "warning", f"{path}: warning: {w}")
-            if mapping:
-                from .replay import check_against_spec, lint_mapping, load_mapping
-                m = load_mapping(mapping)
-                check_against_spec(m, spec)
-                for w in lint_mapping(m, spec):
-                    yield LintLine(mapping, "warning", f"{mapping}: warning: {w}")
-        except Exception as exc:  # noqa: BLE001 - one bad file is one line; the others are still linted
-            yield LintLine(path, "error", error_line(path, exc))
+    for unit in lint_units(paths, mapping=mapping):
+        yield from unit.fn(*unit.args)
 
 
 def lint_paths(paths: Iterable[str | os.PathLike], *, mapping: str | None = None) -> LintReport:

@@ -79,10 +79,10 @@ def _no_time(text: str) -> str:
 
 
 def _same_runs(capsys, monkeypatch, tmp_path, *argv: str, ray_args=("--ray", "--ray-workers", "2")) -> dict:
-    from ethimon.fleet import _run
+    from ethimon.fleet import _executor
     calls = []
-    real = _run.map_files
-    monkeypatch.setattr(_run, "map_files", lambda *a, **kw: calls.append(a[2]) or real(*a, **kw))
+    real = _executor.map_files
+    monkeypatch.setattr(_executor, "map_files", lambda *a, **kw: calls.append(a[2]) or real(*a, **kw))
     outs = []
     for tag, extra in (("serial", ()), ("ray", ray_args)):
         j, x = tmp_path / f"{tag}.json", tmp_path / f"{tag}.xml"
@@ -109,7 +109,7 @@ def test_check_report_in_the_library(ray_local, tmp_path):
     d = _scenarios(tmp_path / "sc")
     seen = []
     serial = scenario.check_paths([str(d)])
-    on_ray = fleet.check_paths([str(d)], on_file=lambda done, total, path: seen.append((done, total)))
+    on_ray = fleet.check_paths([str(d)], on_progress=lambda done, total, path: seen.append((done, total)))
     assert [o.record for o in on_ray.outcomes] == json.loads(json.dumps([o.record for o in serial.outcomes]))
     assert [(o.name, o.status, o.messages) for o in on_ray.outcomes] == \
         [(o.name, o.status, o.messages) for o in serial.outcomes]
@@ -255,19 +255,19 @@ def test_a_hanging_worker_times_out_and_its_task_is_cancelled(ray_local, tmp_pat
     assert len(seen) == 7 and seen[-1][:2] == (6, 6) and sorted(s[2] for s in seen[1:]) == sorted(labels)
 
 
-def _hang_on_s1(run_id: str, cwd: str, path: str, sim: bool, model_dir: str | None):
+def _hang_on_s1(run_id: str, path: str, sim: bool, model_dir: str | None):
     """``check_unit``, but the file s1.yaml never finishes."""
-    from ethimon.fleet._units import check_unit
+    from ethimon.scenario._session import check_unit
     if path.endswith("s1.yaml"):
         time.sleep(60)
-    return check_unit(run_id, cwd, path, sim, model_dir)
+    return check_unit(run_id, path, sim, model_dir)
 
 
 def test_check_file_timeout_is_one_error_row(ray_local, tmp_path, capsys, monkeypatch):
     import ray.cloudpickle
-    from ethimon.fleet import _run
+    from ethimon.scenario import _session
     ray.cloudpickle.register_pickle_by_value(sys.modules[__name__])
-    monkeypatch.setattr(_run, "check_unit", _hang_on_s1)
+    monkeypatch.setattr(_session, "check_unit", _hang_on_s1)
     d = _scenarios(tmp_path / "sc")
     rc_serial, _, _ = _main(capsys, "check", str(d), "--json", str(tmp_path / "serial.json"))
     rc, _, err = _main(capsys, "check", str(d), "--json", str(tmp_path / "ray.json"), "--ray", "--file-timeout-s", "8")
@@ -293,14 +293,13 @@ def test_file_timeout_needs_ray_and_seconds_above_0(capsys):
 
 def test_failed_units_are_error_rows_in_place(tmp_path, monkeypatch):
     """The driver's side without Ray: a unit that failed is an ERROR row at its file's place."""
-    from ethimon.fleet import _run
+    from ethimon.fleet import _executor, _run
     d = _scenarios(tmp_path / "sc")
 
     def fake_map(fn, calls, labels, **kw):
-        from ethimon.fleet._units import check_unit
         return [Failure("the Ray worker checking this file died (WorkerCrashedError)") if lab.endswith("s1.yaml")
-                else check_unit(*args) for args, lab in zip(calls, labels)]
-    monkeypatch.setattr(_run, "map_files", fake_map)
+                else fn(*args) for args, lab in zip(calls, labels)]
+    monkeypatch.setattr(_executor, "map_files", fake_map)
     rep = _run.check_paths([str(d)])
     assert [o.path for o in rep.outcomes] == [str(p) for p in sorted(d.glob("*.yaml"))]
     row = rep.outcomes[1]

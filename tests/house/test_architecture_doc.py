@@ -1,6 +1,7 @@
 """ARCHITECTURE.md says what the code is: its table of floors is ``test_import_direction.ALLOWED``'s, every
 module it names as ``package/_module.py`` exists, and every package's private modules (its rooms) are
-named in it at least once (issue 24, item 4)."""
+named in it at least once (issue 24, item 4); the room list is generated from the rooms' docstrings
+(``tests/house/rooms.py``, issue 33 item 5)."""
 
 from __future__ import annotations
 
@@ -43,6 +44,20 @@ def test_the_floors_table_is_the_import_rule():
 def test_every_module_the_architecture_names_exists():
     missing = sorted(m for m in modules_named(DOC.read_text(encoding="utf-8")) if not (SRC / m).is_file())
     assert not missing, f"ARCHITECTURE.md names modules that do not exist: {missing}"
+
+
+def test_the_room_list_is_generated_from_the_docstrings():
+    from tests.house import rooms
+    got = rooms.current(DOC.read_text(encoding="utf-8"))
+    assert got is not None, "ARCHITECTURE.md lost the markers of its generated room list"
+    assert got == rooms.block(), "the room list differs from the modules' docstrings: python -m tests.house.rooms --write"
+
+
+def test_the_room_summary_is_the_first_sentence_in_markdown():
+    from tests.house.rooms import summary
+    assert summary("``ethimon check``: run :class:`~ethimon.scenario.Scenario` files.\n\nMore.") == \
+        "`ethimon check`: run `Scenario` files"
+    assert summary("One job, across\n  two lines. And more") == "One job, across two lines"
 
 
 def test_every_room_is_named_in_the_architecture():

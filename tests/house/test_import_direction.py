@@ -4,10 +4,10 @@ The floors, lowest first (a package may import only what its row lists; its
 own modules are always allowed):
 
     errors, _files, _robot  shared error types, safe file opening, robot facts (the Panda's home pose)
+    _batch                  the one batch runner: run(units, executor), Serial, Outcome, Report, plain data
     language                YAML → validated Spec, the expression parser (stage 1)
     compiler                names, types, units → Plan → closures; the R_e formula
     _api                    load_spec = language + compiler in one call
-    spec                    deprecated alias of language (one release): its names, load_spec
     runtime                 Monitor.step → Decision (never loads files)
     audit, risk, sim,       beside each other above runtime: none imports another
       verify, testing       (testing: ReferenceMonitor, the test oracle)
@@ -32,7 +32,7 @@ from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "ethimon"
 
-_LOW = {"errors", "_files", "_robot"}
+_LOW = {"errors", "_files", "_robot", "_batch"}
 _LANGUAGE = _LOW | {"language"}
 _COMPILED = _LANGUAGE | {"compiler"}
 _BESIDE = _COMPILED | {"_api", "runtime"}
@@ -42,10 +42,10 @@ ALLOWED: dict[str, set[str]] = {
     "errors": set(),
     "_files": {"errors"},
     "_robot": {"errors"},
+    "_batch": {"errors"},
     "language": _LOW,
     "compiler": _LANGUAGE,
     "_api": _COMPILED,
-    "spec": _LANGUAGE | {"_api"},
     "runtime": _COMPILED,
     "audit": _BESIDE,
     "view": _BESIDE,
@@ -62,7 +62,8 @@ ALLOWED: dict[str, set[str]] = {
     "loop": _BESIDE | {"audit", "risk", "verify", "view"},
     "_lint": _BESIDE | {"verify", "scenario", "replay", "io", "risk"},
     "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop", "io", "view"},
-    "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io"},
+    "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io",
+                          "fleet"},
     "cli": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io",
                       "fleet", "ros2", "ethimon", "_lint", "view"},
 }

@@ -5,7 +5,7 @@ into a spec or mapping file and read back through the attribute (same value, and
 the key itself: no alias); a CLI flag is found on its command's parser and parses into the dest of
 the same words; a JSON key is read out of what the library writes. A rename in one layer that the
 others do not follow fails here. The rules beside it: one argparse handler name, a unit in every
-flag that carries a quantity (the old spellings stay as hidden deprecated aliases), ``run_sim``
+flag that carries a quantity (no hidden old spellings), ``run_sim``
 takes the monitor's input names, and the two "defaults" of τ stay two named facts.
 """
 
@@ -13,13 +13,12 @@ from __future__ import annotations
 
 import argparse
 import inspect
-import warnings
 from pathlib import Path
 
 import pytest
 
 import ethimon
-from ethimon.cli import _build_parser, main
+from ethimon.cli import _build_parser
 
 # concept: (spec-or-mapping YAML key path, Python attribute path, [(command, flag)], JSON key)
 #   the YAML and attribute paths are the same words by rule; a JSON key may be the symbol (tau for
@@ -134,9 +133,6 @@ def test_every_flag_parses_into_its_own_words():
             for o in a.option_strings:
                 if o.startswith("--") and o not in ("--help", "--version"):
                     want = DEST_EXCEPTIONS.get(o, o.lstrip("-").replace("-", "_"))
-                    if a.help == argparse.SUPPRESS:  # a deprecated spelling: parses into the new flag's dest
-                        from ethimon.cli._common import DEPRECATED_FLAGS
-                        want = DEPRECATED_FLAGS[o].lstrip("-").replace("-", "_")
                     assert a.dest == want, (command, o, a.dest)
 
 
@@ -156,24 +152,6 @@ def test_one_handler_name_on_every_leaf_command():
     for command, parser in LEAVES.items():
         assert callable(parser.get_default("handler")), command
         assert parser.get_default("func") is None, command
-
-
-@pytest.mark.parametrize("argv, old, new, message", [
-    (["check", "scenarios", "--file-timeout", "5"], "--file-timeout", "--file-timeout-s", "--file-timeout-s needs --ray"),
-    (["replay", "x.bag", "--spec", "s", "--map", "m", "--file-timeout", "5"], "--file-timeout", "--file-timeout-s",
-     "--file-timeout-s needs --ray"),
-    (["ros2", "--spec", "s", "--map", "m", "--duration", "0"], "--duration", "--duration-s",
-     "--duration-s 0: expected a positive number of seconds"),
-])
-def test_old_flag_spellings_still_work_hidden_and_warn(argv, old, new, message, capsys):
-    assert main(argv) == 2
-    err = capsys.readouterr().err
-    assert f"ethimon: warning: {old} is deprecated; use {new}" in err and message in err, err
-    assert main([a if a != old else new for a in argv]) == 2
-    err = capsys.readouterr().err
-    assert "deprecated" not in err and message in err, err
-    helptext = LEAVES[(argv[0],)].format_help()
-    assert new in helptext and f"{old} " not in helptext.replace(f"{new} ", "")
 
 
 def test_json_keys_of_tau_and_confirm_threshold():
@@ -216,12 +194,10 @@ def test_run_sim_takes_the_monitor_input_names():
         def reset(self):
             raise Stop  # run_sim resets the monitor right after reading its inputs: no simulation runs
 
-    with pytest.raises(TypeError, match="p= "):
-        run_sim({}, Probe(), p=(0.9, 0.1), probs=(0.9, 0.1))
-    with warnings.catch_warnings(record=True) as got, pytest.raises(Stop):
-        warnings.simplefilter("always")
-        run_sim({}, Probe(), probs=(0.9, 0.1))  # the deprecated spelling still works
-    assert [w.category for w in got] == [DeprecationWarning] and "use p=" in str(got[0].message)
+    with pytest.raises(TypeError, match="probs"):  # the old spelling is gone (issue 33)
+        run_sim({}, Probe(), probs=(0.9, 0.1))
+    with pytest.raises(Stop):
+        run_sim({}, Probe(), p=(0.9, 0.1))
 
 
 def test_the_two_defaults_of_tau_are_two_named_facts():

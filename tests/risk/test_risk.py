@@ -312,32 +312,6 @@ def test_training_is_seeded(tiny, tmp_path):
         assert len(m["history"]) >= 1 and m["best_epoch"] >= 1
     assert shas[0] == shas[1]
 
-
-
-@pytest.mark.slow
-def test_train_lora_keyword_form_is_deprecated_and_trains_as_its_recipe(tiny, tmp_path):
-    """Issue 24: the hyper-parameter keywords still work for one release, with a DeprecationWarning; they
-    become a recipe with that form's defaults (max_length 128, head_lr 2e-3, lr as given), so the adapter
-    is byte for byte the one the recipe form trains."""
-    from ethimon.risk._recipe import Recipe
-    from ethimon.risk._train import recipe_from_keywords, train_lora
-    ys = [1, 0, 1, 0, 1, 0]
-    kw = dict(epochs=1, batch_size=3, r=2, alpha=4, seed=5, lr=1e-3)
-    run = dict(base_dir=tiny[0], progress=False, log=lambda m: None, num_threads=1)
-    with pytest.warns(DeprecationWarning, match="Recipe"):
-        old = train_lora(TEXTS, ys, TEXTS[:4], ys[:4], out_dir=tmp_path / "kw", **run, **kw)
-    recipe = Recipe(epochs=1, batch_size=3, lora_r=2, lora_alpha=4, seed=5, lr=1e-3, head_lr=2e-3, max_length=128)
-    assert recipe_from_keywords(**kw).encoder_lr_used() == recipe.encoder_lr_used() == 1e-3
-    new = train_lora(TEXTS, ys, TEXTS[:4], ys[:4], recipe, out_dir=tmp_path / "rc", **run)
-    sha = [json.loads((tmp_path / d / "ethimon_model.json").read_text())["adapter_sha256"] for d in ("kw", "rc")]
-    assert sha[0] == sha[1]
-    assert {k: v for k, v in old["config"].items()} == new["config"]
-    with pytest.raises(TypeError, match="epochs"):  # a recipe and keywords: which one counts?
-        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], recipe, out_dir=tmp_path / "x", epochs=2, **run)
-    with pytest.warns(DeprecationWarning), pytest.raises(TypeError, match="unexpected keyword argument 'rank'"):
-        train_lora(TEXTS, ys, TEXTS[:4], ys[:4], out_dir=tmp_path / "x", rank=2, **run)
-    assert not (tmp_path / "x").exists()
-
 @pytest.mark.slow
 def test_init_seed_fixes_the_starting_point_only(tiny, tmp_path):
     """lr 0: the saved adapter is the initial one. init_seed=42 starts where seed=42 starts."""

@@ -81,8 +81,6 @@ def test_on_fault_short_and_long_forms(text, want):
     assert ethimon.Monitor(s).plan.on_fault is Response(want[0])
     plan = ethimon.Monitor(s).plan
     assert (plan.fault_rule.mode, plan.fault_rule.hold) == want[1]
-    with pytest.warns(DeprecationWarning, match="Plan.fault_rule"):  # deprecated, the same value
-        assert plan.fault_release == want[1]
 
 
 def test_obligation_release_forms():

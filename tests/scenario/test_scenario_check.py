@@ -92,7 +92,7 @@ def test_check_paths_reports_rows_in_file_order_and_calls_progress(tmp_path):
     write_ok(tmp_path, "b", risk=0.9)
     (tmp_path / "c.yaml").write_text("ethimon: 1\nname: [unclosed\n")
     calls = []
-    rep = check_paths([str(tmp_path)], on_file=lambda done, total, path: calls.append((done, total)))
+    rep = check_paths([str(tmp_path)], on_progress=lambda done, total, path: calls.append((done, total)))
     assert [o.status for o in rep.outcomes] == ["PASS", "FAIL", "ERROR"]
     assert (rep.passed, rep.failed, rep.errors, rep.exit_code) == (1, 1, 1, 2)
     assert calls == [(0, 3), (1, 3), (2, 3), (3, 3)]

@@ -29,5 +29,4 @@ from ._log import FSYNC_POLICIES, KEY_ENV, KEY_FILE_ENV, MAX_RECORD_BYTES, Audit
 from ..errors import AuditFormatError, AuditTampered
 from ._chain import AuditReport, read_log, verify_log
 
-__all__ = ["AuditFormatError", "AuditLag", "AuditTampered", "AuditLog", "AuditReport", "FSYNC_POLICIES", "KEY_ENV",
-           "KEY_FILE_ENV", "MAX_RECORD_BYTES", "bounded", "key_from_env", "read_log", "spec_hash", "verify_log"]
+__all__ = ["AuditLog", "AuditReport", "bounded", "read_log", "verify_log"]

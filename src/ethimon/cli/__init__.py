@@ -50,7 +50,17 @@ def _build_parser() -> argparse.ArgumentParser:
                 continue
             raise
         getattr(module, fn)(sub)
+    _whole_flags_only(p)
     return p
+
+
+def _whole_flags_only(p: argparse.ArgumentParser) -> None:
+    """No prefix abbreviations (``--duration`` is not ``--duration-s``): a flag is spelt out or unknown."""
+    p.allow_abbrev = False
+    for a in p._actions:
+        if isinstance(a, argparse._SubParsersAction):
+            for child in a.choices.values():
+                _whole_flags_only(child)
 
 
 def _cmd_schema(args: argparse.Namespace) -> int:
@@ -66,14 +76,13 @@ def _cmd_schema(args: argparse.Namespace) -> int:
 
 
 def _cmd_lint(args: argparse.Namespace) -> int:
-    from .._lint import iter_lint
+    from .._batch import run
+    from .._lint import LintLine, lint_units
     rc = 0
-    for line in iter_lint(args.paths, mapping=getattr(args, "mapping", None)):
-        if line.kind == "error":
-            print(line.text, file=sys.stderr)
-            rc = 2
-        else:
-            print(line.text)
+    for o in run(lint_units(args.paths, mapping=getattr(args, "mapping", None))).outcomes:
+        for line in o.value if o.ok else [LintLine(o.label, "error", o.lines()[0])]:
+            print(line.text, file=sys.stderr if line.kind == "error" else sys.stdout)
+            rc = 2 if line.kind == "error" else rc
     return rc
 
 

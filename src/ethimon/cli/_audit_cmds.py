@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ._common import add_deprecated_alias, err
+from ._common import err
 
 __all__ = ["add_audit_parsers", "cmd_audit_verify", "main"]
 
@@ -35,7 +35,6 @@ def add_audit_parsers(subparsers: argparse._SubParsersAction) -> argparse.Argume
     v.add_argument("--head", metavar="COUNT:HASH",
                    help="the head printed when the log was closed (or a bare hash of the last record), kept "
                         "elsewhere; the log must end exactly there")
-    add_deprecated_alias(v, "--expect-head", "--head")
     key = v.add_mutually_exclusive_group()
     key.add_argument("--key-file", metavar="FILE", help="HMAC key file, for logs written with a key")
     key.add_argument("--key-env", metavar="NAME", help="environment variable holding the HMAC key")

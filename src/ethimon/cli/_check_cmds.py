@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ._common import Progress, add_ray_options, emit_json, emit_report, err, ray_options
+from ._common import Progress, add_ray_options, emit_json, emit_report, err, executor_of
 
 __all__ = ["add_check_parser", "cmd_check"]
 
@@ -40,7 +40,7 @@ def cmd_check(args: argparse.Namespace) -> int:
     json_to_stdout = args.json == "-"
     out = sys.stderr if json_to_stdout else sys.stdout  # stdout is the JSON's alone
     try:
-        ray, file_timeout = ray_options(args, "paths")  # ray None: serial; else (address, workers)
+        executor = executor_of(args, "paths")  # Serial(), or fleet.Ray(...) with --ray
     except EthimonError as exc:
         return err(str(exc))
     if not args.paths:
@@ -49,13 +49,8 @@ def cmd_check(args: argparse.Namespace) -> int:
         return err(f"ethimon check: --jobs must be at least 1, got {args.jobs}")
     jobs = args.jobs if args.jobs is not None else default_jobs()
     with Progress("check", enabled=not json_to_stdout) as progress:
-        if ray is None:
-            report = check_paths(args.paths, sim=args.sim, model_dir=args.model, on_file=progress,
-                                 jobs=jobs)
-        else:
-            from ..fleet import check_paths as check_on_ray
-            report = check_on_ray(args.paths, sim=args.sim, model_dir=args.model, on_file=progress,
-                                  address=ray[0], num_cpus=ray[1], file_timeout=file_timeout)
+        report = check_paths(args.paths, sim=args.sim, model_dir=args.model, on_progress=progress, jobs=jobs,
+                             executor=executor)
     if not args.quiet:
         print_table([(o.name, o.expected, o.got, "-" if o.first_override_cycle is None
                       else str(o.first_override_cycle), o.status) for o in report.outcomes], out)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import argparse
 import json
 import sys
 from typing import Any
@@ -10,31 +9,10 @@ from typing import Any
 from ..errors import SpecError
 
 __all__ = ["err", "ERROR_PREFIX", "write_report", "emit_report", "emit_json", "Progress", "add_ray_options",
-           "ray_options", "ray_target", "add_deprecated_alias", "DEPRECATED_FLAGS"]
+           "ray_options", "ray_target", "executor_of"]
 
 #: the one prefix of a CLI error that is not located in a file (located ones read ``path:line:col: ...``)
 ERROR_PREFIX = "ethimon: error: "
-
-
-#: old flag spelling -> the one it was renamed to (a unit in every flag that carries a quantity); the old
-#: spelling still works, is hidden from --help and warns on stderr
-DEPRECATED_FLAGS: dict[str, str] = {}
-
-
-class _DeprecatedFlag(argparse.Action):
-    """The old spelling of a renamed flag: stores into the new flag's dest and warns once on stderr."""
-
-    def __call__(self, parser, namespace, values, option_string=None):
-        new = DEPRECATED_FLAGS.get(option_string or "", "")
-        print(f"ethimon: warning: {option_string} is deprecated; use {new}", file=sys.stderr)
-        setattr(namespace, self.dest, values)
-
-
-def add_deprecated_alias(p: argparse.ArgumentParser, old: str, new: str, **kwargs: Any) -> None:
-    """Add ``old`` as a hidden, deprecated spelling of the flag ``new`` (same dest and type)."""
-    DEPRECATED_FLAGS[old] = new
-    p.add_argument(old, dest=new.lstrip("-").replace("-", "_"), action=_DeprecatedFlag,
-                   help=argparse.SUPPRESS, default=argparse.SUPPRESS, **kwargs)
 
 
 def err(msg: str) -> int:
@@ -160,7 +138,6 @@ def add_ray_options(p, what: str) -> None:
     p.add_argument("--file-timeout-s", type=float, metavar="S", default=None,
                    help="with --ray: a file whose task has not finished after S seconds is an ERROR row and its "
                         "task is cancelled (default: no limit)")
-    add_deprecated_alias(p, "--file-timeout", "--file-timeout-s", type=float, metavar="S")
 
 
 def ray_options(args, paths_attr: str) -> tuple[tuple[str | None, int | None] | None, float | None]:
@@ -173,6 +150,21 @@ def ray_options(args, paths_attr: str) -> tuple[tuple[str | None, int | None] | 
     from ..fleet import check_file_timeout
     ray = ray_target(args, paths_attr)
     return ray, check_file_timeout(args.file_timeout_s, on_ray=ray is not None)
+
+
+def executor_of(args, paths_attr: str) -> Any:
+    """The executor of :func:`ethimon.run` the options of :func:`add_ray_options` ask for: ``Serial()``
+    without ``--ray``, else ``fleet.Ray(address, num_cpus=workers, file_timeout=...)``.
+
+    Raises:
+        EthimonError: as :func:`ray_options`.
+    """
+    ray, file_timeout = ray_options(args, paths_attr)
+    if ray is None:
+        from .._batch import Serial
+        return Serial()
+    from ..fleet import Ray
+    return Ray(ray[0], num_cpus=ray[1], file_timeout=file_timeout)
 
 
 def ray_target(args, paths_attr: str) -> tuple[str | None, int | None] | None:

@@ -81,10 +81,8 @@ def _open_view(args: argparse.Namespace, spec: Any) -> tuple[Any, int | None]:
 
 
 def cmd_replay(args: argparse.Namespace) -> int:
-    from .. import _api
-    from ..errors import EthimonError, SpecError
-    from ..replay import TaskScorer, check_against_spec, lint_mapping, load_mapping, mapping_json_schema
-    from ..replay._record import ReplayReport, replay_paths
+    from ..errors import EthimonError
+    from ..replay import lint_mapping, mapping_json_schema
 
     if args.schema:
         emit_json("-", mapping_json_schema(), "JSON Schema")
@@ -95,62 +93,17 @@ def cmd_replay(args: argparse.Namespace) -> int:
         ray, file_timeout = ray_options(args, "bags")  # ray None: serial; else (address, workers)
     except EthimonError as exc:
         return err(str(exc))
-    if not args.bags:
-        return err("ethimon replay: give at least one BAG (and --spec SPEC --map MAP)")
-    if ray is not None and args.audit:
-        return err("ethimon replay: --audit cannot be used with --ray (the audit log is one hash chain, "
-                   "written in bag order by one process); run without --ray to write it")
-    if ray is not None and args.mcap:
-        return err("ethimon replay: --mcap cannot be used with --ray; run without --ray to write it")
-    if ray is not None and args.foxglove is not None:
-        return err("ethimon replay: --foxglove cannot be used with --ray; run without --ray to serve it")
-    if args.foxglove is not None:
-        from ..view import parse_address
-        try:
-            parse_address(args.foxglove)
-        except ValueError as exc:
-            return err(f"--foxglove: {exc}")
-    if not (args.foxglove_speed >= 0 and args.foxglove_speed != float("inf")):
-        return err(f"--foxglove-speed {args.foxglove_speed:g}: expected a number >= 0 (0: no pacing)")
-    if not (args.foxglove_wait_s >= 0 and args.foxglove_wait_s != float("inf")):
-        return err(f"--foxglove-wait-s {args.foxglove_wait_s:g}: expected a number of seconds >= 0")
-    if not args.spec or not args.mapping:
-        return err("ethimon replay: --spec SPEC and --map MAP are required (ethimon replay BAG --topics lists "
-                   "a bag's topics to write the mapping from)")
-    try:
-        spec = _api.load_spec(args.spec)
-        mapping = load_mapping(args.mapping)
-        check_against_spec(mapping, spec)
-    except SpecError as exc:
-        print(str(exc), file=sys.stderr)
-        return 2
-    view = None
-    if args.foxglove is not None:
-        view, rc = _open_view(args, spec)
-        if rc is not None:
-            return rc
-    audit = None
-    if args.audit:
-        audit, rc = open_audit_log(args.audit, spec, tool="ethimon replay", spec=args.spec, mapping=args.mapping,
-                                   bags=list(args.bags))
-        if rc is not None:
-            return rc
-    json_to_stdout = args.json == "-"
-    out = sys.stderr if json_to_stdout else sys.stdout  # stdout is the JSON's alone
+    refused = _refusal(args, ray)
+    if refused is not None:
+        return err(refused)
+    spec, mapping = _load(args)  # a SpecError: printed located by main, exit 2
+    view, audit, rc = _sinks(args, spec)
+    if rc is not None:
+        return rc
+    out = sys.stderr if args.json == "-" else sys.stdout  # stdout is the JSON's alone
     t0 = time.perf_counter()
     try:
-        with Progress("replay", enabled=not json_to_stdout) as progress, \
-                _MessageBar(enabled=not json_to_stdout) as bar:
-            if ray is None:
-                scorer = TaskScorer(spec, model_dir=args.model)
-                report = replay_paths(args.bags, spec, mapping, score=scorer, audit=audit, mcap=args.mcap,
-                                      on_bag=lambda i, n, b: (bar.new(b), progress(i, n, b)),
-                                      on_progress=bar, foxglove=view, foxglove_speed=args.foxglove_speed)
-            else:  # the same records, each bag on a Ray worker
-                from ..fleet import replay_records
-                report = ReplayReport(replay_records(
-                    args.bags, spec=args.spec, mapping=args.mapping, model_dir=args.model, on_bag=progress,
-                    address=ray[0], num_cpus=ray[1], file_timeout=file_timeout))
+        report = _replay(args, spec, mapping, ray, file_timeout, audit, view)
     except OSError as exc:
         return err(f"--mcap {args.mcap}: {exc.strerror or exc}")
     finally:
@@ -158,51 +111,129 @@ def cmd_replay(args: argparse.Namespace) -> int:
             audit.close()
         if view is not None:
             view.close(timeout=10.0)  # what is queued goes out first
+    rows, problems, notes = [], [], [f"{args.mapping}: lint: {w}" for w in lint_mapping(mapping, spec)]
+    for bag, rec in zip(args.bags, report.results):
+        _bag_lines(bag, rec, rows, problems, notes)
+    return _finish(args, report, rows, problems, notes, time.perf_counter() - t0, out)
+
+
+def _refusal(args: argparse.Namespace, ray: Any) -> str | None:
+    """Why these arguments cannot run (one line), or ``None``."""
+    if not args.bags:
+        return "ethimon replay: give at least one BAG (and --spec SPEC --map MAP)"
+    if ray is not None and args.audit:
+        return ("ethimon replay: --audit cannot be used with --ray (the audit log is one hash chain, "
+                "written in bag order by one process); run without --ray to write it")
+    if ray is not None and args.mcap:
+        return "ethimon replay: --mcap cannot be used with --ray; run without --ray to write it"
+    if ray is not None and args.foxglove is not None:
+        return "ethimon replay: --foxglove cannot be used with --ray; run without --ray to serve it"
+    if args.foxglove is not None:
+        from ..view import parse_address
+        try:
+            parse_address(args.foxglove)
+        except ValueError as exc:
+            return f"--foxglove: {exc}"
+    if not (args.foxglove_speed >= 0 and args.foxglove_speed != float("inf")):
+        return f"--foxglove-speed {args.foxglove_speed:g}: expected a number >= 0 (0: no pacing)"
+    if not (args.foxglove_wait_s >= 0 and args.foxglove_wait_s != float("inf")):
+        return f"--foxglove-wait-s {args.foxglove_wait_s:g}: expected a number of seconds >= 0"
+    if not args.spec or not args.mapping:
+        return ("ethimon replay: --spec SPEC and --map MAP are required (ethimon replay BAG --topics lists "
+                "a bag's topics to write the mapping from)")
+    return None
+
+
+def _load(args: argparse.Namespace) -> tuple[Any, Any]:
+    """The spec and the mapping, checked against each other (a ``SpecError`` otherwise)."""
+    from .. import _api
+    from ..replay import check_against_spec, load_mapping
+    spec = _api.load_spec(args.spec)
+    mapping = load_mapping(args.mapping)
+    check_against_spec(mapping, spec)
+    return spec, mapping
+
+
+def _sinks(args: argparse.Namespace, spec: Any) -> tuple[Any, Any, int | None]:
+    """``(live view, audit log, exit code if one could not open)``."""
+    view = audit = None
+    if args.foxglove is not None:
+        view, rc = _open_view(args, spec)
+        if rc is not None:
+            return None, None, rc
+    if args.audit:
+        audit, rc = open_audit_log(args.audit, spec, tool="ethimon replay", spec=args.spec, mapping=args.mapping,
+                                   bags=list(args.bags))
+        if rc is not None:
+            return view, None, rc
+    return view, audit, None
+
+
+def _replay(args: argparse.Namespace, spec: Any, mapping: Any, ray: Any, file_timeout: float | None,
+            audit: Any, view: Any) -> Any:
+    """The bags replayed here (``replay_paths``) or each on a Ray worker (``replay_records``): a report."""
+    from ..replay import TaskScorer
+    from ..replay._record import ReplayReport, replay_paths, replay_records
+    json_to_stdout = args.json == "-"
+    with Progress("replay", enabled=not json_to_stdout) as progress, _MessageBar(enabled=not json_to_stdout) as bar:
+        if ray is None:
+            scorer = TaskScorer(spec, model_dir=args.model)
+            return replay_paths(args.bags, spec, mapping, score=scorer, audit=audit, mcap=args.mcap,
+                                on_progress=lambda i, n, b: (bar.new(b), progress(i, n, b)),
+                                on_messages=bar, foxglove=view, foxglove_speed=args.foxglove_speed)
+        from ..fleet import Ray  # the same records, each bag on a Ray worker
+        return ReplayReport(replay_records(args.bags, spec=args.spec, mapping=args.mapping, model_dir=args.model,
+                                           on_progress=progress,
+                                           executor=Ray(ray[0], num_cpus=ray[1], file_timeout=file_timeout)))
+
+
+def _bag_lines(bag: str, rec: dict, rows: list, problems: list, notes: list) -> None:
+    """One bag's table rows, problems (stderr) and notes (stderr unless ``--quiet``)."""
+    if "error" in rec:
+        rows.append((bag, "-", "-", "-", "-", "ERROR"))
+        problems.append(rec["error"])
+        return
+    for c in rec["checks"]:
+        fv = c["first_violation"]
+        first = "-" if fv is None else f"{fv['t_s']:.3f} s (cycle {fv['cycle']})"
+        status = c.get("status") or ("PASS" if c["passed"] else "FAIL")
+        rows.append((bag, c["id"], str(c["cycles_violated"]), first, _margin(c["worst_margin"]), status))
+        if status == "FAIL":
+            what = "failed closed" if c["kind"] == "faults" else "violated"
+            line = (f"{bag}: {c['id']}: {what} on {c['cycles_violated']} of {rec['cycles']} cycles, first at "
+                    f"t = {fv['t_s']:.3f} s (bag time {_stamp(fv['bag_time_ns'])}, cycle {fv['cycle']})")
+            if c["worst_margin"] is not None:
+                line += f", worst margin {_margin(c['worst_margin'])}"
+            if c["detail"]:
+                line += f": {c['detail']}"
+            problems.append(line)
+        elif status != "PASS":
+            notes.append(f"{bag}: {c['id']}: {status}: {c['detail']}")
+    problems.extend(_run_lines(bag, rec))
+    for task in rec.get("tasks", []):
+        if "outcome" in task:
+            text = task["text"] if len(task["text"]) <= 80 else task["text"][:77] + "..."
+            r_e = "-" if task.get("r_e") is None else f"{task['r_e']:.3f}"
+            at = "" if task.get("t_s") is None else f" at t = {task['t_s']:.3f} s"
+            notes.append(f"{bag}: task{at}: {text!r}: R_e {r_e}: {task['outcome']}")
+    if rec.get("started", {}).get("note"):
+        notes.append(f"{bag}: {rec['started']['note']}")
+    for w in rec.get("warnings", []):
+        notes.append(f"{bag}: warning: {w}")
+    for name, sg in rec.get("signals", {}).items():
+        if "judged" in sg and sg.get("samples", sg["messages"]) != sg["judged"]:
+            notes.append(f"{bag}: {name} ({sg['topic']}): read {sg['messages']:,} messages, judged "
+                         f"{sg['judged']:,} of {sg.get('samples', sg['messages']):,} samples")
+    if "mcap" in rec:
+        notes.append(f"{bag}: wrote {rec['mcap']['messages']:,} MCAP messages to {rec['mcap']['path']}")
+    if "foxglove" in rec:
+        notes.append(f"{bag}: served {rec['foxglove']['cycles']:,} cycles to {rec['foxglove']['url']}")
+
+
+def _finish(args: argparse.Namespace, report: Any, rows: list, problems: list, notes: list, elapsed: float,
+            out: Any) -> int:
+    """Print the table, the inputs, the problems, the notes and the summary; write the reports; the exit code."""
     results = report.results
-    rows, problems, notes = [], [], []
-    for w in lint_mapping(mapping, spec):
-        notes.append(f"{args.mapping}: lint: {w}")
-    for bag, rec in zip(args.bags, results):
-        if "error" in rec:
-            rows.append((bag, "-", "-", "-", "-", "ERROR"))
-            problems.append(rec["error"])
-            continue
-        for c in rec["checks"]:
-            fv = c["first_violation"]
-            first = "-" if fv is None else f"{fv['t_s']:.3f} s (cycle {fv['cycle']})"
-            status = c.get("status") or ("PASS" if c["passed"] else "FAIL")
-            rows.append((bag, c["id"], str(c["cycles_violated"]), first, _margin(c["worst_margin"]), status))
-            if status == "FAIL":
-                what = "failed closed" if c["kind"] == "faults" else "violated"
-                line = (f"{bag}: {c['id']}: {what} on {c['cycles_violated']} of {rec['cycles']} cycles, first at "
-                        f"t = {fv['t_s']:.3f} s (bag time {_stamp(fv['bag_time_ns'])}, cycle {fv['cycle']})")
-                if c["worst_margin"] is not None:
-                    line += f", worst margin {_margin(c['worst_margin'])}"
-                if c["detail"]:
-                    line += f": {c['detail']}"
-                problems.append(line)
-            elif status != "PASS":
-                notes.append(f"{bag}: {c['id']}: {status}: {c['detail']}")
-        problems.extend(_run_lines(bag, rec))
-        for task in rec.get("tasks", []):
-            if "outcome" in task:
-                text = task["text"] if len(task["text"]) <= 80 else task["text"][:77] + "..."
-                r_e = "-" if task.get("r_e") is None else f"{task['r_e']:.3f}"
-                at = "" if task.get("t_s") is None else f" at t = {task['t_s']:.3f} s"
-                notes.append(f"{bag}: task{at}: {text!r}: R_e {r_e}: {task['outcome']}")
-        if rec.get("started", {}).get("note"):
-            notes.append(f"{bag}: {rec['started']['note']}")
-        for w in rec.get("warnings", []):
-            notes.append(f"{bag}: warning: {w}")
-        for name, sg in rec.get("signals", {}).items():
-            if "judged" in sg and sg.get("samples", sg["messages"]) != sg["judged"]:
-                notes.append(f"{bag}: {name} ({sg['topic']}): read {sg['messages']:,} messages, judged "
-                             f"{sg['judged']:,} of {sg.get('samples', sg['messages']):,} samples")
-        if "mcap" in rec:
-            notes.append(f"{bag}: wrote {rec['mcap']['messages']:,} MCAP messages to {rec['mcap']['path']}")
-        if "foxglove" in rec:
-            notes.append(f"{bag}: served {rec['foxglove']['cycles']:,} cycles to {rec['foxglove']['url']}")
-    elapsed = time.perf_counter() - t0
     if not args.quiet:
         _print_table(rows, out)
         for rec in results:

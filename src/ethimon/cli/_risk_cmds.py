@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import Any
 
 from ..errors import EthimonError, ModelError, SpecError
 from ._common import emit_json, err
@@ -216,21 +217,11 @@ _OUTCOME_WORDS = {"stop": "STOP (override to the safe pose)",
 
 
 def cmd_risk(args: argparse.Namespace) -> int:
-    batch = args.text == "-" or args.file is not None
-    if args.text == "-" and args.file is not None:
-        return err("give '-' (stdin) or --file F, not both")
-    if args.text not in (None, "-") and args.file is not None:
-        return err("give a text or --file F, not both")
-    if args.column is not None and not batch:
-        return err("--column needs --file F or '-' (a CSV to read)")
-    if batch:
-        if args.explain:
-            return err("--explain scores one text; leave it out with '-' or --file")
+    refused = _risk_refusal(args)
+    if refused is not None:
+        return err(refused)
+    if args.text == "-" or args.file is not None:
         return _risk_batch(args)
-    if args.text is None:
-        return err("give a text, '-' (texts from stdin) or --file F")
-    if not args.text.strip():
-        return err("empty text")
     try:
         cfg = risk_config(args.spec)
         if args.top_words < 0:
@@ -242,43 +233,67 @@ def cmd_risk(args: argparse.Namespace) -> int:
         jr, tiers = _judge_and_outcome(cfg["spec"], args.text, r.risk, cfg["threshold"], args.no_judge)
     except (EthimonError, ValueError, OSError) as exc:
         return err(str(exc))
-    flagged = r.risk >= cfg["threshold"]
-    outcome = tiers["outcome"]
-    tc = tiers["confirm_threshold"]
     if args.json:
-        doc = {"text": args.text, "p": list(r.p), "p_unsafe": r.p_unsafe, "risk": r.risk,
-               "tau": cfg["threshold"], "flagged": flagged, "model_id": est.model_id,
-               "backend": getattr(est, "backend", None),
-               "temperature": est.temperature, "reading": est.reading,
-               "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")},
-               "confirm_threshold": tiers["confirm_threshold"],
-               "judge": {"p_unsafe": jr.p_unsafe, "latency_s": round(jr.latency_s, 6), "status": jr.status,
-                         "model": jr.model or None, "verdict": jr.verdict, "detail": jr.detail,
-                         "canary": jr.canary},
-               "outcome": outcome}
-        if why is not None:
-            doc["explain"] = {"driver": why["driver"], "views": why["views"],
-                              "words": [{"word": w, "drop": d} for w, d in why["words"]]}
-        emit_json("-", doc)
+        emit_json("-", _risk_json(args, cfg, est, r, why, jr, tiers))
     else:
-        # the outcome always comes from the tiers (never "ok" for a text the governor holds)
-        band = f"  tau_confirm = {tc:g}" if tc is not None else ""
-        print(f"p = ({r.p[0]:.4f}, {r.p[1]:.4f})  p_unsafe = {r.p_unsafe:.4f}  "
-              f"R_e = {r.risk:.4f}  tau = {cfg['threshold']:g}{band}  ->  {_OUTCOME_WORDS[outcome]}  "
-              f"[{est.model_id}]")
-        if jr.status != "not_configured":
-            jp = "-" if jr.p_unsafe is None else f"{jr.p_unsafe:.4f}"
-            print(f"judge: p_unsafe = {jp}  status = {jr.status}  latency = {jr.latency_s * 1000:.0f} ms"
-                  + (f"  ({jr.detail})" if jr.detail else "") + (f"  [{jr.model}]" if jr.model else "")
-                  + (f"  canaries: {jr.canary}" if jr.canary else ""))
-        tiers_of = (f"spec {cfg['spec'].name}" if cfg["spec"] is not None
-                    else "the shipped governor (specs/governor.yaml)")
-        print(f"outcome: {outcome}  (by the tiers of {tiers_of}: stop at R_e >= {cfg['threshold']:g}"
-              + (f", confirm band [{tc:g}, {cfg['threshold']:g})" if tc is not None else ", no confirm band")
-              + (", judge" if jr.status != "not_configured" else ", no judge") + ")")
-        if why is not None:
-            _print_explain(why)
-    return 1 if (outcome != "execute" and args.fail_on_flag) else 0
+        _print_risk(cfg, est, r, why, jr, tiers)
+    return 1 if (tiers["outcome"] != "execute" and args.fail_on_flag) else 0
+
+
+def _risk_refusal(args: argparse.Namespace) -> str | None:
+    """Why ``ethimon risk``'s arguments cannot run (one line), or ``None``."""
+    batch = args.text == "-" or args.file is not None
+    if args.text == "-" and args.file is not None:
+        return "give '-' (stdin) or --file F, not both"
+    if args.text not in (None, "-") and args.file is not None:
+        return "give a text or --file F, not both"
+    if args.column is not None and not batch:
+        return "--column needs --file F or '-' (a CSV to read)"
+    if batch:
+        return "--explain scores one text; leave it out with '-' or --file" if args.explain else None
+    if args.text is None:
+        return "give a text, '-' (texts from stdin) or --file F"
+    if not args.text.strip():
+        return "empty text"
+    return None
+
+
+def _risk_json(args: argparse.Namespace, cfg: dict, est: Any, r: Any, why: Any, jr: Any, tiers: dict) -> dict:
+    doc = {"text": args.text, "p": list(r.p), "p_unsafe": r.p_unsafe, "risk": r.risk,
+           "tau": cfg["threshold"], "flagged": r.risk >= cfg["threshold"], "model_id": est.model_id,
+           "backend": getattr(est, "backend", None),
+           "temperature": est.temperature, "reading": est.reading,
+           "weights": {k: cfg[k] for k in ("alpha", "beta", "gamma", "variance")},
+           "confirm_threshold": tiers["confirm_threshold"],
+           "judge": {"p_unsafe": jr.p_unsafe, "latency_s": round(jr.latency_s, 6), "status": jr.status,
+                     "model": jr.model or None, "verdict": jr.verdict, "detail": jr.detail,
+                     "canary": jr.canary},
+           "outcome": tiers["outcome"]}
+    if why is not None:
+        doc["explain"] = {"driver": why["driver"], "views": why["views"],
+                          "words": [{"word": w, "drop": d} for w, d in why["words"]]}
+    return doc
+
+
+def _print_risk(cfg: dict, est: Any, r: Any, why: Any, jr: Any, tiers: dict) -> None:
+    # the outcome always comes from the tiers (never "ok" for a text the governor holds)
+    outcome, tc = tiers["outcome"], tiers["confirm_threshold"]
+    band = f"  tau_confirm = {tc:g}" if tc is not None else ""
+    print(f"p = ({r.p[0]:.4f}, {r.p[1]:.4f})  p_unsafe = {r.p_unsafe:.4f}  "
+          f"R_e = {r.risk:.4f}  tau = {cfg['threshold']:g}{band}  ->  {_OUTCOME_WORDS[outcome]}  "
+          f"[{est.model_id}]")
+    if jr.status != "not_configured":
+        jp = "-" if jr.p_unsafe is None else f"{jr.p_unsafe:.4f}"
+        print(f"judge: p_unsafe = {jp}  status = {jr.status}  latency = {jr.latency_s * 1000:.0f} ms"
+              + (f"  ({jr.detail})" if jr.detail else "") + (f"  [{jr.model}]" if jr.model else "")
+              + (f"  canaries: {jr.canary}" if jr.canary else ""))
+    tiers_of = (f"spec {cfg['spec'].name}" if cfg["spec"] is not None
+                else "the shipped governor (specs/governor.yaml)")
+    print(f"outcome: {outcome}  (by the tiers of {tiers_of}: stop at R_e >= {cfg['threshold']:g}"
+          + (f", confirm band [{tc:g}, {cfg['threshold']:g})" if tc is not None else ", no confirm band")
+          + (", judge" if jr.status != "not_configured" else ", no judge") + ")")
+    if why is not None:
+        _print_explain(why)
 
 
 def _judge_and_outcome(spec, text: str, risk: float, tau: float, no_judge: bool):
@@ -449,71 +464,82 @@ def cmd_average(args: argparse.Namespace) -> int:
 
 def cmd_evaluate(args: argparse.Namespace) -> int:
     try:
-        import numpy as np
-        from ..risk._data import load_labelled_csv
-        from ..risk._evaluate import evaluate_logits, plot_confusion, plot_risk_hist
-        cfg = risk_config(args.spec)
-        rows = load_labelled_csv(args.data)
-        cal = load_labelled_csv(args.calibrate_on) if args.calibrate_on else None
-        est = _load(args.model, args.precision, args.max_length, spec=cfg["spec"],
-                    threads=_threads(args, len(rows)), backend=args.backend)
-        bar = _isatty(sys.stdout)
-        logits = est.logits_batch(rows.texts, progress=bar, desc="evaluate")
-        temperature = est.temperature
-        if cal is not None:
-            from ..risk._train import fit_temperature
-            temperature = fit_temperature(est.logits_batch(cal.texts, progress=bar, desc="calibrate"),
-                                          cal.labels)
-        groups = {}
-        if rows.extra and "is_short" in rows.extra[0]:
-            short = np.array([e.get("is_short", "").strip().lower() == "true" for e in rows.extra])
-            groups = {"short": short, "long": ~short}
-        m = evaluate_logits(rows.labels, logits, temperature=temperature, tau=cfg["threshold"],
-                            alpha=cfg["alpha"], beta=cfg["beta"], gamma=cfg["gamma"],
-                            variance=cfg["variance"], groups=groups)
-        risks = m.pop("_risks")
-        q = m.pop("_p_unsafe")
-        if rows.extra and "pair" in rows.extra[0]:  # minimal pairs: does the model read the detail?
-            from ..risk._evaluate import pair_metrics
-            m["pairs"] = pair_metrics(rows.labels, q, risks, [e.get("pair") for e in rows.extra], cfg["threshold"])
-        if rows.extra and "type" in rows.extra[0]:  # negations, polite harmful requests... as their own rows
-            from ..risk._evaluate import type_metrics
-            m["by_type"] = type_metrics(rows.labels, q, risks, [e.get("type") for e in rows.extra], cfg["threshold"])
-        m.update({"model_id": est.model_id, "data": args.data, "dropped_rows": rows.dropped,
-                  "model_temperature": est.temperature,
-                  "temperature_source": f"fitted on {args.calibrate_on} ({len(cal)} rows)" if cal
-                  else "spec risk.estimator" if cfg["spec"] is not None
-                  and cfg["spec"].risk.estimator.temperature is not None else "model"})
-        tc = args.confirm_threshold
-        if tc is None:  # the spec's; without a spec the shipped governor's (risk_config)
-            tc = cfg["spec"].risk.confirm_threshold if cfg["spec"] is not None else cfg["confirm_threshold"]
-        if tc is not None and not 0.0 <= tc < cfg["threshold"]:
-            raise ValueError(f"--confirm-threshold {tc:g} must lie in [0, tau = {cfg['threshold']:g})")
-        if args.plots:  # at the monitor's thresholds: what it does with each row's R_e
-            from ..risk._evaluate import plot_outcomes
-            d = Path(args.plots)
-            d.mkdir(parents=True, exist_ok=True)
-            tau = cfg["threshold"]
-            flag = np.asarray(risks) >= tau
-            yy = np.asarray(rows.labels) == 1
-            conf = {"tn": int((~yy & ~flag).sum()), "fp": int((~yy & flag).sum()),
-                    "fn": int((yy & ~flag).sum()), "tp": int((yy & flag).sum())}
-            plots = [plot_confusion(conf, d / "confusion_matrix.png", f"Confusion matrix (R_e ≥ τ = {tau:g}: stop)",
-                                    labels=(f"R_e < {tau:g}", f"stop (R_e ≥ {tau:g})")),
-                     plot_outcomes(rows.labels, risks, tau, tc, d / "outcomes.png"),
-                     plot_risk_hist(risks, rows.labels, tau, d / "risk_distribution.png", confirm_threshold=tc)]
-            m["plots"] = [str(p) for p in plots]
-            m["plot_titles"] = {Path(p).name: p.title for p in plots}
-        if tc is not None:
-            from ..risk._evaluate import tier_metrics
-            m["tiers"] = tier_metrics(rows.labels, risks, cfg["threshold"], tc)
-        if args.json and args.json != "-":
-            Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+        m = _evaluate(args)
     except (EthimonError, ValueError, OSError) as exc:
         return err(str(exc))
     if args.json and not emit_json(args.json, m, "metrics JSON"):
         return 2
     out = sys.stderr if args.json == "-" else sys.stdout  # stdout holds nothing but the JSON it is the target of
+    _print_metrics(m, out)
+    return 0
+
+
+def _evaluate(args: argparse.Namespace) -> dict:
+    """``ethimon evaluate``'s metrics (and its plots, with ``--plots``)."""
+    import numpy as np
+    from ..risk._data import load_labelled_csv
+    from ..risk._evaluate import evaluate_logits, plot_confusion, plot_risk_hist
+    cfg = risk_config(args.spec)
+    rows = load_labelled_csv(args.data)
+    cal = load_labelled_csv(args.calibrate_on) if args.calibrate_on else None
+    est = _load(args.model, args.precision, args.max_length, spec=cfg["spec"],
+                threads=_threads(args, len(rows)), backend=args.backend)
+    bar = _isatty(sys.stdout)
+    logits = est.logits_batch(rows.texts, progress=bar, desc="evaluate")
+    temperature = est.temperature
+    if cal is not None:
+        from ..risk._train import fit_temperature
+        temperature = fit_temperature(est.logits_batch(cal.texts, progress=bar, desc="calibrate"),
+                                      cal.labels)
+    groups = {}
+    if rows.extra and "is_short" in rows.extra[0]:
+        short = np.array([e.get("is_short", "").strip().lower() == "true" for e in rows.extra])
+        groups = {"short": short, "long": ~short}
+    m = evaluate_logits(rows.labels, logits, temperature=temperature, tau=cfg["threshold"],
+                        alpha=cfg["alpha"], beta=cfg["beta"], gamma=cfg["gamma"],
+                        variance=cfg["variance"], groups=groups)
+    risks = m.pop("_risks")
+    q = m.pop("_p_unsafe")
+    if rows.extra and "pair" in rows.extra[0]:  # minimal pairs: does the model read the detail?
+        from ..risk._evaluate import pair_metrics
+        m["pairs"] = pair_metrics(rows.labels, q, risks, [e.get("pair") for e in rows.extra], cfg["threshold"])
+    if rows.extra and "type" in rows.extra[0]:  # negations, polite harmful requests... as their own rows
+        from ..risk._evaluate import type_metrics
+        m["by_type"] = type_metrics(rows.labels, q, risks, [e.get("type") for e in rows.extra], cfg["threshold"])
+    m.update({"model_id": est.model_id, "data": args.data, "dropped_rows": rows.dropped,
+              "model_temperature": est.temperature,
+              "temperature_source": f"fitted on {args.calibrate_on} ({len(cal)} rows)" if cal
+              else "spec risk.estimator" if cfg["spec"] is not None
+              and cfg["spec"].risk.estimator.temperature is not None else "model"})
+    tc = args.confirm_threshold
+    if tc is None:  # the spec's; without a spec the shipped governor's (risk_config)
+        tc = cfg["spec"].risk.confirm_threshold if cfg["spec"] is not None else cfg["confirm_threshold"]
+    if tc is not None and not 0.0 <= tc < cfg["threshold"]:
+        raise ValueError(f"--confirm-threshold {tc:g} must lie in [0, tau = {cfg['threshold']:g})")
+    if args.plots:  # at the monitor's thresholds: what it does with each row's R_e
+        from ..risk._evaluate import plot_outcomes
+        d = Path(args.plots)
+        d.mkdir(parents=True, exist_ok=True)
+        tau = cfg["threshold"]
+        flag = np.asarray(risks) >= tau
+        yy = np.asarray(rows.labels) == 1
+        conf = {"tn": int((~yy & ~flag).sum()), "fp": int((~yy & flag).sum()),
+                "fn": int((yy & ~flag).sum()), "tp": int((yy & flag).sum())}
+        plots = [plot_confusion(conf, d / "confusion_matrix.png", f"Confusion matrix (R_e ≥ τ = {tau:g}: stop)",
+                                labels=(f"R_e < {tau:g}", f"stop (R_e ≥ {tau:g})")),
+                 plot_outcomes(rows.labels, risks, tau, tc, d / "outcomes.png"),
+                 plot_risk_hist(risks, rows.labels, tau, d / "risk_distribution.png", confirm_threshold=tc)]
+        m["plots"] = [str(p) for p in plots]
+        m["plot_titles"] = {Path(p).name: p.title for p in plots}
+    if tc is not None:
+        from ..risk._evaluate import tier_metrics
+        m["tiers"] = tier_metrics(rows.labels, risks, cfg["threshold"], tc)
+    if args.json and args.json != "-":
+        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+    return m
+
+
+def _print_metrics(m: dict, out) -> None:
     c = m["confusion"]
     print(f"{m['n']} rows  accuracy {m['accuracy']:.4f}  precision {m['precision']:.4f}  "
           f"recall {m['recall']:.4f}  F1 {m['f1']:.4f}  ROC-AUC {m['roc_auc']:.4f}", file=out)
@@ -539,7 +565,6 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
     for name, t in m.get("by_type", {}).items():
         print(f"  {name:<26} {t['n']:>4} rows ({t['unsafe']} unsafe)  accuracy {t['accuracy']:.3f}  "
               f"flagged: unsafe {t['flagged_unsafe']:.3f} safe {t['flagged_safe']:.3f}", file=out)
-    return 0
 
 
 def _isatty(stream) -> bool:

@@ -13,8 +13,9 @@ import argparse
 import signal
 import sys
 import threading
+from typing import Any
 
-from ._common import add_deprecated_alias, emit_json, err, open_audit_log
+from ._common import emit_json, err, open_audit_log
 
 __all__ = ["add_ros2_parsers", "cmd_ros2"]
 
@@ -32,7 +33,6 @@ def add_ros2_parsers(sub) -> None:
                    help="ROS 2 domain id (default: $ROS_DOMAIN_ID, else 0)")
     p.add_argument("--duration-s", type=float, default=None, metavar="S", help="stop after S seconds (default: "
                    "run until Ctrl-C / SIGTERM)")
-    add_deprecated_alias(p, "--duration", "--duration-s", type=float, metavar="S")
     p.add_argument("--interface", metavar="NAME|ADDR", help="network interface for DDS (e.g. eth0, lo, or its "
                    "address); default: Cyclone's configuration (CYCLONEDDS_URI)")
     p.add_argument("--peer", action="append", default=[], metavar="ADDR",
@@ -53,68 +53,28 @@ def add_ros2_parsers(sub) -> None:
 
 
 def cmd_ros2(args: argparse.Namespace) -> int:
-    import os
-
     from .. import _api
-    from ..errors import DependencyNotInstalled, EthimonError, SpecError
     from ..replay import load_mapping
 
-    domain = args.domain
-    if domain is None:
-        env = os.environ.get("ROS_DOMAIN_ID", "").strip()
-        try:
-            domain = int(env) if env else 0
-        except ValueError:
-            return err(f"ROS_DOMAIN_ID={env!r} is not a number; pass --domain N")
-    if not 0 <= domain <= 232:
-        return err(f"--domain {domain}: a ROS 2 domain id is 0..232")
-    if args.duration_s is not None and not args.duration_s > 0:
-        return err(f"--duration-s {args.duration_s:g}: expected a positive number of seconds")
-    if args.foxglove is not None:
-        from ..view import parse_address
-        try:
-            kwargs_view = {"foxglove": "%s:%d" % parse_address(args.foxglove)}
-        except ValueError as exc:
-            return err(f"--foxglove: {exc}")
-    else:
-        kwargs_view = {}
-    try:
-        spec = _api.load_spec(args.spec)
-        mapping = load_mapping(args.mapping)
-    except SpecError as exc:
-        print(str(exc), file=sys.stderr)
-        return 2
-    from ..ros2 import Ros2Monitor
+    domain, refused = _domain(args)
+    if refused is None:
+        refused = _refusal(args)
+    if refused is not None:
+        return err(refused)
+    kwargs = _node_kwargs(args)
+    spec = _api.load_spec(args.spec)  # a SpecError: printed located by main, exit 2
+    mapping = load_mapping(args.mapping)
     audit = None
     if args.audit:
         audit, rc = open_audit_log(args.audit, spec, tool="ethimon ros2", spec=args.spec, mapping=args.mapping,
                                    domain_id=domain)
         if rc is not None:
             return rc
-    kwargs = dict(kwargs_view)
-    if args.model:
-        kwargs["estimator_kwargs"] = {"model_dir": os.path.abspath(args.model)}
-        kwargs["estimator"] = "ethimon.risk:load_estimator"
     try:
         try:
-            node = Ros2Monitor(spec, mapping, domain_id=domain, audit=audit, interface=args.interface,
-                               peers=args.peer, enclave=args.enclave, msg_files=args.msg, **kwargs)
-        except SpecError as exc:
-            print(str(exc), file=sys.stderr)
-            return 2
-        except (DependencyNotInstalled, EthimonError) as exc:
-            return err(str(exc))
+            node = _start(args, spec, mapping, domain, audit, kwargs)  # SpecError, EthimonError: main prints them
         except OSError as exc:  # the Foxglove port is taken
             return err(f"--foxglove: {exc}")
-        if threading.current_thread() is threading.main_thread():
-            signal.signal(signal.SIGTERM, lambda *_: node.stop())
-        if not args.quiet:
-            print(f"ethimon ros2: spec {spec.name!r} on domain {domain} at {float(mapping.rate_hz):g} Hz; "
-                  f"publishing /ethimon/override and /ethimon/decision", file=sys.stderr, flush=True)
-            if node.loop.foxglove is not None:
-                print(f"ethimon ros2: Foxglove view on {node.loop.foxglove.url} (open it in Foxglove: Open "
-                      "connection, Foxglove WebSocket; layout examples/foxglove/ethimon-layout.json)",
-                      file=sys.stderr, flush=True)
         try:
             stats = node.run(args.duration_s)
         except KeyboardInterrupt:
@@ -123,6 +83,67 @@ def cmd_ros2(args: argparse.Namespace) -> int:
     finally:
         if audit is not None:
             audit.close()
+    return _finish(args, spec, mapping, domain, node, stats)
+
+
+def _domain(args: argparse.Namespace) -> tuple[int, str | None]:
+    """The DDS domain (``--domain``, else ``ROS_DOMAIN_ID``, else 0), or why it is unusable."""
+    import os
+    domain = args.domain
+    if domain is None:
+        env = os.environ.get("ROS_DOMAIN_ID", "").strip()
+        try:
+            domain = int(env) if env else 0
+        except ValueError:
+            return 0, f"ROS_DOMAIN_ID={env!r} is not a number; pass --domain N"
+    if not 0 <= domain <= 232:
+        return domain, f"--domain {domain}: a ROS 2 domain id is 0..232"
+    return domain, None
+
+
+def _refusal(args: argparse.Namespace) -> str | None:
+    if args.duration_s is not None and not args.duration_s > 0:
+        return f"--duration-s {args.duration_s:g}: expected a positive number of seconds"
+    if args.foxglove is not None:
+        from ..view import parse_address
+        try:
+            parse_address(args.foxglove)
+        except ValueError as exc:
+            return f"--foxglove: {exc}"
+    return None
+
+
+def _node_kwargs(args: argparse.Namespace) -> dict:
+    """``Ros2Monitor``'s keywords from ``--foxglove`` and ``--model``."""
+    import os
+
+    from ..view import parse_address
+    kwargs: dict = {} if args.foxglove is None else {"foxglove": "%s:%d" % parse_address(args.foxglove)}
+    if args.model:
+        kwargs["estimator_kwargs"] = {"model_dir": os.path.abspath(args.model)}
+        kwargs["estimator"] = "ethimon.risk:load_estimator"
+    return kwargs
+
+
+def _start(args: argparse.Namespace, spec: Any, mapping: Any, domain: int, audit: Any, kwargs: dict) -> Any:
+    """The node, with SIGTERM stopping it, announced on stderr (unless ``--quiet``)."""
+    from ..ros2 import Ros2Monitor
+    node = Ros2Monitor(spec, mapping, domain_id=domain, audit=audit, interface=args.interface,
+                       peers=args.peer, enclave=args.enclave, msg_files=args.msg, **kwargs)
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGTERM, lambda *_: node.stop())
+    if not args.quiet:
+        print(f"ethimon ros2: spec {spec.name!r} on domain {domain} at {float(mapping.rate_hz):g} Hz; "
+              f"publishing /ethimon/override and /ethimon/decision", file=sys.stderr, flush=True)
+        if node.loop.foxglove is not None:
+            print(f"ethimon ros2: Foxglove view on {node.loop.foxglove.url} (open it in Foxglove: Open "
+                  "connection, Foxglove WebSocket; layout examples/foxglove/ethimon-layout.json)",
+                  file=sys.stderr, flush=True)
+    return node
+
+
+def _finish(args: argparse.Namespace, spec: Any, mapping: Any, domain: int, node: Any, stats: Any) -> int:
+    """The run's JSON summary and its lines on stdout; the exit code."""
     doc = {"spec": spec.name, "domain_id": domain, "rate_hz": float(mapping.rate_hz), "cycles": stats.cycles,
            "override_cycles": stats.overrides, "fault_cycles": stats.fault_cycles,
            "deadline_misses": stats.deadline_misses, "stalls": stats.stalls, "max_late_ms": stats.max_late_s * 1e3,

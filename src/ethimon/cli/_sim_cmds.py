@@ -59,17 +59,25 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     try:
         with Progress("simulate", enabled=not (json_to_stdout or args.gui)) as progress:
             report = simulate_paths(args.paths, model_dir=args.model, record_dir=args.record, gui=args.gui,
-                                    on_file=progress)
+                                    on_progress=progress)
     except DependencyNotInstalled as exc:
         return err(str(exc))
     runs = [o for o in report.outcomes if o.status in ("PASS", "FAIL")]
     for o in report.outcomes:
         for msg in o.messages:
             print(msg, file=sys.stderr)
-    for o in runs:
-        if args.record:
-            print(f"{o.name}: recorded {len(o.result.files)} files in {os.path.join(args.record, o.name)}",
-                  file=out)
+    for o in runs if args.record else ():
+        print(f"{o.name}: recorded {len(o.result.files)} files in {os.path.join(args.record, o.name)}", file=out)
+    _print_table(runs, out)
+    print(f"{report.passed} passed, {report.failed} failed in {report.seconds:.2f}s", file=out)
+    rc = report.exit_code
+    if args.json and not emit_json(args.json, {"results": [o.record for o in runs]}):
+        rc = 2
+    return rc
+
+
+def _print_table(runs, out) -> None:
+    """The table of ``ethimon simulate``: one row per run (nothing without runs)."""
     rows = []
     for o in runs:
         res = o.result
@@ -84,8 +92,3 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         widths = [max(len(str(r[i])) for r in (head, *rows)) for i in range(len(head))]
         for r in (head, tuple("-" * w for w in widths), *rows):
             print("  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip(), file=out)
-    print(f"{report.passed} passed, {report.failed} failed in {report.seconds:.2f}s", file=out)
-    rc = report.exit_code
-    if args.json and not emit_json(args.json, {"results": [o.record for o in runs]}):
-        rc = 2
-    return rc

@@ -9,7 +9,6 @@ from the :class:`~ethimon.Spec`.
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cached_property
@@ -249,17 +248,6 @@ class Plan:
         return tuple(ob.rule for ob in self.obligations) + (
             r, self.fault_rule, LatchRule("judge", r.response, r.manual, r.hold),
             LatchRule("confirm", Response.STOP_2, False, r.hold))
-
-    @property
-    def fault_release(self) -> tuple[str, int]:
-        """``(mode, hold_cycles)`` of the fault latch: ``(fault_rule.mode, fault_rule.hold)``.
-
-        .. deprecated:: Unreleased
-            Nothing reads it; read :attr:`fault_rule` (a :class:`LatchRule`) instead.
-        """
-        warnings.warn("Plan.fault_release is deprecated: read Plan.fault_rule (.mode, .hold)",
-                      DeprecationWarning, stacklevel=2)
-        return (self.fault_rule.mode, self.fault_rule.hold)
 
     @property
     def manual_rules(self) -> tuple[str, ...]:

@@ -2,9 +2,11 @@
 
 ::
 
-    from ethimon import fleet
-    report = fleet.check_paths(["scenarios/"], num_cpus=2)            # a local Ray instance
+    from ethimon import fleet, scenario
+    report = scenario.check_paths(["scenarios/"], executor=fleet.Ray(num_cpus=2))  # a local Ray instance
     records = fleet.replay_records(bags, spec="spec.yaml", mapping="map.yaml", address="auto")
+
+``fleet.Ray`` is an executor of :func:`ethimon.run` (``Serial()`` runs the same units here).
 
 One file (a scenario file, a bag) is one unit of work; a worker returns the file's
 results as plain data (dicts, lists, str, int, float, bool, None) and the driver
@@ -23,8 +25,8 @@ installed) at the same paths, e.g. a shared file system.
 
 from __future__ import annotations
 
-from ._ray import DEFAULT_LOCAL_CPUS, Failure, check_address, check_file_timeout, map_files, plain
+from ._executor import Ray
+from ._ray import DEFAULT_LOCAL_CPUS, Failure, check_address, check_file_timeout, map_files, plain  # noqa: F401
 from ._run import check_paths, replay_records
 
-__all__ = ["DEFAULT_LOCAL_CPUS", "Failure", "check_address", "check_file_timeout", "check_paths", "map_files",
-           "plain", "replay_records"]
+__all__ = ["Ray", "check_paths", "plain", "replay_records"]

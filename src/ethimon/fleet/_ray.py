@@ -11,7 +11,6 @@ run and are reported. Ray is imported only here, and only when called.
 from __future__ import annotations
 
 import contextlib
-import enum
 import logging
 import math
 import os
@@ -21,6 +20,7 @@ import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
+from .._batch import plain  # noqa: F401 - served as ethimon.fleet.plain
 from ..errors import DependencyNotInstalled, EthimonError
 
 __all__ = ["DEFAULT_LOCAL_CPUS", "Failure", "check_address", "check_file_timeout", "map_files", "plain"]
@@ -79,36 +79,6 @@ class Failure:
 
     def __repr__(self) -> str:
         return f"Failure({self.what!r})"
-
-
-def plain(obj: Any) -> Any:
-    """``obj`` as plain data, the way the CLI's JSON writer (``json.dumps(..., default=str)``) sees it:
-    dicts, lists (tuples too), str, int, float, bool and None are kept (subclasses such as numpy
-    floats or enums become the base type's value); anything else becomes ``str(obj)``."""
-    if obj is None or type(obj) in (str, int, float, bool):
-        return obj
-    if isinstance(obj, dict):
-        return {(k if k is None or type(k) in (str, int, float, bool) else _plain_key(k)): plain(v)
-                for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [plain(v) for v in obj]
-    if isinstance(obj, bool):
-        return bool(obj)
-    if isinstance(obj, str):
-        return str.__str__(obj)
-    if isinstance(obj, int) and not isinstance(obj, enum.Flag):
-        return int(obj)
-    if isinstance(obj, float):
-        return float(obj)
-    return str(obj)
-
-
-def _plain_key(k: Any) -> Any:
-    if isinstance(k, str):
-        return str.__str__(k)
-    if isinstance(k, (int, float)):
-        return int(k) if isinstance(k, int) else float(k)
-    return str(k)
 
 
 def _import_ray():

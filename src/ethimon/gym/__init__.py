@@ -31,8 +31,7 @@ from ._panda import PANDA_RATED_JOINT_SPEED_RAD_S, PandaCellEnv
 from ._signals import PANDA_SPEC_PATH, panda_signals, panda_spec
 from ._wrapper import MonitorWrapper
 
-__all__ = ["MonitorWrapper", "PandaCellEnv", "PANDA_ENV_ID", "PANDA_RATED_JOINT_SPEED_RAD_S", "PANDA_SPEC_PATH",
-           "panda_signals", "panda_spec"]
+__all__ = ["MonitorWrapper", "PANDA_ENV_ID", "PandaCellEnv", "panda_signals", "panda_spec"]
 
 #: The registered id of :class:`PandaCellEnv` (200 steps = 10 s at 20 Hz per episode).
 PANDA_ENV_ID = "ethimon/PandaCell-v0"

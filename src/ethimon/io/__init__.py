@@ -26,9 +26,5 @@ from ._mapping import (FIELD_PATH, FUTURE_TOLERANCE_S, MSGTYPE, REDUCTIONS, RISK
                        load_mapping_text, mapping_json_schema, msgtype_key, parse_field_path)
 from ._values import follow, is_truth, numbers_of, rate_between, reduce_array, reduce_value
 
-__all__ = ["AckRequest", "ByName", "Channel", "FIELD_PATH", "FUTURE_TOLERANCE_S", "Frame", "Hold", "LiveMonitor",
-           "MAX_CYCLES", "MISSING", "MSGTYPE", "Mapping", "MemoryChannel", "OK", "REDUCTIONS",
-           "RISK_INPUTS", "Recording", "Ros2Map", "STALE", "Sample", "SignalMap", "TASK_TEXT", "TaskMap", "bool_mismatch",
-           "check_against_spec", "cycle_grid", "decision_json", "follow", "hold", "is_truth", "judged",
-           "lint_mapping", "load_mapping", "load_mapping_text", "mapping_error", "mapping_json_schema",
-           "msgtype_key", "numbers_of", "parse_field_path", "rate_between", "reduce_array", "reduce_value"]
+__all__ = ["Channel", "Frame", "Hold", "LiveMonitor", "Mapping", "MemoryChannel", "Sample", "hold", "judged",
+           "load_mapping", "load_mapping_text"]

@@ -8,6 +8,5 @@ from ._model import (DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, SEVERITY_ORDER,
                      OnFault, Release, Response, RiskConfig, RuleRelease, SafePose, Signal, Spec)
 from ._time import seconds_to_cycles
 
-__all__ = ["DEFAULT_ALPHA", "DEFAULT_BETA", "DEFAULT_GAMMA", "SEVERITY_ORDER", "VARIANCE_MODES", "Constant",
-           "ExprSyntaxError", "OPERATORS", "Obligation", "OnFault", "Operator", "Release", "Response", "RiskConfig", "RuleRelease", "SafePose",
-           "Signal", "Spec", "parse_expr", "parse_spec_file", "parse_spec_text", "seconds_to_cycles"]
+__all__ = ["Constant", "Obligation", "Operator", "OPERATORS", "parse_expr", "parse_spec_file",
+           "parse_spec_text", "Release", "Response", "SafePose", "SEVERITY_ORDER", "Signal", "Spec"]

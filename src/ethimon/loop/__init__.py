@@ -20,5 +20,5 @@ from ._stats import LoopStats
 from ._watchdog import Watchdog
 from ._weakenings import CANNOT_TELL, weakenings
 
-__all__ = ["AckGate", "AsyncJudgeSource", "AsyncRiskSource", "CANNOT_TELL", "GovernedLoop", "LoopConfig", "LoopStats",
-           "ProcessEstimator", "ReloadResult", "Reloader", "RiskReading", "Watchdog", "weakenings"]
+__all__ = ["AckGate", "AsyncJudgeSource", "AsyncRiskSource", "GovernedLoop", "LoopConfig", "LoopStats",
+           "ProcessEstimator", "Reloader", "ReloadResult"]

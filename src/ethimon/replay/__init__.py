@@ -44,10 +44,8 @@ from ._scoring import TaskScorer
 from ._resample import cycle_grid, hold
 from ._topics import TopicInfo, list_topics
 
-__all__ = ["BagData", "BagError", "BagReplay", "CheckResult", "CycleResults", "Mapping", "ReplayReport", "Series",
-           "SignalMap", "TaskMap", "TaskScorer", "TopicInfo", "check_against_spec", "check_columns", "cycle_grid",
-           "hold", "lint_mapping", "list_topics", "load_mapping", "load_mapping_text", "mapping_json_schema",
-           "read_bag", "recorded_data", "replay_bag", "replay_data", "replay_paths", "resample", "write_mcap"]
+__all__ = ["BagReplay", "CheckResult", "Mapping", "ReplayReport", "TaskScorer", "check_columns", "list_topics",
+           "load_mapping", "read_bag", "replay_bag", "replay_paths", "write_mcap"]
 
 
 @dataclass

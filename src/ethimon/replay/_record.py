@@ -8,6 +8,7 @@ bag (dicts, lists, str, int, float, bool, None), so it travels between processes
 
 from __future__ import annotations
 
+import functools
 import os
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -17,7 +18,8 @@ from ..errors import EthimonError, SpecError
 from ._bag import BagError
 from ._mapping import Mapping
 
-__all__ = ["ReplayReport", "bag_error_line", "bag_error_record", "bag_record", "mcap_path", "replay_paths"]
+__all__ = ["ReplayReport", "bag_error_line", "bag_error_record", "bag_record", "mcap_path", "replay_paths",
+           "replay_records", "replay_unit"]
 
 
 def bag_error_line(bag: str, exc: BaseException) -> str:
@@ -103,16 +105,19 @@ class ReplayReport:
 
 def replay_paths(bags: Sequence[str | os.PathLike], spec: Any, mapping: Mapping, *, score: Any = None,
                  p: Sequence[float] | None = None, audit: Any = None, mcap: str | os.PathLike | None = None,
-                 on_bag: Callable[[int, int, str], None] | None = None,
-                 on_progress: Callable[[int, int], None] | None = None, foxglove: Any = None,
+                 on_progress: Callable[[int, int, str], None] | None = None,
+                 on_messages: Callable[[int, int], None] | None = None, foxglove: Any = None,
                  foxglove_speed: float = 1.0) -> ReplayReport:
     """Replay bags one after the other (the library twin of ``ethimon replay``): one record per bag
-    (:func:`bag_record`), an unusable bag an error record. ``mcap``: a file for one bag, a folder
-    (created) for several (:func:`mcap_path`). ``foxglove``: a live view (:class:`~ethimon.view.FoxgloveView`)
-    each bag's verdicts are served to, paced at ``foxglove_speed``. ``score`` defaults to one :class:`TaskScorer` for
-    all bags (the model loads once)."""
+    (:func:`bag_record`, one unit of :func:`ethimon.run` each), an unusable bag an error record.
+    ``mcap``: a file for one bag, a folder (created) for several (:func:`mcap_path`). ``foxglove``: a live
+    view (:class:`~ethimon.view.FoxgloveView`) each bag's verdicts are served to, paced at ``foxglove_speed``.
+    ``score`` defaults to one :class:`TaskScorer` for all bags (the model loads once). ``on_progress(done,
+    total, bag)``: before each bag and at the end; ``on_messages(read, total)``: while a bag is read.
+    For the bags on Ray workers, see :func:`replay_records`."""
     import time
 
+    from .._batch import Unit, run
     from ._scoring import TaskScorer
     t0 = time.perf_counter()
     names = [os.fspath(b) for b in bags]
@@ -120,13 +125,60 @@ def replay_paths(bags: Sequence[str | os.PathLike], spec: Any, mapping: Mapping,
         score = TaskScorer(spec)
     if mcap is not None and len(names) > 1:
         os.makedirs(mcap, exist_ok=True)
-    out = []
-    for i, bag in enumerate(names):
-        if on_bag is not None:
-            on_bag(i, len(names), bag)
-        where = None if mcap is None else mcap_path(mcap, bag, i, len(names))
-        out.append(bag_record(bag, spec, mapping, score=score, p=p, audit=audit, mcap=where,
-                              on_progress=on_progress, foxglove=foxglove, foxglove_speed=foxglove_speed))
-    if on_bag is not None:
-        on_bag(len(names), len(names), "")
-    return ReplayReport(out, time.perf_counter() - t0)
+    one = functools.partial(bag_record, spec=spec, mapping=mapping, score=score, p=p, audit=audit,
+                            on_progress=on_messages, foxglove=foxglove, foxglove_speed=foxglove_speed)
+    got = run([Unit(functools.partial(one, mcap=None if mcap is None else mcap_path(mcap, bag, i, len(names))),
+                    (bag,), bag) for i, bag in enumerate(names)], None, on_progress)
+    return ReplayReport(_records(got), time.perf_counter() - t0)
+
+
+def _records(report: Any) -> list[dict[str, Any]]:
+    """Each unit's record, or the error record of a bag whose unit did not return."""
+    return [o.value if o.ok else bag_error_record(o.label, f"{o.label}: {o.error}") for o in report.outcomes]
+
+
+def replay_records(bags: Sequence[str | os.PathLike], *, spec: str, mapping: str, model_dir: str | None = None,
+                   on_progress: Callable[[int, int, str], None] | None = None, executor: Any = None
+                   ) -> list[dict[str, Any]]:
+    """The JSON record of each bag (``BagReplay.as_dict()``, or an ``"error"`` record), in order, each bag
+    a unit (:func:`replay_unit`) of :func:`ethimon.run` on ``executor`` (e.g. ``ethimon.fleet.Ray()``)
+    against the spec and mapping files ``spec`` and ``mapping``. The records equal those of
+    :func:`replay_paths`; a bag whose unit raised, died or timed out is an ``"error"`` record."""
+    import uuid
+
+    from .._batch import Unit, run
+    names = [os.fspath(b) for b in bags]
+    run_id = uuid.uuid4().hex
+    return _records(run([Unit(replay_unit, (run_id, b, spec, mapping, model_dir), b) for b in names],
+                        executor, on_progress))
+
+
+_STATE: dict[str, Any] = {}  # "replay" -> (key, (spec, mapping, scorer)) of the run this process works for
+
+
+def replay_unit(run_id: str, bag: str, spec_path: str, mapping_path: str, model_dir: str | None) -> dict[str, Any]:
+    """``ethimon replay`` of one bag from the spec and mapping files: its JSON record as plain data (an
+    ``"error"`` record if unusable). A process keeps the spec, mapping and risk model of its run."""
+    from .._batch import plain
+    key = (run_id, spec_path, mapping_path, model_dir)
+    try:
+        got = _STATE.get("replay")
+        if got is None or got[0] != key:
+            got = _STATE["replay"] = (key, _replay_setup(spec_path, mapping_path, model_dir))
+    except Exception as exc:  # noqa: BLE001 - the spec or mapping fails here (it loaded on the driver)
+        _STATE.pop("replay", None)
+        return bag_error_record(bag, bag_error_line(bag, exc))
+    spec, mapping, scorer = got[1]
+    return plain(bag_record(bag, spec, mapping, score=scorer))
+
+
+def _replay_setup(spec_path: str, mapping_path: str, model_dir: str | None) -> tuple[Any, Any, Any]:
+    from ..compiler import plan_of
+    from ..language import parse_spec_file
+    from ._mapping import check_against_spec, load_mapping
+    from ._scoring import TaskScorer
+    spec = parse_spec_file(spec_path)
+    plan_of(spec)  # compiled now, as ethimon.load_spec does
+    mapping = load_mapping(mapping_path)
+    check_against_spec(mapping, spec)
+    return spec, mapping, TaskScorer(spec, model_dir=model_dir)

@@ -16,8 +16,6 @@ from ._provide import as_estimator
 from ._judge import BUILTIN_JUDGE_PROMPT, JUDGE_STATUSES, Judge, JudgeResult, injection_signs, parse_judge_reply, text_sha256
 from ._judge_tier import JudgePanel, load_judge_for
 
-__all__ = ["DEFAULT_TAU", "VARIANCE_MODES", "ProbsEstimator", "RiskEstimate", "RiskEstimator", "RiskInferenceError",
-           "default_model_dir", "default_threads", "estimator_kwargs", "load_estimator", "load_estimator_for", "risk_bounds", "risk_from_p_unsafe",
-           "risk_from_probs", "OUTCOMES", "judge_verdict", "tier_outcome", "BUILTIN_JUDGE_PROMPT", "JUDGE_STATUSES",
-           "Judge", "JudgePanel", "JudgeResult", "injection_signs", "load_canaries", "load_judge_for", "parse_judge_reply",
-           "text_sha256", "Encoder", "register_encoder", "as_estimator"]
+__all__ = ["as_estimator", "BUILTIN_JUDGE_PROMPT", "Encoder", "injection_signs", "Judge", "JudgePanel",
+           "JudgeResult", "load_estimator", "load_estimator_for", "ProbsEstimator", "register_encoder",
+           "risk_from_p_unsafe", "risk_from_probs", "RiskEstimator", "text_sha256"]

@@ -14,7 +14,6 @@ import math
 import random
 import sys
 import time
-import warnings
 from pathlib import Path
 from typing import Any, Callable
 
@@ -134,34 +133,6 @@ def _warm_start_merged(encoder, model, d: Path, base_dir: Path) -> None:
             model.head.bias.copy_(state["head.bias"].float())
     except (KeyError, RuntimeError) as exc:
         raise B.ModelError(f"{adapter}: tensor missing or of the wrong shape for a warm start: {exc}") from None
-
-
-#: the keyword form of train_lora (deprecated): keyword -> (Recipe field, its default in that form)
-_OLD_KEYWORDS: dict[str, tuple[str, Any]] = {
-    "epochs": ("epochs", 4), "lr": ("lr", 5e-4), "head_lr": ("head_lr", 2e-3), "batch_size": ("batch_size", 32),
-    "r": ("lora_r", 16), "alpha": ("lora_alpha", 32.0), "lora_dropout": ("lora_dropout", 0.05),
-    "max_length": ("max_length", 128), "truncation": ("truncation", "head_tail"), "pooling": ("pooling", "mean"),
-    "seed": ("seed", 42), "patience": ("patience", 1), "weight_decay": ("weight_decay", 0.01),
-    "warmup": ("warmup", 0.06), "max_steps": ("max_steps", None), "aux_weight": ("aux_weight", 1.0),
-    "init_seed": ("init_seed", None), "pair_weight": ("pair_weight", 0.0), "pair_margin": ("pair_margin", 1.0),
-    "pairs_per_step": ("pairs_per_step", 8), "full": ("full_finetune", False),
-}
-
-
-def recipe_from_keywords(**keywords: Any) -> Recipe:
-    """The :class:`Recipe` of the deprecated keyword form of :func:`train_lora`, with that form's defaults.
-
-    There ``lr`` was the encoder's learning rate as given (no :data:`FULL_LR_FACTOR` under ``full``)
-    and ``head_lr``/``alpha`` were given, not derived: the recipe pins all three.
-
-    Raises:
-        TypeError: a keyword the old form did not have.
-    """
-    unknown = sorted(set(keywords) - set(_OLD_KEYWORDS))
-    if unknown:
-        raise TypeError(f"train_lora() got an unexpected keyword argument {unknown[0]!r}")
-    values = {fld: keywords.get(k, default) for k, (fld, default) in _OLD_KEYWORDS.items()}
-    return Recipe(encoder_lr=values["lr"], **values)
 
 
 class _Run:
@@ -389,12 +360,12 @@ def _save(k: _Run, recipe: Recipe, state: dict, val_labels, n_train: int, base_d
 
 
 def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[str],
-               val_labels: list[int], recipe: Recipe | None = None, *, out_dir: str | Path,
+               val_labels: list[int], recipe: Recipe, *, out_dir: str | Path,
                base_dir: str | Path, base_ref: dict | None = None, train_weights: list[float] | None = None,
                aux_tasks: list[tuple[str, list[str], list[int]]] | None = None,
                pairs: list[tuple[int, int]] | None = None, init_from: str | Path | None = None,
                name: str = "ethimon-risk", num_threads: int | None = None, progress: bool = True,
-               log: Callable[[str], Any] = print, extra_meta: dict | None = None, **keywords: Any) -> dict:
+               log: Callable[[str], Any] = print, extra_meta: dict | None = None) -> dict:
     """Train a LoRA adapter + head with ``recipe``'s hyper-parameters; write an ethimon model directory to
     ``out_dir``.
 
@@ -403,11 +374,6 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     LoRA rank (``lora_r``), α and dropout, tokens, pooling, seeds, patience, weight decay, warm-up,
     ``max_steps``, the auxiliary and pair weights, ``full_finetune``; its data fields (``data``, ``aux``,
     ...) are :func:`train_recipe`'s, unused here. The keywords are the run's data and where it goes.
-
-    .. deprecated:: issue 24
-        The keyword form (``train_lora(..., base_dir=..., out_dir=..., epochs=4, lr=5e-4, r=16, ...)``,
-        no recipe) still works for one release with a :class:`DeprecationWarning`: the keywords become a
-        recipe (:func:`recipe_from_keywords`, the old defaults: ``max_length`` 128).
 
     ``aux_tasks`` (multi-task learning): ``(name, texts, labels)`` binary tasks
     that share the encoder and its LoRA factors but each get their own head;
@@ -442,14 +408,6 @@ def train_lora(train_texts: list[str], train_labels: list[int], val_texts: list[
     Returns:
         The run summary (also written to ``out_dir/metrics.json``).
     """
-    if recipe is None:
-        warnings.warn("train_lora's hyper-parameter keywords (epochs=, lr=, r=, ...) are deprecated and go in the "
-                      "next release: pass a Recipe (ethimon.risk._recipe) as the fifth argument",
-                      DeprecationWarning, stacklevel=2)
-        recipe = recipe_from_keywords(**keywords)
-    elif keywords:
-        raise TypeError("train_lora: the recipe carries the hyper-parameters; also given as keywords: "
-                        + ", ".join(sorted(keywords)))
     base_dir, out = Path(base_dir), Path(out_dir)
     k = _setup(train_texts, train_labels, val_texts, recipe, base_dir, out, train_weights, aux_tasks, init_from,
                num_threads, progress)

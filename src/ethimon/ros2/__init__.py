@@ -26,6 +26,4 @@ from ._node import (ACK_RESULT_TOPIC, ACK_TOPIC, DECISION_TOPIC, OVERRIDE_TOPIC,
 from ._qos import DEFAULT, SENSOR_DATA, QosProfile, to_cyclone
 from ._types import MessageTypes
 
-__all__ = ["ACK_RESULT_TOPIC", "ACK_TOPIC", "DECISION_TOPIC", "DEFAULT", "ENCLAVE_FILES", "MessageTypes",
-           "OVERRIDE_TOPIC", "QosProfile", "Ros2Monitor", "SENSOR_DATA", "cyclone_config", "dds_topic", "dds_type",
-           "decision_json", "normalize_type", "ros_topic", "run_ros2", "security_available", "to_cyclone"]
+__all__ = ["DEFAULT", "MessageTypes", "Ros2Monitor", "SENSOR_DATA", "cyclone_config", "dds_topic", "to_cyclone"]

@@ -5,8 +5,5 @@ from ._model import Expect, Scenario, TimelineEntry
 from ._run import (BUILTIN_INPUTS, ScenarioResult, build_inputs, check_expectations, check_input_names,
                    find_scenarios, load_scenario, load_scenario_text, run_scenario)
 
-__all__ = ["BUILTIN_INPUTS", "CheckOutcome", "CheckReport", "Expect", "Scenario", "ScenarioResult",
-           "ScenarioSession", "TimelineEntry", "build_inputs", "check_expectations", "check_input_names",
-           "check_paths", "error_line", "find_scenarios", "load_scenario",
-           "load_scenario_text", "run_scenario", "sim_risk_inputs",
-           "simulate_paths"]
+__all__ = ["CheckOutcome", "CheckReport", "Scenario", "ScenarioResult", "check_paths", "load_scenario",
+           "load_scenario_text", "run_scenario", "simulate_paths"]

@@ -11,6 +11,7 @@ unusable file is one ERROR outcome, the others still run.
 from __future__ import annotations
 
 import copy
+import functools
 import os
 import time
 from collections.abc import Callable, Iterable
@@ -22,11 +23,11 @@ from ._model import Scenario
 from .._files import scan_yaml_files
 from ._run import RISK_KEYS, needs_text_risk, override_expectations
 
-__all__ = ["CheckOutcome", "CheckReport", "ScenarioSession", "check_paths", "simulate_paths", "error_line",
-           "internal_error", "sim_risk_inputs"]
+__all__ = ["CheckOutcome", "CheckReport", "ScenarioSession", "check_paths", "check_unit", "simulate_paths",
+           "error_line", "internal_error", "sim_risk_inputs"]
 
-#: ``on_file(done, total, path)``: called before each file (``path`` is starting, ``done`` files are
-#: finished) and once at the end with ``done == total`` and ``path == ""`` (progress bars)
+#: ``on_progress(done, total, path)``: ``ethimon.run``'s one progress callback: before each file (``path`` is
+#: starting, ``done`` files are finished) and once at the end with ``done == total`` and ``path == ""``
 ProgressCallback = Callable[[int, int, str], None]
 
 
@@ -426,8 +427,13 @@ def _skipped(path: str, reason: str) -> CheckOutcome:
 
 
 def check_paths(paths: Iterable[str], *, sim: bool = False, model_dir: str | None = None,
-                on_file: ProgressCallback | None = None, jobs: int = 1) -> CheckReport:
+                on_progress: ProgressCallback | None = None, jobs: int = 1, executor: Any = None) -> CheckReport:
     """Run every scenario file under ``paths`` (files and folders): what ``ethimon check`` reports.
+
+    One file is one unit of :func:`ethimon.run`: here (``executor`` ``None`` or ``ethimon.Serial()``), or
+    one Ray task per file (``ethimon.fleet.Ray(...)``: the same outcomes in the same order, each with
+    ``result`` ``None``, as workers return plain data; a file whose task raised, died or timed out is
+    one ERROR outcome).
 
     Args:
         paths: scenario files or folders (``*.yaml``/``*.yml``, sorted; FIFOs, sockets and devices
@@ -435,63 +441,107 @@ def check_paths(paths: Iterable[str], *, sim: bool = False, model_dir: str | Non
         sim: also run each ``sim:`` block in PyBullet (scenarios whose signals come from the
             simulator are SKIP outcomes without it).
         model_dir: the risk model of every scenario (default: each spec's).
-        on_file: ``on_file(done, total, path)`` before each file and once at the end (see
-            :data:`ProgressCallback`).
-        jobs: with ``sim``, run the ``sim:`` blocks in a pool of this many worker processes (each
-            its own PyBullet); the timelines, specs and risk model stay in this process. The
+        on_progress: ``on_progress(done, total, path)`` (see :data:`ProgressCallback`).
+        jobs: serially with ``sim``, run the ``sim:`` blocks in a pool of this many worker processes
+            (each its own PyBullet); the timelines, specs and risk model stay in this process. The
             outcomes, their order and every figure are the serial run's (``1``: serial, the default;
             a single sim row always runs in this process).
+        executor: where the files run (see above).
 
     Raises:
         SpecError: a path given that does not exist or is not a regular file or folder, or a folder
             without YAML files (nothing can run).
     """
+    from .._batch import Serial, Unit, run
     files = scan_yaml_files(paths, what="scenario", command="ethimon check")
-    session = ScenarioSession(model_dir=model_dir)
-    report = CheckReport()
     t0 = time.perf_counter()
-    defer = sim and jobs > 1
-    pool: _SimPool | None = None   # started at the second sim row: one sim row runs here
-    pending: list[tuple[int, str, dict]] = []
-    rows: list[list[CheckOutcome]] = []
+    if executor is None or isinstance(executor, Serial):
+        session = ScenarioSession(model_dir=model_dir)
+        check = functools.partial(session.check_file, sim=sim, defer_sim=sim and jobs > 1)
+        units = [Unit(check, (path,), path) if reason is None else Unit(_skipped, (path, reason), path)
+                 for path, reason in files]
+        rows = [_rows_of(o, list) for o in run(units, executor, on_progress).outcomes]
+        _run_pending_sims(rows, session, jobs, model_dir)
+    else:
+        rows = _check_elsewhere(files, sim, model_dir, executor, on_progress)
+    return CheckReport([o for out in rows for o in out], time.perf_counter() - t0)
+
+
+def _rows_of(outcome: Any, rows: Callable[[Any], Any]) -> list[CheckOutcome]:
+    """A unit's rows (a SKIP row is one outcome), or the one ERROR row of a unit that did not return."""
+    if outcome.ok:
+        v = outcome.value
+        return [v] if isinstance(v, CheckOutcome) else list(rows(v))
+    path = outcome.label
+    msg = f"{path}: {outcome.error}"
+    return [CheckOutcome(path, path, "ERROR", "-", "bad input", messages=[msg],
+                         record={"name": path, "path": path, "passed": False, "error": msg})]
+
+
+def _check_elsewhere(files, sim: bool, model_dir: str | None, executor: Any,
+                     on_progress: ProgressCallback | None) -> list[list[CheckOutcome]]:
+    """The files' rows with each readable file a unit on ``executor`` (plain data back)."""
+    import uuid
+
+    from .._batch import Unit, run
+    todo = [path for path, reason in files if reason is None]
+    skipped = len(files) - len(todo)
+
+    def progress(done: int, total: int, label: str) -> None:
+        if on_progress is not None:
+            on_progress(done + skipped if done else 0, len(files), label)
+
+    run_id = uuid.uuid4().hex
+    got = iter(run([Unit(check_unit, (run_id, p, sim, model_dir), p) for p in todo], executor, progress).outcomes)
+    return [[_skipped(path, reason)] if reason is not None
+            else _rows_of(next(got), lambda v: [CheckOutcome(**d) for d in v]) for path, reason in files]
+
+
+def _run_pending_sims(rows: list[list[CheckOutcome]], session: ScenarioSession, jobs: int,
+                      model_dir: str | None) -> None:
+    """``check --sim -j N``: the deferred sim rows (``PENDING``) in a pool of ``jobs`` processes (one
+    alone runs here), put in place; an ERROR replaces the file's rows, as serially."""
+    pending = [(i, out[-1].path, out[-1].record["sim_inputs"]) for i, out in enumerate(rows)
+               if out and out[-1].status == "PENDING"]
+    if not pending:
+        return
+    pool: _SimPool | None = _SimPool(jobs, model_dir) if len(pending) >= 2 else None
     try:
-        for i, (path, reason) in enumerate(files):
-            if on_file is not None:
-                on_file(i, len(files), path)
-            if reason is not None:  # a FIFO, socket or device in a folder: never opened
-                rows.append([_skipped(path, reason)])
-            else:
-                out = session.check_file(path, sim=sim, defer_sim=defer)
-                if out and out[-1].status == "PENDING":
-                    pending.append((len(rows), path, out[-1].record["sim_inputs"]))
-                    if pool is None and len(pending) >= 2:
-                        pool = _SimPool(jobs, model_dir)
-                    if pool is not None:
-                        for job in pending:
-                            pool.submit(*job)
-                        pending.clear()
-                rows.append(out)
-        for i, path, inputs in pending:  # the only sim row: no worker to start
-            sim_rows = session.sim_row(path, inputs)
+        if pool is None:
+            done = [(i, session.sim_row(path, inputs)) for i, path, inputs in pending]
+        else:
+            for job in pending:
+                pool.submit(*job)
+            done = pool.results()
+        for i, sim_rows in done:
             if sim_rows[0].status == "ERROR":
                 rows[i] = sim_rows
             else:
                 rows[i][-1:] = sim_rows
-        if pool is not None:
-            for i, sim_rows in pool.results():
-                if sim_rows[0].status == "ERROR":  # as serially: the file's one row is the error
-                    rows[i] = sim_rows
-                else:
-                    rows[i][-1:] = sim_rows
     finally:
         if pool is not None:
             pool.close()
-    for out in rows:
-        report.outcomes.extend(out)
-    if on_file is not None:
-        on_file(len(files), len(files), "")
-    report.seconds = time.perf_counter() - t0
-    return report
+
+
+_STATE: dict[str, Any] = {}  # "check" -> (key, session) of the run this process works for now
+
+
+def outcome_as_plain(o: CheckOutcome) -> dict[str, Any]:
+    """A :class:`CheckOutcome` as plain data (its ``result`` object is left out)."""
+    from .._batch import plain
+    return plain({"name": o.name, "path": o.path, "status": o.status, "expected": o.expected, "got": o.got,
+                  "first_override_cycle": o.first_override_cycle, "messages": list(o.messages),
+                  "record": o.record})
+
+
+def check_unit(run_id: str, path: str, sim: bool, model_dir: str | None) -> list[dict[str, Any]]:
+    """The unit of ``ethimon check`` on another process (``ethimon.run`` with ``fleet.Ray``): one file's
+    outcomes as plain dicts (never raises for a bad file). A process keeps the specs and risk model of the
+    run it works for (``run_id``), so a model loads once per worker, not once per file."""
+    got = _STATE.get("check")
+    if got is None or got[0] != (run_id, model_dir):  # a new run: drop the previous run's specs and models
+        got = _STATE["check"] = ((run_id, model_dir), ScenarioSession(model_dir=model_dir))
+    return [outcome_as_plain(o) for o in got[1].check_file(path, sim=sim)]
 
 
 _WORKER_SESSION: ScenarioSession | None = None
@@ -537,34 +587,27 @@ class _SimPool:
 
 
 def simulate_paths(paths: Iterable[str], *, model_dir: str | None = None, record_dir: str | None = None,
-                   gui: bool = False, on_file: ProgressCallback | None = None) -> CheckReport:
+                   gui: bool = False, on_progress: ProgressCallback | None = None) -> CheckReport:
     """Run the ``sim:`` block of every scenario file under ``paths``: what ``ethimon simulate`` reports.
 
     Files passed over (FIFOs, sockets, devices in a folder) are SKIP outcomes; scenarios without a
-    ``sim:`` block are left out, or an ERROR when a single file is given.
+    ``sim:`` block are left out, or an ERROR when a single file is given. Each file is one unit of
+    :func:`ethimon.run`, here.
 
     Raises:
         SpecError: a bad path, or no scenario files at all.
         DependencyNotInstalled: the simulator cannot be loaded.
     """
+    from .._batch import Unit, run
     paths = list(paths)
     scanned = scan_yaml_files(paths, what="scenario", command="ethimon simulate")
     readable = [p for p, reason in scanned if reason is None]
     if not readable:
         raise EthimonError(f"no scenario files under {' '.join(paths)}")
     session = ScenarioSession(model_dir=model_dir)
-    report = CheckReport()
+    one = functools.partial(session.simulate_file, record_dir=record_dir, gui=gui, require_sim=len(readable) == 1)
     t0 = time.perf_counter()
-    for i, (path, reason) in enumerate(scanned):
-        if on_file is not None:
-            on_file(i, len(scanned), path)
-        if reason is not None:
-            report.outcomes.append(_skipped(path, reason))
-        else:
-            out = session.simulate_file(path, record_dir=record_dir, gui=gui, require_sim=len(readable) == 1)
-            if out is not None:
-                report.outcomes.append(out)
-    if on_file is not None:
-        on_file(len(scanned), len(scanned), "")
-    report.seconds = time.perf_counter() - t0
-    return report
+    got = run([Unit(one, (path,), path) if reason is None else Unit(_skipped, (path, reason), path)
+               for path, reason in scanned], None, on_progress)
+    rows = [r for o in got.outcomes for r in _rows_of(o, lambda v: []) if r is not None]
+    return CheckReport(rows, time.perf_counter() - t0)

@@ -46,32 +46,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from ._arm import HOME_JOINTS_RAD, ArmSim
     from ._runner import CycleRecord, GovernedArm, SimResult, check_sim_expectations, run_sim
 
-__all__ = [
-    "PHYSICS_HZ",
-    "SIGNAL_NAMES",
-    "HOME_JOINTS_RAD",
-    "ArmSim",
-    "GovernedArm",
-    "CycleRecord",
-    "SimResult",
-    "run_sim",
-    "check_sim_expectations",
-    "SimBlock",
-    "SimError",
-    "SimExpect",
-    "Human",
-    "Waypoint",
-    "SimObject",
-    "Dropout",
-    "InputChange",
-    "Reach",
-    "Pick",
-    "Place",
-    "HandOver",
-    "Pour",
-    "Wipe",
-    "Wait",
-]
+__all__ = ["ArmSim", "CycleRecord", "GovernedArm", "Place", "SimBlock", "SimResult", "run_sim"]
 
 _LAZY = {
     "ArmSim": "._arm", "HOME_JOINTS_RAD": "._arm",

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 import zlib
 from collections.abc import Mapping, Sequence
 from typing import Any
@@ -484,17 +483,6 @@ def _signal_filter(block: SimBlock):
     return apply
 
 
-def _p_or_probs(p: Sequence[float] | None, probs: Sequence[float] | None) -> Sequence[float] | None:
-    """``run_sim``'s class probabilities: ``p``, or the deprecated spelling ``probs`` (warns)."""
-    if probs is None:
-        return p
-    if p is not None:
-        raise TypeError("run_sim: give the class probabilities once, as p= (probs= is its deprecated spelling)")
-    warnings.warn("run_sim(probs=...) is deprecated; use p=... (the monitor's input name)",
-                  DeprecationWarning, stacklevel=3)
-    return probs
-
-
 def _fixed_inputs(inputs: Mapping[str, Any] | None, *, p: Sequence[float] | None, p_unsafe: float | None,
                   risk: float | None) -> dict[str, Any]:
     """The inputs given to the monitor every cycle besides the simulated signals."""
@@ -547,7 +535,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
             p: Sequence[float] | None = None, risk: float | None = None,
             p_unsafe: float | None = None, inputs: Mapping[str, Any] | None = None,
             record_dir: str | None = None, gui: bool = False,
-            probs: Sequence[float] | None = None, audit: Any = None) -> SimResult:
+            audit: Any = None) -> SimResult:
     """Run a scenario's ``sim:`` block with ``monitor`` in the loop.
 
     Args:
@@ -562,7 +550,6 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
             replace inputs of the same name.
         record_dir: write PNG frames, ``trace.jsonl``/``trace.csv`` and ``plot.png`` there.
         gui: show the PyBullet GUI (needs a display) and run in real time.
-        probs: deprecated spelling of ``p`` (still works, warns ``DeprecationWarning``).
         audit: an ``AuditLog`` for the operator's actions and every power-off check (``GovernedArm``).
 
     Returns:
@@ -573,7 +560,7 @@ def run_sim(sim_block: SimBlock | Mapping[str, Any], monitor: Any, *,
     """
     block = sim_block if isinstance(sim_block, SimBlock) else SimBlock.model_validate(sim_block)
     wall0 = time.perf_counter()
-    fixed = _fixed_inputs(inputs, p=_p_or_probs(p, probs), p_unsafe=p_unsafe, risk=risk)
+    fixed = _fixed_inputs(inputs, p=p, p_unsafe=p_unsafe, risk=risk)
     if hasattr(monitor, "reset"):
         monitor.reset()
     recorder = None

@@ -22,6 +22,4 @@ from ._report import Counterexample, Finding, SpecReport, exit_code, format_tabl
 from ._verify import (DEFAULT_BUDGET_S, DEFAULT_MAX_UNROLL, DEFAULT_TIMEOUT_S, find_specs, require_z3, verify_paths,
                       verify_spec)
 
-__all__ = ["Counterexample", "DEFAULT_BUDGET_S", "DEFAULT_MAX_UNROLL", "DEFAULT_TIMEOUT_S", "Finding", "SpecReport",
-           "exit_code",
-           "find_specs", "format_table", "reports_to_json", "require_z3", "verify_paths", "verify_spec"]
+__all__ = ["Counterexample", "Finding", "SpecReport", "verify_paths", "verify_spec"]

@@ -10,5 +10,4 @@ decisions as values and imports nothing above the spine; ``foxglove-sdk`` is imp
 from ._channels import DECISION, FAULTS, INPUTS, MARGINS, RISK, TOPICS, VerdictChannels
 from ._foxglove import DEFAULT_HOST, DEFAULT_PORT, FoxgloveView, parse_address
 
-__all__ = ["DECISION", "DEFAULT_HOST", "DEFAULT_PORT", "FAULTS", "FoxgloveView", "INPUTS", "MARGINS", "RISK",
-           "TOPICS", "VerdictChannels", "parse_address"]
+__all__ = ["FoxgloveView", "TOPICS", "VerdictChannels"]
