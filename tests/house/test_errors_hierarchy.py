@@ -17,6 +17,7 @@ PRIVATE_INTERNAL = {
     ("language/_errors.py", "_LocError"),        # a pydantic validator's ValueError, turned into a SpecError by the loader
     ("scenario/_session.py", "_SpecLoadError"),  # wraps a spec's error so the row names the spec; unwrapped there
     ("risk/_onnx_build.py", "_NoGraph"),    # "no ONNX form here": load_estimator falls back to torch or raises ModelError
+    ("risk/_encoder.py", "NoFormHere"),     # a registered loader's "no form of this model here": load_encoder tries the next
 }
 
 
