@@ -72,6 +72,7 @@ PUBLIC: dict[str, list[str]] = {
     "ethimon.verify": ["Counterexample", "DEFAULT_BUDGET_S", "DEFAULT_MAX_UNROLL", "DEFAULT_TIMEOUT_S", "Finding",
                        "SpecReport", "exit_code", "find_specs", "format_table", "reports_to_json", "require_z3",
                        "verify_paths", "verify_spec"],
+    "ethimon.zenoh": ["ZenohChannel", "ZenohMonitor", "run_zenoh", "topic_key", "zenoh_config"],
 }
 
 #: packages whose import needs an optional extra
