@@ -29,10 +29,10 @@ def free_port() -> int:
 class Robot:
     """Publishers on the node's zenoh network; ``gid``: the one publisher GID it attaches (one per topic)."""
 
-    def __init__(self, endpoint: str) -> None:
+    def __init__(self, endpoint: str, types: MessageTypes | None = None) -> None:
         import zenoh
         self.session = zenoh.open(zenoh_config(connect=[endpoint]))
-        self.types = MessageTypes()
+        self.types = types if types is not None else MessageTypes()  # building one takes a while: share it
         self.store = self.types.store
         self.pubs: dict[str, object] = {}
         self.gids: dict[str, bytes] = {}
@@ -85,7 +85,7 @@ def node(spec, mapping, clock, **kw):
     endpoint = f"tcp/127.0.0.1:{free_port()}"
     n = ZenohMonitor(spec, mapping, domain_id=DOMAIN, config=zenoh_config(listen=[endpoint]), clock=clock,
                      deadline_s=1e6, stall_s=1e6, **kw)
-    robot = Robot(endpoint)
+    robot = Robot(endpoint, n.types)
     end = time.monotonic() + WAIT_S
     while not n.channel.session.info.peers_zid() and time.monotonic() < end:
         time.sleep(0.002)

@@ -89,7 +89,8 @@ class ZenohChannel:
         self._lock = threading.Lock()
         self._closed = False
         self.acks_dropped = 0
-        self.undecodable = 0
+        #: samples taken off the read topics (used or not); of them, payloads that were not their type's CDR
+        self.received = self.undecodable = 0
         self._seq = 0
         self.gid = os.urandom(16)
         self._tokens: list = []
@@ -175,6 +176,7 @@ class ZenohChannel:
                     break
                 if smp is None:
                     break
+                self.received += 1
                 self._sample(t, smp, t_log)
         return len(self._pending)
 
