@@ -33,6 +33,9 @@ def add_ros2_parsers(sub) -> None:
     p.add_argument("--duration-s", type=float, default=None, metavar="S", help="stop after S seconds (default: "
                    "run until Ctrl-C / SIGTERM)")
     add_deprecated_alias(p, "--duration", "--duration-s", type=float, metavar="S")
+    p.add_argument("--transport", choices=("dds", "zenoh"), default="dds",
+                   help="dds (default): a Cyclone DDS participant; zenoh: speak rmw_zenoh (needs ethimon[zenoh]; "
+                        "--peer then names zenoh endpoints, default the router on tcp/localhost:7447)")
     p.add_argument("--interface", metavar="NAME|ADDR", help="network interface for DDS (e.g. eth0, lo, or its "
                    "address); default: Cyclone's configuration (CYCLONEDDS_URI)")
     p.add_argument("--peer", action="append", default=[], metavar="ADDR",
@@ -97,8 +100,15 @@ def cmd_ros2(args: argparse.Namespace) -> int:
         kwargs["estimator"] = "ethimon.risk:load_estimator"
     try:
         try:
-            node = Ros2Monitor(spec, mapping, domain_id=domain, audit=audit, interface=args.interface,
-                               peers=args.peer, enclave=args.enclave, msg_files=args.msg, **kwargs)
+            if args.transport == "zenoh":
+                from ..zenoh import ZenohMonitor, zenoh_config
+                if args.interface or args.enclave:
+                    return err("--interface and --enclave are DDS settings; over zenoh name endpoints with --peer")
+                node = ZenohMonitor(spec, mapping, domain_id=domain, audit=audit, config=zenoh_config(connect=args.peer),
+                                    msg_files=args.msg, **kwargs)
+            else:
+                node = Ros2Monitor(spec, mapping, domain_id=domain, audit=audit, interface=args.interface,
+                                   peers=args.peer, enclave=args.enclave, msg_files=args.msg, **kwargs)
         except SpecError as exc:
             print(str(exc), file=sys.stderr)
             return 2
