@@ -62,10 +62,11 @@ ALLOWED: dict[str, set[str]] = {
     "loop": _BESIDE | {"audit", "risk", "verify", "view"},
     "_lint": _BESIDE | {"verify", "scenario", "replay", "io", "risk"},
     "ros2": _BESIDE | {"audit", "risk", "offline", "replay", "loop", "io", "view"},
+    "zenoh": _BESIDE | {"risk", "loop", "io", "ros2"},
     "ethimon": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io",
                           "fleet"},
     "cli": _BESIDE | {"audit", "risk", "sim", "verify", "testing", "scenario", "offline", "replay", "loop", "io",
-                      "fleet", "ros2", "ethimon", "_lint", "view"},
+                      "fleet", "ros2", "ethimon", "_lint", "view", "zenoh"},
 }
 
 

@@ -33,6 +33,9 @@ def add_ros2_parsers(sub) -> None:
                    help="ROS 2 domain id (default: $ROS_DOMAIN_ID, else 0)")
     p.add_argument("--duration-s", type=float, default=None, metavar="S", help="stop after S seconds (default: "
                    "run until Ctrl-C / SIGTERM)")
+    p.add_argument("--transport", choices=("dds", "zenoh"), default="dds",
+                   help="dds (default): a Cyclone DDS participant; zenoh: speak rmw_zenoh (needs ethimon[zenoh]; "
+                        "--peer then names zenoh endpoints, default the router on tcp/localhost:7447)")
     p.add_argument("--interface", metavar="NAME|ADDR", help="network interface for DDS (e.g. eth0, lo, or its "
                    "address); default: Cyclone's configuration (CYCLONEDDS_URI)")
     p.add_argument("--peer", action="append", default=[], metavar="ADDR",
@@ -104,6 +107,8 @@ def _domain(args: argparse.Namespace) -> tuple[int, str | None]:
 def _refusal(args: argparse.Namespace) -> str | None:
     if args.duration_s is not None and not args.duration_s > 0:
         return f"--duration-s {args.duration_s:g}: expected a positive number of seconds"
+    if args.transport == "zenoh" and (args.interface or args.enclave):
+        return "--interface and --enclave are DDS settings; over zenoh name endpoints with --peer"
     if args.foxglove is not None:
         from ..view import parse_address
         try:
@@ -127,9 +132,14 @@ def _node_kwargs(args: argparse.Namespace) -> dict:
 
 def _start(args: argparse.Namespace, spec: Any, mapping: Any, domain: int, audit: Any, kwargs: dict) -> Any:
     """The node, with SIGTERM stopping it, announced on stderr (unless ``--quiet``)."""
-    from ..ros2 import Ros2Monitor
-    node = Ros2Monitor(spec, mapping, domain_id=domain, audit=audit, interface=args.interface,
-                       peers=args.peer, enclave=args.enclave, msg_files=args.msg, **kwargs)
+    if args.transport == "zenoh":
+        from ..zenoh import ZenohMonitor, zenoh_config
+        node = ZenohMonitor(spec, mapping, domain_id=domain, audit=audit, config=zenoh_config(connect=args.peer),
+                            msg_files=args.msg, **kwargs)
+    else:
+        from ..ros2 import Ros2Monitor
+        node = Ros2Monitor(spec, mapping, domain_id=domain, audit=audit, interface=args.interface,
+                           peers=args.peer, enclave=args.enclave, msg_files=args.msg, **kwargs)
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGTERM, lambda *_: node.stop())
     if not args.quiet:

@@ -5,4 +5,4 @@ from ._typecheck import compile_plan
 from ._plans import plan_of, stateless_slots
 
 # the closures (compiler._closures: build_machine, Machine) are the runtime's to call, not a public API
-__all__ = ["Plan", "compile_plan", "plan_of"]
+__all__ = ["Plan", "compile_plan"]

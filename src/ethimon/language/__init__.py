@@ -9,4 +9,4 @@ from ._model import (DEFAULT_ALPHA, DEFAULT_BETA, DEFAULT_GAMMA, SEVERITY_ORDER,
 from ._time import seconds_to_cycles
 
 __all__ = ["Constant", "Obligation", "Operator", "OPERATORS", "parse_expr", "parse_spec_file",
-           "parse_spec_text", "Release", "Response", "SafePose", "SEVERITY_ORDER", "Signal", "Spec"]
+           "parse_spec_text", "Release", "Response", "SafePose", "Signal", "Spec"]
