@@ -20,7 +20,7 @@ from ..errors import Ros2Error, SpecError
 from ..io import ByName, LiveMonitor, Mapping, check_against_spec, load_mapping, parse_field_path
 from ..io import mapping_error as _merr
 from ..language import Spec
-from ..loop import AsyncRiskSource, GovernedLoop, LoopStats, ProcessEstimator
+from ..loop import AsyncRiskSource, GovernedLoop, LoopConfig, LoopStats, ProcessEstimator
 from ..runtime import Decision, Monitor
 from ._channel import Topic, ZenohChannel, zenoh_module
 
@@ -111,8 +111,10 @@ class ZenohMonitor:
             loop_kwargs.setdefault("clock", clock)
         self.channel: ZenohChannel | None = None
         try:
-            self.loop = GovernedLoop(Monitor(spec), risk=risk, period_s=period, audit=audit, on_decision=on_decision,
-                                     watchdog_s=watchdog_s, on_stall=self._stalled, **loop_kwargs)
+            cfg = {k: loop_kwargs.pop(k) for k in LoopConfig.__dataclass_fields__ if k in loop_kwargs}
+            self.loop = GovernedLoop(Monitor(spec), risk=risk, audit=audit, on_decision=on_decision,
+                                     config=LoopConfig(period_s=period, watchdog_s=watchdog_s, **cfg),
+                                     on_stall=self._stalled, **loop_kwargs)
             self.channel = ZenohChannel(self.topics, self.types, domain_id,
                                         config if config is not None else zenoh_config(),
                                         publishers=mapping.ros2.publishers, period_s=period, type_hash=type_hash,
