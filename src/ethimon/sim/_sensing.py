@@ -32,8 +32,8 @@ class _Sensing:
         self._q_sub = self.q_cmd.copy()
         self._qd_sub = np.zeros(7)
         self.qd_cmd = np.zeros(7)
-        self._v_out = np.zeros(7)
-        self._a_out = np.zeros(7)
+        self._v_out = [0.0] * 7  # the servo's last command and acceleration (plain floats)
+        self._a_out = [0.0] * 7
 
     def joint_state(self) -> tuple[np.ndarray, np.ndarray]:
         """Measured arm joint positions and velocities (7 each)."""
