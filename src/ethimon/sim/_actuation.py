@@ -268,14 +268,14 @@ class _Actuation:
     def _apply_unpowered(self) -> None:
         p, cid = self._p, self.cid
         if self.brakes_engaged:
-            q, qd = self.joint_state()
+            q, qd = self.joint_lists()
             # a brake that has stopped its joint holds it where it stopped (friction up to its
             # torque), it does not creep: a velocity loop at 0 drifts under gravity (0.55 mrad/s
             # at a stretched elbow), so a stopped joint is held at its latched position
             # (:func:`_brake_step`: which joints are held, and the others' velocity targets)
             if self._brake_hold is None:
                 self._brake_hold = [math.nan] * 7
-            target = _brake_step(q.tolist(), qd.tolist(), self._brake_hold)
+            target = _brake_step(q, qd, self._brake_hold)
             hold, torque = self._brake_hold, self.brake_torque.tolist()
             for j in range(7):
                 if hold[j] == hold[j]:  # held (not NaN)
@@ -299,8 +299,10 @@ class _Actuation:
 
     def _servo_velocity(self, q_ref, qd_ref, q_meas) -> list[float]:
         """The rated-limited motor velocity command for one physics step (:func:`_servo_step`)."""
-        v, self._a_out = _servo_step(q_ref.tolist(), qd_ref.tolist(), q_meas.tolist(), self._v_out, self._a_out,
-                                     self.max_velocity, None if self.speed_cap is None else self.speed_cap.tolist())
+        if not isinstance(q_ref, list):
+            q_ref, qd_ref = q_ref.tolist(), qd_ref.tolist()
+        v, self._a_out = _servo_step(q_ref, qd_ref, q_meas, self._v_out, self._a_out, self.max_velocity,
+                                     None if self.speed_cap is None else self.speed_cap.tolist())
         self._v_out = v
         return v
 
@@ -311,7 +313,7 @@ class _Actuation:
             return
         q_ref = self.q_cmd if q is None else q
         qd_ref = self.qd_cmd if qd is None else qd
-        q_meas, _ = self.joint_state()
+        q_meas, _ = self.joint_lists()
         v = self._servo_velocity(q_ref, qd_ref, q_meas)
         p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
                                     targetVelocities=v, forces=ARM_MAX_FORCE_N_M,
