@@ -24,6 +24,98 @@ __all__ = ["_Actuation"]
 _HOLD_SPEED_RAD_S = 0.05
 
 
+# ------------------------------------------------------------ per-physics-step math on plain floats
+# (issue 32: numpy's call overhead on 7-vectors was most of the servo's time). Each helper computes
+# what numpy computed, in the same order, element by element; tests/sim/test_sim_speed_exact.py
+# pins them to the numpy code they replaced, bit for bit (NaN and signed zeros included).
+
+def _max(a: float, b: float) -> float:
+    """``np.maximum`` of two floats (NaN propagates)."""
+    return a if (a != a or a > b) else b
+
+
+def _min(a: float, b: float) -> float:
+    """``np.minimum`` of two floats (NaN propagates)."""
+    return a if (a != a or a < b) else b
+
+
+def _clip(x: float, lo: float, hi: float) -> float:
+    """``np.clip`` of one float (numpy's ``min(max(x, lo), hi)``, NaN propagating)."""
+    t = x if (x != x or x > lo) else lo
+    return t if (t != t or t < hi) else hi
+
+
+_H = 1.0 / PHYSICS_HZ
+_DQ = _RATED_DQ.tolist()
+_DDQ = _RATED_DDQ.tolist()
+_NEG_DDQ = (-_RATED_DDQ).tolist()
+_DDDQ_H = (_RATED_DDDQ * _H).tolist()
+_STOP_GAIN = (2.0 * _LIMIT_SHARE * _RATED_DDQ).tolist()   # 2 x share x rated acceleration
+_Q_HI = (_Q_MAX - LIMIT_MARGIN_RAD).tolist()
+_Q_LO = (_Q_MIN + LIMIT_MARGIN_RAD).tolist()
+_BRAKE_STEP = (_BRAKE_DECEL / PHYSICS_HZ).tolist()         # speed one physics step of braking sheds
+_BRAKE_STOPPED = [_max(s, 0.01) for s in _BRAKE_STEP]     # a joint at most this fast is stopped
+_FLOAT_MAX = float(np.finfo(float).max)
+
+
+def _servo_step(q_ref: list[float], qd_ref: list[float], q_meas: list[float], v_out, a_out,
+                max_velocity: float | None, speed_cap: list[float] | None) -> tuple[list[float], list[float]]:
+    """One physics step of the joint servo: ``(velocity command, acceleration)`` from the reference,
+    the measured position and the last command ``v_out`` / acceleration ``a_out``.
+
+    The velocity ``qd_ref + K (q_ref - q_meas)`` clipped to the rated speed, ``max_velocity`` and
+    ``speed_cap`` (never below :data:`_HOLD_SPEED_RAD_S`), then to what the joint can shed before
+    its rated position limit, then rate-limited to the rated acceleration and jerk."""
+    if not isinstance(v_out, list):
+        v_out = v_out.tolist()
+    if not isinstance(a_out, list):
+        a_out = a_out.tolist()
+    h = _H
+    v_new, a_new = [], []
+    for j in range(7):
+        v = qd_ref[j] + _K_POS * (q_ref[j] - q_meas[j])
+        cap = _DQ[j]
+        if max_velocity is not None:
+            cap = _min(cap, float(max_velocity))
+        if speed_cap is not None:  # never below what holding a loaded joint needs (issue 32)
+            cap = _min(cap, _max(speed_cap[j], _HOLD_SPEED_RAD_S))
+        v = _clip(v, -cap, cap)
+        # never faster toward a rated position limit than the joint can shed before it (at
+        # the planning share of its rated acceleration): no controller carries it past
+        up = math.sqrt(_STOP_GAIN[j] * _max(_Q_HI[j] - q_meas[j], 0.0))
+        dn = math.sqrt(_STOP_GAIN[j] * _max(q_meas[j] - _Q_LO[j], 0.0))
+        v = _clip(v, -dn, up)
+        a = _clip((v - v_out[j]) / h, _NEG_DDQ[j], _DDQ[j])
+        a = _clip(a, a_out[j] - _DDDQ_H[j], a_out[j] + _DDDQ_H[j])
+        a_new.append(a)
+        v_new.append(v_out[j] + a * h)
+    return v_new, a_new
+
+
+def _brake_step(q: list[float], qd: list[float], hold: list[float]) -> list[float]:
+    """One physics step of engaged brakes: updates ``hold`` in place (a joint that has stopped is
+    held at the position it stopped at, NaN: not held; one moved more than 0.02 rad from its hold
+    while not stopped is let go) and returns each joint's velocity target (its speed less one
+    step of braking, never reversing)."""
+    target = []
+    for j in range(7):
+        w = qd[j]
+        sign = 1.0 if w > 0 else (-1.0 if w < 0 else (w if w != w else 0.0))  # np.sign
+        target.append(sign * _max(abs(w) - _BRAKE_STEP[j], 0.0))
+        # a joint slower than one physics step of braking is stopped by it (issue 32: a
+        # 0.01 rad/s threshold left a loaded elbow creeping at 0.02 rad/s under a velocity
+        # loop that never latched, 0.05 rad in 2.6 s with 68.6 of 87 N·m at joint 2)
+        stopped = abs(w) <= _BRAKE_STOPPED[j]
+        if stopped and hold[j] != hold[j]:
+            hold[j] = q[j]
+        if not stopped:
+            b = hold[j]
+            b = 0.0 if b != b else (_FLOAT_MAX if b == math.inf else (-_FLOAT_MAX if b == -math.inf else b))
+            if abs(q[j] - b) > 0.02:
+                hold[j] = math.nan
+    return target
+
+
 class _Actuation:
     """Commands, brakes and grasp (a part of :class:`~._arm.ArmSim`)."""
 
@@ -50,9 +142,10 @@ class _Actuation:
         self.max_velocity = max_velocity
         self.speed_cap = None if speed_cap is None else np.abs(np.asarray(speed_cap, dtype=float))
         if not self.powered:  # re-powering: interpolate from where the arm is, as it moves
-            self._q_sub, self._v_out = self.joint_state()
-            self._qd_sub = self._v_out.copy()
-            self._a_out = np.zeros(7)
+            self._q_sub, qd_meas = self.joint_state()
+            self._qd_sub = qd_meas.copy()
+            self._v_out = qd_meas.tolist()
+            self._a_out = [0.0] * 7
         self.q_cmd = np.clip(np.asarray(q, dtype=float), _Q_MIN + LIMIT_MARGIN_RAD,
                              _Q_MAX - LIMIT_MARGIN_RAD)
         self._hermite = qd is not None
@@ -175,31 +268,24 @@ class _Actuation:
     def _apply_unpowered(self) -> None:
         p, cid = self._p, self.cid
         if self.brakes_engaged:
-            q, qd = self.joint_state()
-            step = _BRAKE_DECEL / PHYSICS_HZ
-            target = np.sign(qd) * np.maximum(np.abs(qd) - step, 0.0)
+            q, qd = self.joint_lists()
             # a brake that has stopped its joint holds it where it stopped (friction up to its
             # torque), it does not creep: a velocity loop at 0 drifts under gravity (0.55 mrad/s
             # at a stretched elbow), so a stopped joint is held at its latched position
+            # (:func:`_brake_step`: which joints are held, and the others' velocity targets)
             if self._brake_hold is None:
-                self._brake_hold = np.full(7, np.nan)
-            # a joint slower than one physics step of braking is stopped by it (issue 32: a
-            # 0.01 rad/s threshold left a loaded elbow creeping at 0.02 rad/s under a velocity
-            # loop that never latched, 0.05 rad in 2.6 s with 68.6 of 87 N·m at joint 2)
-            stopped = np.abs(qd) <= np.maximum(step, 0.01)
-            newly = stopped & np.isnan(self._brake_hold)
-            self._brake_hold[newly] = q[newly]
-            self._brake_hold[~stopped & (np.abs(q - np.nan_to_num(self._brake_hold, nan=0.0)) > 0.02)] = np.nan
-            held = ~np.isnan(self._brake_hold)
+                self._brake_hold = [math.nan] * 7
+            target = _brake_step(q, qd, self._brake_hold)
+            hold, torque = self._brake_hold, self.brake_torque.tolist()
             for j in range(7):
-                if held[j]:
+                if hold[j] == hold[j]:  # held (not NaN)
                     p.setJointMotorControl2(self.robot, ARM_JOINTS[j], p.POSITION_CONTROL,
-                                            targetPosition=float(self._brake_hold[j]), targetVelocity=0.0,
-                                            force=float(self.brake_torque[j]), positionGain=1.0,
+                                            targetPosition=hold[j], targetVelocity=0.0,
+                                            force=torque[j], positionGain=1.0,
                                             velocityGain=1.0, physicsClientId=cid)
                 else:
                     p.setJointMotorControl2(self.robot, ARM_JOINTS[j], p.VELOCITY_CONTROL,
-                                            targetVelocity=float(target[j]), force=float(self.brake_torque[j]),
+                                            targetVelocity=target[j], force=torque[j],
                                             physicsClientId=cid)
         else:  # coasting: no motor torque, brakes not (yet) engaged
             self._brake_hold = None
@@ -211,26 +297,14 @@ class _Actuation:
                                         targetVelocities=[0.0, 0.0], forces=[0.0, 0.0],
                                         physicsClientId=cid)
 
-    def _servo_velocity(self, q_ref: np.ndarray, qd_ref: np.ndarray, q_meas: np.ndarray) -> np.ndarray:
-        """The rated-limited motor velocity command for one physics step."""
-        h = 1.0 / PHYSICS_HZ
-        v = qd_ref + _K_POS * (q_ref - q_meas)
-        cap = _RATED_DQ
-        if self.max_velocity is not None:
-            cap = np.minimum(cap, self.max_velocity)
-        if self.speed_cap is not None:  # never below what holding a loaded joint needs (issue 32)
-            cap = np.minimum(cap, np.maximum(self.speed_cap, _HOLD_SPEED_RAD_S))
-        v = np.clip(v, -cap, cap)
-        # never faster toward a rated position limit than the joint can shed before it (at
-        # the planning share of its rated acceleration): no controller carries it past
-        up = np.sqrt(2.0 * _LIMIT_SHARE * _RATED_DDQ * np.maximum(_Q_MAX - LIMIT_MARGIN_RAD - q_meas, 0.0))
-        dn = np.sqrt(2.0 * _LIMIT_SHARE * _RATED_DDQ * np.maximum(q_meas - _Q_MIN - LIMIT_MARGIN_RAD, 0.0))
-        v = np.clip(v, -dn, up)
-        a = np.clip((v - self._v_out) / h, -_RATED_DDQ, _RATED_DDQ)
-        a = np.clip(a, self._a_out - _RATED_DDDQ * h, self._a_out + _RATED_DDDQ * h)
-        self._a_out = a
-        self._v_out = self._v_out + a * h
-        return self._v_out
+    def _servo_velocity(self, q_ref, qd_ref, q_meas) -> list[float]:
+        """The rated-limited motor velocity command for one physics step (:func:`_servo_step`)."""
+        if not isinstance(q_ref, list):
+            q_ref, qd_ref = q_ref.tolist(), qd_ref.tolist()
+        v, self._a_out = _servo_step(q_ref, qd_ref, q_meas, self._v_out, self._a_out, self.max_velocity,
+                                     None if self.speed_cap is None else self.speed_cap.tolist())
+        self._v_out = v
+        return v
 
     def _apply_command(self, q: np.ndarray | None = None, qd: np.ndarray | None = None) -> None:
         p, cid = self._p, self.cid
@@ -239,10 +313,10 @@ class _Actuation:
             return
         q_ref = self.q_cmd if q is None else q
         qd_ref = self.qd_cmd if qd is None else qd
-        q_meas, _ = self.joint_state()
+        q_meas, _ = self.joint_lists()
         v = self._servo_velocity(q_ref, qd_ref, q_meas)
         p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
-                                    targetVelocities=v.tolist(), forces=ARM_MAX_FORCE_N_M,
+                                    targetVelocities=v, forces=ARM_MAX_FORCE_N_M,
                                     physicsClientId=cid)
         p.setJointMotorControlArray(self.robot, FINGER_JOINTS, p.POSITION_CONTROL,
                                     targetPositions=[self.gripper_cmd] * 2, forces=[40.0] * 2,

@@ -341,7 +341,9 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
         if not self._hermite:
             v0 = v1
         h = 1.0 / PHYSICS_HZ
-        js = self.joint_state()
+        get_states, robot = p.getJointStates, self.robot
+        st = get_states(robot, ARM_JOINTS, physicsClientId=cid)
+        js = ([s[0] for s in st], [s[1] for s in st])  # plain floats: what joint_state() holds
         qms, qds = [], [js[1]]
         refs = None
         compliant = [hb for hb in self.humans.values() if hb.drive is not None]
@@ -355,15 +357,16 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
                 if self.powered:  # interpolate the reference at the physics rate
                     if refs is None:  # every physics step's reference at once (the same numbers)
                         refs = self._hermite_refs(n, T, q0, v0, q1, v1)
-                    q_ref, qd_ref = refs[0][k - 1], refs[1][k - 1]
-                    self._q_sub, self._qd_sub = q_ref, qd_ref
-                    self._apply_command(q_ref, qd_ref)
+                        ref_lists = (refs[0].tolist(), refs[1].tolist())
+                    self._q_sub, self._qd_sub = refs[0][k - 1], refs[1][k - 1]
+                    self._apply_command(ref_lists[0][k - 1], ref_lists[1][k - 1])
                 else:
                     self._apply_unpowered()
                     self._off_substeps += 1
                 self._js_step = None
                 p.stepSimulation(physicsClientId=cid)
-                js = self.joint_state()  # one read per physics step
+                st = get_states(robot, ARM_JOINTS, physicsClientId=cid)  # one read per physics step
+                js = ([s[0] for s in st], [s[1] for s in st])
                 self._js_step = js
                 qms.append(js[0])
                 qds.append(js[1])

@@ -77,8 +77,8 @@ class _Kinematics:
         q, qd = self.joint_state()
         self._q_sub, self._qd_sub = q, qd
         self.q_cmd, self.qd_cmd = q.copy(), qd.copy()
-        self._v_out = qd.copy()
-        self._a_out = np.zeros(7)
+        self._v_out = qd.tolist()
+        self._a_out = [0.0] * 7
 
     def _held_pose_for_hand(self) -> tuple | None:
         if self.held is None or getattr(self, "_held_rel", None) is None:

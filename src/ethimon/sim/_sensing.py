@@ -15,9 +15,10 @@ __all__ = ["_Sensing"]
 class _Sensing:
     """The state and the signals of the cell (a part of :class:`~._arm.ArmSim`)."""
 
-    #: the arm's joint reading of this physics step, set by ``ArmSim.step`` while nothing can
-    #: move the arm before the next ``stepSimulation`` (``None``: ask PyBullet)
-    _js_step: tuple[np.ndarray, np.ndarray] | None = None
+    #: the arm's joint reading of this physics step (positions, velocities: lists of floats), set by
+    #: ``ArmSim.step`` while nothing can move the arm before the next ``stepSimulation``
+    #: (``None``: ask PyBullet)
+    _js_step: tuple[list[float], list[float]] | None = None
 
     # ------------------------------------------------------------ state
 
@@ -32,15 +33,20 @@ class _Sensing:
         self._q_sub = self.q_cmd.copy()
         self._qd_sub = np.zeros(7)
         self.qd_cmd = np.zeros(7)
-        self._v_out = np.zeros(7)
-        self._a_out = np.zeros(7)
+        self._v_out = [0.0] * 7  # the servo's last command and acceleration (plain floats)
+        self._a_out = [0.0] * 7
 
     def joint_state(self) -> tuple[np.ndarray, np.ndarray]:
         """Measured arm joint positions and velocities (7 each)."""
+        q, qd = self.joint_lists()
+        return np.array(q), np.array(qd)
+
+    def joint_lists(self) -> tuple[list[float], list[float]]:
+        """:meth:`joint_state` as two lists of floats (the same numbers, no arrays built)."""
         if self._js_step is not None:
             return self._js_step
         st = self._p.getJointStates(self.robot, ARM_JOINTS, physicsClientId=self.cid)
-        return np.array([s[0] for s in st]), np.array([s[1] for s in st])
+        return [s[0] for s in st], [s[1] for s in st]
 
     def applied_torques(self) -> np.ndarray:
         """Motor torques the last physics step applied to the 7 arm joints."""
