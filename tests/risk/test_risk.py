@@ -400,7 +400,7 @@ def test_tracing_is_lazy_by_default(tiny, monkeypatch):
     e.probs_batch(TEXTS * 3)
     assert len(calls) == 1 and first == pytest.approx(e.probs(TEXTS[0]), abs=1e-5)
     big = load_estimator(tiny[1], cache_size=0, backend="torch")          # one call past the count: traced first
-    big.logits_batch(TEXTS * 2)
+    big.logits_batch(TEXTS + [t + " Then wait." for t in TEXTS])        # 14 distinct rows (a repeat is run once)
     assert big.jit is True and len(calls) == 2
     never = load_estimator(tiny[1], cache_size=0, jit=False, backend="torch")
     never.probs_batch(TEXTS * 3)

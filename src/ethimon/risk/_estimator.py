@@ -306,7 +306,7 @@ class RiskEstimator:
 
     def logits_batch(self, texts: list[str], *, progress: bool = False,
                      desc: str = "scoring") -> list[list[float]]:
-        """Raw (untempered) logits, uncached; for evaluation and calibration.
+        """Raw (untempered) logits, for evaluation and calibration (a text asked twice is run once).
 
         ``progress``: a tqdm bar on stderr (rows done), if tqdm is installed.
         """
