@@ -1,5 +1,6 @@
-"""How :class:`~._arm.ArmSim` moves the arm: joint commands within the rated limits, torque off
-and the brakes, the unpowered arm, and the grasp (attach, drop, detach)."""
+"""How :class:`~._arm.ArmSim` moves the arm: ``Actuators`` (joint commands within the rated limits,
+torque off and the brakes, the unpowered arm) and ``Grasp`` (attach, drop, detach), each handed the
+``World``."""
 
 from __future__ import annotations
 

@@ -1,4 +1,5 @@
-"""``ArmSim``: a Franka Panda cell in PyBullet (humans, objects, signals, controllers).
+"""``ArmSim``: a Franka Panda cell in PyBullet (humans, objects, signals, controllers), a ``World``
+and the parts that are handed it.
 
 PyBullet is imported when an ``ArmSim`` is built, never at module import.
 Every call passes ``physicsClientId``, so several simulations can live in one

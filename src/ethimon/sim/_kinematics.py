@@ -1,4 +1,4 @@
-"""The kinematics of :class:`~._arm.ArmSim` and the probes the controllers plan with: IK/FK, the
+"""The kinematics of :class:`~._arm.ArmSim` (``Kinematics``, handed the ``World``) and the probes the controllers plan with: IK/FK, the
 hazard axis, a route's clearances, link points, a step away from the people; the gravity load of
 arm + payload that the brakes must hold."""
 

@@ -1,4 +1,5 @@
-"""What :class:`~._arm.ArmSim` shows: the status text of the GUI and rendered frames."""
+"""What :class:`~._arm.ArmSim` shows (``Renderer``, handed the ``World``): the status text of the GUI
+and rendered frames."""
 
 from __future__ import annotations
 

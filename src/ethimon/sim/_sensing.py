@@ -1,5 +1,5 @@
-"""What :class:`~._arm.ArmSim` reads from the physics state: joints, the hand, the people, and
-the monitor's signals (distances, speeds, contact force)."""
+"""What :class:`~._arm.ArmSim` reads from the physics state (``Sensors``, handed the ``World``):
+joints, the hand, the people, and the monitor's signals (distances, speeds, contact force)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,6 @@
-"""The state every part of :class:`~._arm.ArmSim` shares, owned in one ``__slots__`` class: the PyBullet client, the body ids, the arm's limits and brakes, the grasp, the clock, and the objects and people (placed and walked here)."""
+"""``World``: the state every part of :class:`~._arm.ArmSim` shares, owned in one ``__slots__``
+class: the PyBullet client, the body ids, the arm's limits and brakes, the grasp, the clock, and the
+objects and people (placed and walked here)."""
 
 from __future__ import annotations
 
