@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from operator import attrgetter
 
 import numpy as np
 
@@ -37,20 +38,16 @@ _LINKS_NOT_FINGERS = tuple(i for i in range(12) if i not in FINGER_JOINTS)
 
 
 def _world_field(name: str, doc: str, *, settable: bool = False) -> property:
-    """``ArmSim.<name>``: the :class:`World`'s field of that name."""
-    def get(self):
-        return getattr(self.world, name)
-
+    """``ArmSim.<name>``: the :class:`World`'s field of that name (read by a C-level getter: the
+    runner and the controllers read these every cycle)."""
     def put(self, value):
         setattr(self.world, name, value)
-    return property(get, put if settable else None, doc=doc)
+    return property(attrgetter(f"world.{name}"), put if settable else None, doc=doc)
 
 
 def _part_field(part: str, name: str, doc: str) -> property:
     """``ArmSim.<name>``: the field of that name of one of its parts (read only)."""
-    def get(self):
-        return getattr(getattr(self, part), name)
-    return property(get, doc=doc)
+    return property(attrgetter(f"{part}.{name}"), doc=doc)
 
 
 class ArmSim:
