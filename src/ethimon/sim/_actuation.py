@@ -1,5 +1,6 @@
-"""How :class:`~._arm.ArmSim` moves the arm: joint commands within the rated limits, torque off
-and the brakes, the unpowered arm, and the grasp (attach, drop, detach)."""
+"""How :class:`~._arm.ArmSim` moves the arm: ``Actuators`` (joint commands within the rated limits,
+torque off and the brakes, the unpowered arm) and ``Grasp`` (attach, drop, detach), each handed the
+``World``."""
 
 from __future__ import annotations
 
@@ -11,10 +12,13 @@ import numpy as np
 from ._limits import BRAKE_ENGAGE_S, BRAKE_SAFETY_FACTOR, LIMIT_MARGIN_RAD
 from ._model import PHYSICS_HZ
 
+from ._kinematics import Kinematics
+from ._sensing import Sensors
+from ._world import World
 from ._cell import (ARM_JOINTS, ARM_MAX_FORCE_N_M, EE_LINK, FINGER_JOINTS, HAND_LINK, _BRAKE_DECEL, _K_POS,
                     _LIMIT_SHARE, _Q_MAX, _Q_MIN, _RATED_DDDQ, _RATED_DDQ, _RATED_DQ)
 
-__all__ = ["_Actuation"]
+__all__ = ["Actuators", "Grasp"]
 
 #: the least speed cap a stop leaves the servo for correcting a position error (rad/s). PyBullet's
 #: velocity motor creeps under a heavy load (joint 4 at 0.02 rad/s with 3 kg held out); a stop that
@@ -116,8 +120,72 @@ def _brake_step(q: list[float], qd: list[float], hold: list[float]) -> list[floa
     return target
 
 
-class _Actuation:
-    """Commands, brakes and grasp (a part of :class:`~._arm.ArmSim`)."""
+class Actuators:
+    """The joint servo, the motor power and the brakes (a part of :class:`~._arm.ArmSim`): handed
+    the :class:`~._world.World`, the :class:`~._sensing.Sensors` and :class:`~._kinematics.Kinematics`
+    it reads the arm with and the :class:`Grasp` a power-off may drop; owns the servo's reference
+    and memory and the power and brake state."""
+
+    __slots__ = ("w", "_p", "_sense", "_kin", "_grasp", "q_cmd", "qd_cmd", "q_sub", "qd_sub", "_v_out", "_a_out",
+                 "gripper_cmd", "max_velocity", "speed_cap", "hermite", "powered", "_brake_hold", "_off_substeps",
+                 "brake_log", "power_off_refused", "_refused_hold", "_holding_refused",
+                 "max_travel_unpowered_rad", "max_drop_unpowered_m", "_off_ref")
+
+    def __init__(self, world: World, sensors: Sensors, kinematics: Kinematics, grasp: Grasp) -> None:
+        self.w = world
+        self._p = world.p
+        self._sense = sensors
+        self._kin = kinematics
+        self._grasp = grasp
+        # the servo: the cycle's reference (q_cmd, qd_cmd), the reference at the last physics step
+        # (q_sub, qd_sub), its last command and acceleration (plain floats), caps, interpolation
+        self.q_cmd = np.zeros(7)
+        self.qd_cmd = np.zeros(7)
+        self.q_sub = np.zeros(7)
+        self.qd_sub = np.zeros(7)
+        self._v_out = [0.0] * 7
+        self._a_out = [0.0] * 7
+        self.gripper_cmd = 0.04
+        self.max_velocity: float | None = None
+        self.speed_cap: np.ndarray | None = None
+        self.hermite = False
+        # power and brakes
+        self.powered = True
+        self._brake_hold: list[float] | None = None
+        self._off_substeps = 0
+        #: ``(t_s, what)`` for every power-off the brakes were checked for (issue 32): the gravity
+        #: load of arm + payload against each brake; a refused power-off says why
+        self.brake_log: list[tuple[float, str]] = []
+        #: a stop 0/1 whose power-off was refused (the brakes cannot hold): the powered hold's reason
+        self.power_off_refused: str | None = None
+        self._refused_hold: tuple[np.ndarray, np.ndarray] | None = None
+        self._holding_refused = False
+        #: since the last power-off: the furthest any joint travelled (rad) and the grasp point fell (m)
+        self.max_travel_unpowered_rad = 0.0
+        self.max_drop_unpowered_m = 0.0
+        self._off_ref: tuple[np.ndarray, float] | None = None
+
+    # ------------------------------------------------------------ the servo's reference
+
+    def reset(self, q: Sequence[float]) -> None:
+        """The servo's state for an arm teleported to ``q`` at rest (``ArmSim.reset_joints``)."""
+        self.q_cmd = np.asarray(q, dtype=float).copy()
+        self.q_sub = self.q_cmd.copy()
+        self.qd_sub = np.zeros(7)
+        self.qd_cmd = np.zeros(7)
+        self._v_out = [0.0] * 7  # the servo's last command and acceleration (plain floats)
+        self._a_out = [0.0] * 7
+
+    def rebase_reference(self) -> None:
+        """Restart the joint servo's reference from the measured state (position and velocity).
+
+        Response controllers call it when they take over, so the previous controller's
+        reference (which may lead the arm) cannot pull it on."""
+        q, qd = self._sense.joint_state()
+        self.q_sub, self.qd_sub = q, qd
+        self.q_cmd, self.qd_cmd = q.copy(), qd.copy()
+        self._v_out = qd.tolist()
+        self._a_out = [0.0] * 7
 
     # ------------------------------------------------------------ commands
 
@@ -136,19 +204,19 @@ class _Actuation:
         range. So every controller keeps the Panda's rated limits
         (:mod:`ethimon.sim._limits`).
         """
-        if not getattr(self, "_holding_refused", False):  # any other command ends a refused power-off's hold
+        if not self._holding_refused:  # any other command ends a refused power-off's hold
             self.power_off_refused = None
             self._refused_hold = None
         self.max_velocity = max_velocity
         self.speed_cap = None if speed_cap is None else np.abs(np.asarray(speed_cap, dtype=float))
         if not self.powered:  # re-powering: interpolate from where the arm is, as it moves
-            self._q_sub, qd_meas = self.joint_state()
-            self._qd_sub = qd_meas.copy()
+            self.q_sub, qd_meas = self._sense.joint_state()
+            self.qd_sub = qd_meas.copy()
             self._v_out = qd_meas.tolist()
             self._a_out = [0.0] * 7
         self.q_cmd = np.clip(np.asarray(q, dtype=float), _Q_MIN + LIMIT_MARGIN_RAD,
                              _Q_MAX - LIMIT_MARGIN_RAD)
-        self._hermite = qd is not None
+        self.hermite = qd is not None
         self.qd_cmd = np.zeros(7) if qd is None else np.asarray(qd, dtype=float)
         if gripper_m is not None:
             self.gripper_cmd = gripper_m
@@ -182,59 +250,59 @@ class _Actuation:
             # the powered hold of a refused power-off: power goes off only once the arm is at rest
             # and its brakes hold it there with the safety factor (the brakes engage while the
             # motors still hold, as a stop 1's); otherwise it stays powered
-            _, qd = self.joint_state()
+            _, qd = self._sense.joint_state()
             if float(np.max(np.abs(qd))) >= 0.01 or self.brake_margin_problem() is not None:
-                self._hold_refused()
+                self.hold_refused()
                 return
             self.power_off_refused = None
             self._refused_hold = None
             brakes_already_engaged = after_hold = True
         if self.powered:
-            problem = self.brake_margin_problem() if self.brakes else None
-            t = round(self.time_s, 6)
+            problem = self.brake_margin_problem() if self.w.brakes else None
+            t = round(self.w.time_s, 6)
             if problem is not None:
                 self.power_off_refused = (f"{why}: power-off refused, the brakes cannot hold the arm "
                                           f"({problem}): held powered (a stop 2)")
                 self.brake_log.append((t, self.power_off_refused))
-                self._hold_refused()
+                self.hold_refused()
                 return
-            if self.brakes:
-                load = np.abs(self.gravity_load())
-                j = int(np.argmax(load / np.maximum(self.brake_torque, 1e-9)))
-                m, _ = self.payload()
+            if self.w.brakes:
+                load = np.abs(self._kin.gravity_load())
+                j = int(np.argmax(load / np.maximum(self.w.brake_torque, 1e-9)))
+                m, _ = self._kin.payload()
                 self.brake_log.append((t, f"{why}: power off{' after the powered hold' if after_hold else ''}; "
                                           f"the brakes hold arm + {m:g} kg with the safety factor "
                                           f"{BRAKE_SAFETY_FACTOR:g} (joint {j + 1}: {load[j]:.1f} of "
-                                          f"{self.brake_torque[j]:g} N·m)"))
+                                          f"{self.w.brake_torque[j]:g} N·m)"))
             self.powered = False
             self._off_substeps = 0
             self._brake_hold = None
-            self._off_ref = (self.joint_state()[0].copy(), self._grasp_z())
-            if self.held is not None and not self.gripper.self_locking:
-                self.drop("power_off")  # the unpowered fingers no longer press on the object
+            self._off_ref = (self._sense.joint_state()[0].copy(), self._sense.grasp_z())
+            if self.w.held is not None and not self.w.gripper.self_locking:
+                self._grasp.drop("power_off")  # the unpowered fingers no longer press on the object
             if brakes_already_engaged:  # a stop 1 engaged them at standstill, motors holding
                 self._off_substeps = int(math.ceil(BRAKE_ENGAGE_S * PHYSICS_HZ))
-        self._apply_unpowered()
+        self.apply_unpowered()
 
     def brake_margin_problem(self) -> str | None:
         """``None`` when every brake holds the gravity load of arm + held payload where the arm is
         with :data:`~ethimon._robot.BRAKE_SAFETY_FACTOR` (holding torque >= factor x load); else one
         sentence per joint short of it: its load, its brake, the margin and the factor."""
-        load = np.abs(self.gravity_load())
-        hold = np.asarray(self.brake_torque, dtype=float)
+        load = np.abs(self._kin.gravity_load())
+        hold = np.asarray(self.w.brake_torque, dtype=float)
         bad = np.flatnonzero(hold < BRAKE_SAFETY_FACTOR * load)
         if bad.size == 0:
             return None
-        m, _ = self.payload()
+        m, _ = self._kin.payload()
         return "; ".join(f"joint {j + 1} needs {load[j]:.1f} N·m against gravity (arm + {m:g} kg); its brake "
                          f"holds {hold[j]:g} N·m: {hold[j] / max(load[j], 1e-9):.2f} x, under the safety factor "
                          f"{BRAKE_SAFETY_FACTOR:g}" for j in bad)
 
-    def _hold_refused(self) -> None:
+    def hold_refused(self) -> None:
         """The powered hold of a refused power-off: from the state it had then, every joint
         decelerates at 80 % of its rated acceleration (never faster than it was) to rest and holds."""
         if self._refused_hold is None:
-            q, qd = self.joint_state()
+            q, qd = self._sense.joint_state()
             stop = q + qd * np.abs(qd) / (2.0 * _LIMIT_SHARE * _RATED_DDQ)
             stop = np.clip(stop, _Q_MIN + LIMIT_MARGIN_RAD, _Q_MAX - LIMIT_MARGIN_RAD)
             self._refused_hold = (stop, np.abs(qd) + 1e-3)
@@ -245,30 +313,26 @@ class _Actuation:
         finally:
             self._holding_refused = False
 
-    def _grasp_z(self) -> float:
-        return float(self._p.getLinkState(self.robot, EE_LINK, computeForwardKinematics=1,
-                                          physicsClientId=self.cid)[0][2])
-
-    def _track_unpowered(self) -> None:
+    def track_unpowered(self) -> None:
         """After a physics cycle without power: how far every joint and the grasp point have moved
         since the power-off (:attr:`max_travel_unpowered_rad`, :attr:`max_drop_unpowered_m`)."""
         if self._off_ref is None:
             return
         q0, z0 = self._off_ref
-        q, _ = self.joint_state()
+        q, _ = self._sense.joint_state()
         self.max_travel_unpowered_rad = max(self.max_travel_unpowered_rad, float(np.max(np.abs(q - q0))))
-        self.max_drop_unpowered_m = max(self.max_drop_unpowered_m, z0 - self._grasp_z())
+        self.max_drop_unpowered_m = max(self.max_drop_unpowered_m, z0 - self._sense.grasp_z())
 
     @property
     def brakes_engaged(self) -> bool:
         """Motor power is off and the brakes have engaged (after their engagement delay)."""
-        return (not self.powered and self.brakes
+        return (not self.powered and self.w.brakes
                 and self._off_substeps / PHYSICS_HZ >= BRAKE_ENGAGE_S - 1e-9)
 
-    def _apply_unpowered(self) -> None:
-        p, cid = self._p, self.cid
+    def apply_unpowered(self) -> None:
+        p, cid = self._p, self.w.cid
         if self.brakes_engaged:
-            q, qd = self.joint_lists()
+            q, qd = self._sense.joint_lists()
             # a brake that has stopped its joint holds it where it stopped (friction up to its
             # torque), it does not creep: a velocity loop at 0 drifts under gravity (0.55 mrad/s
             # at a stretched elbow), so a stopped joint is held at its latched position
@@ -276,28 +340,34 @@ class _Actuation:
             if self._brake_hold is None:
                 self._brake_hold = [math.nan] * 7
             target = _brake_step(q, qd, self._brake_hold)
-            hold, torque = self._brake_hold, self.brake_torque.tolist()
+            hold, torque = self._brake_hold, self.w.brake_torque.tolist()
             for j in range(7):
                 if hold[j] == hold[j]:  # held (not NaN)
-                    p.setJointMotorControl2(self.robot, ARM_JOINTS[j], p.POSITION_CONTROL,
+                    p.setJointMotorControl2(self.w.robot, ARM_JOINTS[j], p.POSITION_CONTROL,
                                             targetPosition=hold[j], targetVelocity=0.0,
                                             force=torque[j], positionGain=1.0,
                                             velocityGain=1.0, physicsClientId=cid)
                 else:
-                    p.setJointMotorControl2(self.robot, ARM_JOINTS[j], p.VELOCITY_CONTROL,
+                    p.setJointMotorControl2(self.w.robot, ARM_JOINTS[j], p.VELOCITY_CONTROL,
                                             targetVelocity=target[j], force=torque[j],
                                             physicsClientId=cid)
         else:  # coasting: no motor torque, brakes not (yet) engaged
             self._brake_hold = None
-            p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
+            p.setJointMotorControlArray(self.w.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
                                         targetVelocities=[0.0] * 7, forces=[0.0] * 7,
                                         physicsClientId=cid)
-        if not self.gripper.self_locking:  # unpowered fingers are free (no holding torque)
-            p.setJointMotorControlArray(self.robot, FINGER_JOINTS, p.VELOCITY_CONTROL,
+        if not self.w.gripper.self_locking:  # unpowered fingers are free (no holding torque)
+            p.setJointMotorControlArray(self.w.robot, FINGER_JOINTS, p.VELOCITY_CONTROL,
                                         targetVelocities=[0.0, 0.0], forces=[0.0, 0.0],
                                         physicsClientId=cid)
 
-    def _servo_velocity(self, q_ref, qd_ref, q_meas) -> list[float]:
+    def coast_step(self) -> None:
+        """One physics step without motor power (the brakes or coasting), counted toward the
+        brakes' engagement."""
+        self.apply_unpowered()
+        self._off_substeps += 1
+
+    def servo_velocity(self, q_ref, qd_ref, q_meas) -> list[float]:
         """The rated-limited motor velocity command for one physics step (:func:`_servo_step`)."""
         if not isinstance(q_ref, list):
             q_ref, qd_ref = q_ref.tolist(), qd_ref.tolist()
@@ -306,61 +376,82 @@ class _Actuation:
         self._v_out = v
         return v
 
-    def _apply_command(self, q: np.ndarray | None = None, qd: np.ndarray | None = None) -> None:
-        p, cid = self._p, self.cid
+    def apply_command(self, q: np.ndarray | None = None, qd: np.ndarray | None = None) -> None:
+        """Set the motors for the next physics step: the servo's velocity command toward the reference
+        ``(q, qd)`` (default the cycle's), the fingers' position; unpowered: the brakes or coasting."""
+        w = self.w
+        p, cid = self._p, w.cid
         if not self.powered:
-            self._apply_unpowered()
+            self.apply_unpowered()
             return
         q_ref = self.q_cmd if q is None else q
         qd_ref = self.qd_cmd if qd is None else qd
-        q_meas, _ = self.joint_lists()
-        v = self._servo_velocity(q_ref, qd_ref, q_meas)
-        p.setJointMotorControlArray(self.robot, ARM_JOINTS, p.VELOCITY_CONTROL,
+        q_meas = w.js_step  # the reading of this physics step, when the step loop has one
+        q_meas = q_meas[0] if q_meas is not None else self._sense.joint_lists()[0]
+        v = self.servo_velocity(q_ref, qd_ref, q_meas)
+        robot = w.robot
+        p.setJointMotorControlArray(robot, ARM_JOINTS, p.VELOCITY_CONTROL,
                                     targetVelocities=v, forces=ARM_MAX_FORCE_N_M,
                                     physicsClientId=cid)
-        p.setJointMotorControlArray(self.robot, FINGER_JOINTS, p.POSITION_CONTROL,
+        p.setJointMotorControlArray(robot, FINGER_JOINTS, p.POSITION_CONTROL,
                                     targetPositions=[self.gripper_cmd] * 2, forces=[40.0] * 2,
                                     physicsClientId=cid)
 
+
+class Grasp:
+    """The grasp (a part of :class:`~._arm.ArmSim`): attaching, dropping and letting go of objects
+    (the held object is the :class:`~._world.World`'s); owns the fingers' capacity and the drops."""
+
+    __slots__ = ("w", "_p", "_kin", "grip_capacity_n", "dropped")
+
+    def __init__(self, world: World, kinematics: Kinematics) -> None:
+        self.w = world
+        self._p = world.p
+        self._kin = kinematics
+        #: the most the fingers' friction holds a grasped object with (N)
+        self.grip_capacity_n = 2.0 * world.gripper.friction_coefficient * world.gripper.grasp_force_n
+        #: objects that left the gripper other than by a release: (name, t_s, "power_off"|"slipped")
+        self.dropped: list[tuple[str, float, str]] = []
+
     def attach(self, name: str) -> None:
         """Rigidly attach object ``name`` to the hand where it is now (a grasp)."""
-        if self.held is not None:
+        if self.w.held is not None:
             self.detach()
-        p, cid = self._p, self.cid
-        body = self.objects[name]
-        hs = p.getLinkState(self.robot, HAND_LINK, computeForwardKinematics=1, physicsClientId=cid)
+        p, cid = self._p, self.w.cid
+        body = self.w.objects[name]
+        hs = p.getLinkState(self.w.robot, HAND_LINK, computeForwardKinematics=1, physicsClientId=cid)
         obj_pos, obj_orn = p.getBasePositionAndOrientation(body, physicsClientId=cid)
         inv_pos, inv_orn = p.invertTransform(hs[0], hs[1])  # constraint frames are COM frames
         rel_pos, rel_orn = p.multiplyTransforms(inv_pos, inv_orn, obj_pos, obj_orn)
         self.set_graspable(name)
-        self._held_constraint = p.createConstraint(
-            self.robot, HAND_LINK, body, -1, p.JOINT_FIXED, (0, 0, 0), rel_pos, (0, 0, 0),
+        self.w.held_constraint = p.createConstraint(
+            self.w.robot, HAND_LINK, body, -1, p.JOINT_FIXED, (0, 0, 0), rel_pos, (0, 0, 0),
             parentFrameOrientation=rel_orn, physicsClientId=cid)
         # the fingers hold by friction: 2 mu F_grasp at most (Gripper); more slips the object out
-        p.changeConstraint(self._held_constraint, maxForce=self.grip_capacity_n, physicsClientId=cid)
-        self._held_rel = (rel_pos, rel_orn)
-        self.held = name
+        p.changeConstraint(self.w.held_constraint, maxForce=self.grip_capacity_n, physicsClientId=cid)
+        self.w.held_rel = (rel_pos, rel_orn)
+        self.w.held = name
 
     def drop(self, why: str) -> None:
         """The held object leaves the fingers (not a release the task commanded): ``why`` is
         ``"power_off"`` (a gripper that is not self-locking lost power) or ``"slipped"``."""
-        if self.held is None:
+        if self.w.held is None:
             return
-        self.dropped.append((self.held, round(self.time_s, 6), why))
+        self.dropped.append((self.w.held, round(self.w.time_s, 6), why))
         self.detach()
 
     def held_offset_m(self) -> float:
         """How far the held object is from where the grasp holds it (m; 0 when none is held)."""
-        pose = self._held_pose_for_hand()
+        pose = self._kin.held_pose_for_hand()
         if pose is None:
             return 0.0
-        pos, _ = self._p.getBasePositionAndOrientation(self.objects[self.held], physicsClientId=self.cid)
+        pos, _ = self._p.getBasePositionAndOrientation(self.w.objects[self.w.held], physicsClientId=self.w.cid)
         return float(np.linalg.norm(np.asarray(pos) - np.asarray(pose[0])))
 
     def object_z(self) -> dict[str, float]:
         """Height (m) of every object's centre now."""
-        return {n: float(self._p.getBasePositionAndOrientation(b, physicsClientId=self.cid)[0][2])
-                for n, b in self.objects.items()}
+        return {n: float(self._p.getBasePositionAndOrientation(b, physicsClientId=self.w.cid)[0][2])
+                for n, b in self.w.objects.items()}
 
     def set_graspable(self, name: str) -> None:
         """Stop the arm from colliding with object ``name`` (grasps are kinematic).
@@ -369,17 +460,17 @@ class _Actuation:
         close on or let go of an object never kick it; such objects never add
         to ``contact_force`` either.
         """
-        p, cid = self._p, self.cid
-        body = self.objects[name]
-        for link in range(-1, p.getNumJoints(self.robot, physicsClientId=cid)):
-            p.setCollisionFilterPair(self.robot, body, link, -1, 0, physicsClientId=cid)
-        self.graspable.add(name)
+        p, cid = self._p, self.w.cid
+        body = self.w.objects[name]
+        for link in range(-1, p.getNumJoints(self.w.robot, physicsClientId=cid)):
+            p.setCollisionFilterPair(self.w.robot, body, link, -1, 0, physicsClientId=cid)
+        self.w.graspable.add(name)
 
     def detach(self) -> None:
         """Let go of the held object (it falls under gravity)."""
-        if self._held_constraint is not None:
-            p, cid = self._p, self.cid
-            p.removeConstraint(self._held_constraint, physicsClientId=cid)
-        self._held_constraint = None
-        self._held_rel = None
-        self.held = None
+        if self.w.held_constraint is not None:
+            p, cid = self._p, self.w.cid
+            p.removeConstraint(self.w.held_constraint, physicsClientId=cid)
+        self.w.held_constraint = None
+        self.w.held_rel = None
+        self.w.held = None

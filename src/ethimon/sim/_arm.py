@@ -1,31 +1,33 @@
-"""``ArmSim``: a Franka Panda cell in PyBullet (humans, objects, signals, controllers).
+"""``ArmSim``: a Franka Panda cell in PyBullet (humans, objects, signals, controllers), a ``World``
+and the parts that are handed it.
 
 PyBullet is imported when an ``ArmSim`` is built, never at module import.
 Every call passes ``physicsClientId``, so several simulations can live in one
 process; with the same inputs a DIRECT simulation is bit-for-bit repeatable.
 
-This module builds the world (the cell, its objects and people) and steps it; the other
-jobs are parts of the class, one module each: ``_sensing`` (state and signals),
-``_actuation`` (commands, brakes, grasp), ``_kinematics`` (IK/FK, route probing),
-``_render`` (status text, frames); the shared facts are in ``_cell``.
+``ArmSim`` holds a ``World`` (``_world``: the client, the bodies, the grasp, the clock) and
+composes parts that are handed it, each owning its own state: ``Sensors`` (``_sensing``),
+``Kinematics`` (``_kinematics``), ``Actuators`` and ``Grasp`` (``_actuation``), ``Renderer``
+(``_render``); this module builds them and steps the physics.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from operator import attrgetter
 
 import numpy as np
 
 from ._limits import BRAKE_TORQUE_N_M
 from ._model import PHYSICS_HZ, Gripper, Human, SimBlock, SimObject
 from ._cell import (ARM_JOINTS, EE_LINK, FINGER_JOINTS, HAND_LINK, HOME_JOINTS_RAD, Segment, _HumanBody, _Q_MAX,
-                    _Q_MIN, _RATED_DDQ, _SLIP_M, _cross3, _half_height, _half_width, import_pybullet,
-                    physics_only_urdf)
-from ._actuation import _Actuation
-from ._kinematics import _Kinematics
-from ._render import _Rendering
-from ._sensing import _Sensing
+                    _Q_MIN, _RATED_DDQ, _SLIP_M, _cross3, _half_height, _half_width, import_pybullet)
+from ._actuation import Actuators, Grasp
+from ._kinematics import Kinematics
+from ._render import Renderer
+from ._sensing import Sensors
+from ._world import World
 
 __all__ = ["ArmSim", "HOME_JOINTS_RAD", "ARM_JOINTS", "FINGER_JOINTS", "EE_LINK", "BRAKE_TORQUE_N_M", "Segment",
            "import_pybullet"]
@@ -35,7 +37,20 @@ __all__ = ["ArmSim", "HOME_JOINTS_RAD", "ARM_JOINTS", "FINGER_JOINTS", "EE_LINK"
 _LINKS_NOT_FINGERS = tuple(i for i in range(12) if i not in FINGER_JOINTS)
 
 
-class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
+def _world_field(name: str, doc: str, *, settable: bool = False) -> property:
+    """``ArmSim.<name>``: the :class:`World`'s field of that name (read by a C-level getter: the
+    runner and the controllers read these every cycle)."""
+    def put(self, value):
+        setattr(self.world, name, value)
+    return property(attrgetter(f"world.{name}"), put if settable else None, doc=doc)
+
+
+def _part_field(part: str, name: str, doc: str) -> property:
+    """``ArmSim.<name>``: the field of that name of one of its parts (read only)."""
+    return property(attrgetter(f"{part}.{name}"), doc=doc)
+
+
+class ArmSim:
     """A Panda arm on the floor at the origin, with humans and objects, at 240 Hz.
 
     One :meth:`step` advances one *control cycle* (``PHYSICS_HZ // control_hz``
@@ -66,82 +81,246 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
         if control_hz <= 0 or PHYSICS_HZ % control_hz:
             raise ValueError(f"control_hz={control_hz} must divide {PHYSICS_HZ}")
         p, pd = import_pybullet()
-        self._p = p
-        self.control_hz = control_hz
-        self.substeps = PHYSICS_HZ // control_hz
-        self.dt = 1.0 / control_hz
-        self.gui = gui
-        self.cid = p.connect(p.GUI if gui else p.DIRECT)
-        if self.cid < 0:
-            raise RuntimeError("could not connect to PyBullet")
-        cid = self.cid
-        p.setAdditionalSearchPath(pd.getDataPath(), physicsClientId=cid)
-        p.setGravity(0, 0, -9.81, physicsClientId=cid)
-        p.setTimeStep(1.0 / PHYSICS_HZ, physicsClientId=cid)
-        p.setPhysicsEngineParameter(deterministicOverlappingPairs=1, physicsClientId=cid)
-        if gui:
-            p.configureDebugVisualizer(p.COV_ENABLE_GUI, 0, physicsClientId=cid)
-        self.plane = p.loadURDF("plane.urdf", physicsClientId=cid)
-        # visuals=False: the same arm without its visual meshes (nothing is rendered), 5x faster to load
-        urdf = "franka_panda/panda.urdf" if visuals or gui else physics_only_urdf(pd.getDataPath())
-        self.robot = p.loadURDF(urdf, useFixedBase=True,
-                                flags=p.URDF_USE_SELF_COLLISION_EXCLUDE_PARENT,
-                                physicsClientId=cid)
-        info = [p.getJointInfo(self.robot, j, physicsClientId=cid) for j in ARM_JOINTS]
-        self.lower = np.array([i[8] for i in info])
-        self.upper = np.array([i[9] for i in info])
-        q0 = np.array(start_joints_rad if start_joints_rad is not None else HOME_JOINTS_RAD,
-                      dtype=float)
-        self.reset_joints(q0)  # also sets q_cmd and the substep setpoint _q_sub
-        self.qd_cmd = np.zeros(7)
-        self.gripper_cmd = 0.04
-        self.max_velocity: float | None = None
-        self.speed_cap: np.ndarray | None = None
-        self._hermite = False
+        #: each joint's brake holding torque (N·m): the cell's, else the Panda table (estimates)
+        brake_torque = np.asarray(BRAKE_TORQUE_N_M if brake_torque_n_m is None else brake_torque_n_m,
+                                  dtype=float)
+        #: the state every part shares (the client, the bodies, the grasp, the clock)
+        self.world = w = World(p, pd, control_hz=control_hz, gui=gui, visuals=visuals, brakes=brakes,
+                               brake_torque=brake_torque, gripper=gripper if gripper is not None else Gripper())
+        self._sense = Sensors(w)
+        self._kin = Kinematics(w, self._sense)
+        self._grasp = Grasp(w, self._kin)
+        self._act = Actuators(w, self._sense, self._kin, self._grasp)
+        self._render = Renderer(w)
         self._hermite_coef: dict = {}  # (substeps, dt) -> the Hermite weights of each physics step
-        self.powered = True
-        self._brake_hold: np.ndarray | None = None
-        self._off_substeps = 0
+        self.max_joint_speed_substep = 0.0  # max |qdot| over the last step's physics substeps
         self.max_joint_accel_substep = 0.0
         self.max_accel_ratio_substep = 0.0
         #: the furthest any joint has been past its rated position limit (rad; every physics step)
         self.max_past_limit_rad = 0.0
         self.link_speed_max = 0.0
-        self.brakes = brakes
-        #: each joint's brake holding torque (N·m): the cell's, else the Panda table (estimates)
-        self.brake_torque = np.asarray(BRAKE_TORQUE_N_M if brake_torque_n_m is None else brake_torque_n_m,
-                                       dtype=float)
-        #: ``(t_s, what)`` for every power-off the brakes were checked for (issue 32): the gravity
-        #: load of arm + payload against each brake; a refused power-off says why
-        self.brake_log: list[tuple[float, str]] = []
-        #: a stop 0/1 whose power-off was refused (the brakes cannot hold): the powered hold's reason
-        self.power_off_refused: str | None = None
-        self._refused_hold: tuple[np.ndarray, np.ndarray] | None = None
-        #: since the last power-off: the furthest any joint travelled (rad) and the grasp point fell (m)
-        self.max_travel_unpowered_rad = 0.0
-        self.max_drop_unpowered_m = 0.0
-        self._off_ref: tuple[np.ndarray, float] | None = None
-        self.gripper = gripper if gripper is not None else Gripper()
-        #: the most the fingers' friction holds a grasped object with (N)
-        self.grip_capacity_n = 2.0 * self.gripper.friction_coefficient * self.gripper.grasp_force_n
-        #: objects that left the gripper other than by a release: (name, t_s, "power_off"|"slipped")
-        self.dropped: list[tuple[str, float, str]] = []
-        self._track: dict[str, tuple[float, np.ndarray, float]] = {}  # name -> (t, xy, speed)
-        self.graspable: set[str] = set()
-        self._status_id: int | None = None
-        self.time_s = 0.0
-        self.cycle = 0
-        self.max_joint_speed_substep = 0.0  # max |qdot| over the last step's physics substeps
-        self.held: str | None = None
-        self._held_constraint: int | None = None
-        self.objects: dict[str, int] = {}
-        self.object_specs: dict[str, SimObject] = {}
+        q0 = np.array(start_joints_rad if start_joints_rad is not None else HOME_JOINTS_RAD,
+                      dtype=float)
+        self.reset_joints(q0)  # also sets the servo's reference
         for o in objects:
             self.add_object(o)
-        self.humans: dict[str, _HumanBody] = {}
         for h in humans:
             self.add_human(h)
-        self._apply_command()
+        self._act.apply_command()
+
+    # ------------------------------------------------------------ the world's and the parts' state
+
+    _p = _world_field("p", "The PyBullet module this simulation talks to.")
+    cid = _world_field("cid", "The PyBullet client id (-1 once closed).")
+    gui = _world_field("gui", "Whether the PyBullet GUI is open.")
+    control_hz = _world_field("control_hz", "Control (and monitor) rate (Hz).")
+    substeps = _world_field("substeps", "Physics steps per control cycle.")
+    dt = _world_field("dt", "One control cycle (s).")
+    plane = _world_field("plane", "The floor's body id.")
+    robot = _world_field("robot", "The arm's body id.")
+    lower = _world_field("lower", "The URDF's lower joint limits (rad).")
+    upper = _world_field("upper", "The URDF's upper joint limits (rad).")
+    brakes = _world_field("brakes", "Whether the joints have holding brakes.")
+    brake_torque = _world_field("brake_torque", "Each joint's brake holding torque (N·m).")
+    gripper = _world_field("gripper", "The gripper (:class:`~ethimon.sim.Gripper`).")
+    objects = _world_field("objects", "Object name -> body id.")
+    object_specs = _world_field("object_specs", "Object name -> its :class:`~ethimon.sim.SimObject`.")
+    graspable = _world_field("graspable", "Names of the objects the arm does not collide with (picked).")
+    humans = _world_field("humans", "Person name -> their body.")
+    held = _world_field("held", "The held object's name (``None``: nothing held).")
+    time_s = _world_field("time_s", "Simulated time (s) at the end of the last cycle.", settable=True)
+    cycle = _world_field("cycle", "Control cycles stepped.", settable=True)
+    q_cmd = _part_field("_act", "q_cmd", "The joint reference of this cycle (rad).")
+    qd_cmd = _part_field("_act", "qd_cmd", "The reference velocity of this cycle (rad/s).")
+    gripper_cmd = _part_field("_act", "gripper_cmd", "The fingers' commanded opening (m).")
+    max_velocity = _part_field("_act", "max_velocity", "The joint speed cap of the last command (rad/s).")
+    speed_cap = _part_field("_act", "speed_cap", "The per-joint speed caps of the last command (rad/s).")
+    powered = _part_field("_act", "powered", "Whether motor power is on.")
+    brake_log = _part_field("_act", "brake_log", "``(t_s, what)`` for every power-off the brakes were checked for.")
+    power_off_refused = _part_field("_act", "power_off_refused",
+                                    "A stop 0/1 whose power-off was refused: the powered hold's reason.")
+    max_travel_unpowered_rad = _part_field("_act", "max_travel_unpowered_rad",
+                                           "Since the last power-off: the furthest any joint travelled (rad).")
+    max_drop_unpowered_m = _part_field("_act", "max_drop_unpowered_m",
+                                       "Since the last power-off: the furthest the grasp point fell (m).")
+    brakes_engaged = _part_field("_act", "brakes_engaged",
+                                 "Motor power is off and the brakes have engaged (after their engagement delay).")
+    grip_capacity_n = _part_field("_grasp", "grip_capacity_n",
+                                  "The most the fingers' friction holds a grasped object with (N).")
+    dropped = _part_field("_grasp", "dropped",
+                          "Objects that left the gripper other than by a release: (name, t_s, why).")
+
+    # ------------------------------------------------------------ sensing (:class:`Sensors`)
+
+    def reset_joints(self, q: Sequence[float]) -> None:
+        """Teleport the arm to ``q`` (zero velocity); fingers open; the servo's reference restarts there."""
+        self._sense.teleport(q)
+        self._act.reset(q)
+
+    def joint_state(self) -> tuple[np.ndarray, np.ndarray]:
+        """Measured arm joint positions and velocities (7 each)."""
+        return self._sense.joint_state()
+
+    def joint_lists(self) -> tuple[list[float], list[float]]:
+        """:meth:`joint_state` as two lists of floats (the same numbers, no arrays built)."""
+        return self._sense.joint_lists()
+
+    def applied_torques(self) -> np.ndarray:
+        """Motor torques the last physics step applied to the 7 arm joints."""
+        return self._sense.applied_torques()
+
+    def ee_pose(self) -> tuple[np.ndarray, np.ndarray]:
+        """End-effector (grasp target) world position and quaternion."""
+        return self._sense.ee_pose()
+
+    def ee_velocity(self) -> np.ndarray:
+        """End-effector linear velocity (m/s, world frame)."""
+        return self._sense.ee_velocity()
+
+    def _grasp_z(self) -> float:
+        return self._sense.grasp_z()
+
+    def human_position(self, name: str) -> np.ndarray:
+        """Capsule centre of human ``name``."""
+        return self._sense.human_position(name)
+
+    def human_xy(self) -> dict[str, np.ndarray]:
+        """Every person's horizontal position now (capsule centre)."""
+        return self._sense.human_xy()
+
+    def distance(self, body_a: int, body_b: int, max_m: float = 10.0) -> float:
+        """Minimum surface distance between two bodies (0 when touching), via getClosestPoints."""
+        return self._sense.distance(body_a, body_b, max_m)
+
+    def human_distance(self) -> float:
+        """Minimum distance between any human and the arm (or the object it holds)."""
+        return self._sense.human_distance()
+
+    def contact_force(self) -> float:
+        """Largest contact normal force (N) of the arm against humans/objects (:meth:`Sensors.contact_force`)."""
+        return self._sense.contact_force()
+
+    def hazard_distance(self) -> float:
+        """Minimum distance between any hazard-tagged object and any human (m)."""
+        return self._sense.hazard_distance()
+
+    def human_speed(self, name: str) -> float:
+        """Horizontal speed (m/s) of person ``name`` as a tracker measures it (:meth:`Sensors.human_speed`)."""
+        return self._sense.human_speed(name)
+
+    def closest_approach(self) -> tuple[float, str | None, float]:
+        """``(distance, person, speed toward the person)`` (:meth:`Sensors.closest_approach`)."""
+        return self._sense.closest_approach()
+
+    def signals(self) -> dict[str, float]:
+        """The monitor's inputs from the current physics state (:meth:`Sensors.signals`)."""
+        return self._sense.signals()
+
+    # ------------------------------------------------------------ kinematics (:class:`Kinematics`)
+
+    def _set_arm(self, q: Sequence[float], qd: Sequence[float] | None = None) -> None:
+        self._kin.set_arm(q, qd)
+
+    def solve_ik(self, xyz: Sequence[float], rpy: Sequence[float] | None = None,
+                 seed: Sequence[float] | None = None, iterations: int = 6) -> np.ndarray:
+        """Joint angles that put the grasp target at ``xyz`` with orientation ``rpy`` (:meth:`Kinematics.solve_ik`)."""
+        return self._kin.solve_ik(xyz, rpy, seed, iterations)
+
+    def fk(self, q: Sequence[float]) -> np.ndarray:
+        """Grasp-target position for joint angles ``q`` (state restored afterwards)."""
+        return self._kin.fk(q)
+
+    def hazard_axis_angles_deg(self, qs: Sequence[Sequence[float]] | None = None, *,
+                               each: bool = False, until=None) -> list | None:
+        """The held hazard's axis angle to the people (:meth:`Kinematics.hazard_axis_angles_deg`)."""
+        return self._kin.hazard_axis_angles_deg(qs, each=each, until=until)
+
+    def probe(self, qs: Sequence[Sequence[float]], until=None) -> list[dict[str, float]]:
+        """Clearances of the arm at each joint configuration in ``qs`` (:meth:`Kinematics.probe`)."""
+        return self._kin.probe(qs, until)
+
+    def link_points(self, q: Sequence[float]) -> np.ndarray:
+        """World positions of the link frames (and a held object) at ``q`` (state restored afterwards)."""
+        return self._kin.link_points(q)
+
+    def link_points_at(self, qs: Sequence[Sequence[float]]) -> list[np.ndarray]:
+        """:meth:`link_points` at each configuration in ``qs``, the state read and restored once."""
+        return self._kin.link_points_at(qs)
+
+    def away_from_humans(self, xyz: Sequence[float], step_m: float) -> np.ndarray | None:
+        """``xyz`` moved ``step_m`` horizontally away from the nearest person and 0.1 m up."""
+        return self._kin.away_from_humans(xyz, step_m)
+
+    def payload(self) -> tuple[float, tuple[float, float, float]]:
+        """The held object as a payload: ``(mass kg, its centre of mass in the flange frame m)``."""
+        return self._kin.payload()
+
+    def gravity_load(self, q: Sequence[float] | None = None) -> np.ndarray:
+        """The torque (N·m) each joint must hold against gravity now: arm + held payload."""
+        return self._kin.gravity_load(q)
+
+    def brake_problem_now(self) -> str | None:
+        """``None`` when every brake holds arm + payload where the arm is; else why not."""
+        return self._kin.brake_problem_now()
+
+    # ------------------------------------------------------------ actuation (:class:`Actuators`, :class:`Grasp`)
+
+    def rebase_reference(self) -> None:
+        """Restart the joint servo's reference from the measured state (:meth:`Actuators.rebase_reference`)."""
+        self._act.rebase_reference()
+
+    def command_joints(self, q: Sequence[float], qd: Sequence[float] | None = None,
+                       gripper_m: float | None = None, *,
+                       max_velocity: float | None = None,
+                       speed_cap: Sequence[float] | None = None) -> None:
+        """Track the joint reference ``q`` this cycle; powers motors on (:meth:`Actuators.command_joints`)."""
+        self._act.command_joints(q, qd, gripper_m, max_velocity=max_velocity, speed_cap=speed_cap)
+
+    def command_torque_off(self, *, brakes_already_engaged: bool = False, why: str | None = None) -> None:
+        """Stop category 0 style: remove motor power, if the brakes can hold the arm
+        (:meth:`Actuators.command_torque_off`)."""
+        self._act.command_torque_off(brakes_already_engaged=brakes_already_engaged, why=why)
+
+    def brake_margin_problem(self) -> str | None:
+        """``None`` when every brake holds arm + payload with the safety factor; else why not."""
+        return self._act.brake_margin_problem()
+
+    def _apply_command(self, q: np.ndarray | None = None, qd: np.ndarray | None = None) -> None:
+        self._act.apply_command(q, qd)
+
+    def attach(self, name: str) -> None:
+        """Rigidly attach object ``name`` to the hand where it is now (a grasp)."""
+        self._grasp.attach(name)
+
+    def drop(self, why: str) -> None:
+        """The held object leaves the fingers (``"power_off"`` or ``"slipped"``)."""
+        self._grasp.drop(why)
+
+    def detach(self) -> None:
+        """Let go of the held object (it falls under gravity)."""
+        self._grasp.detach()
+
+    def held_offset_m(self) -> float:
+        """How far the held object is from where the grasp holds it (m; 0 when none is held)."""
+        return self._grasp.held_offset_m()
+
+    def object_z(self) -> dict[str, float]:
+        """Height (m) of every object's centre now."""
+        return self._grasp.object_z()
+
+    def set_graspable(self, name: str) -> None:
+        """Stop the arm from colliding with object ``name`` (grasps are kinematic; :meth:`Grasp.set_graspable`)."""
+        self._grasp.set_graspable(name)
+
+    # ------------------------------------------------------------ rendering (:class:`Renderer`)
+
+    def show_status(self, text: str) -> None:
+        """GUI only: show ``text`` above the arm (replaces the previous status)."""
+        self._render.show_status(text)
+
+    def render(self, width: int = 480, height: int = 360) -> np.ndarray:
+        """An RGB frame (H×W×3 uint8) from PyBullet's software TinyRenderer (headless)."""
+        return self._render.render(width, height)
 
     # ------------------------------------------------------------ construction
 
@@ -173,57 +352,40 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
     def start_collision(self) -> str | None:
         """What the arm (or the object it holds) penetrates now, more than 5 mm: an object the
         task does not pick (a fixed one, a shelf) or the floor; ``None`` when it starts clear."""
-        p, cid = self._p, self.cid
-        held = self.objects.get(self.held) if self.held else None
+        w = self.world
+        p, cid, robot = w.p, w.cid, w.robot
+        held = w.objects.get(w.held) if w.held else None
         worst = None
-        for name, b in self.objects.items():
-            if name in self.graspable or b == held:
+        for name, b in w.objects.items():
+            if name in w.graspable or b == held:
                 continue
-            for body, who in ((self.robot, "the arm"), (held, f"the held {self.held}")):
+            for body, who in ((robot, "the arm"), (held, f"the held {w.held}")):
                 if body is None:
                     continue
                 for pt in p.getClosestPoints(body, b, 0.0, physicsClientId=cid):
                     if pt[8] < -0.005 and (worst is None or pt[8] < worst[0]):
-                        link = f" (link {pt[3]})" if body == self.robot else ""
+                        link = f" (link {pt[3]})" if body == robot else ""
                         worst = (pt[8], f"{who}{link} starts {-pt[8] * 100:.1f} cm inside {name!r}")
         for link in range(2, 12):
-            for pt in p.getClosestPoints(self.robot, self.plane, 0.0, linkIndexA=link, physicsClientId=cid):
+            for pt in p.getClosestPoints(robot, w.plane, 0.0, linkIndexA=link, physicsClientId=cid):
                 if pt[8] < -0.005 and (worst is None or pt[8] < worst[0]):
                     worst = (pt[8], f"the arm (link {link}) starts {-pt[8] * 100:.1f} cm below the floor")
         return None if worst is None else worst[1]
 
     def hold_at_start(self, name: str) -> None:
         """Teleport object ``name`` into the closed gripper and attach it."""
-        o = self.object_specs[name]
-        pos, _ = self.ee_pose()
+        w = self.world
+        o = w.object_specs[name]
+        pos, _ = self._sense.ee_pose()
         z = pos[2] - max(_half_height(o) - 0.02, 0.0)
-        self._p.resetBasePositionAndOrientation(self.objects[name], (pos[0], pos[1], z),
-                                                (0, 0, 0, 1), physicsClientId=self.cid)
-        self.gripper_cmd = min(_half_width(o), 0.04)
-        self.attach(name)
+        w.p.resetBasePositionAndOrientation(w.objects[name], (pos[0], pos[1], z),
+                                            (0, 0, 0, 1), physicsClientId=w.cid)
+        self._act.gripper_cmd = min(_half_width(o), 0.04)
+        self._grasp.attach(name)
 
     def add_object(self, o: SimObject) -> int:
         """Add a rigid object; returns its body id."""
-        p, cid = self._p, self.cid
-        if o.shape == "box":
-            col = p.createCollisionShape(p.GEOM_BOX, halfExtents=o.half_extents_m, physicsClientId=cid)
-            vis_kw = {"halfExtents": o.half_extents_m}
-        elif o.shape == "sphere":
-            col = p.createCollisionShape(p.GEOM_SPHERE, radius=o.radius_m, physicsClientId=cid)
-            vis_kw = {"radius": o.radius_m}
-        else:
-            col = p.createCollisionShape(p.GEOM_CYLINDER, radius=o.radius_m, height=o.height_m,
-                                         physicsClientId=cid)
-            vis_kw = {"radius": o.radius_m, "length": o.height_m}
-        shape = {"box": p.GEOM_BOX, "sphere": p.GEOM_SPHERE, "cylinder": p.GEOM_CYLINDER}[o.shape]
-        rgba = o.rgba or ((0.9, 0.2, 0.1, 1) if o.hazard else (0.3, 0.5, 0.9, 1))
-        vis = p.createVisualShape(shape, rgbaColor=rgba, physicsClientId=cid, **vis_kw)
-        body = p.createMultiBody(baseMass=0.0 if o.fixed else o.mass_kg,
-                                 baseCollisionShapeIndex=col, baseVisualShapeIndex=vis,
-                                 basePosition=o.xyz_m, physicsClientId=cid)
-        self.objects[o.name] = body
-        self.object_specs[o.name] = o
-        return body
+        return self.world.add_object(o)
 
     def add_human(self, h: Human) -> int:
         """Add a person as an upright capsule following its waypoints.
@@ -233,84 +395,15 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
         constraint of at most ``max_push_n``: an arm (braked or moving) can stop it, it can
         be pushed, and the contact force is limited by what the person can push with
         (plus the impact)."""
-        p, cid = self._p, self.cid
-        # capsule "height" is the cylinder part; total height = cylinder + 2 r
-        cyl = max(h.height_m - 2 * h.radius_m, 0.01)
-        col = p.createCollisionShape(p.GEOM_CAPSULE, radius=h.radius_m, height=cyl,
-                                     physicsClientId=cid)
-        vis = p.createVisualShape(p.GEOM_CAPSULE, radius=h.radius_m, length=cyl,
-                                  rgbaColor=(0.95, 0.75, 0.55, 1), physicsClientId=cid)
-        body = p.createMultiBody(baseMass=h.mass_kg if h.compliant else 0.0,
-                                 baseCollisionShapeIndex=col, baseVisualShapeIndex=vis,
-                                 basePosition=(0, 0, h.height_m / 2), physicsClientId=cid)
-        hb = _HumanBody(h, body, np.array([w.t_s for w in h.waypoints], dtype=float),
-                        np.array([w.xy_m for w in h.waypoints], dtype=float))
-        if h.compliant:
-            # no floor friction (the drive does the walking); upright: a rotational inertia no
-            # contact can tip, the orientation reset upright every cycle
-            p.changeDynamics(body, -1, lateralFriction=0.0, localInertiaDiagonal=(1e4, 1e4, 1e4),
-                             linearDamping=0.0, angularDamping=0.0, physicsClientId=cid)
-            hb.drive = 1
-        self.humans[h.name] = hb
-        self._place_human(hb, 0.0)
-        return body
+        return self.world.add_human(h)
 
     def _place_human(self, hb: _HumanBody, t: float) -> None:
         """Put the person where the waypoints say at ``t`` (teleport, zero velocity)."""
-        x, y = hb.xy_at(t)
-        pos = (float(x), float(y), hb.spec.height_m / 2)
-        self._p.resetBasePositionAndOrientation(hb.body, pos, (0, 0, 0, 1), physicsClientId=self.cid)
-        if hb.drive is not None:
-            self._p.resetBaseVelocity(hb.body, (0, 0, 0), (0, 0, 0), physicsClientId=self.cid)
-
-    def _move_human(self, hb: _HumanBody, t: float) -> None:
-        """Advance a kinematic person to time ``t`` (placed where the waypoints say); a
-        compliant one is walked by :meth:`_drive_human` at every physics step instead."""
-        if hb.drive is None:
-            self._place_human(hb, t)
-            return
-        p, cid = self._p, self.cid
-        pos, _ = p.getBasePositionAndOrientation(hb.body, physicsClientId=cid)
-        v, _ = p.getBaseVelocity(hb.body, physicsClientId=cid)
-        p.resetBasePositionAndOrientation(hb.body, pos, (0, 0, 0, 1), physicsClientId=cid)
-        p.resetBaseVelocity(hb.body, v, (0, 0, 0), physicsClientId=cid)
-
-    def _drive_human(self, hb: _HumanBody, t: float) -> None:
-        """One physics step of a compliant person's walk: a horizontal force of at most
-        ``max_push_n`` toward the velocity the script asks for now.
-
-        The wanted velocity is the script's velocity plus a pull (2 s⁻¹) toward the scripted
-        position, never faster than the person walks (:meth:`_HumanBody.walk_speed`, the speed
-        of the current segment or, standing, of the last one walked) nor faster than lets
-        them stop at the scripted position with half their drive: so a person held up by
-        the arm catches up at walking speed, never runs, and stops at the last waypoint."""
-        p, cid = self._p, self.cid
-        pos, _ = p.getBasePositionAndOrientation(hb.body, physicsClientId=cid)
-        v, _ = p.getBaseVelocity(hb.body, physicsClientId=cid)
-        xy, vxy = np.array(pos[:2]), np.array(v[:2])
-        target = hb.xy_at(t)
-        want = hb.velocity_at(t) + 2.0 * (target - xy)
-        lim = hb.walk_speed(t)
-        a_stop = 0.5 * hb.spec.max_push_n / hb.spec.mass_kg
-        lim = min(lim, math.sqrt(2.0 * a_stop * float(np.linalg.norm(target - xy))))
-        n = float(np.linalg.norm(want))
-        if n > lim:
-            want = want * (lim / n) if n > 0 else want
-        f = hb.spec.mass_kg * (want - vxy) / 0.05  # 50 ms to reach the wanted velocity
-        fn = float(np.linalg.norm(f))
-        if fn > hb.spec.max_push_n:
-            f = f * (hb.spec.max_push_n / fn)
-        p.applyExternalForce(hb.body, -1, (float(f[0]), float(f[1]), 0.0), pos, p.WORLD_FRAME,
-                             physicsClientId=cid)
+        self.world.place_human(hb, t)
 
     def close(self) -> None:
         """Disconnect from PyBullet (idempotent)."""
-        if self.cid is not None and self.cid >= 0:
-            try:
-                self._p.disconnect(physicsClientId=self.cid)
-            except Exception:  # already gone
-                pass
-            self.cid = -1
+        self.world.close()
 
     def __enter__(self) -> ArmSim:
         return self
@@ -328,50 +421,51 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
         (the largest |q̈_j| / rated q̈_max,j) and :attr:`link_speed_max` (m/s, the fastest
         link frame or held object at the end of the cycle) describe the cycle.
         """
-        p, cid = self._p, self.cid
-        self.time_s = (self.cycle + 1) * self.dt
-        for hb in self.humans.values():
-            self._move_human(hb, self.time_s)
+        w, act = self.world, self._act
+        p, cid = w.p, w.cid
+        T = w.dt
+        t_s = w.time_s = (w.cycle + 1) * T
+        for hb in w.humans.values():
+            w.move_human(hb, t_s)
         peak = peak_a = ratio_a = 0.0
-        n = self.substeps
-        T = self.dt
-        q0, v0 = self._q_sub, self._qd_sub
-        q1 = self.q_cmd
-        v1 = self.qd_cmd if self._hermite else (q1 - q0) / T
-        if not self._hermite:
+        n = w.substeps
+        q0, v0 = act.q_sub, act.qd_sub
+        q1 = act.q_cmd
+        v1 = act.qd_cmd if act.hermite else (q1 - q0) / T
+        if not act.hermite:
             v0 = v1
         h = 1.0 / PHYSICS_HZ
-        get_states, robot = p.getJointStates, self.robot
+        get_states, robot = p.getJointStates, w.robot
         st = get_states(robot, ARM_JOINTS, physicsClientId=cid)
         js = ([s[0] for s in st], [s[1] for s in st])  # plain floats: what joint_state() holds
         qms, qds = [], [js[1]]
         refs = None
-        compliant = [hb for hb in self.humans.values() if hb.drive is not None]
+        compliant = [hb for hb in w.humans.values() if hb.drive is not None]
+        drive, apply, step_physics = w.drive_human, act.apply_command, p.stepSimulation
         # the arm's measured state holds until the next physics step (moving people do not
         # change it): the servo reads it from there instead of asking PyBullet again
-        self._js_step = js
+        w.js_step = js
         try:
             for k in range(1, n + 1):
                 for hb in compliant:
-                    self._drive_human(hb, self.time_s - self.dt + k * h)
-                if self.powered:  # interpolate the reference at the physics rate
+                    drive(hb, t_s - T + k * h)
+                if act.powered:  # interpolate the reference at the physics rate
                     if refs is None:  # every physics step's reference at once (the same numbers)
                         refs = self._hermite_refs(n, T, q0, v0, q1, v1)
                         ref_lists = (refs[0].tolist(), refs[1].tolist())
-                    self._q_sub, self._qd_sub = refs[0][k - 1], refs[1][k - 1]
-                    self._apply_command(ref_lists[0][k - 1], ref_lists[1][k - 1])
+                    act.q_sub, act.qd_sub = refs[0][k - 1], refs[1][k - 1]
+                    apply(ref_lists[0][k - 1], ref_lists[1][k - 1])
                 else:
-                    self._apply_unpowered()
-                    self._off_substeps += 1
-                self._js_step = None
-                p.stepSimulation(physicsClientId=cid)
+                    act.coast_step()
+                w.js_step = None
+                step_physics(physicsClientId=cid)
                 st = get_states(robot, ARM_JOINTS, physicsClientId=cid)  # one read per physics step
                 js = ([s[0] for s in st], [s[1] for s in st])
-                self._js_step = js
+                w.js_step = js
                 qms.append(js[0])
                 qds.append(js[1])
         finally:
-            self._js_step = None
+            w.js_step = None
         # the cycle's extremes from every physics step's reading at once (same order of
         # comparisons as step by step, so NaN and ties come out as before)
         qm_all, qd_all = np.array(qms), np.array(qds)
@@ -388,16 +482,16 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
             peak = max(peak, speed[k])
             peak_a = max(peak_a, acc_max[k])
             ratio_a = max(ratio_a, ratio[k])
-        if not self.powered:  # a later re-power starts from the measured state
-            self._q_sub, self._qd_sub = self.joint_state()
-            self._track_unpowered()
+        if not act.powered:  # a later re-power starts from the measured state
+            act.q_sub, act.qd_sub = self._sense.joint_state()
+            act.track_unpowered()
         self.max_joint_speed_substep = peak
         self.max_joint_accel_substep = peak_a
         self.max_accel_ratio_substep = ratio_a
         self.link_speed_max = self.link_speed()
-        if self.held is not None and self.held_offset_m() > _SLIP_M:
-            self.drop("slipped")  # pulled out beyond what the fingers' friction holds
-        self.cycle += 1
+        if w.held is not None and self._grasp.held_offset_m() > _SLIP_M:
+            self._grasp.drop("slipped")  # pulled out beyond what the fingers' friction holds
+        w.cycle += 1
 
     def _hermite_refs(self, n: int, T: float, q0, v0, q1, v1) -> tuple[np.ndarray, np.ndarray]:
         """The cubic Hermite reference (position, velocity) at each of the ``n`` physics steps
@@ -420,15 +514,16 @@ class ArmSim(_Sensing, _Actuation, _Kinematics, _Rendering):
     def link_speed(self) -> float:
         """Largest linear speed (m/s) of any arm link frame (links 1..7, hand, grasp frame;
         the fingers' own opening and closing left out) or of the held object, now."""
-        p, cid = self._p, self.cid
-        states = p.getLinkStates(self.robot, list(range(12)), computeLinkVelocity=1,
+        w = self.world
+        p, cid = w.p, w.cid
+        states = p.getLinkStates(w.robot, list(range(12)), computeLinkVelocity=1,
                                  physicsClientId=cid)
         # the fingers' own opening/closing is left out (their frames ride on the hand)
         best = max([math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])  # = sum(c * c for c in v)
                     for v in [states[i][6] for i in _LINKS_NOT_FINGERS]])
-        if self.held is not None:  # rigidly held: the hand's velocity at the object's centre
+        if w.held is not None:  # rigidly held: the hand's velocity at the object's centre
             hand = states[HAND_LINK]
-            pos, _ = p.getBasePositionAndOrientation(self.objects[self.held], physicsClientId=cid)
+            pos, _ = p.getBasePositionAndOrientation(w.objects[w.held], physicsClientId=cid)
             r = np.asarray(pos) - np.asarray(hand[0])
             v = np.asarray(hand[6]) + _cross3(hand[7], r)
             best = max(best, float(np.linalg.norm(v)))
