@@ -47,9 +47,10 @@ def test_a_new_row_is_checked_typed_and_windowed_by_the_table(always_within):
     plan = plan_of(ethimon.load_spec_text(SPEC))
     node = _node(plan, "always_within")
     assert plan.type_of(node).kind == "bool"
-    assert plan.windows[id(node)] == 3 and node in plan.temporal
+    assert node.ann.window == 3 and plan.temporal[node.ann.slot] is node
     # a window in seconds, the operand's kind and the arity come from the row too
-    assert plan_of(ethimon.load_spec_text(SPEC.replace(", 3)", ", 0.05 s)"))).windows != {}
+    timed = _node(plan_of(ethimon.load_spec_text(SPEC.replace(", 3)", ", 0.05 s)"))), "always_within")
+    assert timed.ann.seconds == 0.05 and timed.ann.window >= 1
     with pytest.raises(SpecError, match=r"always_within\(\) needs a boolean"):
         ethimon.load_spec_text(SPEC.replace("x > 1, 3", "x, 3"))
     with pytest.raises(SpecError, match=r"always_within\(\) takes 2 arguments, got 1"):

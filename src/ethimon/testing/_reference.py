@@ -163,17 +163,17 @@ class _Semantics(ExprVisitor):
         return self.visit(args[0], t - 1)
 
     def visit_held(self, node: Call, t: int) -> bool:
-        n = self.plan.windows[id(node)]
+        n = node.ann.window
         if t + 1 < n:
             return False
         return all(self.visit(node.args[0], j) for j in range(t - n + 1, t + 1))
 
     def visit_once(self, node: Call, t: int) -> bool:
-        n = self.plan.windows[id(node)]
+        n = node.ann.window
         return any(self.visit(node.args[0], j) for j in range(max(0, t - n + 1), t + 1))
 
     def visit_since(self, node: Call, t: int) -> bool:
-        n = self.plan.windows.get(id(node))
+        n = node.ann.window
         a, b = node.args[0], node.args[1]
         first = 0 if n is None else max(0, t - n + 1)
         for j in range(first, t + 1):

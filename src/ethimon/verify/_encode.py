@@ -93,7 +93,7 @@ def lookback(plan: Plan, node: Node) -> int:
     # derived from the operator table: each row's lookback (language/_operators.py, Operator.cycles_back)
     inner = max((lookback(plan, child) for child in node.children), default=0)
     row = node.row
-    return inner if row is None else inner + row.cycles_back(plan.windows.get(id(node)))
+    return inner if row is None else inner + row.cycles_back(node.ann.window)
 
 
 class Unrolled(ExprVisitor):
@@ -112,12 +112,12 @@ class Unrolled(ExprVisitor):
         self.k = k
         self.prefix = prefix
         self.free_history = free_history
-        self._lb: dict[int, int] = {}
+        self._lb: dict[Node, int] = {}
         self.sig: list[dict[str, z3.ExprRef]] = []
         self.R: list = []
         self.domain: list[z3.BoolRef] = []
-        self._ev: dict[tuple[int, int], z3.ExprRef] = {}
-        self._df: dict[tuple[int, int], z3.BoolRef] = {}
+        self._ev: dict[tuple[Node, int], z3.ExprRef] = {}
+        self._df: dict[tuple[Node, int], z3.BoolRef] = {}
         self._obdf: dict[tuple[int, int], z3.BoolRef] = {}
         self._alldf: list[z3.BoolRef] = []
         self._aux: list[z3.BoolRef] = []
@@ -148,7 +148,7 @@ class Unrolled(ExprVisitor):
     # -- values -------------------------------------------------------------------
     def ev(self, node: Node, t: int) -> z3.ExprRef:
         """The value of ``node`` at cycle ``t`` (``0 <= t < k``)."""
-        key = (id(node), t)
+        key = (node, t)
         got = self._ev.get(key)
         if got is None:
             got = self._ev[key] = self._ev_new(node, t)
@@ -199,7 +199,7 @@ class Unrolled(ExprVisitor):
 
     def visit_sqrt(self, node: Call, t: int) -> z3.ExprRef:
         v = self.ev(node.args[0], t)
-        s = z3.Real(f"{self.prefix}sqrt#{id(node)}@{t}")
+        s = z3.Real(f"{self.prefix}sqrt#{node.ann.serial}@{t}")
         # s = sqrt(v) where defined; unconstrained otherwise (that case is a fault)
         self._aux.append(z3.Implies(v >= 0, z3.And(s >= 0, s * s == v)))
         return s
@@ -225,12 +225,12 @@ class Unrolled(ExprVisitor):
         encoded cycle (any value a history could leave), else ``None``."""
         if not self.free_history:
             return None
-        lb = self._lb.get(id(node))
+        lb = self._lb.get(node)
         if lb is None:
-            lb = self._lb[id(node)] = lookback(self.plan, node)
+            lb = self._lb[node] = lookback(self.plan, node)
         if t < lb:  # reads cycles before the window: any value a history could leave
-            name = f"{self.prefix}hist#{id(node)}@{t}"
-            return z3.Bool(name) if self.plan.type_of(node).kind == "bool" else z3.Real(name)
+            name = f"{self.prefix}hist#{node.ann.serial}@{t}"
+            return z3.Bool(name) if node.ann.ty.kind == "bool" else z3.Real(name)
         return None
 
     def visit_prev(self, node: Call, t: int) -> z3.ExprRef:
@@ -241,14 +241,14 @@ class Unrolled(ExprVisitor):
         if t == 0:
             if len(args) == 2:
                 return self.ev(args[1], 0)
-            return z3.BoolVal(False) if self.plan.type_of(node).kind == "bool" else self.ev(args[0], 0)
+            return z3.BoolVal(False) if node.ann.ty.kind == "bool" else self.ev(args[0], 0)
         return self.ev(args[0], t - 1)
 
     def visit_held(self, node: Call, t: int) -> z3.ExprRef:
         free = self._history(node, t)
         if free is not None:
             return free
-        n = self.plan.windows[id(node)]
+        n = node.ann.window
         if t + 1 < n:
             return z3.BoolVal(False)
         return z3.And([self.ev(node.args[0], j) for j in range(t - n + 1, t + 1)])
@@ -257,7 +257,7 @@ class Unrolled(ExprVisitor):
         free = self._history(node, t)
         if free is not None:
             return free
-        n = self.plan.windows[id(node)]
+        n = node.ann.window
         return z3.Or([self.ev(node.args[0], j) for j in range(max(0, t - n + 1), t + 1)])
 
     def visit_since(self, node: Call, t: int) -> z3.ExprRef:
@@ -265,7 +265,7 @@ class Unrolled(ExprVisitor):
         if free is not None:
             return free
         a, b = node.args[0], node.args[1]
-        n = self.plan.windows.get(id(node))
+        n = node.ann.window
         if self.free_history and n is None:  # since(t) = b(t) or (a(t) and since(t - 1))
             return z3.Or(self.ev(b, t), z3.And(self.ev(a, t), self.ev(node, t - 1)))
         first = 0 if n is None else max(0, t - n + 1)
@@ -277,7 +277,7 @@ class Unrolled(ExprVisitor):
     # -- definedness ---------------------------------------------------------------
     def defined(self, node: Node, t: int) -> z3.BoolRef:
         """Evaluating ``node`` at ``t`` raises nothing (temporal nodes read stored state)."""
-        key = (id(node), t)
+        key = (node, t)
         got = self._df.get(key)
         if got is None:
             got = self._df[key] = z3.simplify(self._df_new(node, t))
@@ -328,7 +328,7 @@ class Unrolled(ExprVisitor):
 
     def obligation_defined(self, ob, t: int) -> z3.BoolRef:
         """Evaluating obligation ``ob`` at ``t`` raises nothing (its temporal updates included)."""
-        key = (id(ob), t)
+        key = (ob.index, t)
         got = self._obdf.get(key)
         if got is None:
             got = self._obdf[key] = self._obligation_defined(ob, t)

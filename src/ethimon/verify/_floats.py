@@ -89,17 +89,16 @@ def _point(x: float) -> _I:
 class _Bounds:
     def __init__(self, plan) -> None:
         self.plan = plan
-        self.memo: dict[int, _I | None] = {}
+        self.memo: dict = {}  # node -> _I | None
         from ._encode import risk_input_range
         rlo, rhi = risk_input_range(plan)
         self.ranges = {s.name: _I(Fraction(s.lo), Fraction(s.hi)) for s in plan.signals if s.kind == "number"}
         self.ranges[RISK_NAME] = _I(Fraction(rlo), Fraction(rhi))
 
     def of(self, node) -> _I | None:
-        key = id(node)
-        if key not in self.memo:
-            self.memo[key] = self._of(node)
-        return self.memo[key]
+        if node not in self.memo:  # by identity (a node is never equal to another)
+            self.memo[node] = self._of(node)
+        return self.memo[node]
 
     def _of(self, node) -> _I | None:
         if isinstance(node, Num):
@@ -147,14 +146,14 @@ def float_hazards(plan, ob) -> list[str]:
     """The terms of obligation ``ob`` whose double result can leave the reals by more than rounding,
     for inputs in their declared ranges, each with the range of its real value (empty: none)."""
     b = _Bounds(plan)
-    parent: dict[int, tuple] = {}
+    parent: dict = {}  # node -> (its parent, the parent's operands)
     roots = [r for r in (ob.when, ob.require) if r is not None]
     for root in roots:
         for n in walk(root):
             kids = (n.left, n.right) if isinstance(n, Binary) else (n.operand,) if isinstance(n, Unary) else \
                 tuple(n.args) if isinstance(n, Call) else ()
             for k in kids:
-                parent[id(k)] = (n, kids)
+                parent[k] = (n, kids)
     out: list[str] = []
     for root in roots:
         for n in walk(root):
@@ -165,7 +164,7 @@ def float_hazards(plan, ob) -> list[str]:
             if v is None:
                 continue
             text = to_source(n)
-            up = parent.get(id(n))
+            up = parent.get(n)
             p, kids = up if up is not None else (None, ())
             others = [b.of(k) for k in kids if k is not n]
             compared = isinstance(p, Binary) and p.op in ("<", "<=", ">", ">=", "==", "!=")
@@ -307,19 +306,18 @@ class _Err:
     def __init__(self, plan) -> None:
         self.b = _Bounds(plan)
         self.plan = plan
-        self.memo: dict[int, tuple[float, dict] | None] = {}
-        self.own: dict[int, float] = {}  # each operation's own rounding bound
+        self.memo: dict = {}  # node -> (error bound, derivatives) | None
+        self.own: dict = {}  # node -> each operation's own rounding bound
 
     def of(self, node) -> tuple[float, dict] | None:
-        k = id(node)
-        if k not in self.memo:
-            self.memo[k] = self._of(node)
-        return self.memo[k]
+        if node not in self.memo:
+            self.memo[node] = self._of(node)
+        return self.memo[node]
 
     def rnd(self, node, exact: bool = False) -> float:
         v = self.b.of(node)
         r = 0.0 if exact else _U * _f(v.mag)
-        self.own[id(node)] = r
+        self.own[node] = r
         return r
 
     def sens(self, d: dict) -> float:
