@@ -393,10 +393,10 @@ class ReferenceMonitor:
         tau = self.plan.threshold
         r, why = self._risk(signals)
         risk_ok = why is None
-        if spec.risk.max_age_s is not None:
+        if self.plan.risk_plan.max_age_s is not None:
             age = signals.get("risk_age_s")
             age = None if age is None else as_number(age)
-            risk_ok = risk_ok and age is not None and 0 <= age <= spec.risk.max_age_s
+            risk_ok = risk_ok and age is not None and 0 <= age <= self.plan.risk_plan.max_age_s
         conv = {s.name: self._value(s, signals.get(s.name)) for s in self.plan.signals}
         judge = spec.risk.judge
         jp = signals.get("judge") if judge is not None else None

@@ -43,7 +43,6 @@ import z3
 
 from ..compiler import plan_of
 from ..compiler._plan import RISK_NAME, Plan
-from ..compiler._risk_formula import risk_range
 from ..language._expr import BINARY_OPS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance, walk
 from ..language._visit import ExprVisitor
 
@@ -82,10 +81,9 @@ def z3_value(model: z3.ModelRef, expr) -> float | bool:
 
 
 def risk_input_range(plan: Plan) -> tuple[float, float]:
-    """The interval of ``risk`` inputs the monitor accepts (as ``Monitor`` computes it)."""
-    r = plan.spec.risk
-    lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)  # exactly what Monitor uses, any K
-    return min(0.0, lo), max(1.0, hi)
+    """The interval of ``risk`` inputs the monitor accepts: the plan's ``risk_plan.accepted``, the
+    one place it is written (``Monitor`` reads the same)."""
+    return plan.risk_plan.accepted
 
 
 def lookback(plan: Plan, node: Node) -> int:
