@@ -282,30 +282,31 @@ class Unrolled(ExprVisitor):
         return got
 
     def _df_new(self, node: Node, t: int) -> z3.BoolRef:
-        if isinstance(node, (Num, BoolLit, Name)):
-            return z3.BoolVal(True)
-        if isinstance(node, Unary):
-            return self.defined(node.operand, t)
-        if isinstance(node, Binary):
-            da, db = self.defined(node.left, t), self.defined(node.right, t)
-            op = node.op
-            if op == "and" or op == "implies":
-                return z3.And(da, z3.Implies(self.ev(node.left, t), db))
-            if op == "or":
-                return z3.And(da, z3.Implies(z3.Not(self.ev(node.left, t)), db))
-            if op == "/":
-                return z3.And(da, db, self._nonzero(self.ev(node.right, t)))
-            return z3.And(da, db)
-        if isinstance(node, Call):
-            if node.func in TEMPORAL:
+        """Read from the node's row: a leaf raises nothing; a temporal operator reads stored state;
+        the connectives short-circuit left to right; a row that may raise adds its own condition
+        (:data:`RAISE_FREE`, by row: a row that may raise without one is refused, never taken as
+        defined); any other row is defined where its operands are."""
+        row = node.row
+        if row is None:
+            if isinstance(node, (Num, BoolLit, Name)):
                 return z3.BoolVal(True)
-            ds = [self.defined(a, t) for a in node.args]
-            if node.func == "sqrt":
-                ds.append(self._sqrt_ok(self.ev(node.args[0], t)))
-            elif node.func == "separation_distance":  # a negative argument raises
-                ds += [self._nonneg(self.ev(a, t)) for a in node.args]
-            return z3.And(ds)
-        raise TypeError(f"cannot encode {node!r}")  # pragma: no cover
+            raise TypeError(f"cannot encode {node!r}")  # pragma: no cover
+        if row.family == "temporal":
+            return z3.BoolVal(True)
+        if row.family == "logic":
+            da, db = self.defined(node.left, t), self.defined(node.right, t)
+            left = self.ev(node.left, t)
+            return z3.And(da, z3.Implies(z3.Not(left) if row.name == "or" else left, db))
+        ds = [self.defined(a, t) for a in node.children]
+        if row.kind == "unary":  # -x, not e: defined where the operand is
+            return ds[0]
+        if row.may_raise is not None:
+            own = RAISE_FREE.get(row.name)
+            if own is None:
+                raise TypeError(f"the operator table says {row.label} may raise ({row.may_raise}), but the z3 "
+                                f"encoder has no condition for it: add {row.name!r} to verify/_encode.py:RAISE_FREE")
+            ds += own(self, node, t)
+        return z3.And(ds)
 
     # what raises, in this encoding's arithmetic (reals here; IEEE doubles in FloatUnrolled)
     @staticmethod
@@ -389,6 +390,15 @@ class Unrolled(ExprVisitor):
             terms.append(z3.And([when(j)] + [z3.Not(self.ev(ob.require, m)) for m in range(j, t + 1)]))
         return z3.Or(terms) if terms else z3.BoolVal(False)
 
+
+#: per row of the operator table that may raise (``may_raise``): the conditions under which it does
+#: not, in the encoding's arithmetic (``_nonzero``, ``_sqrt_ok``, ``_nonneg``: reals in
+#: :class:`Unrolled`, doubles in :class:`FloatUnrolled`)
+RAISE_FREE = {
+    "div": lambda enc, node, t: [enc._nonzero(enc.ev(node.right, t))],  # a divisor of 0
+    "sqrt": lambda enc, node, t: [enc._sqrt_ok(enc.ev(node.args[0], t))],  # a negative argument
+    "separation_distance": lambda enc, node, t: [enc._nonneg(enc.ev(a, t)) for a in node.args],
+}
 
 F64 = z3.Float64()
 _RNE = z3.RNE()
