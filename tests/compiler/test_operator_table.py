@@ -232,3 +232,18 @@ def test_every_may_raise_row_has_its_definedness_everywhere():
     from ethimon.verify._floats import SHOWN_DEFINED
     raising = {op.name for op in OPERATORS.values() if op.may_raise}
     assert set(RAISE_FREE) == raising == set(SHOWN_DEFINED)
+
+
+def test_always_within_is_one_row_its_methods_and_one_example(always_within, monkeypatch):
+    """The acceptance test of issue 33: the row (fixture), one ``visit_always_within`` per back-end
+    (here bound to each back-end's ``held``, which it equals) and one example close the coverage
+    check; forgetting any one method is named by it (above, and for the float bounds here)."""
+    from tests.compiler import test_interpreter_coverage as cov
+    backends = cov._backends()
+    monkeypatch.setitem(cov.EXAMPLES, "visit_always_within", "not always_within(x > 1, 2)")
+    for cls in backends.values():
+        monkeypatch.setattr(cls, "visit_always_within", cls.visit_held, raising=False)
+    assert cov.coverage_problems() == []
+    from ethimon.verify._floats import _Bounds
+    monkeypatch.delattr(_Bounds, "visit_always_within")
+    assert cov.coverage_problems() == ["float bounds: call 'always_within' -> visit_always_within"]
