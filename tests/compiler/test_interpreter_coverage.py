@@ -86,6 +86,8 @@ def _frames() -> list[dict]:
 
 def _backends() -> dict[str, type]:
     out = {"closures": _Gen, "reference": _Semantics, "offline": Evaluator}
+    from ethimon.verify._floats import _Bounds  # the float interval bounds (no z3)
+    out["float bounds"] = _Bounds
     try:
         from ethimon.verify._encode import FloatUnrolled, Unrolled
     except ImportError:  # z3 is the verify extra

@@ -47,9 +47,10 @@ def test_a_new_row_is_checked_typed_and_windowed_by_the_table(always_within):
     plan = plan_of(ethimon.load_spec_text(SPEC))
     node = _node(plan, "always_within")
     assert plan.type_of(node).kind == "bool"
-    assert plan.windows[id(node)] == 3 and node in plan.temporal
+    assert node.ann.window == 3 and plan.temporal[node.ann.slot] is node
     # a window in seconds, the operand's kind and the arity come from the row too
-    assert plan_of(ethimon.load_spec_text(SPEC.replace(", 3)", ", 0.05 s)"))).windows != {}
+    timed = _node(plan_of(ethimon.load_spec_text(SPEC.replace(", 3)", ", 0.05 s)"))), "always_within")
+    assert timed.ann.seconds == 0.05 and timed.ann.window >= 1
     with pytest.raises(SpecError, match=r"always_within\(\) needs a boolean"):
         ethimon.load_spec_text(SPEC.replace("x > 1, 3", "x, 3"))
     with pytest.raises(SpecError, match=r"always_within\(\) takes 2 arguments, got 1"):
@@ -170,3 +171,79 @@ def test_a_new_may_raise_row_makes_the_compiled_machine_guard_it(monkeypatch):
                                                     may_raise="an argument <= 0"))
     assert _may_raise(parse_expr("log(x) < 1"))
     assert _may_raise(parse_expr("x / y < 1")) and not _may_raise(parse_expr("abs(x) < 1"))
+
+
+# -- issue 33 item 2, the rest: interval bounds and definedness from the table, nothing silent ------
+
+LOG = Operator("log", "log", "call", "function", ("num",), "num", "keep", fn=None, may_raise="an argument <= 0")
+LOG_SPEC = """\
+ethimon: 1
+name: logs
+signals:
+  x: {range: [0.5, 4]}
+obligations:
+  - {id: small, require: "log(x) < 1"}
+"""
+
+
+def test_a_new_row_without_its_interval_method_cannot_be_bounded(always_within):
+    """The float interval bounds were an ``isinstance`` chain with a ``None`` fall-through: a new
+    operator got no bound and no word about it. Now they are a back-end of the protocol."""
+    from ethimon.verify._floats import _Bounds
+    plan = plan_of(ethimon.load_spec_text(SPEC))
+    assert "call 'always_within' -> visit_always_within" in " ".join(missing_methods(_Bounds))
+    with pytest.raises(TypeError, match="cannot interpret"):  # loud, never a silent "no bound"
+        _Bounds(plan).of(_node(plan, "always_within"))
+
+
+def test_a_new_may_raise_row_is_never_shown_defined_in_doubles(monkeypatch):
+    """``defined_in_doubles`` named ``/``, ``sqrt`` and ``separation_distance``: a new row that can raise
+    was taken as defined for every input."""
+    from ethimon.verify._floats import SHOWN_DEFINED, _Bounds, defined_in_doubles
+    monkeypatch.setitem(OPERATORS, LOG.name, LOG)
+    monkeypatch.setattr(_Bounds, "visit_log", lambda self, node: None, raising=False)
+    plan = plan_of(ethimon.load_spec_text(LOG_SPEC))
+    assert "log" not in SHOWN_DEFINED
+    assert defined_in_doubles(plan, plan.obligations[0]) is False  # not shown: the IEEE-754 model decides
+
+
+def test_a_new_may_raise_row_without_a_z3_condition_is_refused(monkeypatch):
+    """The z3 encoder's definedness listed ``/``, ``sqrt`` and ``separation_distance`` by name: a new
+    row that can raise was encoded as always defined, so ``verify`` proved a cycle that fails closed."""
+    pytest.importorskip("z3")
+    from ethimon.verify._encode import RAISE_FREE, Unrolled
+    monkeypatch.setitem(OPERATORS, LOG.name, LOG)
+
+    class WithLog(Unrolled):
+        def visit_log(self, node, t):
+            return self.ev(node.args[0], t)
+
+    plan = plan_of(ethimon.load_spec_text(LOG_SPEC))
+    enc = WithLog(plan, 1)
+    with pytest.raises(TypeError, match="RAISE_FREE"):
+        enc.defined(plan.obligations[0].require, 0)
+    monkeypatch.setitem(RAISE_FREE, "log", lambda e, node, t: [e.ev(node.args[0], t) > 0])
+    assert str(enc.defined(plan.obligations[0].require, 0)) != "True"
+
+
+def test_every_may_raise_row_has_its_definedness_everywhere():
+    pytest.importorskip("z3")
+    from ethimon.verify._encode import RAISE_FREE
+    from ethimon.verify._floats import SHOWN_DEFINED
+    raising = {op.name for op in OPERATORS.values() if op.may_raise}
+    assert set(RAISE_FREE) == raising == set(SHOWN_DEFINED)
+
+
+def test_always_within_is_one_row_its_methods_and_one_example(always_within, monkeypatch):
+    """The acceptance test of issue 33: the row (fixture), one ``visit_always_within`` per back-end
+    (here bound to each back-end's ``held``, which it equals) and one example close the coverage
+    check; forgetting any one method is named by it (above, and for the float bounds here)."""
+    from tests.compiler import test_interpreter_coverage as cov
+    backends = cov._backends()
+    monkeypatch.setitem(cov.EXAMPLES, "visit_always_within", "not always_within(x > 1, 2)")
+    for cls in backends.values():
+        monkeypatch.setattr(cls, "visit_always_within", cls.visit_held, raising=False)
+    assert cov.coverage_problems() == []
+    from ethimon.verify._floats import _Bounds
+    monkeypatch.delattr(_Bounds, "visit_always_within")
+    assert cov.coverage_problems() == ["float bounds: call 'always_within' -> visit_always_within"]

@@ -171,7 +171,6 @@ class _Gen(ExprVisitor):
         self.plan = plan
         self.vals: list = [0.0] * plan.n_slots
         self.tv: list = [False] * len(plan.temporal)
-        self.tindex = {id(n): k for k, n in enumerate(plan.temporal)}
         self.slots = plan.slots
         self.consts = plan.constants
         self.pending: list[tuple[str, Callable[[], bool]]] = []
@@ -187,7 +186,7 @@ class _Gen(ExprVisitor):
                 return ("c", self.consts[node.id])
             return ("r", self.vals, self.slots[node.id])
         if is_temporal(node):
-            return ("r", self.tv, self.tindex[id(node)])
+            return ("r", self.tv, node.ann.slot)
         if isinstance(node, Unary) and node.op == "-" and isinstance(node.operand, Num):
             return ("c", -node.operand.value)
         return ("f", self.fn(node))
@@ -258,28 +257,28 @@ class _Gen(ExprVisitor):
 
     # -- temporal operators: a state machine each, read through its slot of ``tv`` ----------
     def _temporal(self, node: Call, build) -> Callable[[], object]:
-        k = self.tindex[id(node)]
+        k = node.ann.slot
         if self.machines[k] is None:
             self.machines[k] = build(k)
         return _as_fn(("r", self.tv, k))
 
     def visit_held(self, node: Call) -> Callable[[], object]:
         return self._temporal(node, lambda k: held_machine(self.fn(node.args[0]), self.tv, k,
-                                                           self.plan.windows[id(node)]))
+                                                           node.ann.window))
 
     def visit_once(self, node: Call) -> Callable[[], object]:
         return self._temporal(node, lambda k: once_machine(self.fn(node.args[0]), self.tv, k,
-                                                           self.plan.windows[id(node)]))
+                                                           node.ann.window))
 
     def visit_since(self, node: Call) -> Callable[[], object]:
         return self._temporal(node, lambda k: since_machine(self.fn(node.args[0]), self.fn(node.args[1]), self.tv,
-                                                            k, self.plan.windows[id(node)]))
+                                                            k, node.ann.window))
 
     def visit_prev(self, node: Call) -> Callable[[], object]:
         def build(k):
             e = self.fn(node.args[0])
             init = self.fn(node.args[1]) if len(node.args) == 2 else None
-            return prev_machine(e, init, self.plan.type_of(node).kind == "bool", self.tv, k)
+            return prev_machine(e, init, node.ann.ty.kind == "bool", self.tv, k)
         return self._temporal(node, build)
 
     def separation(self, node: Call) -> Callable[[], float]:
@@ -335,7 +334,7 @@ class _Gen(ExprVisitor):
         """
         if isinstance(node, Binary):
             op = node.op
-            if op in COMPARISON_MARGINS and self.plan.type_of(node.left).kind == "num":
+            if op in COMPARISON_MARGINS and node.left.ann.ty.kind == "num":
                 return _margin_closure(COMPARISON_MARGINS[op], self.d(node.left), self.d(node.right))
             if op in CONNECTIVE_MARGINS:
                 return _connective_closure(*CONNECTIVE_MARGINS[op], self.rob(node.left), self.rob(node.right))
@@ -537,7 +536,7 @@ def _fused_comparison(g: _Gen, ob, mbuf: list, k: int):
     if ob.when is not None or ob.within_cycles or not isinstance(req, Binary):
         return None
     op = req.op
-    if op not in COMPARISON_MARGINS or g.plan.type_of(req.left).kind != "num":
+    if op not in COMPARISON_MARGINS or req.left.ann.ty.kind != "num":
         return None
     da, db = g.d(req.left), g.d(req.right)
     if da[0] == "r" and db[0] == "c":  # slot <op> constant, the usual shape: both read inline

@@ -18,7 +18,8 @@ from ..language import Response, RiskConfig, Spec
 from ._risk_formula import risk_range
 from ._units import Unit, format_unit
 
-__all__ = ["Plan", "ObligationPlan", "SignalSlot", "LatchRule", "RiskPlan", "Tiers", "Ty", "BOOL", "RISK_NAME", "MAX_WINDOW"]
+__all__ = ["Plan", "ObligationPlan", "SignalSlot", "LatchRule", "RiskPlan", "Tiers", "Ty", "BOOL", "Annotation",
+           "RISK_NAME", "MAX_WINDOW"]
 
 RISK_NAME = "risk"
 MAX_WINDOW = 1_000_000
@@ -36,6 +37,33 @@ class Ty:
 
 
 BOOL = Ty("bool")
+
+
+@dataclass(frozen=True)
+class Annotation:
+    """What the checker found out about one expression node, set on it once (``node.ann``).
+
+    The checked tree of a :class:`Plan` carries these; every consumer (closures, reference,
+    offline, z3, the float bounds) reads them from the node, never from a table keyed by ``id()``.
+
+    Attributes:
+        ty: the node's type, with its unit where known (:class:`Ty`).
+        value: the value of a constant numeric subexpression (folded by the checker), else ``None``.
+        window: a temporal node's bound in cycles (``prev``: 1; an unbounded ``since``: ``None``),
+            a window written in seconds already its whole cycles at ``rate_hz``; ``None`` elsewhere.
+        seconds: the seconds the author wrote for a window in time (``held(e, 0.5 s)``, or a
+            constant in s), for printers; else ``None``.
+        slot: a temporal node's index in :attr:`Plan.temporal` (its state's slot), else ``None``.
+        serial: the node's number in its plan (the order the checker met it), unique within the
+            plan: what names a node's z3 terms (``sqrt#7@3``), the same in every encoding of the plan.
+    """
+
+    ty: Ty
+    value: float | None = None
+    window: int | None = None
+    seconds: float | None = None
+    slot: int | None = None
+    serial: int = -1
 
 
 @dataclass(frozen=True)
@@ -182,12 +210,7 @@ class Plan:
         risk_slot: the slot index of R_e (``risk`` in expressions).
         constants: constant values by name.
         obligations: checked obligations in spec order.
-        temporal: every temporal call node, children before parents.
-        types: type of every expression node, keyed by ``id(node)``.
-        windows: the integer bound of each temporal node (``id(node)`` → n or None), in cycles
-            (a window written in seconds is already its whole number of cycles at ``rate_hz``).
-        window_seconds: the seconds the author wrote, for each temporal node whose window is a
-            time (``held(e, 0.5 s)``, or a constant in s): ``id(node)`` → seconds; for printers.
+        temporal: every temporal call node, children before parents (``node.ann.slot`` is its index).
         rate_hz: the spec's stated control rate (``None``: it counts cycles only).
         slots: input slot of every name an expression can read (signals and ``risk``),
             built once here for every consumer (code generation, fault-path evaluation).
@@ -200,6 +223,11 @@ class Plan:
         risk_plan: the whole risk rule (:class:`RiskPlan`: τ, the exact cut, the weights, K, the
             variance, the accepted range, the max age, its latch), read instead of ``spec.risk``.
         tiers: the confirm band and the judge (:class:`Tiers`).
+
+    Every node of ``obligations``' trees is annotated (``node.ann``, an :class:`Annotation`: its
+    type and unit, a temporal node's window in cycles and the seconds the author wrote, a constant's
+    folded value), set once by the checker: the checked tree is frozen too; :meth:`type_of` and
+    :meth:`window_of` read it.
 
     The plan is frozen: built once by :func:`~ethimon.compiler.compile_plan`, never changed.
 
@@ -216,9 +244,6 @@ class Plan:
     constants: dict[str, float]
     obligations: tuple[ObligationPlan, ...]
     temporal: tuple[Call, ...]
-    types: dict[int, Ty] = field(default_factory=dict)
-    windows: dict[int, int | None] = field(default_factory=dict)
-    window_seconds: dict[int, float] = field(default_factory=dict)
     rate_hz: float | None = None
     slots: dict[str, int] = field(default_factory=dict)
     risk: RiskConfig = field(default_factory=RiskConfig)
@@ -267,5 +292,12 @@ class Plan:
     def n_slots(self) -> int:
         return len(self.signals) + 1
 
-    def type_of(self, node: Node) -> Ty:
-        return self.types[id(node)]
+    @staticmethod
+    def type_of(node: Node) -> Ty:
+        """The checked type of ``node`` (its annotation's)."""
+        return node.ann.ty
+
+    @staticmethod
+    def window_of(node: Node) -> int | None:
+        """The window of temporal node ``node`` in cycles (its annotation's; ``None``: unbounded)."""
+        return node.ann.window

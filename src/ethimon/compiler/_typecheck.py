@@ -13,7 +13,7 @@ from ..language._expr import (SEPARATION_PARAMS, UNIT_RULES, Binary, BoolLit, Ca
                           Node, Num, Seconds, Unary, parse_expr, separation_distance)
 from ..language import Constant, Response, Spec, seconds_to_cycles
 from ..language import OPERATORS, Operator
-from ._plan import BOOL, MAX_WINDOW, RISK_NAME, LatchRule, ObligationPlan, Plan, RiskPlan, SignalSlot, Tiers, Ty
+from ._plan import BOOL, MAX_WINDOW, RISK_NAME, Annotation, LatchRule, ObligationPlan, Plan, RiskPlan, SignalSlot, Tiers, Ty
 from ._risk_formula import release_bound
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit
 
@@ -24,15 +24,15 @@ class _Checker:
     def __init__(self, spec: Spec) -> None:
         self.spec = spec
         self.smap = spec.source
-        self.types: dict[int, Ty] = {}
-        self.windows: dict[int, int | None] = {}
         self.temporal: list[Call] = []
         self.names: dict[str, Ty] = {}
         self.consts: dict[str, float] = {}
         self.loc: tuple = ()
         self.text = ""
-        self.folded: dict[int, float] = {}  # id(node) -> value, for constant numeric subexpressions
-        self.seconds: dict[int, float] = {}  # id(window node) -> the seconds the author wrote (a window in s)
+        # what is found out about the node being checked (its Annotation's fields but the type), set
+        # on the node once its check is done: the tree is annotated in place, children first
+        self.note: dict = {}
+        self.count = 0  # nodes annotated so far: the next one's serial
         for name, sig in spec.signals.items():
             try:
                 unit = parse_unit(sig.unit) if sig.type == "number" else None
@@ -92,16 +92,24 @@ class _Checker:
         return a.unit if a.unit is not None else b.unit
 
     def check(self, node: Node) -> Ty:
-        got = self.types.get(id(node))
+        got = node.ann
         if got is not None:
-            return got
+            return got.ty
         if not self._checking:
             return self._check_tree(node)
-        ty = self._check(node)
-        self.types[id(node)] = ty
+        outer, self.note = self.note, {}
+        try:
+            ty = self._check(node)
+            node.annotate(Annotation(ty, serial=self.serial(), **self.note))
+        finally:
+            self.note = outer
         return ty
 
     _checking = False
+
+    def serial(self) -> int:
+        self.count += 1
+        return self.count - 1
 
     def _check_tree(self, root: Node) -> Ty:
         """Check ``root`` bottom-up without deep recursion.
@@ -127,14 +135,14 @@ class _Checker:
                 self.check(node)
         finally:
             self._checking = False
-        return self.types[id(root)]
+        return root.ann.ty
 
     def fold(self, node: Node, value: float) -> None:
         """Record the value of a constant subexpression (refusing overflow to inf/nan)."""
         if not math.isfinite(value):
             raise self.err(node, f"the constant expression {self.snippet(node)!r} is not a finite number "
                                  f"(it evaluates to {value})", hint="check the constants and the arithmetic")
-        self.folded[id(node)] = value
+        self.note["value"] = value
 
     def _check(self, node: Node) -> Ty:
         if isinstance(node, Seconds):
@@ -144,7 +152,7 @@ class _Checker:
         if isinstance(node, Num):
             if not math.isfinite(node.value):
                 raise self.err(node, "number is not finite")
-            self.folded[id(node)] = node.value
+            self.note["value"] = node.value
             return Ty("num", None)
         if isinstance(node, BoolLit):
             return BOOL
@@ -162,7 +170,7 @@ class _Checker:
                         f"; known names: {', '.join(known)}" if len(known) <= 12 else "")
                 raise self.err(node, f"unknown signal {node.id!r}", hint=hint)
             if node.id in self.consts:
-                self.folded[id(node)] = self.consts[node.id]
+                self.note["value"] = self.consts[node.id]
             return ty
         row = node.row
         if row is None and isinstance(node, Call):
@@ -186,6 +194,7 @@ class _Checker:
                            hint=_SEPARATION_HINT if row.unit == "separation" else None)
         ty = _UNIT_RULES[row.unit](self, node, row)
         if row.family == "temporal":
+            self.note["slot"] = len(self.temporal)  # its state's index in plan.temporal
             self.temporal.append(node)  # children were checked (and appended) first
         return ty
 
@@ -197,20 +206,20 @@ class _Checker:
         for i, arg in enumerate(node.children):
             kind = row.arg_kind(i)
             if kind == "window":
-                self.windows[id(node)] = self.bound(node, arg, row.symbol)  # type: ignore[arg-type]
+                self.note["window"] = self.bound(node, arg, row.symbol)  # type: ignore[arg-type]
                 windowed = True
                 out.append(None)
             else:
                 out.append(self.check(arg) if kind == "any" else self.need(arg, kind, row.label))
         if row.lookback == "window" and not windowed:
-            self.windows[id(node)] = None  # an optional window left out: unbounded
+            self.note["window"] = None  # an optional window left out: unbounded
         elif row.lookback == "one":
-            self.windows[id(node)] = 1
+            self.note["window"] = 1
         return out
 
     def fold_row(self, node: Node, row: Operator) -> None:
         """Fold a numeric row's value when every operand is a constant."""
-        vals = [self.folded.get(id(a)) for a in node.children]
+        vals = [_value(a) for a in node.children]
         if row.fn is not None and row.result == "num" and all(v is not None for v in vals):
             self.fold(node, row.fn(*vals))
 
@@ -251,7 +260,7 @@ class _Checker:
     def rule_div(self, node: Node, row: Operator) -> Ty:
         a, b = self.operands(node, row)
         right = node.children[1]
-        y = self.folded.get(id(right))
+        y = _value(right)
         if y == 0:
             what = "" if isinstance(right, Num) else f": {self.snippet(right)!r} is always {y}"
             raise self.err(right, f"division by zero{what}",
@@ -266,7 +275,7 @@ class _Checker:
     def rule_sqrt(self, node: Node, row: Operator) -> Ty:
         (ty,) = self.operands(node, row)
         arg = node.children[0]
-        v = self.folded.get(id(arg))
+        v = _value(arg)
         if v is not None and v < 0:
             raise self.err(arg, f"square root of a negative constant: {self.snippet(arg)!r} is always {v}",
                            hint="sqrt() of a negative number fails, so every cycle would fail closed")
@@ -297,7 +306,6 @@ class _Checker:
             value = arg.value
         elif isinstance(arg, Name) and arg.id in self.consts:
             value = self.consts[arg.id]
-            self.types[id(arg)] = Ty("num", None)
         else:
             raise self.err(arg, f"the window of {fname}() must be a whole number of cycles, "
                                 f"not {self.snippet(arg)!r}", hint=f"e.g. {fname}(x, 3)")
@@ -313,7 +321,7 @@ class _Checker:
         if n > MAX_WINDOW:
             raise self.err(arg, f"window {n} is too long (at most {MAX_WINDOW} cycles)",
                            hint="a window counts control cycles")
-        self.types[id(arg)] = Ty("num", None)
+        arg.annotate(Annotation(Ty("num", None), serial=self.serial()))  # a window bound: a count of cycles
         return n
 
     def bound_seconds(self, node: Call, arg: Node, fname: str) -> int:
@@ -333,8 +341,8 @@ class _Checker:
         if n > MAX_WINDOW:
             raise self.err(arg, f"window {self.snippet(arg)} of {fname}() is {n} cycles: too long (at most "
                                 f"{MAX_WINDOW} cycles)", hint="a window counts control cycles")
-        self.types[id(arg)] = Ty("num", _SECOND)
-        self.seconds[id(node)] = float(value)
+        arg.annotate(Annotation(Ty("num", _SECOND), serial=self.serial()))
+        self.note["seconds"] = float(value)
         return n
 
     def check_separation(self, node: Call, row: Operator | None = None) -> Ty:
@@ -352,7 +360,7 @@ class _Checker:
                 raise self.err(arg, f"separation_distance() parameter {sym} ({meaning}) is in [{unit_text}], "
                                     f"but {self.snippet(arg)!r} is [{format_unit(ty.unit)}]",
                                hint=_SEPARATION_HINT)
-            v = self.folded.get(id(arg))
+            v = _value(arg)
             if v is not None and v < 0:
                 raise self.err(arg, f"separation_distance() parameter {sym} ({meaning}) is a negative constant: "
                                     f"{self.snippet(arg)!r} is always {v}",
@@ -389,6 +397,12 @@ def _children(node: Node) -> tuple[Node, ...]:
     if row is None:
         return node.children
     return tuple(a for i, a in enumerate(node.children) if row.arg_kind(i) != "window")
+
+
+def _value(node: Node) -> float | None:
+    """The folded value of a checked operand (``None``: not a constant, or a window bound)."""
+    ann = node.ann
+    return None if ann is None else ann.value
 
 
 def _is_literal(node: Node) -> bool:
@@ -436,8 +450,7 @@ def compile_plan(spec: Spec) -> Plan:
                   None if cuts is None else (float(cuts[0]), float(cuts[1])),
                   float(hold.ceiling) if hold is not None and cuts is not None else None)
     return Plan(spec=spec, signals=tuple(signals), risk_slot=len(signals), constants=dict(ck.consts),
-                obligations=tuple(obligations), temporal=tuple(ck.temporal), types=ck.types,
-                windows=ck.windows, window_seconds=ck.seconds, rate_hz=spec.rate_hz, slots=slots, risk=r,
+                obligations=tuple(obligations), temporal=tuple(ck.temporal), rate_hz=spec.rate_hz, slots=slots, risk=r,
                 on_fault=Response(spec.on_fault), threshold=float(r.threshold), release_exact=exact,
                 release_cut=cut, risk_rule=risk_rule,
                 fault_rule=LatchRule("fault", Response(spec.on_fault), fmode == "manual", int(fhold)),

@@ -60,8 +60,28 @@ __all__ = [
 
 @dataclass(frozen=True, eq=False)
 class Node:
+    """A node of the expression tree: frozen, compared by identity (``eq=False``: a node is a
+    dictionary key by identity, never by ``id()``).
+
+    ``ann`` is what the checker (``compiler/_typecheck.py``) found out about the node: its type
+    (and unit), a temporal node's window, ... (``compiler.Note``). ``None`` until the checker sets
+    it, once (:meth:`annotate`); the tree of a compiled :class:`~ethimon.compiler.Plan` is
+    annotated throughout, and every later stage reads the annotation from the node.
+    """
+
     start: int
     end: int
+
+    #: the checker's annotation (a class default, not a field: set once per node by :meth:`annotate`)
+    ann = None
+
+    def annotate(self, ann) -> None:
+        """Set :attr:`ann` once: a second annotation of the same node is refused (a checked tree
+        is frozen; a node belongs to the one plan whose checker annotated it)."""
+        if "ann" in self.__dict__:
+            raise ValueError(f"{type(self).__name__} at {self.start}..{self.end} is annotated already: "
+                             "a checked tree is frozen (parse the text again to check it again)")
+        object.__setattr__(self, "ann", ann)
 
     @property
     def children(self) -> tuple[Node, ...]:
@@ -278,7 +298,7 @@ class _Parser:
         self.toks = _tokenize(src)
         self.i = 0
         self.depth = 0
-        self.heights: dict[int, int] = {}  # id(node) -> levels of its tree (1 for a leaf)
+        self.heights: dict[Node, int] = {}  # node (by identity) -> levels of its tree (1 for a leaf)
 
     @property
     def tok(self) -> _Tok:
@@ -297,7 +317,7 @@ class _Parser:
         return self.take()
 
     def height(self, node: Node) -> int:
-        return self.heights.get(id(node), 1)
+        return self.heights.get(node, 1)
 
     def binary(self, op: str, left: Node, right: Node, at: int) -> Binary:
         """A Binary node, refused if the tree gets deeper than ``MAX_TREE_DEPTH``."""
@@ -306,7 +326,7 @@ class _Parser:
             raise ExprSyntaxError(f"expression is nested or chained too deeply (more than {MAX_TREE_DEPTH} "
                                   "levels)", at, _SPLIT_HINT)
         node = Binary(left.start, right.end, op, left, right)
-        self.heights[id(node)] = h
+        self.heights[node] = h
         return node
 
     def wrap(self, node: Node, child: Node, at: int) -> Node:
@@ -314,7 +334,7 @@ class _Parser:
         if h > MAX_TREE_DEPTH:
             raise ExprSyntaxError(f"expression is nested or chained too deeply (more than {MAX_TREE_DEPTH} "
                                   "levels)", at, _SPLIT_HINT)
-        self.heights[id(node)] = h
+        self.heights[node] = h
         return node
 
     def balanced(self, op: str, terms: list[Node], ops: list[_Tok]) -> Node:
@@ -482,7 +502,7 @@ class _Parser:
         if h > MAX_TREE_DEPTH:
             raise ExprSyntaxError(f"expression is nested or chained too deeply (more than {MAX_TREE_DEPTH} "
                                   "levels)", name.start, _SPLIT_HINT)
-        self.heights[id(node)] = h
+        self.heights[node] = h
         return node
 
 

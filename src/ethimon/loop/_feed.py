@@ -57,7 +57,7 @@ class RiskFeed:
         self.task_key: str | None = None
         # staleness is judged by the monitor alone, with one limit: the spec's risk.max_age_s, else
         # the monitor's own max_age_s, else this loop's max_risk_age_s
-        own = monitor.max_age_s if monitor.plan.risk.max_age_s is None else None
+        own = monitor.max_age_s if monitor.plan.risk_plan.max_age_s is None else None
         self.age_fallback: float | None = own if own is not None else max_risk_age_s
         if monitor.max_age_s is None and self.age_fallback is not None:
             monitor.set_max_age(self.age_fallback)

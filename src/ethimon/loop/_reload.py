@@ -92,7 +92,7 @@ def history_depth(plan: Plan) -> int | None:
                     if node.func == "prev":
                         d += 1
                         continue
-                    w = plan.windows.get(id(node))
+                    w = node.ann.window
                     if w is None:
                         return None
                     d += int(w) + 1

@@ -10,7 +10,6 @@ from __future__ import annotations
 from typing import Any
 
 from ..compiler import Plan, plan_of
-from ..compiler._risk_formula import risk_range
 from ..language import Response, Spec
 from ..language._expr import Name, walk
 
@@ -59,9 +58,7 @@ def _rules(plan: Plan) -> dict[str, Any]:
 
 def _risk_inputs(plan: Plan) -> tuple[float, float]:
     """The interval of ``risk`` inputs the monitor accepts for ``plan`` (as ``Monitor`` computes it)."""
-    r = plan.risk
-    lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)
-    return min(0.0, lo), max(1.0, hi)
+    return plan.risk_plan.accepted
 
 
 def _formula(spec: Spec) -> tuple:

@@ -22,13 +22,12 @@ would.
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
-from ..compiler._risk_formula import risk_from_probs, risk_range, two_class_risk
+from ..compiler._risk_formula import risk_from_probs, two_class_risk
 from ..runtime._inputs import as_bool, as_number, as_probs
 
 __all__ = ["Inputs", "read_inputs", "row", "RISK_KEYS"]
@@ -153,8 +152,7 @@ def read_inputs(plan, columns: Mapping[str, Any], length: int | None = None, *,
     """
     if not isinstance(columns, Mapping):
         raise TypeError(f"columns must be a mapping of column name to values, got {type(columns).__name__}")
-    spec = plan.spec
-    r = spec.risk
+    r = plan.risk_plan  # the whole risk rule, resolved once by the plan
     max_age = r.max_age_s if r.max_age_s is not None else max_age_s
     wanted = [s.name for s in plan.signals] + list(RISK_KEYS)
     if max_age is not None:
@@ -194,17 +192,10 @@ def read_inputs(plan, columns: Mapping[str, Any], length: int | None = None, *,
     return inp
 
 
-@functools.lru_cache(maxsize=64)
-def _risk_range(alpha: float, beta: float, gamma: float, variance: str, classes: int) -> tuple[float, float]:
-    """The range a ``risk`` input must lie in (as the monitor's), cached: it is exact rational arithmetic."""
-    lo, hi = risk_range(alpha, beta, gamma, variance, classes)
-    return min(0.0, lo), max(1.0, hi)
-
-
 def _risk(inp: Inputs, cols, r) -> None:
     """R_e per cycle, from the first of ``risk``, ``p_unsafe``, ``p`` present that cycle (as ``Monitor._risk``)."""
     n = inp.n
-    lo, hi = _risk_range(float(r.alpha), float(r.beta), float(r.gamma), r.variance, int(r.classes))
+    lo, hi = r.accepted  # the plan's RiskPlan: the range the monitor accepts, written once
     alpha, beta, gamma = float(r.alpha), float(r.beta), float(r.gamma)
     sample = r.variance == "sample"
     k = int(r.classes)

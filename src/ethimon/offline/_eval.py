@@ -129,8 +129,8 @@ class Evaluator(ExprVisitor):
                                            inputs.values[s.name][cycles] for s in plan.signals}
         self.env["risk"] = inputs.risk if everything else inputs.risk[cycles]
         self.consts = plan.constants
-        self.memo: dict[int, tuple] = {}
-        self.rmemo: dict[int, tuple] = {}
+        self.memo: dict[Node, tuple] = {}
+        self.rmemo: dict[Node, tuple] = {}
         self.update_err = None  # where a temporal operator's arguments raise
 
     # -- values -------------------------------------------------------------------
@@ -140,7 +140,7 @@ class Evaluator(ExprVisitor):
         return np.broadcast_to(a, (self.n,)) if a.ndim == 0 else a
 
     def ev(self, node: Node):
-        key = id(node)
+        key = node  # by identity (a node is never equal to another)
         got = self.memo.get(key)
         if got is None:
             got = self._ev(node)
@@ -244,7 +244,7 @@ class Evaluator(ExprVisitor):
 
     def visit_prev(self, node: Call):
         args = self._operands(node, 2)
-        kind = self.plan.type_of(node).kind
+        kind = node.ann.ty.kind
         cur = self.full(args[0][0], kind)
         out = np.empty(self.n, dtype=cur.dtype)
         out[1:] = cur[:-1]
@@ -263,17 +263,17 @@ class Evaluator(ExprVisitor):
         base = last_index(~e, idx)
         if not self.single:
             base = np.maximum(base, self.seg_first - 1)
-        return idx - base >= self.plan.windows[id(node)], None
+        return idx - base >= node.ann.window, None
 
     def visit_once(self, node: Call):
         e = self.full(self._operands(node, 1)[0][0], "bool")
-        n = self.plan.windows[id(node)]
+        n = node.ann.window
         return last_index(e, self.idx) >= np.maximum(self.seg_first, self.idx - (n - 1)), None
 
     def visit_since(self, node: Call):
         (av, _), (bv, _) = self._operands(node, 2)
         a, b = self.full(av, "bool"), self.full(bv, "bool")
-        idx, n = self.idx, self.plan.windows.get(id(node))
+        idx, n = self.idx, node.ann.window
         lb = last_index(b, idx)
         out = (lb >= self.seg_first) & (last_index(~a, idx) <= lb)
         if n is not None:
@@ -313,7 +313,7 @@ class Evaluator(ExprVisitor):
 
     # -- margins -----------------------------------------------------------------
     def rob(self, node: Node):
-        key = id(node)
+        key = node  # by identity (a node is never equal to another)
         got = self.rmemo.get(key)
         if got is None:
             got = self._rob(node)
@@ -324,7 +324,7 @@ class Evaluator(ExprVisitor):
         """Robustness ``(value, err)`` as the compiled margins compute it (no short-circuit)."""
         if isinstance(node, Binary):
             op = node.op
-            if op in COMPARISON_MARGINS and self.plan.type_of(node.left).kind == "num":
+            if op in COMPARISON_MARGINS and node.left.ann.ty.kind == "num":
                 (a, ae), (b, be) = self.ev(node.left), self.ev(node.right)
                 return self.full(comparison_margin(op, a, b), "num"), _or(ae, be)
             if op in CONNECTIVE_MARGINS:  # Python's min/max elementwise: the right where strictly smaller/larger

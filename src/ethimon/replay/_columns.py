@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from ..compiler import plan_of
 from ..language import Spec
 from ._bag import BagData, BagError
 from ._collect import Series
@@ -195,7 +196,7 @@ def resample(data: BagData, mapping: Mapping, spec: Spec, *, score: Scorer | Non
     risk_key = next((k for k in RISK_INPUTS if k in mapping.signals), "p")
     risk_note: dict[int, str] = {}
     tasks: list[dict[str, Any]] = []
-    k_cls = int(spec.risk.classes)
+    k_cls = plan_of(spec).risk_plan.classes
     if p is not None:
         columns["p"] = np.tile(np.asarray(tuple(float(x) for x in p), dtype=np.float64), (n, 1))
         risk_key = "p"
@@ -235,7 +236,7 @@ def resample(data: BagData, mapping: Mapping, spec: Spec, *, score: Scorer | Non
             if why is not None:
                 risk_note[j] = why
         codes["_task_row"] = which.astype(np.int64)
-    if spec.risk.max_age_s is not None:
+    if plan_of(spec).risk_plan.max_age_s is not None:
         # offline, each task text is scored the moment it arrives and re-scored by the loop every
         # cycle: the estimate is as old as this cycle (0 s); a mapped p_unsafe/risk topic carries
         # its own age, the time since its last message

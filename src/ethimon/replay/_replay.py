@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from ..compiler import plan_of
 from ..errors import SpecError
 from ..language import Spec
 from ._bag import BagData, read_bag
@@ -168,12 +169,12 @@ def _task_outcomes(rs: Any, tr: CycleResults, grid: np.ndarray, spec: Spec) -> N
         if r is None:
             outcome = "no estimate: fails closed (" + (task.get("error") or "no usable probabilities") + ")"
         elif v[col["risk"]]:
-            outcome = f"stopped: R_e ≥ τ = {float(spec.risk.threshold):g}"
+            outcome = f"stopped: R_e ≥ τ = {plan_of(spec).risk_plan.threshold:g}"
         elif "judge" in col and v[col["judge"]]:
             outcome = "stopped by the judge's unsafe verdict"
         elif "confirm" in col and v[col["confirm"]]:
-            outcome = (f"held for a person's confirmation: τ_confirm = {float(spec.risk.confirm_threshold):g} ≤ R_e "
-                       f"< τ = {float(spec.risk.threshold):g}")
+            outcome = (f"held for a person's confirmation: τ_confirm = {plan_of(spec).tiers.confirm_threshold:g} ≤ R_e "
+                       f"< τ = {plan_of(spec).risk_plan.threshold:g}")
         else:
             held = ", ".join(tr.holding_at(k)) if tr.override[k] else ""
             outcome = ("executes (below the risk tiers)" if not held else
@@ -234,7 +235,7 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
                                           "risk: none in the mapping (the bag has no task text): R_e was not "
                                           "computed, the risk rule not checked", "NOT CHECKED"))
                 continue
-            worst, blind = _worst(float(spec.risk.threshold) - tr.risk, col)
+            worst, blind = _worst(plan_of(spec).risk_plan.threshold - tr.risk, col)
             evaluated = bool((~np.isnan(tr.risk)).any())
         elif oid in ("judge", "confirm") and oid not in ob_resp:  # the tier rules (no margin)
             worst, blind = None, 0

@@ -7,7 +7,7 @@ import math
 from math import isfinite as _isfinite
 
 from ..compiler import Plan
-from ..compiler._risk_formula import risk_from_probs, risk_range, two_class_risk
+from ..compiler._risk_formula import risk_from_probs, two_class_risk
 from ._fault import Fault
 from ._inputs import as_number, as_probs
 
@@ -28,14 +28,13 @@ class RiskInput:
                  "spec_age", "max_age", "age_missing")
 
     def __init__(self, plan: Plan, max_age_s: float | None) -> None:
-        r = plan.risk
+        r = plan.risk_plan  # the whole risk rule, resolved once (never the spec's risk block)
         self.alpha, self.beta, self.gamma = float(r.alpha), float(r.beta), float(r.gamma)
         self.sample = r.variance == "sample"
         self.k = int(r.classes)
         self.p2 = self.k == 2
         self.uidx = int(r.unsafe_index)
-        lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)  # exact, any K
-        self.lo, self.hi = min(0.0, lo), max(1.0, hi)
+        self.lo, self.hi = r.accepted  # exact, any K: the one place the range is written
         self.spec_age = r.max_age_s
         self.max_age = None
         self.age_missing = None

@@ -163,17 +163,17 @@ class _Semantics(ExprVisitor):
         return self.visit(args[0], t - 1)
 
     def visit_held(self, node: Call, t: int) -> bool:
-        n = self.plan.windows[id(node)]
+        n = node.ann.window
         if t + 1 < n:
             return False
         return all(self.visit(node.args[0], j) for j in range(t - n + 1, t + 1))
 
     def visit_once(self, node: Call, t: int) -> bool:
-        n = self.plan.windows[id(node)]
+        n = node.ann.window
         return any(self.visit(node.args[0], j) for j in range(max(0, t - n + 1), t + 1))
 
     def visit_since(self, node: Call, t: int) -> bool:
-        n = self.plan.windows.get(id(node))
+        n = node.ann.window
         a, b = node.args[0], node.args[1]
         first = 0 if n is None else max(0, t - n + 1)
         for j in range(first, t + 1):
@@ -393,10 +393,10 @@ class ReferenceMonitor:
         tau = self.plan.threshold
         r, why = self._risk(signals)
         risk_ok = why is None
-        if spec.risk.max_age_s is not None:
+        if self.plan.risk_plan.max_age_s is not None:
             age = signals.get("risk_age_s")
             age = None if age is None else as_number(age)
-            risk_ok = risk_ok and age is not None and 0 <= age <= spec.risk.max_age_s
+            risk_ok = risk_ok and age is not None and 0 <= age <= self.plan.risk_plan.max_age_s
         conv = {s.name: self._value(s, signals.get(s.name)) for s in self.plan.signals}
         judge = spec.risk.judge
         jp = signals.get("judge") if judge is not None else None

@@ -43,7 +43,6 @@ import z3
 
 from ..compiler import plan_of
 from ..compiler._plan import RISK_NAME, Plan
-from ..compiler._risk_formula import risk_range
 from ..language._expr import BINARY_OPS, TEMPORAL, Binary, BoolLit, Call, Name, Node, Num, Unary, separation_distance, walk
 from ..language._visit import ExprVisitor
 
@@ -82,10 +81,9 @@ def z3_value(model: z3.ModelRef, expr) -> float | bool:
 
 
 def risk_input_range(plan: Plan) -> tuple[float, float]:
-    """The interval of ``risk`` inputs the monitor accepts (as ``Monitor`` computes it)."""
-    r = plan.spec.risk
-    lo, hi = risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)  # exactly what Monitor uses, any K
-    return min(0.0, lo), max(1.0, hi)
+    """The interval of ``risk`` inputs the monitor accepts: the plan's ``risk_plan.accepted``, the
+    one place it is written (``Monitor`` reads the same)."""
+    return plan.risk_plan.accepted
 
 
 def lookback(plan: Plan, node: Node) -> int:
@@ -93,7 +91,7 @@ def lookback(plan: Plan, node: Node) -> int:
     # derived from the operator table: each row's lookback (language/_operators.py, Operator.cycles_back)
     inner = max((lookback(plan, child) for child in node.children), default=0)
     row = node.row
-    return inner if row is None else inner + row.cycles_back(plan.windows.get(id(node)))
+    return inner if row is None else inner + row.cycles_back(node.ann.window)
 
 
 class Unrolled(ExprVisitor):
@@ -112,12 +110,12 @@ class Unrolled(ExprVisitor):
         self.k = k
         self.prefix = prefix
         self.free_history = free_history
-        self._lb: dict[int, int] = {}
+        self._lb: dict[Node, int] = {}
         self.sig: list[dict[str, z3.ExprRef]] = []
         self.R: list = []
         self.domain: list[z3.BoolRef] = []
-        self._ev: dict[tuple[int, int], z3.ExprRef] = {}
-        self._df: dict[tuple[int, int], z3.BoolRef] = {}
+        self._ev: dict[tuple[Node, int], z3.ExprRef] = {}
+        self._df: dict[tuple[Node, int], z3.BoolRef] = {}
         self._obdf: dict[tuple[int, int], z3.BoolRef] = {}
         self._alldf: list[z3.BoolRef] = []
         self._aux: list[z3.BoolRef] = []
@@ -148,7 +146,7 @@ class Unrolled(ExprVisitor):
     # -- values -------------------------------------------------------------------
     def ev(self, node: Node, t: int) -> z3.ExprRef:
         """The value of ``node`` at cycle ``t`` (``0 <= t < k``)."""
-        key = (id(node), t)
+        key = (node, t)
         got = self._ev.get(key)
         if got is None:
             got = self._ev[key] = self._ev_new(node, t)
@@ -199,7 +197,7 @@ class Unrolled(ExprVisitor):
 
     def visit_sqrt(self, node: Call, t: int) -> z3.ExprRef:
         v = self.ev(node.args[0], t)
-        s = z3.Real(f"{self.prefix}sqrt#{id(node)}@{t}")
+        s = z3.Real(f"{self.prefix}sqrt#{node.ann.serial}@{t}")
         # s = sqrt(v) where defined; unconstrained otherwise (that case is a fault)
         self._aux.append(z3.Implies(v >= 0, z3.And(s >= 0, s * s == v)))
         return s
@@ -225,12 +223,12 @@ class Unrolled(ExprVisitor):
         encoded cycle (any value a history could leave), else ``None``."""
         if not self.free_history:
             return None
-        lb = self._lb.get(id(node))
+        lb = self._lb.get(node)
         if lb is None:
-            lb = self._lb[id(node)] = lookback(self.plan, node)
+            lb = self._lb[node] = lookback(self.plan, node)
         if t < lb:  # reads cycles before the window: any value a history could leave
-            name = f"{self.prefix}hist#{id(node)}@{t}"
-            return z3.Bool(name) if self.plan.type_of(node).kind == "bool" else z3.Real(name)
+            name = f"{self.prefix}hist#{node.ann.serial}@{t}"
+            return z3.Bool(name) if node.ann.ty.kind == "bool" else z3.Real(name)
         return None
 
     def visit_prev(self, node: Call, t: int) -> z3.ExprRef:
@@ -241,14 +239,14 @@ class Unrolled(ExprVisitor):
         if t == 0:
             if len(args) == 2:
                 return self.ev(args[1], 0)
-            return z3.BoolVal(False) if self.plan.type_of(node).kind == "bool" else self.ev(args[0], 0)
+            return z3.BoolVal(False) if node.ann.ty.kind == "bool" else self.ev(args[0], 0)
         return self.ev(args[0], t - 1)
 
     def visit_held(self, node: Call, t: int) -> z3.ExprRef:
         free = self._history(node, t)
         if free is not None:
             return free
-        n = self.plan.windows[id(node)]
+        n = node.ann.window
         if t + 1 < n:
             return z3.BoolVal(False)
         return z3.And([self.ev(node.args[0], j) for j in range(t - n + 1, t + 1)])
@@ -257,7 +255,7 @@ class Unrolled(ExprVisitor):
         free = self._history(node, t)
         if free is not None:
             return free
-        n = self.plan.windows[id(node)]
+        n = node.ann.window
         return z3.Or([self.ev(node.args[0], j) for j in range(max(0, t - n + 1), t + 1)])
 
     def visit_since(self, node: Call, t: int) -> z3.ExprRef:
@@ -265,7 +263,7 @@ class Unrolled(ExprVisitor):
         if free is not None:
             return free
         a, b = node.args[0], node.args[1]
-        n = self.plan.windows.get(id(node))
+        n = node.ann.window
         if self.free_history and n is None:  # since(t) = b(t) or (a(t) and since(t - 1))
             return z3.Or(self.ev(b, t), z3.And(self.ev(a, t), self.ev(node, t - 1)))
         first = 0 if n is None else max(0, t - n + 1)
@@ -277,37 +275,38 @@ class Unrolled(ExprVisitor):
     # -- definedness ---------------------------------------------------------------
     def defined(self, node: Node, t: int) -> z3.BoolRef:
         """Evaluating ``node`` at ``t`` raises nothing (temporal nodes read stored state)."""
-        key = (id(node), t)
+        key = (node, t)
         got = self._df.get(key)
         if got is None:
             got = self._df[key] = z3.simplify(self._df_new(node, t))
         return got
 
     def _df_new(self, node: Node, t: int) -> z3.BoolRef:
-        if isinstance(node, (Num, BoolLit, Name)):
-            return z3.BoolVal(True)
-        if isinstance(node, Unary):
-            return self.defined(node.operand, t)
-        if isinstance(node, Binary):
-            da, db = self.defined(node.left, t), self.defined(node.right, t)
-            op = node.op
-            if op == "and" or op == "implies":
-                return z3.And(da, z3.Implies(self.ev(node.left, t), db))
-            if op == "or":
-                return z3.And(da, z3.Implies(z3.Not(self.ev(node.left, t)), db))
-            if op == "/":
-                return z3.And(da, db, self._nonzero(self.ev(node.right, t)))
-            return z3.And(da, db)
-        if isinstance(node, Call):
-            if node.func in TEMPORAL:
+        """Read from the node's row: a leaf raises nothing; a temporal operator reads stored state;
+        the connectives short-circuit left to right; a row that may raise adds its own condition
+        (:data:`RAISE_FREE`, by row: a row that may raise without one is refused, never taken as
+        defined); any other row is defined where its operands are."""
+        row = node.row
+        if row is None:
+            if isinstance(node, (Num, BoolLit, Name)):
                 return z3.BoolVal(True)
-            ds = [self.defined(a, t) for a in node.args]
-            if node.func == "sqrt":
-                ds.append(self._sqrt_ok(self.ev(node.args[0], t)))
-            elif node.func == "separation_distance":  # a negative argument raises
-                ds += [self._nonneg(self.ev(a, t)) for a in node.args]
-            return z3.And(ds)
-        raise TypeError(f"cannot encode {node!r}")  # pragma: no cover
+            raise TypeError(f"cannot encode {node!r}")  # pragma: no cover
+        if row.family == "temporal":
+            return z3.BoolVal(True)
+        if row.family == "logic":
+            da, db = self.defined(node.left, t), self.defined(node.right, t)
+            left = self.ev(node.left, t)
+            return z3.And(da, z3.Implies(z3.Not(left) if row.name == "or" else left, db))
+        ds = [self.defined(a, t) for a in node.children]
+        if row.kind == "unary":  # -x, not e: defined where the operand is
+            return ds[0]
+        if row.may_raise is not None:
+            own = RAISE_FREE.get(row.name)
+            if own is None:
+                raise TypeError(f"the operator table says {row.label} may raise ({row.may_raise}), but the z3 "
+                                f"encoder has no condition for it: add {row.name!r} to verify/_encode.py:RAISE_FREE")
+            ds += own(self, node, t)
+        return z3.And(ds)
 
     # what raises, in this encoding's arithmetic (reals here; IEEE doubles in FloatUnrolled)
     @staticmethod
@@ -328,7 +327,7 @@ class Unrolled(ExprVisitor):
 
     def obligation_defined(self, ob, t: int) -> z3.BoolRef:
         """Evaluating obligation ``ob`` at ``t`` raises nothing (its temporal updates included)."""
-        key = (id(ob), t)
+        key = (ob.index, t)
         got = self._obdf.get(key)
         if got is None:
             got = self._obdf[key] = self._obligation_defined(ob, t)
@@ -391,6 +390,15 @@ class Unrolled(ExprVisitor):
             terms.append(z3.And([when(j)] + [z3.Not(self.ev(ob.require, m)) for m in range(j, t + 1)]))
         return z3.Or(terms) if terms else z3.BoolVal(False)
 
+
+#: per row of the operator table that may raise (``may_raise``): the conditions under which it does
+#: not, in the encoding's arithmetic (``_nonzero``, ``_sqrt_ok``, ``_nonneg``: reals in
+#: :class:`Unrolled`, doubles in :class:`FloatUnrolled`)
+RAISE_FREE = {
+    "div": lambda enc, node, t: [enc._nonzero(enc.ev(node.right, t))],  # a divisor of 0
+    "sqrt": lambda enc, node, t: [enc._sqrt_ok(enc.ev(node.args[0], t))],  # a negative argument
+    "separation_distance": lambda enc, node, t: [enc._nonneg(enc.ev(a, t)) for a in node.args],
+}
 
 F64 = z3.Float64()
 _RNE = z3.RNE()

@@ -28,8 +28,9 @@ from fractions import Fraction
 
 from ..compiler._plan import RISK_NAME
 from ..language._expr import Binary, Call, Name, Num, Unary, separation_distance, to_source, walk
+from ..language._visit import ExprVisitor
 
-__all__ = ["float_hazards", "defined_in_doubles", "exact_value", "rounding_hazards"]
+__all__ = ["float_hazards", "defined_in_doubles", "exact_value", "rounding_hazards", "SHOWN_DEFINED"]
 
 MAX = Fraction(sys.float_info.max)
 TINY = Fraction(sys.float_info.min)  # the smallest normal double: below it, digits are lost
@@ -86,57 +87,90 @@ def _point(x: float) -> _I:
     return _I(f, f)
 
 
-class _Bounds:
+class _Bounds(ExprVisitor):
+    """Interval bounds of each numeric term over the declared input ranges: one method per entry of
+    the operator table (the interpreter protocol, so a new operator cannot be left out silently:
+    without its method this class cannot be instantiated, and the coverage test names it). A method
+    returns the term's :class:`_I`, or ``None``: no bound (a condition, a window, an unbounded input)."""
+
     def __init__(self, plan) -> None:
         self.plan = plan
-        self.memo: dict[int, _I | None] = {}
+        self.memo: dict = {}  # node -> _I | None
         from ._encode import risk_input_range
         rlo, rhi = risk_input_range(plan)
         self.ranges = {s.name: _I(Fraction(s.lo), Fraction(s.hi)) for s in plan.signals if s.kind == "number"}
         self.ranges[RISK_NAME] = _I(Fraction(rlo), Fraction(rhi))
 
     def of(self, node) -> _I | None:
-        key = id(node)
-        if key not in self.memo:
-            self.memo[key] = self._of(node)
-        return self.memo[key]
+        if node not in self.memo:  # by identity (a node is never equal to another)
+            self.memo[node] = _point(node.value) if isinstance(node, Num) else self.visit(node)
+        return self.memo[node]
 
-    def _of(self, node) -> _I | None:
-        if isinstance(node, Num):
-            return _point(node.value)
-        if isinstance(node, Name):
-            if node.id in self.plan.constants:
-                return _point(self.plan.constants[node.id])
-            return self.ranges.get(node.id)
-        if isinstance(node, Unary):
-            v = self.of(node.operand)
-            return None if v is None or node.op == "not" else _I(-v.hi, -v.lo, v.mz)
-        if isinstance(node, Binary):
-            a, b = self.of(node.left), self.of(node.right)
-            if a is None or b is None or node.op not in ("+", "-", "*", "/"):
-                return None
-            return {"+": a.__add__, "-": a.__sub__, "*": a.__mul__, "/": a.__truediv__}[node.op](b)
-        if isinstance(node, Call):
-            args = [self.of(x) for x in node.args]
-            f = node.func
-            if f == "separation_distance" and all(a is not None for a in args):
-                return separation_distance(*args)
-            if f == "abs" and args[0] is not None:
-                a = args[0]
-                lo = Fraction(0) if a.has_zero() else min(abs(a.lo), abs(a.hi))
-                return _I(lo, a.mag, a.mz)
-            if f == "sqrt" and args[0] is not None:
-                a = args[0]
-                return _I(Fraction(math.sqrt(max(0.0, float(max(a.lo, Fraction(0)))))),
-                          Fraction(math.sqrt(float(min(max(a.hi, Fraction(0)), MAX)))))
-            if f in ("min", "max") and args and all(a is not None for a in args):
-                pick = min if f == "min" else max
-                return _I(pick(a.lo for a in args), pick(a.hi for a in args))
-            if f == "prev" and args[0] is not None:
-                if len(args) == 2 and args[1] is not None:
-                    return _I(min(args[0].lo, args[1].lo), max(args[0].hi, args[1].hi))
-                return args[0]
+    def visit_num(self, node) -> _I:
+        return _point(node.value)
+
+    def visit_name(self, node) -> _I | None:
+        if node.id in self.plan.constants:
+            return _point(self.plan.constants[node.id])
+        return self.ranges.get(node.id)
+
+    def visit_neg(self, node) -> _I | None:
+        v = self.of(node.operand)
+        return None if v is None else _I(-v.hi, -v.lo, v.mz)
+
+    def _arith(self, node) -> _I | None:
+        """``+ - * /`` by the row's function: :class:`_I`'s operators."""
+        a, b = self.of(node.left), self.of(node.right)
+        return None if a is None or b is None else node.row.fn(a, b)
+
+    visit_add = visit_sub = visit_mul = visit_div = _arith
+
+    def _none(self, node) -> None:
+        """A condition (comparisons, connectives, ``held``/``once``/``since``): no interval."""
         return None
+
+    visit_bool = visit_not = _none
+    visit_lt = visit_le = visit_gt = visit_ge = visit_eq = visit_ne = _none
+    visit_and = visit_or = visit_implies = _none
+    visit_held = visit_once = visit_since = _none
+
+    def _args(self, node) -> list:
+        return [self.of(x) for x in node.args]
+
+    def visit_separation_distance(self, node) -> _I | None:
+        args = self._args(node)
+        return separation_distance(*args) if all(a is not None for a in args) else None
+
+    def visit_abs(self, node) -> _I | None:
+        a = self._args(node)[0]
+        if a is None:
+            return None
+        lo = Fraction(0) if a.has_zero() else min(abs(a.lo), abs(a.hi))
+        return _I(lo, a.mag, a.mz)
+
+    def visit_sqrt(self, node) -> _I | None:
+        a = self._args(node)[0]
+        if a is None:
+            return None
+        return _I(Fraction(math.sqrt(max(0.0, float(max(a.lo, Fraction(0)))))),
+                  Fraction(math.sqrt(float(min(max(a.hi, Fraction(0)), MAX)))))
+
+    def _extremum(self, node) -> _I | None:
+        args = self._args(node)
+        if not args or any(a is None for a in args):
+            return None
+        pick = min if node.func == "min" else max
+        return _I(pick(a.lo for a in args), pick(a.hi for a in args))
+
+    visit_min = visit_max = _extremum
+
+    def visit_prev(self, node) -> _I | None:
+        args = self._args(node)
+        if args[0] is None:
+            return None
+        if len(args) == 2 and args[1] is not None:
+            return _I(min(args[0].lo, args[1].lo), max(args[0].hi, args[1].hi))
+        return args[0]
 
 
 def _show(x: Fraction) -> str:
@@ -147,14 +181,14 @@ def float_hazards(plan, ob) -> list[str]:
     """The terms of obligation ``ob`` whose double result can leave the reals by more than rounding,
     for inputs in their declared ranges, each with the range of its real value (empty: none)."""
     b = _Bounds(plan)
-    parent: dict[int, tuple] = {}
+    parent: dict = {}  # node -> (its parent, the parent's operands)
     roots = [r for r in (ob.when, ob.require) if r is not None]
     for root in roots:
         for n in walk(root):
             kids = (n.left, n.right) if isinstance(n, Binary) else (n.operand,) if isinstance(n, Unary) else \
                 tuple(n.args) if isinstance(n, Call) else ()
             for k in kids:
-                parent[id(k)] = (n, kids)
+                parent[k] = (n, kids)
     out: list[str] = []
     for root in roots:
         for n in walk(root):
@@ -165,7 +199,7 @@ def float_hazards(plan, ob) -> list[str]:
             if v is None:
                 continue
             text = to_source(n)
-            up = parent.get(id(n))
+            up = parent.get(n)
             p, kids = up if up is not None else (None, ())
             others = [b.of(k) for k in kids if k is not n]
             compared = isinstance(p, Binary) and p.op in ("<", "<=", ">", ">=", "==", "!=")
@@ -267,13 +301,23 @@ def defined_in_doubles(plan, ob) -> bool:
         if root is None:
             continue
         for n in walk(root):
-            if isinstance(n, Binary) and n.op == "/" and not _nonzero(b, n.right):
-                return False
-            if isinstance(n, Call) and n.func == "sqrt" and not _nonneg(b, n.args[0]):
-                return False
-            if isinstance(n, Call) and n.func == "separation_distance" and not all(_nonneg(b, a) for a in n.args):
+            row = n.row
+            if row is None or row.may_raise is None:
+                continue
+            shown = SHOWN_DEFINED.get(row.name)  # a row that may raise with no entry: not shown
+            if shown is None or not shown(b, n):
                 return False
     return True
+
+
+#: per row of the operator table that may raise (its ``may_raise``), how interval bounds show that
+#: it does not: a new such row without an entry is never shown defined here (the IEEE-754 model
+#: decides), and ``tests/compiler/test_operator_table.py`` matches the keys to the table
+SHOWN_DEFINED = {
+    "div": lambda b, n: _nonzero(b, n.right),  # a divisor of 0
+    "sqrt": lambda b, n: _nonneg(b, n.args[0]),  # a negative argument
+    "separation_distance": lambda b, n: all(_nonneg(b, a) for a in n.args),  # a negative argument
+}
 
 
 # ---------------------------------------------------------------- rounding that can flip a comparison
@@ -307,19 +351,18 @@ class _Err:
     def __init__(self, plan) -> None:
         self.b = _Bounds(plan)
         self.plan = plan
-        self.memo: dict[int, tuple[float, dict] | None] = {}
-        self.own: dict[int, float] = {}  # each operation's own rounding bound
+        self.memo: dict = {}  # node -> (error bound, derivatives) | None
+        self.own: dict = {}  # node -> each operation's own rounding bound
 
     def of(self, node) -> tuple[float, dict] | None:
-        k = id(node)
-        if k not in self.memo:
-            self.memo[k] = self._of(node)
-        return self.memo[k]
+        if node not in self.memo:
+            self.memo[node] = self._of(node)
+        return self.memo[node]
 
     def rnd(self, node, exact: bool = False) -> float:
         v = self.b.of(node)
         r = 0.0 if exact else _U * _f(v.mag)
-        self.own[id(node)] = r
+        self.own[node] = r
         return r
 
     def sens(self, d: dict) -> float:

@@ -60,7 +60,7 @@ def tau_range(u: Unrolling) -> Finding:
 def risk_monotone(u: Unrolling) -> Finding:
     """R_e should not fall when the classifier grows more sure the task is unsafe."""
     name = "lint.risk_monotone"
-    r = u.spec.risk
+    r = u.plan.risk_plan
     if r.classes != 2:
         return Finding("lint", name, SKIPPED, f"checked for two classes only (K={r.classes})")
     q1, q2 = z3.Real("q1"), z3.Real("q2")

@@ -79,7 +79,7 @@ def model_agrees(u: Unrolling, traces: int = 24) -> Finding:
                     f[sig.name] = rng.choice([lo, hi, (lo + hi) / 2, rng.uniform(lo, hi), rng.uniform(lo, hi)])
             f["risk"] = (prev["risk"] if prev is not None and rng.random() < 0.5
                          else rng.choice(r_pick + [rng.uniform(rlo, rhi)] * 3))
-            if u.spec.risk.max_age_s is not None:
+            if u.plan.risk_plan.max_age_s is not None:
                 f["risk_age_s"] = 0.0
             frames.append(f)
             prev = f
@@ -125,7 +125,7 @@ def model_agrees(u: Unrolling, traces: int = 24) -> Finding:
 
 def risk_bounds_check(u: Unrolling) -> Finding:
     name = "risk.bounds"
-    r = u.spec.risk
+    r = u.plan.risk_plan
     if r.classes != 2:
         lo, hi = u.risk_range()
         return Finding("property", name, SKIPPED,
@@ -233,7 +233,7 @@ def _fault_replay(u: Unrolling) -> str:
     if good["risk"] is None:
         good.pop("risk")
         good["p_unsafe"] = 0.0
-    if u.spec.risk.max_age_s is not None:
+    if u.plan.risk_plan.max_age_s is not None:
         good["risk_age_s"] = 0.0
     cases: list[tuple[str, dict]] = []
     for s in u.plan.signals:
@@ -251,8 +251,8 @@ def _fault_replay(u: Unrolling) -> str:
     cases.append(("risk missing", no_risk))
     cases.append(("risk NaN", {**no_risk, "risk": math.nan}))
     cases.append(("p_unsafe NaN", {**no_risk, "p_unsafe": math.nan}))
-    if u.spec.risk.max_age_s is not None:
-        cases.append(("risk stale", {**good, "risk_age_s": u.spec.risk.max_age_s * 2}))
+    if u.plan.risk_plan.max_age_s is not None:
+        cases.append(("risk stale", {**good, "risk_age_s": u.plan.risk_plan.max_age_s * 2}))
         cases.append(("risk age missing", {k: v for k, v in good.items() if k != "risk_age_s"}))
     for label, frame in cases:
         m = Monitor(u.spec)
@@ -398,7 +398,7 @@ def _float_counterexample(u: Unrolling, ob, name: str, sev: int, tries: int = 40
         if when is not True or req is not False:
             continue  # the reals do not say it must fire here (or cannot say exactly)
         frame["risk"] = rlo
-        if u.spec.risk.max_age_s is not None:
+        if u.plan.risk_plan.max_age_s is not None:
             frame["risk_age_s"] = 0.0
         d = Monitor(u.spec).step(frame)
         if d.faults or (d.override and d.response.severity >= sev and ob.id in d.violations):

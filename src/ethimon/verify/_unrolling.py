@@ -12,7 +12,6 @@ from typing import Any
 import z3
 
 from ..compiler import Plan, plan_of
-from ..compiler._risk_formula import risk_range
 from ..language import Spec
 from ..runtime import Monitor
 from ._checks import Budget
@@ -90,8 +89,7 @@ class Unrolling:
 
     def risk_range(self) -> tuple[float, float]:
         """Reachable R_e over every probability vector: exact, for any number of classes."""
-        r = self.spec.risk
-        return risk_range(r.alpha, r.beta, r.gamma, r.variance, r.classes)
+        return self.plan.risk_plan.reachable
 
     # -- the shared encoding (built on first use) -------------------------------------------------
     @property
@@ -166,7 +164,7 @@ class Unrolling:
                 v = z3_value(model, enc.sig[t][s.name])
                 f[s.name] = bool(v) if s.kind == "bool" else v
             f["risk"] = z3_value(model, enc.R[t])
-            if self.spec.risk.max_age_s is not None:
+            if self.plan.risk_plan.max_age_s is not None:
                 f["risk_age_s"] = 0.0
             out.append(f)
         return out
