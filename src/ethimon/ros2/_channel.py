@@ -5,7 +5,6 @@ first ones on a monitored topic, and any other writer on ``/ethimon/override``."
 
 from __future__ import annotations
 
-import json
 import threading
 import time
 from collections import deque
@@ -215,19 +214,8 @@ class DdsChannel:
             self._acks.append(self._parse_ack(smp, sender))
 
     def _parse_ack(self, msg: Any, sender: str) -> AckRequest:
-        try:
-            req = json.loads(msg.data)
-            operator, reason = req.get("operator"), req.get("reason", "")
-            task = req.get("task_sha256")  # the text the operator was shown: a confirmation binds to it
-            if not (isinstance(operator, str) and operator.strip() and isinstance(reason, str)
-                    and (task is None or isinstance(task, str))):
-                raise ValueError
-        except Exception:  # noqa: BLE001 - any malformed request is refused
-            return AckRequest(None, sender=sender, authenticated=self.secure,
-                              error='refused: expected {"operator": "<name>", "reason": "<text>"'
-                                    '[, "task_sha256": "<hex>"]}')
-        return AckRequest(operator[:200], reason[:2000], task[:128] if task else None,
-                          f"{sender} via {ACK_TOPIC}", authenticated=self.secure)
+        return AckRequest.from_json(getattr(msg, "data", None), sender=f"{sender} via {ACK_TOPIC}",
+                                    authenticated=self.secure)
 
     def writer_of(self, info: Any) -> str:
         """``writer <guid> of participant <guid>`` for a sample's publication, as far as it is known."""

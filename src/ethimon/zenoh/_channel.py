@@ -8,7 +8,6 @@ writer on ``/ethimon/override``."""
 
 from __future__ import annotations
 
-import json
 import os
 import threading
 import time
@@ -329,21 +328,13 @@ class ZenohChannel:
                                                  OVERRIDE_TOPIC))
 
     def _parse_ack(self, payload: bytes, sender: str) -> AckRequest:
+        # zenoh authenticates a session (TLS, user/password), never a sample's writer: never authenticated here
+        sender = f"{sender} via {ACK_TOPIC} (zenoh)"
         try:
             text = self.types.store.deserialize_cdr(payload, "std_msgs/msg/String").data
-            req = json.loads(text)
-            operator, reason = req.get("operator"), req.get("reason", "")
-            task = req.get("task_sha256")  # the text the operator was shown: a confirmation binds to it
-            if not (isinstance(operator, str) and operator.strip() and isinstance(reason, str)
-                    and (task is None or isinstance(task, str))):
-                raise ValueError
-        except Exception:  # noqa: BLE001 - any malformed request is refused
-            return AckRequest(None, sender=sender, authenticated=False,
-                              error='refused: expected {"operator": "<name>", "reason": "<text>"'
-                                    '[, "task_sha256": "<hex>"]}')
-        # zenoh authenticates a session (TLS, user/password), never a sample's writer: never authenticated here
-        return AckRequest(operator[:200], reason[:2000], task[:128] if task else None,
-                          f"{sender} via {ACK_TOPIC} (zenoh)", authenticated=False)
+        except Exception:  # noqa: BLE001 - not a std_msgs/String: refused as any malformed request is
+            return AckRequest.refused("not a std_msgs/msg/String", sender=sender)
+        return AckRequest.from_json(text, sender=sender)
 
     def close(self) -> None:
         with self._lock:
