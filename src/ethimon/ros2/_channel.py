@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..errors import DependencyNotInstalled, Ros2Error, SpecError
-from ..io import TASK_TEXT, AckRequest, Sample, follow
+from ..io import AckRequest, Sample, TopicPlan
 from ..runtime import Fault
 from ._names import dds_topic
 from ._qos import DEFAULT, SENSOR_DATA, to_cyclone
@@ -31,13 +31,10 @@ _ACK_QUEUE = 64
 
 
 @dataclass
-class Subscription:
-    """One read topic: its type, the (signal, parsed field path) it feeds, or the task text."""
+class Subscription(TopicPlan):
+    """One read topic (:class:`ethimon.io.TopicPlan`: its type, the (signal, parsed field path) it feeds, or
+    the task text) and its DDS reader and writers."""
 
-    topic: str
-    msgtype: str
-    fields: list = field(default_factory=list)  # [(signal, path)]
-    task: bool = False
     reader: Any = None
     pinned: tuple = ()          # writer GUIDs accepted on this topic (the first ones seen)
     pinned_handles: frozenset = frozenset()
@@ -133,22 +130,7 @@ class DdsChannel:
                     if h not in sub.pinned_handles:
                         continue
                 sub.messages += 1
-                if sub.task:
-                    text = follow(smp, sub.fields[0][1])
-                    if isinstance(text, str):
-                        out.append(Sample(TASK_TEXT, text, mono))
-                    continue
-                stamp = None
-                hdr = getattr(smp, "header", None)
-                st = getattr(hdr, "stamp", None)
-                if st is not None:
-                    stamp = st.sec + st.nanosec * 1e-9
-                for name, path in sub.fields:
-                    try:
-                        v = follow(smp, path)
-                    except Exception:  # noqa: BLE001 - a field this sample lacks: no usable value
-                        v = float("nan")
-                    out.append(Sample(name, v, mono, stamp))
+                out.extend(sub.samples(smp, mono))
         return out
 
     def faults(self) -> tuple[Fault, ...]:
