@@ -27,5 +27,5 @@ from ._mapping import (FIELD_PATH, FUTURE_TOLERANCE_S, MSGTYPE, REDUCTIONS, RISK
                        load_mapping_text, mapping_json_schema, msgtype_key, parse_field_path)
 from ._values import follow, is_truth, numbers_of, rate_between, reduce_array, reduce_value
 
-__all__ = ["Channel", "Frame", "Hold", "LiveMonitor", "Mapping", "MemoryChannel", "Sample", "hold", "judged",
-           "load_mapping", "load_mapping_text"]
+__all__ = ["AckRequest", "ByName", "Channel", "Frame", "Hold", "LiveMonitor", "LiveNode", "Mapping", "MemoryChannel",
+           "Sample", "SignalMap", "TopicPlan", "hold", "judged", "load_mapping", "load_mapping_text"]

@@ -43,6 +43,11 @@ class Sample:
     t_log: float
     t_header: float | None = None
 
+    @property
+    def is_task(self) -> bool:
+        """Whether this sample is the task text (not a monitor input)."""
+        return self.signal == TASK_TEXT
+
 
 @dataclass(frozen=True)
 class AckRequest:

@@ -137,6 +137,9 @@ class Hold:
             read), replaced before the first read (start-up, not judged).
     """
 
+    #: the codes :func:`hold` gives each cycle of a recording (a held value, none yet, too old)
+    OK, MISSING, STALE = OK, MISSING, STALE
+
     __slots__ = ("name", "sm", "limit", "every", "tol", "truth", "bool_message", "last", "read_yet", "prev",
                  "received", "judged", "skipped", "before", "_unread", "_skip_note", "_bad_note", "off", "pending")
 

@@ -115,6 +115,32 @@ class SignalMap(BaseModel):
             raise ValueError(f"'index' is only used with 'reduce: index' (reduce is {self.reduce!r})")
         return self
 
+    @property
+    def field_path(self) -> tuple[str | int | ByName, ...]:
+        """``field`` parsed (:func:`parse_field_path`): names, indices and :class:`ByName` entries."""
+        return parse_field_path(self.field)
+
+    def number(self, v: Any, *, where: str = "", path: str | None = None) -> float:
+        """One message's field value made this signal's number: the reduction, ``* scale + offset``
+        (:func:`~ethimon.io.reduce_value`, the one way live and replay do it)."""
+        from ._values import reduce_value
+        return reduce_value(v, self, where=where, path=path)
+
+    def reduce_array(self, arr: Any) -> float:
+        """The reduction of an array of numbers, before ``scale`` and ``offset``."""
+        from ._values import reduce_array
+        return reduce_array(arr, self)
+
+    def numbers(self, v: Any, *, where: str = "", path: str | None = None) -> Any:
+        """A field value as a float array (``derive: rate`` differentiates it), or ``None``."""
+        from ._values import numbers_of
+        return numbers_of(v, where, path)
+
+    def rate(self, a: Any, b: Any, dt_s: float) -> float:
+        """``derive: rate``: the change per second from ``a`` to ``b`` (``dt_s`` apart), reduced and scaled."""
+        from ._values import rate_between
+        return rate_between(a, b, dt_s, self)
+
 
 class TaskMap(BaseModel):
     """The topic that carries the task text (std_msgs/String); each new text is scored by the risk estimator."""
@@ -124,6 +150,11 @@ class TaskMap(BaseModel):
     field: str = Field("data", pattern=FIELD_PATH, max_length=400, description="the text field (default 'data')")
     type: str | None = Field(None, pattern=MSGTYPE, max_length=200,
                              description="its message type (default std_msgs/msg/String)")
+
+    @property
+    def field_path(self) -> tuple[str | int | ByName, ...]:
+        """``field`` parsed (:func:`parse_field_path`)."""
+        return parse_field_path(self.field)
 
 
 class Ros2Map(BaseModel):
@@ -210,6 +241,29 @@ class Mapping(BaseModel):
     def risk_checked(self) -> bool:
         """False when the mapping says ``risk: none`` (the risk rule is not checked)."""
         return self.risk != "none"
+
+    @property
+    def risk_signal(self) -> str | None:
+        """The mapped signal that gives the risk input (``risk`` or ``p_unsafe``), if one does."""
+        return next((k for k in RISK_INPUTS if k in self.signals), None)
+
+    def check(self, spec: Spec, *, risk_given: bool = False) -> None:
+        """:func:`check_against_spec`: the mapping fits ``spec`` (located :class:`SpecError` if not)."""
+        check_against_spec(self, spec, risk_given=risk_given)
+
+    def lint(self, spec: Spec) -> list[str]:
+        """:func:`lint_mapping`: what an engineer would question in this mapping for ``spec``."""
+        return lint_mapping(self, spec)
+
+    def grid(self, t0: int, t_end: int) -> Any:
+        """The cycle times (ns) at ``rate_hz`` from ``t0`` to ``t_end`` (:func:`~ethimon.io.cycle_grid`)."""
+        from ._hold import cycle_grid
+        return cycle_grid(t0, t_end, self.rate_hz)
+
+    @staticmethod
+    def same_type(a: str, b: str) -> bool:
+        """Whether two message type names name one type (``pkg/Name`` and ``pkg/msg/Name`` do)."""
+        return msgtype_key(a) == msgtype_key(b)
 
 
 def load_mapping(path: str | os.PathLike) -> Mapping:

@@ -25,4 +25,4 @@ from ._node import ACK_RESULT_TOPIC, ACK_TOPIC, DECISION_TOPIC, OVERRIDE_TOPIC, 
 from ._qos import DEFAULT, SENSOR_DATA, QosProfile, to_cyclone
 from ._types import MessageTypes
 
-__all__ = ["DEFAULT", "MessageTypes", "Ros2Monitor", "SENSOR_DATA", "cyclone_config", "dds_topic", "to_cyclone"]
+__all__ = ["DEFAULT", "MessageTypes", "Ros2Monitor", "SENSOR_DATA"]
