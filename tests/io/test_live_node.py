@@ -72,7 +72,8 @@ def test_a_node_runs_its_loop_on_the_channel_and_closes_with_an_override(tmp_pat
     assert ch.overrides[-1] is True and ch.closed == 1
     log.close()
     rec = next(r for r in read_log(tmp_path / "a.jsonl") if r.get("kind") == "ros2")
-    assert rec["transport"] == "memory" and rec["rate_hz"] == 50.0 and rec["topics"] == {"/d": "std_msgs/msg/Float64", "/task": "?"}
+    assert rec["transport"] == "memory" and rec["rate_hz"] == 50.0
+    assert rec["topics"] == {"/d": "std_msgs/msg/Float64", "/task": "?"}
 
 
 def test_a_function_is_handed_over_as_an_estimator():

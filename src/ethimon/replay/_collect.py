@@ -122,7 +122,8 @@ class _Collector:
 
     def _flush(self, topic: str, msgtype: str) -> None:
         """Reduce the pending field values: whole batches of same-shape numeric arrays at once, else one
-        by one (:meth:`SignalMap.number <ethimon.io.SignalMap.number>`, which refuses text, messages and other kinds with a located error)."""
+        by one (:meth:`SignalMap.number <ethimon.io.SignalMap.number>`, which refuses text, messages and other
+        kinds with a located error)."""
         vals = self.pending
         if not vals:
             return

@@ -66,7 +66,7 @@ _BATCH = 4096
 
 
 def _reduce_rows(a: np.ndarray, sm: SignalMap) -> np.ndarray:
-    """:meth:`SignalMap.reduce_array <ethimon.io.SignalMap.reduce_array>` of every row of ``a`` (rows: messages), then ``* scale + offset``."""
+    """:meth:`~ethimon.io.SignalMap.reduce_array` of every row of ``a`` (rows: messages), then ``* scale + offset``."""
     if a.shape[1] == 0:
         return np.full(a.shape[0], np.nan)
     red = sm.reduce
