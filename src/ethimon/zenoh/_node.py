@@ -1,11 +1,11 @@
 """The monitor as a node on a ROS 2 robot that runs ``rmw_zenoh``: a zenoh transport (``_channel.py``) under
 :class:`ethimon.io.LiveMonitor`, made from the same spec and mapping file as ``ethimon ros2`` over DDS.
 
-Everything that is not the wire comes from ``ethimon.io`` and ``ethimon.loop``: the holds, reductions,
-``derive: rate``, staleness and future-stamp rules (as replay), the decision JSON, the acknowledgements
-(applied in the loop thread), the loop's deadline, watchdog and audit log. The mapping's ``ros2:`` block
-applies as it is (``publishers``, ``allow_unauthenticated_acknowledge``; ``deadline_cycles`` has no zenoh
-QoS to offer and is ignored: the override every cycle is the heartbeat).
+Everything that is not the wire comes from :class:`ethimon.io.LiveNode` and ``ethimon.loop``: the holds,
+reductions, ``derive: rate``, staleness and future-stamp rules (as replay), the decision JSON, the
+acknowledgements (applied in the loop thread), the loop's deadline, watchdog and audit log. The mapping's
+``ros2:`` block applies as it is (``publishers``, ``allow_unauthenticated_acknowledge``; ``deadline_cycles``
+is DDS only: zenoh has no deadline QoS to offer, the override every cycle is the heartbeat).
 """
 
 from __future__ import annotations
