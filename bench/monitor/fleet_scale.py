@@ -139,7 +139,7 @@ def main() -> None:
     args = ap.parse_args()
 
     import ethimon
-    from ethimon.replay import check_against_spec, load_mapping
+    from ethimon.io import check_against_spec, load_mapping
     load_start = loadavg()
     with tempfile.TemporaryDirectory() as tmp:
         map_path = os.path.join(tmp, "mapping.yaml")

@@ -79,7 +79,7 @@ def lint_unit(path: str, skipped: str | None = None, mapping: str | None = None)
         for w in model_tau_warnings(spec):
             out.append(LintLine(path, "warning", f"{path}: warning: {w}"))
         if mapping:
-            from .replay import check_against_spec, lint_mapping, load_mapping
+            from .io import check_against_spec, lint_mapping, load_mapping
             m = load_mapping(mapping)
             check_against_spec(m, spec)
             for w in lint_mapping(m, spec):

@@ -12,7 +12,8 @@ own modules are always allowed):
     audit, risk, sim,       beside each other above runtime: none imports another
       verify, testing       (testing: ReferenceMonitor, the test oracle)
     scenario                scenario files (may carry a sim block, may score text with risk)
-    io                      the mapping, the hold, the value reduction, Channel and LiveMonitor (the seam)
+    io                      the mapping, the hold, the value reduction, Channel, LiveMonitor, LiveNode (the seam;
+                            LiveNode builds a loop and hands over an estimator: loop, risk)
     offline, replay         recorded data checked offline (replay may use offline and io)
     fleet                   many scenario files / bags on Ray (ray imported lazily)
     gym                     Gymnasium: the monitor as a shield, the sim cell as an env
@@ -55,7 +56,7 @@ ALLOWED: dict[str, set[str]] = {
     "testing": _BESIDE,
     "scenario": _BESIDE | {"sim", "risk"},
     "offline": _BESIDE | {"audit", "risk"},
-    "io": _BESIDE | {"audit"},
+    "io": _BESIDE | {"audit", "loop", "risk"},
     "replay": _BESIDE | {"audit", "risk", "offline", "io", "view"},
     "fleet": _BESIDE | {"audit", "risk", "sim", "scenario", "replay", "offline", "io"},
     "gym": _BESIDE | {"sim", "risk", "audit"},

@@ -333,7 +333,7 @@ signals:
     assert res.check("j3_slow").cycles == 1 and res.check("j3_slow").first_cycle == 5
     assert res.check("inputs").cycles == 1 and res.trace.fault[7]  # index 3 of a 2-element array: no value
     assert "j3: the /joint_states message held has no usable value" in res.check("inputs").detail
-    from ethimon.replay import check_against_spec
+    from ethimon.io import check_against_spec
     bad = load_mapping_text("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.05\nsignals:\n"
                             "  gripper_closed: {topic: /gripper, scale: 2.0}\n  j3: {topic: /j}\n")
     with pytest.raises(SpecError, match="is a bool"):
@@ -475,7 +475,7 @@ def test_bad_mapping_is_located(tmp_path, text, line, col, words):
 
 
 def test_mapping_must_fit_the_spec(tmp_path, spec):
-    from ethimon.replay import check_against_spec
+    from ethimon.io import check_against_spec
     f = tmp_path / "m.yaml"
     f.write_text(MAPPING.replace("  ee_speed:", "  ee_sped:"))
     with pytest.raises(SpecError) as ei:

@@ -241,7 +241,7 @@ def test_rate_from_message_times_not_prev_of_a_held_value(tmp_path):
                                     "obligations:\n  - {id: slow, require: '(x - prev(x, x)) * 100 <= 0.6'}\n")
     mp = load_mapping_text("ethimon: 1\nrate_hz: 100\nmax_age_s: 0.1\nrisk: none\nsignals:\n"
                            "  x: {topic: /pose, field: pose.position.x}\n")
-    from ethimon.replay import lint_mapping
+    from ethimon.io import lint_mapping
     assert any("prev(x)" in w and "derive: rate" in w for w in lint_mapping(mp, spec_p))
     res_p = replay_bag(bag, spec_p, mp)
     assert res_p.check("slow").cycles > 40  # the false violations the rate reduction avoids
@@ -570,7 +570,7 @@ def test_start_all_seen_with_samples_every_never_leaves_early_samples_unjudged(t
     """Regression (review): 'start: all_seen' under the default 'samples: every' skipped the samples
     before the first cycle with only a warning, so violating samples there passed (exit 0)."""
     from ethimon.replay import replay_bag
-    from ethimon.replay._mapping import load_mapping_text
+    from ethimon.io import load_mapping_text
     from ethimon.errors import BagError
     import pytest as _pytest
     from tests.replay import test_replay as tr  # the bag writer and mapping of the replay tests

@@ -27,8 +27,9 @@ pytest.importorskip("rosbags")
 import ethimon  # noqa: E402
 from ethimon.errors import Ros2Error, SpecError  # noqa: E402
 from ethimon.replay import load_mapping_text  # noqa: E402
+from ethimon.io import decision_json  # noqa: E402
 from ethimon.ros2 import (DEFAULT, SENSOR_DATA, MessageTypes, Ros2Monitor, cyclone_config, dds_topic,  # noqa: E402
-                          dds_type, decision_json, normalize_type, ros_topic, security_available, to_cyclone)
+                          dds_type, normalize_type, ros_topic, security_available, to_cyclone)
 
 ROOT = Path(__file__).resolve().parents[2]
 #: a domain of its own per test run: other engineers' runs on this machine do not cross-talk
@@ -446,7 +447,7 @@ def test_example_mapping_fits_its_types_and_spec():
     node = Ros2Monitor(spec, str(ROOT / "examples" / "ros2" / "mapping.yaml"), domain_id=DOMAIN, config=LOOPBACK,
                        estimator=_Words())
     try:
-        assert {s.topic: s.msgtype for s in node._subs} == {
+        assert {s.topic: s.msgtype for s in node.topics} == {
             "/joint_states": "sensor_msgs/msg/JointState", "/ee/twist": "geometry_msgs/msg/TwistStamped",
             "/ee/wrench": "geometry_msgs/msg/WrenchStamped", "/human/range": "sensor_msgs/msg/Range",
             "/task": "std_msgs/msg/String"}

@@ -22,7 +22,7 @@ obligations:
 
 
 def test_ros2_decision_json_names_the_latched_rules() -> None:
-    from ethimon.ros2 import decision_json
+    from ethimon.io import decision_json
     m = ethimon.Monitor(ethimon.load_spec_text(SPEC))
     m.step({"a": 0.5, "risk": 0.1})
     d = m.step({"a": 2.0, "risk": 0.1})  # held by oa's release rule

@@ -82,7 +82,7 @@ def _open_view(args: argparse.Namespace, spec: Any) -> tuple[Any, int | None]:
 
 def cmd_replay(args: argparse.Namespace) -> int:
     from ..errors import EthimonError
-    from ..replay import lint_mapping, mapping_json_schema
+    from ..io import lint_mapping, mapping_json_schema
 
     if args.schema:
         emit_json("-", mapping_json_schema(), "JSON Schema")
@@ -147,7 +147,7 @@ def _refusal(args: argparse.Namespace, ray: Any) -> str | None:
 def _load(args: argparse.Namespace) -> tuple[Any, Any]:
     """The spec and the mapping, checked against each other (a ``SpecError`` otherwise)."""
     from .. import _api
-    from ..replay import check_against_spec, load_mapping
+    from ..io import check_against_spec, load_mapping
     spec = _api.load_spec(args.spec)
     mapping = load_mapping(args.mapping)
     check_against_spec(mapping, spec)

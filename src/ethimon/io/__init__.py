@@ -21,10 +21,11 @@ from __future__ import annotations
 from ._channel import TASK_TEXT, AckRequest, Channel, Frame, MemoryChannel, Sample
 from ._hold import MAX_CYCLES, MISSING, OK, STALE, Hold, cycle_grid, hold, judged
 from ._live import LiveMonitor, Recording, decision_json, mapping_error
+from ._node import LiveNode, TopicPlan, plan_topics
 from ._mapping import (FIELD_PATH, FUTURE_TOLERANCE_S, MSGTYPE, REDUCTIONS, RISK_INPUTS, ByName, Mapping, Ros2Map,
                        SignalMap, TaskMap, bool_mismatch, check_against_spec, lint_mapping, load_mapping,
                        load_mapping_text, mapping_json_schema, msgtype_key, parse_field_path)
 from ._values import follow, is_truth, numbers_of, rate_between, reduce_array, reduce_value
 
-__all__ = ["Channel", "Frame", "Hold", "LiveMonitor", "Mapping", "MemoryChannel", "Sample", "hold", "judged",
-           "load_mapping", "load_mapping_text"]
+__all__ = ["AckRequest", "ByName", "Channel", "Frame", "Hold", "LiveMonitor", "LiveNode", "Mapping", "MemoryChannel",
+           "Sample", "SignalMap", "TopicPlan", "hold", "judged", "load_mapping", "load_mapping_text"]

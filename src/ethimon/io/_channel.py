@@ -5,6 +5,7 @@ simulators, a recording played back)."""
 
 from __future__ import annotations
 
+import json
 import threading
 from collections import deque
 from collections.abc import Iterable
@@ -42,6 +43,11 @@ class Sample:
     t_log: float
     t_header: float | None = None
 
+    @property
+    def is_task(self) -> bool:
+        """Whether this sample is the task text (not a monitor input)."""
+        return self.signal == TASK_TEXT
+
 
 @dataclass(frozen=True)
 class AckRequest:
@@ -54,6 +60,63 @@ class AckRequest:
     sender: str = "an unknown sender"
     authenticated: bool = False
     error: str | None = None
+
+    @classmethod
+    def from_json(cls, text: str | bytes, *, sender: str = "an unknown sender",
+                  authenticated: bool = False) -> "AckRequest":
+        """The one parser of an acknowledgement's JSON text (every transport's ``/ethimon/acknowledge``):
+        ``{"operator": "<name>", "reason": "<text>"[, "task_sha256": "<hex>"]}``. Never raises: a request
+        that is not that shape is an ``AckRequest`` with ``error`` saying what is wrong (refused, audited);
+        the operator is cut to 200 characters, the reason to 2000, the task hash to 128."""
+        try:
+            if isinstance(text, (bytes, bytearray)):
+                try:
+                    text = bytes(text).decode("utf-8")
+                except UnicodeDecodeError:
+                    return cls.refused("not UTF-8 text", sender, authenticated)
+            try:
+                req = json.loads(text)
+            except ValueError as exc:
+                where = f" (line {exc.lineno}, column {exc.colno}: {exc.msg})" if hasattr(exc, "lineno") else ""
+                return cls.refused(f"not JSON{where}", sender, authenticated)
+            if not isinstance(req, dict):
+                return cls.refused(f"a JSON object expected, got {_kind(req)}", sender, authenticated)
+            unknown = sorted(set(req) - set(_ACK_KEYS))
+            if unknown:
+                import difflib
+                near = difflib.get_close_matches(str(unknown[0]), _ACK_KEYS, n=1)
+                return cls.refused(f"unknown key {unknown[0]!r}" + (f" (did you mean {near[0]!r}?)" if near else ""),
+                                    sender, authenticated)
+            if "operator" not in req:
+                return cls.refused("'operator' is missing", sender, authenticated)
+            for key in _ACK_KEYS:
+                v = req.get(key)
+                if key in req and not (isinstance(v, str) or (key == "task_sha256" and v is None)):
+                    return cls.refused(f"{key!r} is {_kind(v)}, not text", sender, authenticated)
+            operator, reason, task = req["operator"], req.get("reason", ""), req.get("task_sha256")
+            if not operator.strip():
+                return cls.refused("'operator' is empty", sender, authenticated)
+            if task is not None and not task.strip():  # an empty hash is not "no task named": refused
+                return cls.refused("'task_sha256' is empty", sender, authenticated)
+        except Exception as exc:  # noqa: BLE001 - never raise on a sender's bytes
+            return cls.refused(f"unreadable ({type(exc).__name__})", sender, authenticated)
+        return cls(operator[:200], reason[:2000], task[:128] if task is not None else None, sender,
+                   authenticated=authenticated)
+
+    @classmethod
+    def refused(cls, why: str, sender: str = "an unknown sender", authenticated: bool = False) -> "AckRequest":
+        """A request refused for ``why`` (a transport that cannot even read the text says so this way)."""
+        return cls(None, sender=sender, authenticated=authenticated, error=f"refused: {why}; {_ACK_SHAPE}")
+
+
+#: the keys of an acknowledgement's JSON, and its shape as a refusal states it
+_ACK_KEYS = ("operator", "reason", "task_sha256")
+_ACK_SHAPE = 'expected {"operator": "<name>", "reason": "<text>"[, "task_sha256": "<hex>"]}'
+
+
+def _kind(v: Any) -> str:
+    return {bool: "true/false", int: "a number", float: "a number", list: "a list", dict: "an object",
+            type(None): "null"}.get(type(v), type(v).__name__)
 
 
 @runtime_checkable

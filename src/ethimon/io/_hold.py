@@ -34,7 +34,8 @@ import numpy as np
 
 from ..errors import BagError
 from ..runtime import Fault
-from ._mapping import FUTURE_TOLERANCE_S, SignalMap
+
+#: ``sm`` below: a signal's mapping entry (:class:`~ethimon.io.SignalMap`; not imported: the mapping imports this)
 from ._values import is_truth, numbers_of, rate_between, reduce_value
 
 __all__ = ["OK", "MISSING", "STALE", "MAX_CYCLES", "Hold", "cycle_grid", "hold", "judged"]
@@ -42,6 +43,9 @@ __all__ = ["OK", "MISSING", "STALE", "MAX_CYCLES", "Hold", "cycle_grid", "hold",
 OK, MISSING, STALE = 0, 1, 2
 #: most cycles one bag may replay to (e.g. 13.9 hours at 1 kHz)
 MAX_CYCLES = 50_000_000
+#: how far ahead of the clock that judges it a sample time may be before it is a fault (s; a mapping's
+#: ``future_tolerance_s`` default)
+FUTURE_TOLERANCE_S = 0.005
 
 
 def cycle_grid(t0: int, t_end: int, rate_hz: float) -> np.ndarray:
@@ -137,10 +141,13 @@ class Hold:
             read), replaced before the first read (start-up, not judged).
     """
 
+    #: the codes :func:`hold` gives each cycle of a recording (a held value, none yet, too old)
+    OK, MISSING, STALE = OK, MISSING, STALE
+
     __slots__ = ("name", "sm", "limit", "every", "tol", "truth", "bool_message", "last", "read_yet", "prev",
                  "received", "judged", "skipped", "before", "_unread", "_skip_note", "_bad_note", "off", "pending")
 
-    def __init__(self, name: str, sm: SignalMap, limit_s: float | None, *, every: bool = True,
+    def __init__(self, name: str, sm: Any, limit_s: float | None, *, every: bool = True,
                  tolerance_s: float = FUTURE_TOLERANCE_S, truth: bool = False,
                  bool_message: str | None = None) -> None:
         self.name, self.sm, self.limit, self.every = name, sm, limit_s, every

@@ -44,6 +44,8 @@ from ..errors import SpecError
 from ..language._load import validate_document
 from ..language._model import FiniteFloat, Spec
 from ..language._yaml import SourceMap, parse_yaml_text, read_yaml
+from ._hold import FUTURE_TOLERANCE_S, cycle_grid
+from ._values import ByName, numbers_of, rate_between, reduce_array, reduce_value
 
 __all__ = ["FIELD_PATH", "FUTURE_TOLERANCE_S", "MSGTYPE", "REDUCTIONS", "RISK_INPUTS", "ByName", "Mapping", "Ros2Map",
            "SignalMap", "TaskMap", "bool_mismatch", "load_mapping", "load_mapping_text", "mapping_json_schema",
@@ -66,7 +68,6 @@ RISK_INPUTS = ("risk", "p_unsafe")
 TOPIC = r"^/?[A-Za-z0-9_~{}][A-Za-z0-9_/~{}.-]*$"
 #: how far (s) a sample's time may lie ahead of the clock that judges it (clock jitter between two
 #: machines) before it is a fault: a stamp in the future cannot be aged (default of ``future_tolerance_s``)
-FUTURE_TOLERANCE_S = 0.005
 
 
 class SignalMap(BaseModel):
@@ -115,6 +116,28 @@ class SignalMap(BaseModel):
             raise ValueError(f"'index' is only used with 'reduce: index' (reduce is {self.reduce!r})")
         return self
 
+    @property
+    def field_path(self) -> tuple[str | int | ByName, ...]:
+        """``field`` parsed (:func:`parse_field_path`): names, indices and :class:`ByName` entries."""
+        return parse_field_path(self.field)
+
+    def number(self, v: Any, *, where: str = "", path: str | None = None) -> float:
+        """One message's field value made this signal's number: the reduction, ``* scale + offset``
+        (:func:`~ethimon.io.reduce_value`, the one way live and replay do it)."""
+        return reduce_value(v, self, where=where, path=path)
+
+    def reduce_array(self, arr: Any) -> float:
+        """The reduction of an array of numbers, before ``scale`` and ``offset``."""
+        return reduce_array(arr, self)
+
+    def numbers(self, v: Any, *, where: str = "", path: str | None = None) -> Any:
+        """A field value as a float array (``derive: rate`` differentiates it), or ``None``."""
+        return numbers_of(v, where, path)
+
+    def rate(self, a: Any, b: Any, dt_s: float) -> float:
+        """``derive: rate``: the change per second from ``a`` to ``b`` (``dt_s`` apart), reduced and scaled."""
+        return rate_between(a, b, dt_s, self)
+
 
 class TaskMap(BaseModel):
     """The topic that carries the task text (std_msgs/String); each new text is scored by the risk estimator."""
@@ -124,6 +147,11 @@ class TaskMap(BaseModel):
     field: str = Field("data", pattern=FIELD_PATH, max_length=400, description="the text field (default 'data')")
     type: str | None = Field(None, pattern=MSGTYPE, max_length=200,
                              description="its message type (default std_msgs/msg/String)")
+
+    @property
+    def field_path(self) -> tuple[str | int | ByName, ...]:
+        """``field`` parsed (:func:`parse_field_path`)."""
+        return parse_field_path(self.field)
 
 
 class Ros2Map(BaseModel):
@@ -136,8 +164,9 @@ class Ros2Map(BaseModel):
         "'bench cell on an isolated network') accepts unauthenticated ones, audited as such")
     publishers: int = Field(1, ge=1, le=64, description="how many publishers each monitored topic may have; "
                             "one more (or a publisher that replaces the first) is a fault naming it")
-    deadline_cycles: int = Field(3, ge=1, le=1_000_000, description="the deadline QoS offered on "
-                                 "/ethimon/override and /ethimon/decision, in cycles of rate_hz")
+    deadline_cycles: int = Field(3, ge=1, le=1_000_000, description="DDS only: the deadline QoS offered on "
+                                 "/ethimon/override and /ethimon/decision, in cycles of rate_hz (zenoh has no "
+                                 "deadline to offer; there a robot times the override itself)")
 
 
 class Mapping(BaseModel):
@@ -210,6 +239,28 @@ class Mapping(BaseModel):
     def risk_checked(self) -> bool:
         """False when the mapping says ``risk: none`` (the risk rule is not checked)."""
         return self.risk != "none"
+
+    @property
+    def risk_signal(self) -> str | None:
+        """The mapped signal that gives the risk input (``risk`` or ``p_unsafe``), if one does."""
+        return next((k for k in RISK_INPUTS if k in self.signals), None)
+
+    def check(self, spec: Spec, *, risk_given: bool = False) -> None:
+        """:func:`check_against_spec`: the mapping fits ``spec`` (located :class:`SpecError` if not)."""
+        check_against_spec(self, spec, risk_given=risk_given)
+
+    def lint(self, spec: Spec) -> list[str]:
+        """:func:`lint_mapping`: what an engineer would question in this mapping for ``spec``."""
+        return lint_mapping(self, spec)
+
+    def grid(self, t0: int, t_end: int) -> Any:
+        """The cycle times (ns) at ``rate_hz`` from ``t0`` to ``t_end`` (:func:`~ethimon.io.cycle_grid`)."""
+        return cycle_grid(t0, t_end, self.rate_hz)
+
+    @staticmethod
+    def same_type(a: str, b: str) -> bool:
+        """Whether two message type names name one type (``pkg/Name`` and ``pkg/msg/Name`` do)."""
+        return msgtype_key(a) == msgtype_key(b)
 
 
 def load_mapping(path: str | os.PathLike) -> Mapping:
@@ -322,12 +373,6 @@ def bool_mismatch(name: str, spec: Spec, topic: str, msgtype: str) -> str | None
     what = f"a {sig.type} signal" if sig is not None else "a probability"
     return (f"signal {name!r} is {what} in spec {spec.name!r}, but {topic} ({msgtype}) gives true/false: a bool "
             "is not a number")
-
-
-class ByName(str):
-    """A field-path index by name: ``position[panda_joint4]`` → the entry the message's ``name`` list names."""
-
-    __slots__ = ()
 
 
 def parse_field_path(path: str) -> tuple[str | int | ByName, ...]:

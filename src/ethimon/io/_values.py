@@ -10,10 +10,17 @@ from typing import Any
 import numpy as np
 
 from ..errors import BagError
-from ._mapping import ByName, SignalMap
 
-__all__ = ["follow", "is_truth", "numbers_of", "rate_between", "reduce_array", "reduce_value"]
+#: ``sm`` below: a signal's mapping entry (:class:`~ethimon.io.SignalMap`; not imported: the mapping imports this)
 
+__all__ = ["ByName", "follow", "is_truth", "numbers_of", "rate_between", "reduce_array", "reduce_value"]
+
+
+
+class ByName(str):
+    """A field-path index by name: ``position[panda_joint4]`` → the entry the message's ``name`` list names."""
+
+    __slots__ = ()
 
 def _fields(obj: Any) -> list[str]:
     f = getattr(obj, "__dataclass_fields__", None)
@@ -82,7 +89,7 @@ def numbers_of(v: Any, where: str = "", path: str | None = None) -> np.ndarray |
     return np.array(arr, dtype=np.float64)
 
 
-def reduce_array(arr: np.ndarray, sm: SignalMap) -> float:
+def reduce_array(arr: np.ndarray, sm: Any) -> float:
     """The mapping's reduction of an array of numbers, then ``* scale + offset`` (NaN: none can be formed)."""
     if arr.size == 0:
         return math.nan
@@ -104,7 +111,7 @@ def reduce_array(arr: np.ndarray, sm: SignalMap) -> float:
     return x * sm.scale + sm.offset
 
 
-def rate_between(a: np.ndarray | None, b: np.ndarray | None, dt_s: float, sm: SignalMap) -> float:
+def rate_between(a: np.ndarray | None, b: np.ndarray | None, dt_s: float, sm: Any) -> float:
     """``derive: rate``: the change per second from message ``a`` to message ``b`` (``dt_s`` apart, their
     own times), element by element, then the reduction. NaN when either is unusable or they differ in size."""
     if a is None or b is None or a.size != b.size or not dt_s > 0:
@@ -115,7 +122,7 @@ def rate_between(a: np.ndarray | None, b: np.ndarray | None, dt_s: float, sm: Si
     return float(d[0]) * sm.scale + sm.offset if d.size == 1 else math.nan
 
 
-def reduce_value(v: Any, sm: SignalMap, *, where: str = "", path: str | None = None) -> float:
+def reduce_value(v: Any, sm: Any, *, where: str = "", path: str | None = None) -> float:
     """One number from a field value: the mapping's reduction, then ``* scale + offset``.
 
     NaN when the value cannot be formed from this message (an empty array, an index past the end);

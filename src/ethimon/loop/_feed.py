@@ -19,8 +19,9 @@ class RiskFeed:
     """A risk source and its judge, read once per cycle without waiting.
 
     Args:
-        risk: an :class:`AsyncRiskSource`, a :class:`ProcessEstimator` or a ``"module:function"`` estimator
-            factory (run in a child process; its task text starts as ``None``: fail closed).
+        risk: an :class:`AsyncRiskSource`, a :class:`ProcessEstimator`, a ``"module:function"`` estimator
+            factory (run in a child process; its task text starts as ``None``: fail closed), or an
+            estimator in any form :func:`ethimon.risk.as_estimator` takes (run in a thread).
         judge: ``"spec"`` (the spec's ``risk.judge``), a :class:`~ethimon.risk.Judge`, an
             :class:`AsyncJudgeSource` or ``None``.
         monitor: the running monitor (its spec names the judge; its age limit is set here).
@@ -32,12 +33,13 @@ class RiskFeed:
     def __init__(self, risk: AsyncRiskSource | ProcessEstimator | str, judge: Any, monitor: Monitor,
                  max_risk_age_s: float | None) -> None:
         if isinstance(risk, str):
-            risk = ProcessEstimator(risk)
-        if isinstance(risk, ProcessEstimator):
-            risk = AsyncRiskSource(risk, text=None)
+            risk = ProcessEstimator(risk)  # a loop's string names a factory run in a child process
         if not callable(getattr(risk, "snapshot", None)):
-            raise TypeError(f"risk must be an AsyncRiskSource, a ProcessEstimator or 'module:function', "
-                            f"got {type(risk).__name__}")
+            try:  # an estimator in any form ethimon.risk.as_estimator takes, run in its own thread
+                risk = AsyncRiskSource(risk, text=None)
+            except TypeError:
+                raise TypeError(f"risk must be an AsyncRiskSource, a ProcessEstimator, 'module:function' or an "
+                                f"estimator (ethimon.risk.as_estimator), got {type(risk).__name__}") from None
         #: the risk source (:class:`AsyncRiskSource`)
         self.risk = risk
         self.judge_from_spec = isinstance(judge, str)

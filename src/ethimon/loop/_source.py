@@ -12,7 +12,7 @@ import time
 from collections.abc import Callable
 from typing import Any, NamedTuple
 
-from ..risk import ProbsEstimator
+from ..risk import ProbsEstimator, as_estimator
 
 __all__ = ["AsyncRiskSource", "RiskReading", "AsyncJudgeSource"]
 
@@ -45,6 +45,16 @@ def _as_floats(out: Any) -> tuple[tuple[float, ...] | None, str | None]:
         return tuple(float(v) for v in out), None
     except Exception:  # noqa: BLE001 - any odd return value is a fault
         return None, f"risk estimator returned {type(out).__name__}, not a sequence of probabilities"
+
+
+def _hand_over(estimator: Any) -> ProbsEstimator:
+    """The estimator ``estimator`` stands for (:func:`ethimon.risk.as_estimator`: an object with
+    ``probs(text)``, a function ``text -> probabilities``, a zero-argument factory, a model directory);
+    ``None`` is refused here: a source never loads the shipped model unasked."""
+    if estimator is None:
+        raise TypeError("estimator needs a probs(text) method (or anything ethimon.risk.as_estimator takes), "
+                        "got None")
+    return as_estimator(estimator)
 
 
 class AsyncRiskSource:
@@ -84,8 +94,7 @@ class AsyncRiskSource:
     def __init__(self, estimator: ProbsEstimator, *, text: str | None = None, rate_hz: float = 20.0,
                  hang_timeout_s: float | None = None, clock: Callable[[], float] = time.monotonic,
                  start: bool = True) -> None:
-        if not callable(getattr(estimator, "probs", None)):
-            raise TypeError(f"estimator needs a probs(text) method, got {type(estimator).__name__}")
+        estimator = _hand_over(estimator)
         if not (isinstance(rate_hz, (int, float)) and 0.0 < rate_hz <= 10_000.0):
             raise ValueError(f"rate_hz={rate_hz!r}; expected a number in (0, 10000]")
         self._est = estimator
@@ -203,8 +212,8 @@ class AsyncRiskSource:
         Readers are never blocked; until the new worker publishes, readings
         carry a fault. Args: ``estimator``: a replacement (default: the same one).
         """
-        if estimator is not None and not callable(getattr(estimator, "probs", None)):
-            raise TypeError(f"estimator needs a probs(text) method, got {type(estimator).__name__}")
+        if estimator is not None:
+            estimator = _hand_over(estimator)
         with self._lock:
             old = self._thread
             self._gen += 1

@@ -18,8 +18,9 @@ the risk rule is then reported NOT CHECKED). :func:`list_topics` lists a bag's
 topics to write a mapping from; :func:`replay_paths` replays many bags as
 ``ethimon replay`` does; :func:`write_mcap` writes the verdicts as MCAP topics; :func:`recorded_data`
 reads back what a live :class:`~ethimon.io.LiveMonitor` recorded. The mapping format, the hold and the
-value reduction are ``ethimon.io``'s (the live node reads a mapping the same way); ``Mapping``,
-``SignalMap``, ``load_mapping``, ``check_against_spec`` & co. stay importable from here. Bags are read with
+value reduction are ``ethimon.io``'s (the live node reads a mapping the same way; ``Mapping``,
+``load_mapping`` and ``load_mapping_text`` are importable from here too; ``Mapping.check`` / ``Mapping.lint``
+check one against a spec). Bags are read with
 ``rosbags`` (``pip install 'ethimon[ros]'``), imported only when a bag is read:
 ``import ethimon`` and ``import ethimon.replay`` never import it.
 """
@@ -33,19 +34,17 @@ from typing import Any
 from ._bag import BagData, BagError, read_bag
 from ._collect import Series, _Collector
 from ._verdicts import CycleResults, check_columns
-from ._mapping import (Mapping, SignalMap, TaskMap, check_against_spec, lint_mapping, load_mapping,
-                       load_mapping_text, mapping_json_schema)
+from ..io import Mapping, SignalMap, hold, load_mapping, load_mapping_text
 from ._mcap import write_mcap
 from ._record import ReplayReport, replay_paths
 from ._columns import resample
 from ._replay import replay_bag, replay_data
 from ._result import BagReplay, CheckResult
 from ._scoring import TaskScorer
-from ._resample import cycle_grid, hold
 from ._topics import TopicInfo, list_topics
 
-__all__ = ["BagReplay", "CheckResult", "Mapping", "ReplayReport", "TaskScorer", "check_columns", "list_topics",
-           "load_mapping", "read_bag", "replay_bag", "replay_paths", "write_mcap"]
+__all__ = ["BagReplay", "CheckResult", "Mapping", "ReplayReport", "check_columns", "list_topics", "load_mapping",
+           "replay_bag", "replay_paths", "write_mcap"]
 
 
 @dataclass
@@ -74,8 +73,6 @@ def recorded_data(recording: Any, mapping: Any, path: str = "<recording>") -> An
     ahead, and its age counts from its stamp; replayed, the same.
     A header stamp that was further than ``future_tolerance_s`` ahead of the cycle that took it (a fault live
     until its time came) is an unusable sample at that cycle's time, then its value at its own time."""
-    from ..io import TASK_TEXT
-
     def header(t_s: float, minus_ns: int = 0) -> _Header:
         ns = int(round(t_s * 1e9)) - minus_ns
         return _Header(_Stamp(ns // 1_000_000_000, ns % 1_000_000_000))
@@ -107,6 +104,6 @@ def recorded_data(recording: Any, mapping: Any, path: str = "<recording>") -> An
             c.add(_Recorded(s.value, hdr), t_log, sm.topic, msgtype)
         series[name] = c.series(sm.topic, msgtype)
     texts = [(int(round(s.t_log * 1e9)), s.value) for s in recording.samples
-             if s.signal == TASK_TEXT and isinstance(s.value, str)]
+             if s.is_task and isinstance(s.value, str)]
     topics = {sm.topic: (sm.type or "recorded", series[n].read) for n, sm in mapping.signals.items()}
     return BagData(path, "recording", series, texts, topics)

@@ -20,7 +20,7 @@ from typing import Any
 from .._files import file_kind
 from ..errors import BagError, DependencyNotInstalled
 from ._collect import Series, _Collector
-from ._mapping import Mapping, msgtype_key, parse_field_path
+from ..io import Mapping
 from ._values import _did_you_mean, _get
 
 __all__ = ["MAX_MESSAGES", "BagData", "BagError", "read_bag"]
@@ -204,7 +204,7 @@ def _check_topics(mapping: Mapping, topics: dict[str, tuple[str, int]], spath: s
             raise BagError(f"{who}: topic {topic} is not in this bag", spath,
                            hint=hint + "; 'ethimon replay BAG --topics' lists the topics")
         have = topics[topic][0]
-        if want is not None and msgtype_key(want) != msgtype_key(have):
+        if want is not None and not Mapping.same_type(want, have):
             raise BagError(f"{who}: topic {topic} carries {have}, but the mapping says type {want}", spath,
                            hint="fix 'type:' in the mapping, or map the topic that carries that type")
 
@@ -220,7 +220,7 @@ def _read(reader: Any, spath: str, p: Path, ros1: bool, mapping: Mapping,
         cols[name] = c = _Collector(name, sm, spath)
         by_topic.setdefault(sm.topic, []).append(c)
     task = mapping.task
-    task_path = parse_field_path(task.field) if task is not None else None
+    task_path = task.field_path if task is not None else None
     wanted = set(by_topic) | ({task.topic} if task is not None else set())
     conns = [c for c in reader.connections if c.topic in wanted]
     total = sum(int(getattr(c, "msgcount", 0) or 0) for c in conns)

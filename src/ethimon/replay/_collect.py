@@ -11,8 +11,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import BagError
-from ..io import ByName, SignalMap, parse_field_path, rate_between
-from ._values import _BATCH, _FLOATS, _did_you_mean, _fields, _numbers_of, _reduce_rows, _stamp, reduce_value
+from ..io import ByName, SignalMap
+from ._values import _BATCH, _FLOATS, _did_you_mean, _fields, _reduce_rows, _stamp
 
 __all__ = ["Series"]
 
@@ -73,7 +73,7 @@ class _Collector:
 
     def __init__(self, name: str, sm: SignalMap, spath: str) -> None:
         self.name, self.sm, self.spath = name, sm, spath
-        self.fpath = parse_field_path(sm.field)
+        self.fpath = sm.field_path
         self.times, self.values = array("q"), array("d")
         self.raw: list[np.ndarray] | None = [] if sm.derive == "rate" else None
         self.bad = self.past_end = self.read = self.bools = self.zero = 0
@@ -122,7 +122,8 @@ class _Collector:
 
     def _flush(self, topic: str, msgtype: str) -> None:
         """Reduce the pending field values: whole batches of same-shape numeric arrays at once, else one
-        by one (:func:`reduce_value`, which refuses text, messages and other kinds with a located error)."""
+        by one (:meth:`SignalMap.number <ethimon.io.SignalMap.number>`, which refuses text, messages and other
+        kinds with a located error)."""
         vals = self.pending
         if not vals:
             return
@@ -161,9 +162,9 @@ class _Collector:
             if isinstance(v, (bool, np.bool_)) or (isinstance(v, np.ndarray) and v.dtype.kind == "b"):
                 self.bools += 1
             if self.raw is not None:
-                self.raw.append(_numbers_of(v, self.where, self.spath))
+                self.raw.append(sm.numbers(v, where=self.where, path=self.spath))
                 continue
-            x = reduce_value(v, sm, where=self.where, path=self.spath)
+            x = sm.number(v, where=self.where, path=self.spath)
             if x != x:
                 self.bad += 1
             self.values.append(x)
@@ -259,8 +260,8 @@ class _Collector:
         out = np.full(max(times.size - 1, 0), np.nan)
         bad = 0
         for j in range(1, times.size):
-            # the one derivation, live and replay (ethimon.io.rate_between)
-            x = rate_between(raw[order[j - 1]], raw[order[j]], float(times[j] - times[j - 1]) / 1e9, sm)
+            # the one derivation, live and replay (ethimon.io's SignalMap.rate)
+            x = sm.rate(raw[order[j - 1]], raw[order[j]], float(times[j] - times[j - 1]) / 1e9)
             if x != x:
                 bad += 1
             out[j - 1] = x

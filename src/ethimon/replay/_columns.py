@@ -14,8 +14,7 @@ from ..compiler import plan_of
 from ..language import Spec
 from ._bag import BagData, BagError
 from ._collect import Series
-from ._mapping import RISK_INPUTS, Mapping, lint_mapping
-from ._resample import MISSING, OK, cycle_grid, hold, judged
+from ..io import Hold, Mapping, hold, judged
 from ._scoring import Scorer, _Lazy
 
 __all__ = ["resample"]
@@ -165,7 +164,7 @@ def _judge_counts(data: BagData, mapping: Mapping, grid: np.ndarray, idxs: dict[
 
 def resample(data: BagData, mapping: Mapping, spec: Spec, *, score: Scorer | None = None,
              p: Sequence[float] | None = None) -> Resampled:
-    """Zero-order-held columns of every input on the monitor's cycle grid (see :mod:`._resample`).
+    """Zero-order-held columns of every input on the monitor's cycle grid (:func:`ethimon.io.hold`).
 
     Raises:
         BagError: no mapped message at all, inputs whose clocks never overlap, a bool field mapped
@@ -179,7 +178,7 @@ def resample(data: BagData, mapping: Mapping, spec: Spec, *, score: Scorer | Non
     _check_types(data, spec)
     _check_overlap(data, mapping)
     try:
-        grid = cycle_grid(span[0], span[1], mapping.rate_hz)
+        grid = mapping.grid(span[0], span[1])
     except ValueError as exc:
         raise BagError(str(exc), data.path, hint="lower rate_hz or split the bag") from None
     n = grid.size
@@ -193,7 +192,7 @@ def resample(data: BagData, mapping: Mapping, spec: Spec, *, score: Scorer | Non
         idxs[name] = idx
     warnings: list[str] = []
     judged_n, before = _judge_counts(data, mapping, grid, idxs, warnings)
-    risk_key = next((k for k in RISK_INPUTS if k in mapping.signals), "p")
+    risk_key = mapping.risk_signal or "p"
     risk_note: dict[int, str] = {}
     tasks: list[dict[str, Any]] = []
     k_cls = plan_of(spec).risk_plan.classes
@@ -231,7 +230,7 @@ def resample(data: BagData, mapping: Mapping, spec: Spec, *, score: Scorer | Non
         which = np.where(pos >= 0, idx_of_msg[np.maximum(pos, 0)] if len(texts) else -1, len(table))
         which = np.where(which < 0, len(table), which)
         columns["p"] = rows[which]
-        codes["p"] = np.where(pos >= 0, OK, MISSING).astype(np.int8)
+        codes["p"] = np.where(pos >= 0, Hold.OK, Hold.MISSING).astype(np.int8)
         for j, why in enumerate(notes):
             if why is not None:
                 risk_note[j] = why
@@ -278,7 +277,7 @@ def _judge_texts(data: BagData, mapping: Mapping, grid: np.ndarray, times: np.nd
 def _held_prev_warnings(data: BagData, mapping: Mapping, spec: Spec) -> list[str]:
     """``prev()`` of an input whose topic is slower than the cycles: the lint, with the bag's rates."""
     out = []
-    for w in lint_mapping(mapping, spec):
+    for w in mapping.lint(spec):
         sig = w.split("prev(", 1)[1].split(")", 1)[0]
         s = data.series.get(sig)
         if s is None or s.times.size < 2:

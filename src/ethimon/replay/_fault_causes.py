@@ -8,8 +8,7 @@ import numpy as np
 from ..language import Spec
 from ._bag import BagData
 from ._columns import Resampled
-from ._mapping import Mapping
-from ._resample import MISSING, OK, STALE, hold
+from ..io import Hold, Mapping, hold
 from ._verdicts import CycleResults
 
 
@@ -32,13 +31,13 @@ def _why_fault(rs: Resampled, tr: CycleResults, data: BagData, mapping: Mapping,
 
     for name, s in data.series.items():
         code = rs.codes[name]
-        missing = code == MISSING
+        missing = code == Hold.MISSING
         if s.times.size == 0:
             have = "is not in this bag" if s.topic not in data.topics else "has no message"
             add(missing, f"{name}: topic {s.topic} {have}")
         else:
             add(missing, f"{name}: no message on {s.topic} yet")
-        stale = code == STALE
+        stale = code == Hold.STALE
         if stale.any():
             k = int(np.argmax(stale & tr.fault)) if (stale & tr.fault).any() else int(np.argmax(stale))
             i = int(hold(s.times, s.values, grid[k:k + 1], None, s.visible)[2][0])  # the sample that cycle held
@@ -46,7 +45,7 @@ def _why_fault(rs: Resampled, tr: CycleResults, data: BagData, mapping: Mapping,
             add(stale, f"{name}: stale (last {s.topic} message {age:.3f} s old, max_age_s "
                        f"{mapping.limit_s(name):g})")
         col = rs.columns[name]
-        ok = code == OK
+        ok = code == Hold.OK
         for sign, label in ((1, "+inf"), (-1, "-inf")):
             add(ok & np.isinf(col) & (np.sign(col) == sign), f"{name}: the {s.topic} message held is {label}")
         sig = spec.signals.get(name)
@@ -63,7 +62,7 @@ def _why_fault(rs: Resampled, tr: CycleResults, data: BagData, mapping: Mapping,
         add(ok & np.isnan(col),
             f"{name}: the {s.topic} message held has no usable value (NaN, an empty array or an index past its end)")
     if rs.risk_key == "p" and "p" in rs.codes and mapping.task is not None:
-        add(rs.codes["p"] == MISSING, f"risk: no task text on {mapping.task.topic} yet")
+        add(rs.codes["p"] == Hold.MISSING, f"risk: no task text on {mapping.task.topic} yet")
         rows = rs.codes["_task_row"]
         for j, why in rs.risk_note.items():
             add(rows == j, f"risk: {why}")

@@ -16,7 +16,7 @@ from typing import Any
 
 from ..errors import EthimonError, SpecError
 from ._bag import BagError
-from ._mapping import Mapping
+from ..io import Mapping
 
 __all__ = ["ReplayReport", "bag_error_line", "bag_error_record", "bag_record", "mcap_path", "replay_paths",
            "replay_records", "replay_unit"]
@@ -175,10 +175,10 @@ def replay_unit(run_id: str, bag: str, spec_path: str, mapping_path: str, model_
 def _replay_setup(spec_path: str, mapping_path: str, model_dir: str | None) -> tuple[Any, Any, Any]:
     from ..compiler import plan_of
     from ..language import parse_spec_file
-    from ._mapping import check_against_spec, load_mapping
+    from ..io import load_mapping
     from ._scoring import TaskScorer
     spec = parse_spec_file(spec_path)
     plan_of(spec)  # compiled now, as ethimon.load_spec does
     mapping = load_mapping(mapping_path)
-    check_against_spec(mapping, spec)
+    mapping.check(spec)
     return spec, mapping, TaskScorer(spec, model_dir=model_dir)

@@ -16,9 +16,8 @@ from ..language import Spec
 from ._bag import BagData, read_bag
 from ._columns import Resampled, resample
 from ._fault_causes import _why_fault
-from ._mapping import Mapping, check_against_spec, load_mapping
+from ..io import Hold, Mapping, load_mapping
 from ._replay_audit import _audit
-from ._resample import MISSING, STALE
 from ._result import BagReplay, CheckResult
 from ._scoring import Scorer
 from ._verdicts import CycleResults, check_columns
@@ -30,9 +29,9 @@ def _start_cycle(rs: Resampled, data: BagData) -> int:
     """The first cycle where every mapped input (and the task text) has been seen; 0 if none is."""
     seen = np.ones(rs.grid.size, dtype=bool)
     for name in data.series:
-        seen &= rs.codes[name] != MISSING
+        seen &= rs.codes[name] != Hold.MISSING
     if "p" in rs.codes:
-        seen &= rs.codes["p"] != MISSING
+        seen &= rs.codes["p"] != Hold.MISSING
     return int(np.argmax(seen)) if seen.any() else 0
 
 
@@ -261,12 +260,12 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
         signals[name] = {"topic": s.topic, "type": s.msgtype, "clock": s.clock, "offset_s": s.offset_ns / 1e9,
                          "messages": s.read, "samples": int(s.times.size), "judged": rs.judged.get(name, 0),
                          "before_first_cycle": rs.before.get(name, 0), "unusable_messages": s.bad,
-                         "missing_cycles": int((code == MISSING).sum()),
-                         "stale_cycles": int((code == STALE).sum()), "max_age_s": mapping.limit_s(name)}
+                         "missing_cycles": int((code == Hold.MISSING).sum()),
+                         "stale_cycles": int((code == Hold.STALE).sum()), "max_age_s": mapping.limit_s(name)}
     if mapping.task is not None and p is None:
         code = rs.codes["p"]
         signals["task"] = {"topic": mapping.task.topic, "messages": len(data.texts),
-                           "judged": rs.judged.get("task", 0), "missing_cycles": int((code == MISSING).sum())}
+                           "judged": rs.judged.get("task", 0), "missing_cycles": int((code == Hold.MISSING).sum())}
     topics: dict[str, dict[str, Any]] = {}
     for name, sg in signals.items():  # per topic: messages read, and the fewest of them any of its signals judged
         tp = topics.setdefault(sg["topic"], {"read": sg["messages"], "judged": sg["judged"], "signals": []})
@@ -339,6 +338,6 @@ def replay_bag(bag: str | os.PathLike, spec: Spec | str | os.PathLike, mapping: 
         plan_of(spec)  # compiled now, as ethimon.load_spec does: its errors surface here
     if not isinstance(spec, Spec):
         raise SpecError(f"replay_bag needs a spec (a path, or ethimon.load_spec's result), got {type(spec).__name__}")
-    check_against_spec(mapping, spec, risk_given=p is not None)
+    mapping.check(spec, risk_given=p is not None)
     data = read_bag(bag, mapping, on_progress=on_progress)
     return replay_data(data, spec, mapping, score=score, p=p, audit=audit, keep_trace=keep_trace, engine=engine)

@@ -7,6 +7,7 @@ import copy
 from collections.abc import Callable, Sequence
 
 from ..language import Spec
+from typing import Any
 
 __all__ = ["TaskScorer"]
 
@@ -55,8 +56,11 @@ class _Lazy:
     """Scores task texts: ``score`` if given, else the spec's estimator (loaded on the first text)."""
 
     def __init__(self, spec: Spec, score: Scorer | None) -> None:
-        # an estimator object is taken too (ethimon.risk.as_estimator's forms): its probs scores
-        self.fn = TaskScorer(spec) if score is None else score.probs if hasattr(score, "probs") else score
+        if score is None:
+            self.fn: Any = TaskScorer(spec)
+        else:  # the one hand-over: an estimator, a function text -> probabilities, a factory
+            from ..risk import as_estimator
+            self.fn = as_estimator(score).probs
 
     def score(self, text: str, k: int) -> tuple[tuple[float, ...] | None, str | None]:
         load = getattr(self.fn, "load", None)

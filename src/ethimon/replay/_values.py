@@ -11,9 +11,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import BagError
-from ..io import SignalMap, numbers_of as _numbers_of, reduce_array as _reduce_arr, reduce_value
+from ..io import SignalMap
 
-__all__ = ["reduce_value"]
+__all__: list[str] = []
 
 
 def _did_you_mean(word: str, options: Iterable[str]) -> str | None:
@@ -66,7 +66,7 @@ _BATCH = 4096
 
 
 def _reduce_rows(a: np.ndarray, sm: SignalMap) -> np.ndarray:
-    """:func:`_reduce_arr` of every row of ``a`` (rows: messages), then ``* scale + offset``."""
+    """:meth:`~ethimon.io.SignalMap.reduce_array` of every row of ``a`` (rows: messages), then ``* scale + offset``."""
     if a.shape[1] == 0:
         return np.full(a.shape[0], np.nan)
     red = sm.reduce

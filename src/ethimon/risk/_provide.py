@@ -82,7 +82,7 @@ def as_estimator(x: Any = None, *, spec: Any = None, **load_kw: Any) -> ProbsEst
                     "; an estimator is named by its directory, never by code ('module:function')" if code else ""))
             load_kw = {**load_kw, "model_dir": str(d)}   # with a spec: load_estimator_for says whose model
         return load_estimator_for(spec, **load_kw) if spec is not None else load_estimator(**load_kw)
-    if hasattr(x, "probs") and callable(x.probs):
+    if hasattr(x, "probs") and callable(x.probs) and not isinstance(x, type):  # a class is a factory
         return x
     if callable(x):
         n = _required_args(x)
@@ -92,7 +92,7 @@ def as_estimator(x: Any = None, *, spec: Any = None, **load_kw: Any) -> ProbsEst
                 raise TypeError(f"the estimator factory {x!r} returned {type(got).__name__}, "
                                 "not an object with probs(text)")
             return got
-        if n == 1:
+        if n == 1 or n is None:  # None: a signature Python cannot tell (a builtin such as dict.__getitem__)
             return ScoreFunction(x)
         raise TypeError(f"{x!r}: a zero-argument factory or a function text -> probabilities expected "
                         f"({n} required arguments)")

@@ -21,9 +21,8 @@ when a node is made (``pip install 'ethimon[ros2]'``).
 
 from ._config import ENCLAVE_FILES, cyclone_config, security_available
 from ._names import dds_topic, dds_type, normalize_type, ros_topic
-from ._node import (ACK_RESULT_TOPIC, ACK_TOPIC, DECISION_TOPIC, OVERRIDE_TOPIC, Ros2Monitor, decision_json,
-                    run_ros2)
+from ._node import ACK_RESULT_TOPIC, ACK_TOPIC, DECISION_TOPIC, OVERRIDE_TOPIC, Ros2Monitor, run_ros2
 from ._qos import DEFAULT, SENSOR_DATA, QosProfile, to_cyclone
 from ._types import MessageTypes
 
-__all__ = ["DEFAULT", "MessageTypes", "Ros2Monitor", "SENSOR_DATA", "cyclone_config", "dds_topic", "to_cyclone"]
+__all__ = ["DEFAULT", "MessageTypes", "Ros2Monitor", "SENSOR_DATA"]

@@ -5,16 +5,15 @@ first ones on a monitored topic, and any other writer on ``/ethimon/override``."
 
 from __future__ import annotations
 
-import json
 import threading
 import time
 from collections import deque
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from ..errors import DependencyNotInstalled, Ros2Error, SpecError
-from ..io import TASK_TEXT, AckRequest, Sample, follow
+from ..io import AckRequest, Sample, TopicPlan
 from ..runtime import Fault
 from ._names import dds_topic
 from ._qos import DEFAULT, SENSOR_DATA, to_cyclone
@@ -32,13 +31,10 @@ _ACK_QUEUE = 64
 
 
 @dataclass
-class Subscription:
-    """One read topic: its type, the (signal, parsed field path) it feeds, or the task text."""
+class Subscription(TopicPlan):
+    """One read topic (:class:`ethimon.io.TopicPlan`: its type, the (signal, parsed field path) it feeds, or
+    the task text) and its DDS reader and writers."""
 
-    topic: str
-    msgtype: str
-    fields: list = field(default_factory=list)  # [(signal, path)]
-    task: bool = False
     reader: Any = None
     pinned: tuple = ()          # writer GUIDs accepted on this topic (the first ones seen)
     pinned_handles: frozenset = frozenset()
@@ -134,22 +130,7 @@ class DdsChannel:
                     if h not in sub.pinned_handles:
                         continue
                 sub.messages += 1
-                if sub.task:
-                    text = follow(smp, sub.fields[0][1])
-                    if isinstance(text, str):
-                        out.append(Sample(TASK_TEXT, text, mono))
-                    continue
-                stamp = None
-                hdr = getattr(smp, "header", None)
-                st = getattr(hdr, "stamp", None)
-                if st is not None:
-                    stamp = st.sec + st.nanosec * 1e-9
-                for name, path in sub.fields:
-                    try:
-                        v = follow(smp, path)
-                    except Exception:  # noqa: BLE001 - a field this sample lacks: no usable value
-                        v = float("nan")
-                    out.append(Sample(name, v, mono, stamp))
+                out.extend(sub.samples(smp, mono))
         return out
 
     def faults(self) -> tuple[Fault, ...]:
@@ -215,19 +196,8 @@ class DdsChannel:
             self._acks.append(self._parse_ack(smp, sender))
 
     def _parse_ack(self, msg: Any, sender: str) -> AckRequest:
-        try:
-            req = json.loads(msg.data)
-            operator, reason = req.get("operator"), req.get("reason", "")
-            task = req.get("task_sha256")  # the text the operator was shown: a confirmation binds to it
-            if not (isinstance(operator, str) and operator.strip() and isinstance(reason, str)
-                    and (task is None or isinstance(task, str))):
-                raise ValueError
-        except Exception:  # noqa: BLE001 - any malformed request is refused
-            return AckRequest(None, sender=sender, authenticated=self.secure,
-                              error='refused: expected {"operator": "<name>", "reason": "<text>"'
-                                    '[, "task_sha256": "<hex>"]}')
-        return AckRequest(operator[:200], reason[:2000], task[:128] if task else None,
-                          f"{sender} via {ACK_TOPIC}", authenticated=self.secure)
+        return AckRequest.from_json(getattr(msg, "data", None), sender=f"{sender} via {ACK_TOPIC}",
+                                    authenticated=self.secure)
 
     def writer_of(self, info: Any) -> str:
         """``writer <guid> of participant <guid>`` for a sample's publication, as far as it is known."""

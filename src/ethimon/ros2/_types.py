@@ -67,6 +67,11 @@ class MessageTypes:
             self.store.register(extra)
         self._classes: dict[str, type] = {}
 
+    #: ``sensor_msgs/JointState`` → ``sensor_msgs/msg/JointState`` (what a mapping's ``type:`` may say)
+    normalize = staticmethod(normalize_type)
+    #: ``sensor_msgs/msg/JointState`` → ``sensor_msgs::msg::dds_::JointState_`` (the DDS type name, also rmw_zenoh's)
+    dds_name = staticmethod(dds_type)
+
     def known(self, msgtype: str) -> bool:
         return normalize_type(msgtype) in self.store.fielddefs
 

@@ -22,4 +22,4 @@ from ._channel import ZenohChannel
 from ._keys import topic_key
 from ._node import ZenohMonitor, run_zenoh, zenoh_config
 
-__all__ = ["ZenohChannel", "ZenohMonitor", "zenoh_config"]
+__all__ = ["ZenohMonitor", "zenoh_config"]

@@ -8,7 +8,6 @@ writer on ``/ethimon/override``."""
 
 from __future__ import annotations
 
-import json
 import os
 import threading
 import time
@@ -18,7 +17,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..errors import DependencyNotInstalled, Ros2Error
-from ..io import TASK_TEXT, AckRequest, Sample, follow
+from ..io import AckRequest, Sample, TopicPlan
 from ..runtime import Fault
 from ._keys import ADMIN_SPACE, HASH_NOT_SUPPORTED, liveliness_token, pack_attachment, parse_token, topic_key, \
     unpack_attachment
@@ -49,13 +48,10 @@ def zenoh_module() -> Any:
 
 
 @dataclass
-class Topic:
-    """One read topic: its type, the (signal, parsed field path) it feeds, or the task text."""
+class Topic(TopicPlan):
+    """One read topic (:class:`ethimon.io.TopicPlan`: its type, the (signal, parsed field path) it feeds, or
+    the task text) and its zenoh subscriber's state."""
 
-    topic: str
-    msgtype: str
-    fields: list = field(default_factory=list)  # [(signal, path)]
-    task: bool = False
     sub: Any = None
     hashes: frozenset = frozenset()  # the type hashes accepted in a sample's key
     pinned: tuple = ()               # publisher GIDs (hex) accepted (the first ones seen)
@@ -141,15 +137,14 @@ class ZenohChannel:
         return self.types.store.hash_rihs01(msgtype)
 
     def _key(self, topic: str, msgtype: str, type_hash: str | None = None) -> str:
-        from ..ros2 import dds_type
-        return topic_key(self.domain_id, topic, dds_type(msgtype), self._hash(msgtype) if type_hash is None
-                         else type_hash)
+        return topic_key(self.domain_id, topic, self.types.dds_name(msgtype),
+                         self._hash(msgtype) if type_hash is None else type_hash)
 
     def _token(self, kind: str, topic: str, msgtype: str) -> None:
-        from ..ros2 import dds_type
         self._eid += 1
         self._tokens.append(self.session.liveliness().declare_token(liveliness_token(
-            self.domain_id, self.zid, 0, self._eid, kind, NODE_NAME, topic, dds_type(msgtype), self._hash(msgtype))))
+            self.domain_id, self.zid, 0, self._eid, kind, NODE_NAME, topic, self.types.dds_name(msgtype),
+            self._hash(msgtype))))
 
     def _publisher(self, topic: str, msgtype: str) -> Any:
         pub = self.session.declare_publisher(self._key(topic, msgtype))
@@ -266,25 +261,9 @@ class ZenohChannel:
             msg = self.types.store.deserialize_cdr(_bytes(smp.payload), t.msgtype)
         except Exception:  # noqa: BLE001 - a payload that is not this type's CDR: no usable value
             self.undecodable += 1
-            if not t.task:
-                for name, _ in t.fields:
-                    self._pending.append(Sample(name, float("nan"), t_log, None))
+            self._pending.extend(t.unusable(t_log))
             return
-        if t.task:
-            text = follow(msg, t.fields[0][1])
-            if isinstance(text, str):
-                self._pending.append(Sample(TASK_TEXT, text, t_log))
-            return
-        stamp = None
-        st = getattr(getattr(msg, "header", None), "stamp", None)
-        if st is not None:
-            stamp = st.sec + st.nanosec * 1e-9
-        for name, path in t.fields:
-            try:
-                v = follow(msg, path)
-            except Exception:  # noqa: BLE001 - a field this sample lacks: no usable value
-                v = float("nan")
-            self._pending.append(Sample(name, v, t_log, stamp))
+        self._pending.extend(t.samples(msg, t_log))
 
     def _graph(self) -> None:
         """Read the liveliness tokens that came and went: the publishers declared on each topic."""
@@ -329,21 +308,13 @@ class ZenohChannel:
                                                  OVERRIDE_TOPIC))
 
     def _parse_ack(self, payload: bytes, sender: str) -> AckRequest:
+        # zenoh authenticates a session (TLS, user/password), never a sample's writer: never authenticated here
+        sender = f"{sender} via {ACK_TOPIC} (zenoh)"
         try:
             text = self.types.store.deserialize_cdr(payload, "std_msgs/msg/String").data
-            req = json.loads(text)
-            operator, reason = req.get("operator"), req.get("reason", "")
-            task = req.get("task_sha256")  # the text the operator was shown: a confirmation binds to it
-            if not (isinstance(operator, str) and operator.strip() and isinstance(reason, str)
-                    and (task is None or isinstance(task, str))):
-                raise ValueError
-        except Exception:  # noqa: BLE001 - any malformed request is refused
-            return AckRequest(None, sender=sender, authenticated=False,
-                              error='refused: expected {"operator": "<name>", "reason": "<text>"'
-                                    '[, "task_sha256": "<hex>"]}')
-        # zenoh authenticates a session (TLS, user/password), never a sample's writer: never authenticated here
-        return AckRequest(operator[:200], reason[:2000], task[:128] if task else None,
-                          f"{sender} via {ACK_TOPIC} (zenoh)", authenticated=False)
+        except Exception:  # noqa: BLE001 - not a std_msgs/String: refused as any malformed request is
+            return AckRequest.refused("not a std_msgs/msg/String", sender=sender)
+        return AckRequest.from_json(text, sender=sender)
 
     def close(self) -> None:
         with self._lock:
