@@ -65,14 +65,38 @@ def test_a_bag_passes_each_room_once(tmp_path):
         <= set(rooms), w.text()
 
 
+def test_a_live_sample_comes_in_through_each_room_once():
+    """Its way in: channel → LiveMonitor.frame → the channel once (samples, clock, its own faults, the
+    frame) → the holds (put, read)."""
+    frame, w = walk_of(live_operation(whole=False), LIVE_SCOPE)
+    assert set(frame) == {"speed", "p_unsafe"} and not frame.faults, frame
+    assert not w.returns, "the walk of a live sample returns to a room it had left:\n" + w.text()
+    assert {"io/_live.py", "io/_hold.py", "io/_channel.py"} <= {s.room for s in _stays(w.top)}, w.text()
+
+
+@pytest.mark.xfail(strict=True, reason="open (issue 33): the loop calls LiveMonitor twice a cycle, its source "
+                   "(frame: read the channel, the holds) and its decision callback (write to the channel), so "
+                   "the channel comes again after the holds; one callback or a LiveMonitor-driven cycle is a "
+                   "change of loop/_governed.py")
 def test_a_live_sample_passes_each_room_once():
     d, w = walk_of(live_operation(), LIVE_SCOPE)
     assert not d.override and d.cycle == 1, d
     assert not w.returns, "the walk of a live sample returns to a room it had left:\n" + w.text()
-    assert {"io/_live.py", "io/_hold.py", "io/_channel.py"} <= {s.room for s in _stays(w.top)}, w.text()
 
 
 def _stays(s):
     for t in s.inner:
         yield t
         yield from _stays(t)
+
+
+def test_the_way_in_keeps_the_order_of_faults():
+    """Asking the channel for its faults before the holds (one visit) keeps the frame's faults in their order:
+    the holds' first, then the channel's own."""
+    from ethimon.runtime import Fault
+    op = live_operation(whole=False)
+    op()  # one sample of each signal, then 0.1 s later speed (max_age_s 0.05) is stale
+    op.clock.t += 0.1
+    op.live.channel.extra_faults = (Fault("external", "a foreign writer"),)
+    frame = op.live.frame()
+    assert [f.kind for f in frame.faults] == ["stale", "external"], frame.faults

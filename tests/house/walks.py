@@ -246,9 +246,10 @@ signals:
 """
 
 
-def live_operation() -> Callable[[], Any]:
+def live_operation(whole: bool = True) -> Callable[[], Any]:
     """A :class:`~ethimon.io.LiveMonitor` on a :class:`~ethimon.io.MemoryChannel` (a fake clock) and the
-    operation that takes one sample of each mapped signal through one cycle of its loop."""
+    operation that takes one sample of each mapped signal through one cycle of its loop (``whole=False``:
+    only their way in, the cycle's :meth:`~ethimon.io.LiveMonitor.frame`)."""
     import ethimon
     from ethimon.io import LiveMonitor, MemoryChannel, load_mapping_text
     from ethimon.loop import GovernedLoop, LoopConfig
@@ -259,15 +260,16 @@ def live_operation() -> Callable[[], Any]:
     ch = MemoryChannel(clock=clock)
     loop = GovernedLoop(ethimon.Monitor(spec), clock=clock,
                         config=LoopConfig(period_s=0.01, deadline_s=1e6, stall_s=1e6))
-    LiveMonitor(loop, mapping, ch)
+    live = LiveMonitor(loop, mapping, ch)
 
     def one_cycle() -> Any:
         ch.publish("speed", 1.0, clock.t)
         ch.publish("p_unsafe", 0.1, clock.t)
-        d = loop.cycle()
+        d = loop.cycle() if whole else live.frame()
         clock.t += 0.01
         return d
 
+    one_cycle.live, one_cycle.clock = live, clock  # type: ignore[attr-defined]
     return one_cycle
 
 
@@ -295,6 +297,8 @@ def main(argv: list[str] | None = None) -> int:
         print("walk of a bag:", w.text(), sep="\n")
     _, w = walk_of(live_operation(), LIVE_SCOPE)
     print("\nwalk of a live sample:", w.text(), sep="\n")
+    _, w = walk_of(live_operation(whole=False), LIVE_SCOPE)
+    print("\nits way in (LiveMonitor.frame):", w.text(), sep="\n")
     _, w = walk_of(live_operation(), LOOP_SCOPE)
     print("\nthe same with the loop's rooms:", w.text(), sep="\n")
     return 0
