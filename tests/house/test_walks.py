@@ -10,7 +10,8 @@ operation's own packages; a call into another package is a helper call that retu
 - a stay's **flow** is the rooms its calls enter, in order, collapsed; coming back from a call is not
   leaving (a call down into a helper that returns is one step of the caller's flow);
 - a **return** is entering again a room the walk had left for another one: a room that reappears in one
-  stay's flow after another room, or a bounce (``A → B → A``: a room entered while it is still open below).
+  stay's flow after another room, or a bounce (``A → B → A``: a room entered while it is still open below),
+  unless that call goes down a floor of ARCHITECTURE.md (a helper that returns).
 
 The walk *passes each room once* when it has no return. The two walks: (a) a bag, one small MCAP bag
 written here, through :func:`ethimon.replay.replay_paths` (one unit of :func:`ethimon.run`), following
@@ -23,9 +24,11 @@ from __future__ import annotations
 
 import pytest
 
-from tests.house.walks import BAG_SCOPE, LIVE_SCOPE, Call, bag_operation, live_operation, trace, walk, walk_of
-
-pytest.importorskip("rosbags")
+import ethimon.loop  # noqa: F401 - imported at collection: a walk times its operation, not the imports
+import tests._estimators  # noqa: F401
+from ethimon.io import MemoryChannel
+from tests.house.walks import (BAG_SCOPE, LIVE_SCOPE, Call, bag_operation, live_operation, records_operation, trace,
+                               walk, walk_of)
 
 
 def test_the_walk_counts_stays_and_returns():
@@ -40,11 +43,14 @@ def test_the_walk_counts_stays_and_returns():
     assert w.stays == 4 and len(w.returns) == 1 and "b again in the flow of a" in w.returns[0]
     w = walk(c("<entry>", c("a", c("b", c("a")))))
     assert w.stays == 3 and len(w.returns) == 1 and "a → b → a" in w.returns[0]
+    # a runner calling its unit back up is a bounce; the unit using a helper of the runner's floor is not
+    w = walk(c("<entry>", c("replay/_record.py", c("_batch.py", c("replay/_unit.py", c("_batch.py"))))))
+    assert len(w.returns) == 0, w.text()
+    w = walk(c("<entry>", c("replay/_record.py", c("_batch.py", c("replay/_record.py")))))
+    assert len(w.returns) == 1 and "replay/_record.py → _batch.py → replay/_record.py" in w.returns[0]
 
 
 def test_trace_follows_only_the_scope():
-    from ethimon.io import MemoryChannel
-
     def op():
         MemoryChannel().publish("x", 1.0, 0.0)
 
@@ -57,12 +63,23 @@ def test_trace_follows_only_the_scope():
 
 @pytest.mark.slow
 def test_a_bag_passes_each_room_once(tmp_path):
+    pytest.importorskip("rosbags")
     out, w = walk_of(bag_operation(tmp_path), BAG_SCOPE)
     assert out.passed + out.failed == 1 and not out.errors, out.results
     assert not w.returns, "the walk of a bag returns to a room it had left:\n" + w.text()
     rooms = [s.room for s in _stays(w.top)]
     assert {"replay/_replay.py", "replay/_bag.py", "replay/_columns.py", "replay/_verdicts.py", "_batch.py"} \
         <= set(rooms), w.text()
+
+
+@pytest.mark.slow
+def test_a_bag_run_as_fleet_runs_it_passes_each_room_once(tmp_path):
+    """``fleet.replay_records``' path on ``Serial``: ``replay_unit`` from the spec and mapping files."""
+    pytest.importorskip("rosbags")
+    out, w = walk_of(records_operation(tmp_path), BAG_SCOPE)
+    assert len(out) == 1 and "error" not in out[0], out
+    assert not w.returns, "the walk of a bag (fleet's way) returns to a room it had left:\n" + w.text()
+    assert "replay/_unit.py" in {s.room for s in _stays(w.top)}, w.text()
 
 
 def test_a_live_sample_comes_in_through_each_room_once():

@@ -13,7 +13,9 @@ ethimon call; module and class bodies run by an import are left out: a walk is t
 - A **return** is a room entered again after the walk had left it for another one, at one level of the
   flow: (1) a room that reappears in one stay's flow after another room (``A`` calls ``B``, then ``C``,
   then ``B`` again), or (2) a bounce: a call entering a room that is still open below it
-  (``A → B → A``: ``B`` calls back into the room that called it).
+  (``A → B → A``: ``B`` calls back into the room that called it), unless that call goes down a floor
+  (``ARCHITECTURE.md``'s floors: a unit of ``replay`` run by ``_batch`` may use ``_batch.plain``, a helper
+  that returns; ``_batch`` calling back up into the replay room that called it is a bounce).
 
 A walk *passes each room once* when it makes no return. ``python -m tests.house.walks`` prints both walks
 of ``tests/house/test_walks.py`` (a bag through the batch runner into replay, one live sample through a
@@ -30,8 +32,6 @@ from inspect import CO_NEWLOCALS
 from pathlib import Path
 from typing import Any
 
-ROOT = Path(__file__).resolve().parents[2]
-SRC = ROOT / "src" / "ethimon"
 
 
 @dataclass
@@ -46,7 +46,8 @@ class Call:
 def trace(fn: Callable[[], Any], scope: tuple[str, ...] = ("",)) -> tuple[Any, Call]:
     """Run ``fn()`` and return its result and the tree of its calls in the rooms of ``scope`` (paths under
     ``src/ethimon`` a room's path starts with; others are looked through), under a root named ``<entry>``."""
-    src = os.fspath(SRC) + os.sep
+    import ethimon
+    src = os.fspath(Path(ethimon.__file__).parent) + os.sep  # the ethimon imported (PYTHONPATH), not only this tree's
     root = Call("<entry>", "<entry>")
     stack: list[tuple[Any, Call]] = [(None, root)]
     rooms: dict[str, str | None] = {}
@@ -150,6 +151,19 @@ class Walk:
         return "\n".join(self.lines())
 
 
+def package_of(room: str) -> str:
+    """``replay/_unit.py`` → ``replay``; ``_batch.py`` → ``_batch``."""
+    return room.split("/", 1)[0] if "/" in room else room.removesuffix(".py")
+
+
+def calls_down(caller: str, callee: str) -> bool:
+    """Whether a call from room ``caller`` into room ``callee`` goes down a floor (ARCHITECTURE.md: the
+    callee's package is one the caller's may import): a helper that returns, never a bounce."""
+    from tests.house.test_import_direction import ALLOWED
+    a, b = package_of(caller), package_of(callee)
+    return a != b and b in ALLOWED.get(a, set())
+
+
 def walk(root: Call) -> Walk:
     """The walk of a traced tree (:func:`trace`): the stays and returns of its entry's flow."""
     top = Stay(root.room, root.name, 1, stays_of(root))
@@ -165,7 +179,7 @@ def walk(root: Call) -> Walk:
                 returns.append(f"{t.room} again in the flow of {s.room} ({s.name}), after "
                                f"{', '.join(seen[seen.index(t.room) + 1:])}")
             seen.append(t.room)
-            if t.room in open_:
+            if t.room in open_ and not calls_down(s.room, t.room):
                 returns.append(f"{t.room} ({t.name}) entered from {s.room} ({s.name}) while it is open below: "
                                + " → ".join((*open_[open_.index(t.room):], s.room, t.room)))
             visit(t, (*open_, s.room))
@@ -224,6 +238,36 @@ def bag_operation(folder: Path) -> Callable[[], Any]:
     bag = write_bag(folder / "bag", "mcap", msgs)
     spec, mapping = load_spec(spec_path), load_mapping(map_path)
     return lambda: replay_paths([bag], spec, mapping, score=_score)
+
+
+RECORDS_MAPPING = """
+ethimon: 1
+rate_hz: 50
+max_age_s: 0.08
+samples: latest
+signals:
+  joint_speed_max: {topic: /joint_states, field: velocity, reduce: max_abs}
+  human_distance:  {topic: /human/distance_cm, field: data, scale: 0.01, max_age_s: 0.15}
+  ee_speed:        {topic: /ee/twist, field: twist.linear, reduce: norm}
+  p_unsafe:        {topic: /p, field: data, max_age_s: 0.5}
+"""
+
+
+def records_operation(folder: Path) -> Callable[[], Any]:
+    """The bag of :func:`bag_operation`, its risk from a ``p_unsafe`` topic (no model to load), and the
+    operation ``fleet.replay_records`` runs, on :class:`ethimon.Serial` instead of Ray: each bag a
+    ``replay_unit`` of :func:`ethimon.run`, from the spec and mapping files."""
+    from ethimon import Serial
+    from ethimon.replay._record import replay_records
+    from tests.replay.test_replay import make_messages, write_bag
+
+    spec_path, map_path = folder / "spec.yaml", folder / "mapping.yaml"
+    spec_path.write_text(BAG_SPEC, encoding="utf-8")
+    map_path.write_text(RECORDS_MAPPING, encoding="utf-8")
+    msgs = [m for m in make_messages(n_js=40) if m[0] < 1_001 * 10**9 and m[1] != "/task"]
+    msgs += [(1_000 * 10**9 + k * 100_000_000, "/p", "f64", 0.1) for k in range(10)]
+    bag = write_bag(folder / "bag", "mcap", sorted(msgs, key=lambda m: m[0]))
+    return lambda: replay_records([bag], spec=str(spec_path), mapping=str(map_path), executor=Serial())
 
 
 LIVE_SPEC = """
@@ -295,6 +339,9 @@ def main(argv: list[str] | None = None) -> int:
     with tempfile.TemporaryDirectory() as tmp:
         _, w = walk_of(bag_operation(Path(tmp)), BAG_SCOPE)
         print("walk of a bag:", w.text(), sep="\n")
+        (Path(tmp) / "fleet").mkdir()
+        _, w = walk_of(records_operation(Path(tmp) / "fleet"), BAG_SCOPE)
+        print("\nwalk of a bag as fleet runs it (replay_records, on Serial):", w.text(), sep="\n")
     _, w = walk_of(live_operation(), LIVE_SCOPE)
     print("\nwalk of a live sample:", w.text(), sep="\n")
     _, w = walk_of(live_operation(whole=False), LIVE_SCOPE)
