@@ -141,6 +141,11 @@ class LiveMonitor:
         rec = self.recording
         now = ch.now("log")
         wall = ch.now("header") if self._header else None
+        try:  # the channel's own faults (listed after the holds'), asked now: one visit to the channel a cycle
+            own = tuple(ch.faults())
+        except Exception as exc:  # noqa: BLE001
+            own = (Fault("signals", f"the channel cannot say what it found: {type(exc).__name__}: {exc}"[:300]),)
+        frame = Frame()
         for s in samples:
             if rec is not None:
                 rec.samples.append(s)
@@ -161,7 +166,6 @@ class LiveMonitor:
                 h.put(s.value, s.t_log, h.sm.topic)
         if rec is not None:
             rec.cycles.append((now, wall))
-        frame = Frame()
         for name, h in self.holds.items():
             at = wall if h.sm.time == "header" else now
             v = h.read(at, faults)
@@ -170,10 +174,7 @@ class LiveMonitor:
             frame[name] = v
             if h is self._risk_hold and self.loop.monitor.max_age_s is not None:
                 frame["risk_age_s"] = h.age(at)
-        try:
-            faults.extend(ch.faults())
-        except Exception as exc:  # noqa: BLE001
-            faults.append(Fault("signals", f"the channel cannot say what it found: {type(exc).__name__}: {exc}"[:300]))
+        faults.extend(own)
         frame.faults = tuple(faults)
         return frame
 

@@ -19,9 +19,9 @@ from typing import Any
 
 from .._files import file_kind
 from ..errors import BagError, DependencyNotInstalled
-from ._collect import Series, _Collector
+from ._collect import Series, _Collector, task_text
 from ..io import Mapping
-from ._values import _did_you_mean, _get
+from ._values import _did_you_mean
 
 __all__ = ["MAX_MESSAGES", "BagData", "BagError", "read_bag"]
 
@@ -242,12 +242,7 @@ def _read(reader: Any, spath: str, p: Path, ros1: bool, mapping: Mapping,
             topic = conn.topic
             types[topic] = msgtype
             if topic == task_topic:
-                text = _get(msg, task_path, topic, msgtype, task.field, spath, "task")
-                if not isinstance(text, str):
-                    raise BagError(f"task topic {topic} ({msgtype}): field {task.field!r} is "
-                                   f"{type(text).__name__}, not text", spath,
-                                   hint="the task topic carries std_msgs/String (field 'data')")
-                texts.append((int(t_log), text))  # never cut (issue 31 item 4)
+                texts.append((int(t_log), task_text(msg, task_path, topic, msgtype, task.field, spath)))
             for c in by_topic.get(topic, ()):
                 c.add(msg, t_log, topic, msgtype)
     if on_progress is not None:

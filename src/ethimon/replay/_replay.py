@@ -35,27 +35,6 @@ def _start_cycle(rs: Resampled, data: BagData) -> int:
     return int(np.argmax(seen)) if seen.any() else 0
 
 
-def _join(a: CycleResults, b: CycleResults, s: int) -> CycleResults:
-    """Cycles ``[0, s)`` of ``a`` then ``b`` (checked by a fresh monitor from cycle ``s``)."""
-    faults = dict(a.faults)
-    faults.update({k + s: v for k, v in b.faults.items()})
-    fa, fb = a.faults_at, b.faults_at
-
-    def faults_at(k: int) -> tuple:
-        return fa(k) if k < s else fb(k - s)
-
-    ha, hb = a.holding_at, b.holding_at
-
-    def holding_at(k: int) -> tuple:
-        return ha(k) if k < s else hb(k - s)
-
-    cat = np.concatenate
-    return CycleResults(a.ids, cat([a.override, b.override]), cat([a.severity, b.severity]),
-                        cat([a.violated, b.violated]), cat([a.margins, b.margins]), cat([a.risk, b.risk]),
-                        cat([a.fault, b.fault]), cat([a.latched, b.latched]), faults, b.engine, faults_at,
-                        None, holding_at)
-
-
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
@@ -198,7 +177,7 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
                              engine=engine)
         tail = check_columns(spec, {k: v[s0:] for k, v in rs.columns.items()}, n - s0, risk_key=rs.risk_key,
                              engine=engine)
-        tr = _join(head, tail, s0)
+        tr = head.followed_by(tail, s0)
     else:
         tr = check_columns(spec, rs.columns, n, risk_key=rs.risk_key, engine=engine)
     grid = rs.grid
@@ -209,6 +188,12 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
             return None, None, None
         return k, int(grid[k]), round((int(grid[k]) - t0) / 1e9, 9)
 
+    # what the cycles say (their verdicts, then why they failed closed) before the results are written
+    _task_outcomes(rs, tr, grid, spec)
+    runs, n_runs = _override_runs(tr, grid, float(mapping.rate_hz), spec, s0)
+    nf = int(tr.fault.sum())
+    first_f = int(np.argmax(tr.fault)) if nf else None
+    why_fault = "; ".join(_why_fault(rs, tr, data, mapping, spec)) if first_f is not None else ""
     checks: list[CheckResult] = []
     ob_resp = {ob.id: str(ob.response) for ob in spec.obligations}
     can = _evaluable(rs, spec)
@@ -250,10 +235,7 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
         if not cnt and not evaluated:
             status, detail = "NOT EVALUATED", "no cycle had the inputs to evaluate it (every cycle failed closed)"
         checks.append(CheckResult(oid, kind, resp, cnt, *at(first), worst, detail, status))
-    nf = int(tr.fault.sum())
-    first_f = int(np.argmax(tr.fault)) if nf else None
-    detail = "; ".join(_why_fault(rs, tr, data, mapping, spec)) if first_f is not None else ""
-    checks.append(CheckResult("inputs", "faults", str(spec.on_fault), nf, *at(first_f), None, detail))
+    checks.append(CheckResult("inputs", "faults", str(spec.on_fault), nf, *at(first_f), None, why_fault))
     signals: dict[str, dict[str, Any]] = {}
     for name, s in data.series.items():
         code = rs.codes[name]
@@ -273,8 +255,6 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
         tp["judged"] = min(tp["judged"], sg["judged"])
         tp["signals"].append(name)
     n_over = int(tr.override.sum())
-    _task_outcomes(rs, tr, grid, spec)
-    runs, n_runs = _override_runs(tr, grid, float(mapping.rate_hz), spec, s0)
     res = BagReplay(data.path, data.storage, float(mapping.rate_hz), n, t0, int(grid[-1]), checks, n_over,
                     int(np.argmax(tr.override)) if n_over else None, signals, rs.tasks, tr.engine,
                     runs, rs.warnings,

@@ -77,6 +77,27 @@ class CycleResults:
         keys = [c for c in self.faults if c <= k]
         return self.faults[max(keys)] if keys else ()
 
+    def followed_by(self, b: CycleResults, s: int) -> CycleResults:
+        """Cycles ``[0, s)`` of these results then ``b`` (checked by a fresh monitor from cycle ``s``)."""
+        a = self
+        faults = dict(a.faults)
+        faults.update({k + s: v for k, v in b.faults.items()})
+        fa, fb = a.faults_at, b.faults_at
+
+        def faults_at(k: int) -> tuple:
+            return fa(k) if k < s else fb(k - s)
+
+        ha, hb = a.holding_at, b.holding_at
+
+        def holding_at(k: int) -> tuple:
+            return ha(k) if k < s else hb(k - s)
+
+        cat = np.concatenate
+        return CycleResults(a.ids, cat([a.override, b.override]), cat([a.severity, b.severity]),
+                            cat([a.violated, b.violated]), cat([a.margins, b.margins]), cat([a.risk, b.risk]),
+                            cat([a.fault, b.fault]), cat([a.latched, b.latched]), faults, b.engine, faults_at,
+                            None, holding_at)
+
 
 def check_columns(spec: Spec, columns: dict[str, np.ndarray], n: int, *,
                   risk_key: str = "p", engine: str = "auto") -> CycleResults:
