@@ -17,7 +17,6 @@ def _tree(tmp_path, monkeypatch, form_rows: str):
                                      f"w{i:02d}-0001,cut it,1,p{i}\nw{i:02d}-0002,do not cut it,0,p{i}\n")
     rt = tmp_path / "robot_train"
     rt.mkdir()
-    # a0001/a0002 share pair "pa"; find which crc bucket each key lands in
     (rt / "part_a.csv").write_text("id,text,label,pair\n" + "".join(
         f"r{k:03d},text {k},{k % 2},\n" for k in range(40)))
     f = tmp_path / "forms" / "fx"
