@@ -172,3 +172,65 @@ def writer_test(w: str) -> LabelledRows:
     if got != want:
         raise SystemExit(f"{p}: sha256 {got} does not match the frozen {want}")
     return load_labelled_csv(p)
+
+
+# ---------------------------------------------------------------- forms (issue 30 item 1)
+FORMS = ROOT / "data" / "forms"
+#: the only sources a form row may rewrite: the shipped model's training writers and the robot corpus
+FORM_SOURCES = tuple(f"w{i:02d}" for i in range(1, 13)) + ("robot_train",)
+
+
+def _form_source_rows() -> dict[tuple[str, str], tuple[int, bool]]:
+    """``(source_writer, id) -> (label, in the corpus validation split)`` for every allowed source row."""
+    out: dict[tuple[str, str], tuple[int, bool]] = {}
+    for w in FORM_SOURCES[:-1]:
+        rows = load_labelled_csv(WRITERS / w / "train.csv")
+        for e, y in zip(rows.extra, rows.labels):
+            out[(w, e["id"])] = (int(y), False)
+    robot = concat_rows([load_labelled_csv(p) for p in sorted(ROBOT_TRAIN.glob("part_*.csv"))])
+    for e, y in zip(robot.extra, robot.labels):
+        key = (e.get("pair") or "").strip() or e["id"]
+        out[("robot_train", e["id"])] = (int(y), _crc(key) % 10 == 0)  # natural_train_splits' rule
+    return out
+
+
+def forms_train(ids: list[str], *, drop_corpus_val: bool = True) -> LabelledRows:
+    """The rows of ``data/forms/<id>/train.csv`` for training, checked against their sources.
+
+    Every row's ``source_writer`` must be one of :data:`FORM_SOURCES` (w01–w12, robot_train) and its
+    ``source_id`` a row of that source's *training* file with the same label (unless ``relabelled``):
+    a rewrite of a w13–w22 row, of any test.csv row or of an unknown row stops the run (SystemExit with
+    the file and row). With ``drop_corpus_val`` the rewrites of robot_train rows in the corpus
+    validation split (:func:`natural_train_splits`) are left out, so early stopping and the temperature
+    see no rewrite of their own rows. Pair ids become ``<id>:<pair>`` (unique across form sets).
+    """
+    src = _form_source_rows()
+    parts = []
+    for fid in ids:
+        path = FORMS / fid / "train.csv"
+        if not path.is_file():
+            raise SystemExit(f"{path}: no such forms set (have: "
+                             f"{', '.join(sorted(d.name for d in FORMS.glob('*') if (d / 'train.csv').is_file()))})")
+        rows = load_labelled_csv(path)
+        if rows.dropped:
+            raise SystemExit(f"{path}: {rows.dropped} rows without a usable label or text")
+        keep = []
+        for i, (e, y) in enumerate(zip(rows.extra, rows.labels)):
+            sw, sid = (e.get("source_writer") or "").strip(), (e.get("source_id") or "").strip()
+            where = f"{path}: row {e.get('id') or i}"
+            if sw not in FORM_SOURCES:
+                raise SystemExit(f"{where}: source_writer {sw!r} is not a training source "
+                                 f"(allowed: {', '.join(FORM_SOURCES)}); w13–w22 and test slices are never trained on")
+            s = src.get((sw, sid))
+            if s is None:
+                raise SystemExit(f"{where}: source_id {sid!r} is not a row of {sw}'s training file")
+            if s[0] != int(y) and str(e.get("relabelled", "0")).strip() not in ("1", "true", "True"):
+                raise SystemExit(f"{where}: label {y} differs from its source {sw}/{sid} ({s[0]}) "
+                                 f"and the row is not marked relabelled")
+            if drop_corpus_val and s[1]:
+                continue
+            pid = (e.get("pair") or "").strip()
+            e["pair"] = f"{fid}:{pid}" if pid else ""
+            keep.append(i)
+        parts.append(rows.subset(keep))
+    return concat_rows(parts)

@@ -2,6 +2,9 @@
 
     python -m bench.risk.risk_train --out runs/main [--ethics-only] [--epochs 4]
     python -m bench.risk.risk_train --out runs/mt --aux justice,deontology,virtue --aux-n 2000
+    python -m bench.risk.risk_train --out runs/forms_s42 --natural --ethics-n 1000 --writers w01,...,w12 \
+        --forms f01,f02 --full --init-from src/ethimon/risk/default_model --epochs 1 --max-steps S --lr 3e-5 \
+        --max-length 256 --pair-weight 1.0 --seed 42      (issue 30: DECISIONS.md, 21:12 UTC entry)
 
 Prints the per-epoch table and writes bench/results/risk/risk_train_<tag>.json.
 """
@@ -53,6 +56,9 @@ def main() -> None:
                     "rows are added to training (their test.csv never)")
     ap.add_argument("--val-writers", default="", help="comma list of writers NOT trained on whose train.csv rows "
                     "are the validation rows (early stopping, temperature) instead of the corpus split")
+    ap.add_argument("--forms", default="", help="comma list of data/forms sets (f01,f02) whose rows (sources "
+                    "w01-w12 and robot_train only, checked; rewrites of corpus-validation rows left out) are added "
+                    "to training, their minimal pairs to the pair loss")
     a = ap.parse_args()
     import torch
     torch.set_num_threads(2)
@@ -87,6 +93,12 @@ def main() -> None:
         wr = D.writers_train(wids)
         pairs += D.pair_index(wr, offset=sum(len(p) for p in parts_tr))
         parts_tr.append(wr); w += [a.natural_weight] * len(wr)
+    fids = [f.strip() for f in a.forms.split(",") if f.strip()]
+    if fids:
+        fr = D.forms_train(fids)
+        pairs += D.pair_index(fr, offset=sum(len(p) for p in parts_tr))
+        parts_tr.append(fr); w += [a.natural_weight] * len(fr)
+        print(f"forms {fids}: {len(fr)} rows", flush=True)
     if vids:
         parts_va = [D.writers_train(vids)]
     tr, va = D.concat(*parts_tr), D.concat(*parts_va)
@@ -109,7 +121,7 @@ def main() -> None:
                    base_ref={"package": B.BASE_PACKAGE}, train_weights=w, name="ethimon-minilm-l6-lora",
                    num_threads=2, progress=False,
                    log=lambda m: print(m, flush=True), aux_tasks=aux, init_from=a.init_from, pairs=pairs,
-                   extra_meta={"writers": wids, "val_writers": vids, "ethics_only": a.ethics_only, "robot_only": a.robot_only,
+                   extra_meta={"writers": wids, "forms": fids, "val_writers": vids, "ethics_only": a.ethics_only, "robot_only": a.robot_only,
                                "robot_weight": a.robot_weight, "aux": a.aux, "aux_n": a.aux_n,
                                "natural": a.natural, "natural_weight": a.natural_weight, "ethics_n": a.ethics_n,
                                "no_templated": a.no_templated})
