@@ -88,7 +88,10 @@ class GovernedLoop:
             factory's JSON arguments and environment) builds one around an estimator in a
             **child process** (the recommended form: an estimator in a child cannot freeze the loop
             by holding the GIL); its task text starts as ``None`` (fail closed) until
-            ``loop.risk.set_text(...)``. Without it, the signals must carry the risk input themselves.
+            ``loop.risk.set_text(...)``. Any estimator :func:`ethimon.risk.as_estimator` takes (an object
+            with ``probs(text)``, a ``text -> p`` callable, a model directory as a ``Path``) is wrapped in an
+            :class:`AsyncRiskSource` (a thread; task text ``None`` until set). Without ``risk``, the
+            signals must carry the risk input themselves.
         audit: an :class:`~ethimon.audit.AuditLog`; state changes are always logged.
             Every cycle overrides while the log is unusable (its ``fault``: closed,
             writer failed or dead, writer behind its lag bounds) or refused a record.
@@ -134,7 +137,7 @@ class GovernedLoop:
     """
 
     def __init__(self, monitor: Monitor | Spec, *, signals: Callable[[], Mapping[str, Any]] | None = None,
-                 risk: AsyncRiskSource | ProcessEstimator | str | None = None, audit: Any = None,
+                 risk: AsyncRiskSource | ProcessEstimator | str | Any = None, audit: Any = None,
                  config: LoopConfig = _DEFAULT, judge: Any = "spec",
                  on_stall: Callable[[str], None] | None = None,
                  on_decision: Callable[[Decision], None] | None = None, foxglove: Any = None,
