@@ -34,9 +34,11 @@ def risk_config(spec_path: str | None) -> dict:
         raise SpecError("spec file does not exist", path=spec_path)
     from .. import load_spec
     spec = load_spec(spec_path)
-    r = spec.risk
+    from ..compiler import plan_of
+    plan = plan_of(spec)
+    r = plan.risk_plan
     return {"alpha": r.alpha, "beta": r.beta, "gamma": r.gamma, "variance": r.variance,
-            "threshold": r.threshold, "confirm_threshold": r.confirm_threshold, "spec": spec}
+            "threshold": r.threshold, "confirm_threshold": plan.tiers.confirm_threshold, "spec": spec}
 
 
 def add_risk_parsers(subparsers) -> None:
@@ -304,15 +306,15 @@ def _judge_and_outcome(spec, text: str, risk: float, tau: float, no_judge: bool)
         None, "not_configured", 0.0, None, None, "", text_sha256(text),
         "--no-judge" if no_judge and spec is not None and spec.risk.judge_list else "the spec sets no risk.judge")
     if spec is not None:
-        tc = spec.risk.confirm_threshold
+        from ..compiler import plan_of
+        tiers = plan_of(spec).tiers
+        tc, cuts, ceiling = tiers.confirm_threshold, tiers.judge_cuts, tiers.hold_ceiling  # judges: their consensus
     else:  # the shipped governor's band
         from ..risk._estimator import DEFAULT_TAU_CONFIRM
-        tc = DEFAULT_TAU_CONFIRM
-    cuts = spec.risk.judge_cuts() if spec is not None else None  # risk.judge or risk.judges (consensus)
-    hold = spec.risk.judge_may_hold_above_tau if spec is not None else None
+        tc, cuts, ceiling = DEFAULT_TAU_CONFIRM, None, None
     outcome = tier_outcome(risk, jr.p_unsafe, threshold=tau, confirm_threshold=tc,
                            safe_below=cuts[0] if cuts else 0.2, unsafe_from=cuts[1] if cuts else 0.8,
-                           judge=judge is not None, hold_ceiling=hold.ceiling if hold is not None else None)
+                           judge=judge is not None, hold_ceiling=ceiling)
     return jr, {"outcome": outcome, "confirm_threshold": tc}
 
 

@@ -207,13 +207,13 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
         detail, status = "", ""
         if oid in no_re and oid != "risk":
             kind = "obligation" if oid in ob_resp else "tier"
-            resp = ob_resp.get(oid) or (str(spec.risk.response) if oid == "judge" else "stop_2")
+            resp = ob_resp.get(oid) or (str(plan_of(spec).risk_plan.latch.response) if oid == "judge" else "stop_2")
             checks.append(CheckResult(oid, kind, resp, 0, None, None, None, None,
                                       "reads R_e, which 'risk: none' in the mapping does not give (the bag has "
                                       "no task text): not checked", "NOT CHECKED"))
             continue
         if oid == "risk":
-            kind, resp = "risk", str(spec.risk.response)
+            kind, resp = "risk", str(plan_of(spec).risk_plan.latch.response)
             if p is None and not mapping.risk_checked:
                 checks.append(CheckResult(oid, kind, resp, 0, None, None, None, None,
                                           "risk: none in the mapping (the bag has no task text): R_e was not "
@@ -223,7 +223,7 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
             evaluated = bool((~np.isnan(tr.risk)).any())
         elif oid in ("judge", "confirm") and oid not in ob_resp:  # the tier rules (no margin)
             worst, blind = None, 0
-            kind, resp = "tier", str(spec.risk.response) if oid == "judge" else "stop_2"
+            kind, resp = "tier", str(plan_of(spec).risk_plan.latch.response) if oid == "judge" else "stop_2"
             evaluated = bool((~np.isnan(tr.risk)).any())
         else:
             kind, resp = "obligation", ob_resp[oid]

@@ -163,9 +163,10 @@ def _offline(check_trace: Any, spec: Spec, columns: dict[str, np.ndarray], n: in
 
 def _tier_ids(spec: Spec) -> tuple[str, ...]:
     """The tier rules a spec has, as extra result columns (after ``"risk"``)."""
-    r = spec.risk
-    held = r.confirm_threshold is not None or (r.judge_may_hold_above_tau is not None and bool(r.judge_list))
-    return (("judge",) if r.judge_list else ()) + (("confirm",) if held else ())
+    from ..compiler import plan_of
+    t = plan_of(spec).tiers   # hold_ceiling is set only with a judge
+    held = t.confirm_threshold is not None or t.hold_ceiling is not None
+    return (("judge",) if t.judge_cuts is not None else ()) + (("confirm",) if held else ())
 
 
 def _step(spec: Spec, columns: dict[str, np.ndarray], n: int, risk_key: str) -> CycleResults:

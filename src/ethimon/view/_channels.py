@@ -80,9 +80,10 @@ class VerdictChannels:
     def of_spec(cls, spec: Any, ids: Sequence[str], inputs: Iterable[str] | None = None,
                 checked: bool = True) -> VerdictChannels:
         """The channels of ``spec`` (a :class:`~ethimon.language.Spec`); ``inputs``: its signals by default."""
-        risk = spec.risk
-        return cls(ids, spec.signals if inputs is None else inputs, risk.threshold,
-                   getattr(risk, "confirm_threshold", None), checked)
+        from ..compiler import plan_of
+        plan = plan_of(spec)
+        return cls(ids, spec.signals if inputs is None else inputs, plan.risk_plan.threshold,
+                   plan.tiers.confirm_threshold, checked)
 
     def schemas(self) -> list[tuple[str, str, bytes]]:
         """``(topic, schema name, JSON Schema)`` of every channel, the inputs last."""
