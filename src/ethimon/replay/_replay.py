@@ -136,6 +136,8 @@ def _task_outcomes(rs: Any, tr: CycleResults, grid: np.ndarray, spec: Spec) -> N
         return
     t0 = int(grid[0])
     col = {oid: j for j, oid in enumerate(tr.ids)}
+    plan = plan_of(spec)
+    tau, tau_confirm = plan.risk_plan.threshold, plan.tiers.confirm_threshold
     for j, task in enumerate(rs.tasks):
         hit = np.flatnonzero(rows == j)
         if not hit.size:
@@ -147,12 +149,12 @@ def _task_outcomes(rs: Any, tr: CycleResults, grid: np.ndarray, spec: Spec) -> N
         if r is None:
             outcome = "no estimate: fails closed (" + (task.get("error") or "no usable probabilities") + ")"
         elif v[col["risk"]]:
-            outcome = f"stopped: R_e ≥ τ = {plan_of(spec).risk_plan.threshold:g}"
+            outcome = f"stopped: R_e ≥ τ = {tau:g}"
         elif "judge" in col and v[col["judge"]]:
             outcome = "stopped by the judge's unsafe verdict"
         elif "confirm" in col and v[col["confirm"]]:
-            outcome = (f"held for a person's confirmation: τ_confirm = {plan_of(spec).tiers.confirm_threshold:g} ≤ R_e "
-                       f"< τ = {plan_of(spec).risk_plan.threshold:g}")
+            outcome = (f"held for a person's confirmation: τ_confirm = {tau_confirm:g} ≤ R_e "
+                       f"< τ = {tau:g}")
         else:
             held = ", ".join(tr.holding_at(k)) if tr.override[k] else ""
             outcome = ("executes (below the risk tiers)" if not held else
@@ -196,6 +198,8 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
     why_fault = "; ".join(_why_fault(rs, tr, data, mapping, spec)) if first_f is not None else ""
     checks: list[CheckResult] = []
     ob_resp = {ob.id: str(ob.response) for ob in spec.obligations}
+    rp = plan_of(spec).risk_plan
+    risk_resp = str(rp.latch.response)  # the risk rule's response, which the judge's verdict also gives
     can = _evaluable(rs, spec)
     # 'risk: none' holds R_e at 0: a rule that reads R_e (an obligation naming it, the tier rules)
     # would be judged on that stand-in, so it is NOT CHECKED, never PASS (or FAIL)
@@ -207,23 +211,23 @@ def replay_data(data: BagData, spec: Spec, mapping: Mapping, *, score: Scorer | 
         detail, status = "", ""
         if oid in no_re and oid != "risk":
             kind = "obligation" if oid in ob_resp else "tier"
-            resp = ob_resp.get(oid) or (str(plan_of(spec).risk_plan.latch.response) if oid == "judge" else "stop_2")
+            resp = ob_resp.get(oid) or (risk_resp if oid == "judge" else "stop_2")
             checks.append(CheckResult(oid, kind, resp, 0, None, None, None, None,
                                       "reads R_e, which 'risk: none' in the mapping does not give (the bag has "
                                       "no task text): not checked", "NOT CHECKED"))
             continue
         if oid == "risk":
-            kind, resp = "risk", str(plan_of(spec).risk_plan.latch.response)
+            kind, resp = "risk", risk_resp
             if p is None and not mapping.risk_checked:
                 checks.append(CheckResult(oid, kind, resp, 0, None, None, None, None,
                                           "risk: none in the mapping (the bag has no task text): R_e was not "
                                           "computed, the risk rule not checked", "NOT CHECKED"))
                 continue
-            worst, blind = _worst(plan_of(spec).risk_plan.threshold - tr.risk, col)
+            worst, blind = _worst(rp.threshold - tr.risk, col)
             evaluated = bool((~np.isnan(tr.risk)).any())
         elif oid in ("judge", "confirm") and oid not in ob_resp:  # the tier rules (no margin)
             worst, blind = None, 0
-            kind, resp = "tier", str(plan_of(spec).risk_plan.latch.response) if oid == "judge" else "stop_2"
+            kind, resp = "tier", risk_resp if oid == "judge" else "stop_2"
             evaluated = bool((~np.isnan(tr.risk)).any())
         else:
             kind, resp = "obligation", ob_resp[oid]

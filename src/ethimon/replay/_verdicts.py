@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from ..compiler import plan_of
 from ..runtime import Monitor
 from ..language import Spec
 
@@ -163,7 +164,6 @@ def _offline(check_trace: Any, spec: Spec, columns: dict[str, np.ndarray], n: in
 
 def _tier_ids(spec: Spec) -> tuple[str, ...]:
     """The tier rules a spec has, as extra result columns (after ``"risk"``)."""
-    from ..compiler import plan_of
     t = plan_of(spec).tiers   # hold_ceiling is set only with a judge
     held = t.confirm_threshold is not None or t.hold_ceiling is not None
     return (("judge",) if t.judge_cuts is not None else ()) + (("confirm",) if held else ())
