@@ -34,7 +34,7 @@ PUBLIC: dict[str, list[str]] = {
     "ethimon.loop": ["AckGate", "AsyncJudgeSource", "AsyncRiskSource", "GovernedLoop", "LoopConfig", "LoopStats", "ProcessEstimator", "Reloader", "ReloadResult"],
     "ethimon.offline": ["OfflineResult", "check_trace", "iter_rows"],
     "ethimon.io": ["AckRequest", "ByName", "Channel", "Frame", "Hold", "LiveMonitor", "LiveNode", "Mapping",
-                   "MemoryChannel", "Sample", "SignalMap", "TopicPlan", "hold", "judged", "load_mapping",
+                   "MemoryChannel", "Outlet", "Sample", "SignalMap", "TopicPlan", "hold", "judged", "load_mapping",
                    "load_mapping_text"],
     "ethimon.replay": ["BagReplay", "CheckResult", "Mapping", "ReplayReport", "check_columns", "list_topics",
                        "load_mapping", "replay_bag", "replay_paths", "write_mcap"],

@@ -520,3 +520,29 @@ def test_publication_handles_compare_unsigned():
     got = ch.take()
     assert sub.messages == 1 and [(s.signal, s.value) for s in got] == [("v", 1.5)]
     assert ch.faults() == ()
+
+
+def test_the_dds_outlet_writes_the_three_topics_and_nothing_once_closed():
+    """``DdsChannel.out``: the node's three writers as an ``io.Outlet``; the channel closes it before its
+    participant leaves, so a watchdog's late override is not written into a deleted writer."""
+    from ethimon.io import Outlet
+    from ethimon.ros2._channel import DdsOutlet
+
+    class W:
+        def __init__(self):
+            self.got = []
+
+        def write(self, msg):
+            self.got.append(msg)
+
+    wo, wd, wa = W(), W(), W()
+    out = DdsOutlet(wo, wd, wa, lambda data: ("Bool", data), lambda data: ("String", data))
+    assert isinstance(out, Outlet)
+    out.write_override(1)
+    out.write_decision('{"cycle": 0}')
+    out.write_ack_result('{"released": false}')
+    assert (wo.got, wd.got, wa.got) == ([("Bool", True)], [("String", '{"cycle": 0}')],
+                                        [("String", '{"released": false}')])
+    out.closed = True
+    out.write_override(True)
+    assert wo.got == [("Bool", True)]

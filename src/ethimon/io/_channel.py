@@ -1,7 +1,7 @@
-"""What a transport must provide to run the monitor live (:class:`Channel`), the values it carries
-(:class:`Sample`, :class:`AckRequest`), one cycle's inputs (:class:`Frame`) and an in-memory channel
-(:class:`MemoryChannel`) that drives :class:`~ethimon.io.LiveMonitor` without any middleware (tests,
-simulators, a recording played back)."""
+"""What a transport must provide to run the monitor live (:class:`Channel`: what comes in, and its
+:class:`~ethimon.io.Outlet` for what goes out), the values it carries (:class:`Sample`, :class:`AckRequest`),
+one cycle's inputs (:class:`Frame`) and an in-memory channel (:class:`MemoryChannel`) that drives
+:class:`~ethimon.io.LiveMonitor` without any middleware (tests, simulators, a recording played back)."""
 
 from __future__ import annotations
 
@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol, runtime_checkable
 
 from ..runtime import Fault
+from ._outlet import MemoryOutlet, Outlet
 
 __all__ = ["TASK_TEXT", "AckRequest", "Channel", "Frame", "MemoryChannel", "Sample"]
 
@@ -121,9 +122,13 @@ def _kind(v: Any) -> str:
 
 @runtime_checkable
 class Channel(Protocol):
-    """A transport under :class:`~ethimon.io.LiveMonitor`. Every method is called from the loop thread
-    (once per cycle, in this order: :meth:`take`, :meth:`faults`, then the writers and :meth:`acks`);
-    none may block or raise (a failure is a fault in :meth:`faults`)."""
+    """A transport under :class:`~ethimon.io.LiveMonitor`: what comes in, read once at the start of each
+    cycle by the loop thread (:meth:`take`, :meth:`now`, :meth:`faults`, :meth:`acks`, in that order), and
+    ``out``, the :class:`~ethimon.io.Outlet` the cycle's decision and the answers to acknowledgements are
+    written to after the decision. None may block or raise (a failure is a fault in :meth:`faults`)."""
+
+    #: where the monitor's answers go (override, decision, acknowledgement results)
+    out: Outlet
 
     def now(self, clock: str) -> float:
         """The time on ``"log"`` (the receive times' clock) or ``"header"`` (Unix seconds) now."""
@@ -136,33 +141,38 @@ class Channel(Protocol):
         """What the transport finds wrong now: a foreign writer on a read topic or on the override topic."""
 
     def acks(self) -> Iterable[AckRequest]:
-        """Acknowledgement requests that arrived since the last call."""
-
-    def write_override(self, value: bool) -> None:
-        """Publish the override (every cycle: the heartbeat)."""
-
-    def write_decision(self, text: str) -> None:
-        """Publish the decision (JSON)."""
-
-    def write_ack_result(self, text: str) -> None:
-        """Publish the answer to an acknowledgement (JSON)."""
+        """Acknowledgement requests that arrived since the last call (applied after this cycle's decision)."""
 
 
 @dataclass
 class MemoryChannel:
-    """A :class:`Channel` in memory: :meth:`publish` a sample, :meth:`request_ack`, read what was written
-    (``overrides``, ``decisions``, ``ack_results``). ``clock`` gives both clocks (a fake clock in tests)."""
+    """A :class:`Channel` in memory: :meth:`publish` a sample, :meth:`request_ack`; what the monitor wrote
+    is in ``out`` (a :class:`~ethimon.io.MemoryOutlet`; ``overrides``, ``decisions``, ``ack_results`` read
+    it). ``clock`` gives both clocks (a fake clock in tests)."""
 
     clock: Any = None
-    overrides: list = field(default_factory=list)
-    decisions: list = field(default_factory=list)
-    ack_results: list = field(default_factory=list)
     extra_faults: tuple = ()
+    out: MemoryOutlet = field(default_factory=MemoryOutlet)
 
     def __post_init__(self) -> None:
         self._q: deque = deque()
         self._acks: deque = deque()
         self._lock = threading.Lock()
+
+    @property
+    def overrides(self) -> list:
+        """The overrides written, in order (``out.overrides``)."""
+        return self.out.overrides
+
+    @property
+    def decisions(self) -> list:
+        """The decisions written (JSON texts), in order (``out.decisions``)."""
+        return self.out.decisions
+
+    @property
+    def ack_results(self) -> list:
+        """The answers to acknowledgements written (JSON texts), in order (``out.ack_results``)."""
+        return self.out.ack_results
 
     def now(self, clock: str) -> float:
         import time
@@ -193,12 +203,3 @@ class MemoryChannel:
             out = list(self._acks)
             self._acks.clear()
         return out
-
-    def write_override(self, value: bool) -> None:
-        self.overrides.append(bool(value))
-
-    def write_decision(self, text: str) -> None:
-        self.decisions.append(text)
-
-    def write_ack_result(self, text: str) -> None:
-        self.ack_results.append(text)

@@ -3,17 +3,15 @@
 Each cycle, in the loop thread: the samples that arrived are put into one :class:`~ethimon.io.Hold` per
 mapped signal (the same reduction, ``derive: rate``, staleness and future-stamp rules as replay), the
 task text goes to the loop's risk source, the cycle's :class:`~ethimon.io.Frame` (values and faults, the
-channel's own faults included) is stepped, and the decision is published. Acknowledgements are queued by
-the channel and applied by the loop thread after a cycle's decision is published, before the next cycle
-(never during a step). With ``record=True`` every sample and every cycle's time is kept in
+channel's own faults included) is stepped, and the decision is published on the channel's outlet
+(``channel.out``). The acknowledgement requests that arrived are taken with the samples and applied by the
+loop thread after that cycle's decision is published, before the next cycle (never during a step). With ``record=True`` every sample and every cycle's time is kept in
 :attr:`LiveMonitor.recording`, which replay reads back (:func:`ethimon.replay.recorded_data`).
 """
 
 from __future__ import annotations
 
 import json
-import math
-import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -24,28 +22,9 @@ from ..runtime import Decision, Fault
 from ._channel import TASK_TEXT, AckRequest, Channel, Frame, Sample
 from ._hold import Hold
 from ._mapping import RISK_INPUTS, Mapping, bool_mismatch, check_against_spec
+from ._outlet import decision_json
 
-__all__ = ["LiveMonitor", "Recording", "decision_json", "mapping_error"]
-
-
-def _finite(x: Any) -> Any:
-    if isinstance(x, float) and not math.isfinite(x):
-        return None if x != x else ("inf" if x > 0 else "-inf")
-    return x
-
-
-def decision_json(d: Decision, ids: tuple[str, ...], *, t_unix: float | None = None,
-                  hold: list | None = None) -> str:
-    """The JSON text published as the decision of one cycle (strict JSON: no NaN/inf); ``hold``: what
-    holds the arm (:meth:`GovernedLoop.holding <ethimon.loop.GovernedLoop.holding>`)."""
-    margins = {oid: _finite(float(m)) for oid, m in zip(ids, d.margins)} if d.margins else {}
-    return json.dumps({
-        "cycle": d.cycle, "t_unix": t_unix if t_unix is not None else time.time(),
-        "override": bool(d.override), "response": d.response.value, "violations": list(d.violations),
-        "faults": [{"kind": f.kind, "subject": f.subject, "message": f.message} for f in d.faults],
-        "margins": margins, "risk": _finite(d.risk) if d.risk is not None else None,
-        "latched": bool(d.latched), "latched_rules": list(d.latched_rules), "hold": hold or []},
-        separators=(",", ":"), allow_nan=False)
+__all__ = ["LiveMonitor", "Recording", "mapping_error"]
 
 
 def mapping_error(mapping: Mapping, message: str, loc: tuple, *, hint: str | None = None) -> SpecError:
@@ -68,6 +47,10 @@ class Recording:
     samples: list[Sample] = field(default_factory=list)
     cycles: list[tuple[float, float | None]] = field(default_factory=list)
     taken: list[int] = field(default_factory=list)
+
+
+#: acknowledgement requests kept from one cycle's samples to its decision (more are refused, each answered)
+_ACK_PENDING = 64
 
 
 class LiveMonitor:
@@ -100,6 +83,8 @@ class LiveMonitor:
         if getattr(loop, "_signals", None) is not None:
             raise ValueError("LiveMonitor is the loop's signal source: build the GovernedLoop without signals=")
         self.loop, self.mapping, self.channel = loop, mapping, channel
+        self.out = channel.out  # the outlet: where the decisions and the answers to acknowledgements go
+        self._acks: list[AckRequest] = []  # taken with this cycle's samples, applied after its decision
         self.holds: dict[str, Hold] = {}
         for name, sm in mapping.signals.items():
             limit = mapping.limit_s(name)
@@ -145,6 +130,7 @@ class LiveMonitor:
             own = tuple(ch.faults())
         except Exception as exc:  # noqa: BLE001
             own = (Fault("signals", f"the channel cannot say what it found: {type(exc).__name__}: {exc}"[:300]),)
+        self._take_acks(ch)
         frame = Frame()
         for s in samples:
             if rec is not None:
@@ -185,31 +171,43 @@ class LiveMonitor:
             if text != risk.text:
                 risk.set_text(text)
 
-    def _after(self, d: Decision) -> None:
-        """After each cycle's decision: publish it, then apply the acknowledgements that arrived (the next
-        cycle is the first to see a release)."""
-        ch = self.channel
+    def _take_acks(self, ch: Channel) -> None:
+        """The acknowledgement requests that arrived, kept until this cycle's decision is published (at most
+        :data:`_ACK_PENDING`: a flood beyond them is refused, each with an answer)."""
         try:
-            ch.write_override(d.override)
+            reqs = list(ch.acks())
+        except Exception:  # noqa: BLE001 - a channel that fails here: no requests this cycle
+            return
+        if reqs:
+            pending = self._acks
+            room = _ACK_PENDING - len(pending)
+            pending.extend(reqs[:max(room, 0)])
+            for req in reqs[max(room, 0):]:
+                pending.append(AckRequest.refused("too many acknowledgement requests in one cycle",
+                                                  sender=req.sender, authenticated=req.authenticated))
+
+    def _after(self, d: Decision) -> None:
+        """After each cycle's decision: publish it on the outlet, then apply the acknowledgements taken with
+        this cycle's samples (the next cycle is the first to see a release)."""
+        out = self.out
+        try:
+            out.write_override(d.override)
             try:
                 hold = self.loop.holding() if d.override else []
             except Exception:  # noqa: BLE001 - the description is best effort; the decision is published anyway
                 hold = []
-            ch.write_decision(decision_json(d, self._ids, hold=hold))
+            out.write_decision(decision_json(d, self._ids, hold=hold))
         finally:
             if self._user_on_decision is not None:
                 self._user_on_decision(d)
             self._apply_acks()
 
     def _apply_acks(self) -> None:
-        try:
-            reqs = list(self.channel.acks())
-        except Exception:  # noqa: BLE001
-            return
+        reqs, self._acks = self._acks, []
         for req in reqs:
             out = self._ack(req)
             try:
-                self.channel.write_ack_result(json.dumps(out))
+                self.out.write_ack_result(json.dumps(out))
             except Exception:  # noqa: BLE001
                 pass
 

@@ -288,7 +288,7 @@ class LiveNode:
         self._closed = True
         self.loop.stop()
         try:
-            self.channel.write_override(True)  # the node leaving is an override, never a silent "all clear"
+            self.channel.out.write_override(True)  # the node leaving is an override, never a silent "all clear"
         except Exception:  # noqa: BLE001
             pass
         if self.loop.risk is not None:
@@ -305,7 +305,7 @@ class LiveNode:
 
     def _stalled(self, reason: str) -> None:
         try:
-            self.channel.write_override(True)
+            self.channel.out.write_override(True)
         except Exception:  # noqa: BLE001 - the watchdog must not die
             pass
 

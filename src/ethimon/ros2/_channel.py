@@ -1,7 +1,8 @@
 """The node's Cyclone DDS entities as an :class:`ethimon.io.Channel`: mapped topics taken once per cycle
 by the loop thread (each sample's mapped fields, its receive and header times), the task text, the
-acknowledgement requests, the three writers, and the writers it does not accept: a publisher beyond the
-first ones on a monitored topic, and any other writer on ``/ethimon/override``."""
+acknowledgement requests, and the writers it does not accept: a publisher beyond the first ones on a
+monitored topic, and any other writer on ``/ethimon/override``; its outlet (:class:`DdsOutlet`) holds the
+three writers."""
 
 from __future__ import annotations
 
@@ -19,7 +20,8 @@ from ._names import dds_topic
 from ._qos import DEFAULT, SENSOR_DATA, to_cyclone
 from ._types import cyclonedds_modules
 
-__all__ = ["ACK_RESULT_TOPIC", "ACK_TOPIC", "DECISION_TOPIC", "OVERRIDE_TOPIC", "DdsChannel", "Subscription"]
+__all__ = ["ACK_RESULT_TOPIC", "ACK_TOPIC", "DECISION_TOPIC", "OVERRIDE_TOPIC", "DdsChannel", "DdsOutlet",
+           "Subscription"]
 
 OVERRIDE_TOPIC = "/ethimon/override"
 DECISION_TOPIC = "/ethimon/decision"
@@ -41,6 +43,29 @@ class Subscription(TopicPlan):
     foreign: tuple = ()         # Faults naming writers beyond them
     dirty: bool = True
     messages: int = 0
+
+
+class DdsOutlet:
+    """The node's three DDS writers (an :class:`ethimon.io.Outlet`): ``/ethimon/override``,
+    ``/ethimon/decision``, ``/ethimon/acknowledge_result``. Once closed (the channel closes it before its
+    participant leaves) it writes nothing."""
+
+    def __init__(self, w_override: Any, w_decision: Any, w_ack_result: Any, Bool: Any, String: Any) -> None:
+        self.w_override, self.w_decision, self.w_ack_result = w_override, w_decision, w_ack_result
+        self.Bool, self.String = Bool, String
+        self.closed = False
+
+    def write_override(self, value: bool) -> None:
+        if not self.closed:
+            self.w_override.write(self.Bool(data=bool(value)))
+
+    def write_decision(self, text: str) -> None:
+        if not self.closed:
+            self.w_decision.write(self.String(data=text))
+
+    def write_ack_result(self, text: str) -> None:
+        if not self.closed:
+            self.w_ack_result.write(self.String(data=text))
 
 
 class DdsChannel:
@@ -66,6 +91,7 @@ class DdsChannel:
         self._own_dirty = True
         self._own_foreign: tuple = ()
         self.domain = None
+        self.out: DdsOutlet | None = None
         try:
             if config is not None:
                 try:
@@ -83,9 +109,10 @@ class DdsChannel:
             out_qos = to_cyclone(DEFAULT, deadline_s=deadline_cycles * period_s, lease_s=max(1.0, 10 * period_s))
             t_override = Topic(self.dp, dds_topic(OVERRIDE_TOPIC), self.Bool)
             self.w_override = DataWriter(self.dp, t_override, out_qos)
-            self.w_decision = DataWriter(self.dp, Topic(self.dp, dds_topic(DECISION_TOPIC), self.String), out_qos)
-            self.w_ack_result = DataWriter(self.dp, Topic(self.dp, dds_topic(ACK_RESULT_TOPIC), self.String),
-                                           to_cyclone(DEFAULT))
+            self.out = DdsOutlet(
+                self.w_override, DataWriter(self.dp, Topic(self.dp, dds_topic(DECISION_TOPIC), self.String), out_qos),
+                DataWriter(self.dp, Topic(self.dp, dds_topic(ACK_RESULT_TOPIC), self.String), to_cyclone(DEFAULT)),
+                self.Bool, self.String)
             self._listeners = []
             # who else writes /ethimon/override: a reader of our own topic lists every matched writer
             own_l = Listener(on_subscription_matched=self._own_matched)
@@ -149,18 +176,6 @@ class DdsChannel:
         while self._acks:
             out.append(self._acks.popleft())
         return out
-
-    def write_override(self, value: bool) -> None:
-        if not self._closed:
-            self.w_override.write(self.Bool(data=bool(value)))
-
-    def write_decision(self, text: str) -> None:
-        if not self._closed:
-            self.w_decision.write(self.String(data=text))
-
-    def write_ack_result(self, text: str) -> None:
-        if not self._closed:
-            self.w_ack_result.write(self.String(data=text))
 
     # readers ---------------------------------------------------------------------------
     @staticmethod
@@ -260,6 +275,8 @@ class DdsChannel:
             if self._closed:
                 return
             self._closed = True
+            if self.out is not None:
+                self.out.closed = True  # nothing written once the participant is leaving
         for sub in self.subs:
             sub.reader = None
         for ent in (getattr(self, "dp", None), self.domain):

@@ -1,8 +1,8 @@
 """A zenoh session as an :class:`ethimon.io.Channel`, speaking what ``rmw_zenoh`` speaks (``_keys.py``): the
 mapped topics taken once per cycle by the loop thread (CDR decoded with rosbags' type store, each sample's
-mapped fields, its receive and header times), the task text, the acknowledgement requests, the three
-writers (each sample with rmw_zenoh's attachment, each writer and reader with its liveliness token), and
-the writers it does not accept: a publisher beyond the first ones on a monitored topic (by the GID in its
+mapped fields, its receive and header times), the task text, the acknowledgement requests, its outlet
+(:class:`ZenohOutlet`: the three writers, each sample with rmw_zenoh's attachment; each writer and reader
+has its liveliness token), and the writers it does not accept: a publisher beyond the first ones on a monitored topic (by the GID in its
 samples' attachments, and by its liveliness token), a sample whose publisher cannot be told, and any other
 writer on ``/ethimon/override``."""
 
@@ -23,7 +23,7 @@ from ._keys import ADMIN_SPACE, HASH_NOT_SUPPORTED, liveliness_token, pack_attac
     unpack_attachment
 
 __all__ = ["ACK_RESULT_TOPIC", "ACK_TOPIC", "DECISION_TOPIC", "OVERRIDE_TOPIC", "Topic", "ZenohChannel",
-           "zenoh_module"]
+           "ZenohOutlet", "zenoh_module"]
 
 OVERRIDE_TOPIC = "/ethimon/override"
 DECISION_TOPIC = "/ethimon/decision"
@@ -59,6 +59,46 @@ class Topic(TopicPlan):
     messages: int = 0
 
 
+class ZenohOutlet:
+    """The node's three zenoh publishers (an :class:`ethimon.io.Outlet`): every sample carries rmw_zenoh's
+    attachment (a sequence number, the time, this node's GID). Safe from two threads (the loop and the
+    watchdog both write the override); once closed it writes nothing."""
+
+    def __init__(self, w_override: Any, w_decision: Any, w_ack_result: Any, types: Any, gid: bytes) -> None:
+        self.w_override, self.w_decision, self.w_ack_result = w_override, w_decision, w_ack_result
+        self.store, self.gid = types.store, gid
+        self._string_t = self.store.types["std_msgs/msg/String"]
+        bool_t = self.store.types["std_msgs/msg/Bool"]
+        self._true = bytes(self.store.serialize_cdr(bool_t(data=True), "std_msgs/msg/Bool"))
+        self._false = bytes(self.store.serialize_cdr(bool_t(data=False), "std_msgs/msg/Bool"))
+        self._lock = threading.Lock()
+        self._seq = 0
+        self.closed = False
+
+    def write_override(self, value: bool) -> None:
+        self._put(self.w_override, self._true if value else self._false)
+
+    def write_decision(self, text: str) -> None:
+        self.write_text(self.w_decision, text)
+
+    def write_ack_result(self, text: str) -> None:
+        self.write_text(self.w_ack_result, text)
+
+    def write_text(self, pub: Any, text: str) -> None:
+        self._put(pub, bytes(self.store.serialize_cdr(self._string_t(data=text), "std_msgs/msg/String")))
+
+    def close(self) -> None:
+        with self._lock:
+            self.closed = True
+
+    def _put(self, pub: Any, payload: bytes) -> None:
+        with self._lock:
+            if self.closed:
+                return
+            self._seq += 1
+            pub.put(payload, attachment=pack_attachment(self._seq, time.time_ns(), self.gid))
+
+
 class ZenohChannel:
     """The transport of ``ethimon ros2 --transport zenoh``, made by :class:`~ethimon.zenoh.ZenohMonitor`.
 
@@ -87,8 +127,8 @@ class ZenohChannel:
         self.acks_dropped = 0
         #: samples taken off the read topics (used or not); of them, payloads that were not their type's CDR
         self.received = self.undecodable = 0
-        self._seq = 0
         self.gid = os.urandom(16)
+        self.out: ZenohOutlet | None = None
         self._tokens: list = []
         self._endpoints: dict[str, dict[str, Any]] = {}  # live MP tokens per topic: key -> TokenInfo
         self._own_foreign: dict[str, tuple[float, Fault]] = {}
@@ -99,16 +139,12 @@ class ZenohChannel:
             raise Ros2Error(f"cannot open a zenoh session: {exc}"[:600]) from None
         try:
             self.zid = str(self.session.zid())
-            store = types.store
-            self._bool_t, self._string_t = store.types["std_msgs/msg/Bool"], store.types["std_msgs/msg/String"]
-            self._true = bytes(store.serialize_cdr(self._bool_t(data=True), "std_msgs/msg/Bool"))
-            self._false = bytes(store.serialize_cdr(self._bool_t(data=False), "std_msgs/msg/Bool"))
             self._eid = 0
             self._tokens.append(self.session.liveliness().declare_token(
                 liveliness_token(self.domain_id, self.zid, 0, 0, "NN", NODE_NAME)))
-            self.w_override = self._publisher(OVERRIDE_TOPIC, "std_msgs/msg/Bool")
-            self.w_decision = self._publisher(DECISION_TOPIC, "std_msgs/msg/String")
-            self.w_ack_result = self._publisher(ACK_RESULT_TOPIC, "std_msgs/msg/String")
+            self.out = ZenohOutlet(self._publisher(OVERRIDE_TOPIC, "std_msgs/msg/Bool"),
+                                   self._publisher(DECISION_TOPIC, "std_msgs/msg/String"),
+                                   self._publisher(ACK_RESULT_TOPIC, "std_msgs/msg/String"), types, self.gid)
             fifo = zenoh.handlers.FifoChannel
             # another writer on our own override key: its samples reach us (ours do not: remote origin only)
             self.r_override = self.session.declare_subscriber(
@@ -219,27 +255,7 @@ class ZenohChannel:
             out.append(self._parse_ack(_bytes(smp.payload), sender))
         return out
 
-    def write_override(self, value: bool) -> None:
-        self._put(self.w_override, self._true if value else self._false)
-
-    def write_decision(self, text: str) -> None:
-        self._put(self.w_decision, bytes(self.types.store.serialize_cdr(self._string_t(data=text),
-                                                                        "std_msgs/msg/String")))
-
-    def write_ack_result(self, text: str) -> None:
-        self.write_text(self.w_ack_result, text)
-
-    def write_text(self, pub: Any, text: str) -> None:
-        self._put(pub, bytes(self.types.store.serialize_cdr(self._string_t(data=text), "std_msgs/msg/String")))
-
     # inside ----------------------------------------------------------------------------
-    def _put(self, pub: Any, payload: bytes) -> None:
-        with self._lock:  # the loop thread and the watchdog both write the override
-            if self._closed:
-                return
-            self._seq += 1
-            pub.put(payload, attachment=pack_attachment(self._seq, time.time_ns(), self.gid))
-
     def _sample(self, t: Topic, smp: Any, t_log: float) -> None:
         key = str(smp.key_expr)
         att = unpack_attachment(_bytes(smp.attachment))
@@ -317,6 +333,8 @@ class ZenohChannel:
         return AckRequest.from_json(text, sender=sender)
 
     def close(self) -> None:
+        if self.out is not None:
+            self.out.close()  # nothing written once the session is leaving
         with self._lock:
             if self._closed:
                 return
