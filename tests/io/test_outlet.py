@@ -118,3 +118,26 @@ def test_the_memory_outlet_takes_the_override_from_two_threads():
     for t in threads:
         t.join()
     assert ch.overrides == [True] * 4000
+
+
+def test_a_channel_without_an_outlet_is_refused_when_the_monitor_is_built():
+    import pytest
+
+    class Old:  # writes by itself, as channels did before the outlet: refused with what to give
+        def now(self, clock):
+            return 0.0
+
+        def take(self):
+            return []
+
+        def faults(self):
+            return ()
+
+        def acks(self):
+            return []
+
+        def write_override(self, value):
+            pass
+
+    with pytest.raises(TypeError, match="Old has no outlet: a Channel's 'out' is an ethimon.io.Outlet"):
+        _live(Old(), FakeClock(0.0))

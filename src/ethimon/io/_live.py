@@ -5,8 +5,9 @@ mapped signal (the same reduction, ``derive: rate``, staleness and future-stamp 
 task text goes to the loop's risk source, the cycle's :class:`~ethimon.io.Frame` (values and faults, the
 channel's own faults included) is stepped, and the decision is published on the channel's outlet
 (``channel.out``). The acknowledgement requests that arrived are taken with the samples and applied by the
-loop thread after that cycle's decision is published, before the next cycle (never during a step). With ``record=True`` every sample and every cycle's time is kept in
-:attr:`LiveMonitor.recording`, which replay reads back (:func:`ethimon.replay.recorded_data`).
+loop thread after that cycle's decision is published, before the next cycle (never during a step). With
+``record=True`` every sample and every cycle's time is kept in :attr:`LiveMonitor.recording`, which replay
+reads back (:func:`ethimon.replay.recorded_data`).
 """
 
 from __future__ import annotations
@@ -51,6 +52,7 @@ class Recording:
 
 #: acknowledgement requests kept from one cycle's samples to its decision (more are refused, each answered)
 _ACK_PENDING = 64
+_OUTLET_METHODS = ("write_override", "write_decision", "write_ack_result")
 
 
 class LiveMonitor:
@@ -83,7 +85,11 @@ class LiveMonitor:
         if getattr(loop, "_signals", None) is not None:
             raise ValueError("LiveMonitor is the loop's signal source: build the GovernedLoop without signals=")
         self.loop, self.mapping, self.channel = loop, mapping, channel
-        self.out = channel.out  # the outlet: where the decisions and the answers to acknowledgements go
+        out = getattr(channel, "out", None)
+        if out is None or not all(callable(getattr(out, m, None)) for m in _OUTLET_METHODS):
+            raise TypeError(f"{type(channel).__name__} has no outlet: a Channel's 'out' is an ethimon.io.Outlet "
+                            f"({', '.join(_OUTLET_METHODS)}); what goes out is not written by the channel itself")
+        self.out = out  # where the decisions and the answers to acknowledgements go
         self._acks: list[AckRequest] = []  # taken with this cycle's samples, applied after its decision
         self.holds: dict[str, Hold] = {}
         for name, sm in mapping.signals.items():
