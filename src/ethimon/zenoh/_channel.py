@@ -2,9 +2,9 @@
 mapped topics taken once per cycle by the loop thread (CDR decoded with rosbags' type store, each sample's
 mapped fields, its receive and header times), the task text, the acknowledgement requests, its outlet
 (:class:`ZenohOutlet`: the three writers, each sample with rmw_zenoh's attachment; each writer and reader
-has its liveliness token), and the writers it does not accept: a publisher beyond the first ones on a monitored topic (by the GID in its
-samples' attachments, and by its liveliness token), a sample whose publisher cannot be told, and any other
-writer on ``/ethimon/override``."""
+has its liveliness token), and the writers it does not accept: a publisher beyond the first ones on a
+monitored topic (by the GID in its samples' attachments, and by its liveliness token), a sample whose
+publisher cannot be told, and any other writer on ``/ethimon/override``."""
 
 from __future__ import annotations
 
