@@ -253,3 +253,25 @@ def test_a_reload_that_cannot_carry_an_unbounded_window_is_refused_and_audited(t
     loop.cycle({"x": 1.0, "y": 0.0, "p_unsafe": 0.0})
     assert not res.ok and "temporal history" in res.error and loop.stats.reloads_rejected == 1
     assert _reload.history_depth(loop.monitor.plan) is None
+
+
+def test_the_history_a_reload_needs_covers_every_temporal_operator_of_the_table():
+    """history_depth reads each operator's look-back from its row (language/_operators.py), not from a list
+    of names: for every temporal row, used with window 3, it is at least what verify unrolls for it."""
+    from ethimon.compiler import plan_of
+    from ethimon.language import OPERATORS
+    from ethimon.loop import _reload
+    from ethimon.verify._encode import lookback
+
+    arg = {"bool": "x > 1", "any": "x", "number": "x", "window": "3"}
+    rows = [r for r in (OPERATORS.values() if hasattr(OPERATORS, "values") else OPERATORS) if r.lookback != "none"]
+    assert {r.lookback for r in rows} >= {"one", "window"}
+    for r in rows:
+        call = f"{r.symbol}({', '.join(arg[a] for a in r.args)})"
+        expr = call if r.result == "bool" else f"{call} > 1"
+        spec = ethimon.load_spec_text("ethimon: 1\nname: t\nsignals:\n  x: {unit: m, range: [0, 10]}\n"
+                                      f"obligations:\n  - {{id: o, require: '{expr}'}}\n")
+        plan = plan_of(spec)
+        need = lookback(plan, plan.obligations[0].require)
+        depth = _reload.history_depth(plan)
+        assert depth is not None and depth >= need + 1, (r.name, depth, need)

@@ -15,7 +15,7 @@ from typing import Any
 from .._api import load_spec
 from ..audit import spec_hash
 from ..compiler import Plan
-from ..language._expr import TEMPORAL, Call, walk  # the names and windows a reloaded obligation reads
+from ..language._expr import walk  # the look-backs and windows a reloaded obligation reads
 from ..errors import EthimonError
 from ..runtime import Monitor
 from ..language import Spec
@@ -81,21 +81,24 @@ HISTORY_CAP = 4096
 
 def history_depth(plan: Plan) -> int | None:
     """How many of the last cycles determine the temporal state of ``plan``'s monitor (an upper bound: the
-    windows of every temporal operator of an obligation added up, its ``within_cycles``, one more for
-    ``prev``); ``None``: unbounded (an operator without a window)."""
+    look-back of every temporal operator of an obligation added up, by its row of the operator table (one
+    cycle for a ``"one"`` look-back such as ``prev``, its window plus one for a windowed one), and its
+    ``within_cycles``); ``None``: unbounded (a window without a bound)."""
     most = 0
     for ob in plan.obligations:
         d = 1 + (ob.within_cycles + 1 if ob.within_cycles is not None else 0)
         for root in (ob.when, ob.require):
             for node in walk(root) if root is not None else ():
-                if isinstance(node, Call) and node.func in TEMPORAL:
-                    if node.func == "prev":
-                        d += 1
-                        continue
-                    w = node.ann.window
-                    if w is None:
-                        return None
-                    d += int(w) + 1
+                row = node.row
+                if row is None or row.lookback == "none":
+                    continue
+                if row.lookback == "one":
+                    d += 1
+                    continue
+                w = node.ann.window
+                if w is None:
+                    return None
+                d += int(w) + 1
         most = max(most, d)
     return most
 
