@@ -74,3 +74,12 @@ def test_latched_tier_rules_carry_by_identity():
     assert "judge http://127.0.0.1:9/v1" in out[0]
     assert unmapped_latches(_spec(), _spec(""), ("judge",)) == ["judge: latched, and the new spec has no such rule"]
 
+
+def test_a_panels_latched_judge_and_confirm_carry_to_the_same_panel():
+    """Defect found moving the reads to the plan: with ``risk.judges`` (a panel) the rule identity read
+    only ``risk.judge``, so a latched ``judge`` could not be carried even to the identical spec (the
+    reload was refused), and a changed panel did not stop a latched ``confirm`` from being carried."""
+    assert unmapped_latches(_spec(PANEL), _spec(PANEL), ("judge", "confirm")) == []
+    out = unmapped_latches(_spec(PANEL), _spec(PANEL.replace("model: b", "model: c")), ("judge", "confirm"))
+    assert [x.split(":")[0] for x in out] == ["judge", "confirm"]
+    assert "judges http://127.0.0.1:9/v1+http://127.0.0.1:8/v1" in out[0]

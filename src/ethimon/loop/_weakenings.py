@@ -289,21 +289,22 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
 
 def _rule_identity(plan: Plan, name: str) -> tuple | None:
     """What a latch of rule ``name`` means in ``plan``: its response and its release as the plan resolved
-    them (``Plan.rules()``; ``None``: no such rule)."""
-    judge, tc = _one_judge(plan), plan.tiers.confirm_threshold
-    if (name == "judge" and judge is None) or (name == "confirm" and tc is None):
+    them (``Plan.rules()``; ``None``: no such rule). The judges (one, or a panel: ``Plan.tiers.judges``)
+    are part of the ``judge`` and ``confirm`` rules' identity."""
+    judges, tc = plan.tiers.judges or None, plan.tiers.confirm_threshold
+    if (name == "judge" and judges is None) or (name == "confirm" and tc is None):
         return None
     rule = _rules(plan).get(name)
     if rule is None:
         return None
     if name == "confirm":  # the confirm band [τ_confirm, τ): stop_2, released by a confirmation
         # released by a confirmation or by the judge's safe verdict: another judge is another release
-        return (rule.response.value, "band", tc, plan.threshold, judge)
+        return (rule.response.value, "band", tc, plan.threshold, judges)
     ident = (rule.response.value, rule.mode, rule.hold)
     if name == "risk":
         return ident + (plan.release_exact,)
     if name == "judge":  # the judge's unsafe verdict: the risk rule's response and release
-        return ident + (plan.release_exact, judge)
+        return ident + (plan.release_exact, judges)
     return ident
 
 
@@ -330,5 +331,7 @@ def _show(ident: tuple | None) -> str:
             return str(x)
         if hasattr(x, "numerator"):
             return f"bound {float(x):g}"
+        if isinstance(x, tuple):  # the judges: one (risk.judge) or a panel (risk.judges)
+            return ("judges " if len(x) > 1 else "judge ") + "+".join(j.url for j in x)
         return f"judge {getattr(x, 'url', x)}"
     return "none" if ident is None else "(" + ", ".join(one(x) for x in ident) + ")"
