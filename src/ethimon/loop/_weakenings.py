@@ -13,8 +13,7 @@ from __future__ import annotations
 import dataclasses
 from typing import Any
 
-from ..compiler import Plan, plan_of
-from ..compiler._plan import JudgePlan
+from ..compiler import JudgePlan, Plan, plan_of
 from ..language import Response, Spec
 from ..language._expr import Name, walk
 
@@ -105,8 +104,22 @@ def _meanings(spec: Spec) -> dict[str, dict[str, tuple]]:
     return out
 
 
-def _judge_tier_changes(po: Plan, pn: Plan, weak: list[str], unjudged: list[str]) -> None:
-    """risk.judges and risk.judge_may_hold_above_tau, old -> new (appended to ``weak`` / ``unjudged``)."""
+def _tier_changes(po: Plan, pn: Plan, weak: list[str], unjudged: list[str]) -> None:
+    """The tiers, old -> new (appended to ``weak`` / ``unjudged``): risk.confirm_threshold, risk.judge,
+    risk.judges and risk.judge_may_hold_above_tau."""
+    co, cn = po.tiers.confirm_threshold, pn.tiers.confirm_threshold
+    if co is not None and (cn is None or cn > co):
+        weak.append(f"risk.confirm_threshold {co!r} -> {'none' if cn is None else repr(cn)} (fewer texts held "
+                    f"for a confirmation)")
+    jo, jn = _one_judge(po), _one_judge(pn)
+    if jo is None and jn is not None and cn is not None:
+        weak.append("risk.judge added (its safe verdict executes texts in the confirm band)")
+    elif jo is not None and jn is None:
+        weak.append("risk.judge removed (no unsafe verdict can stop a text below tau_confirm)")
+    elif jo is not None and jn is not None and jn != jo:
+        if (jn.safe_below > jo.safe_below or jn.unsafe_from > jo.unsafe_from) or (
+                dataclasses.replace(jn, safe_below=jo.safe_below, unsafe_from=jo.unsafe_from) != jo):
+            unjudged.append("risk.judge settings changed")
     if _panel(po) != _panel(pn):  # risk.judges (consensus): a changed panel cannot be told field by field
         unjudged.append("risk.judges changed")
     ho, hn = po.tiers.hold_ceiling, pn.tiers.hold_ceiling
@@ -268,20 +281,7 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     # text (what an opt-out lets through, τ or the weights, is compared above, from the plans)
     if new.risk.allow != old.risk.allow:
         unjudged.append("risk.allow opt-outs changed")
-    co, cn = po.tiers.confirm_threshold, pn.tiers.confirm_threshold
-    if co is not None and (cn is None or cn > co):
-        weak.append(f"risk.confirm_threshold {co!r} -> {'none' if cn is None else repr(cn)} (fewer texts held "
-                    f"for a confirmation)")
-    jo, jn = _one_judge(po), _one_judge(pn)
-    if jo is None and jn is not None and cn is not None:
-        weak.append("risk.judge added (its safe verdict executes texts in the confirm band)")
-    elif jo is not None and jn is None:
-        weak.append("risk.judge removed (no unsafe verdict can stop a text below tau_confirm)")
-    elif jo is not None and jn is not None and jn != jo:
-        if (jn.safe_below > jo.safe_below or jn.unsafe_from > jo.unsafe_from) or (
-                dataclasses.replace(jn, safe_below=jo.safe_below, unsafe_from=jo.unsafe_from) != jo):
-            unjudged.append("risk.judge settings changed")
-    _judge_tier_changes(po, pn, weak, unjudged)
+    _tier_changes(po, pn, weak, unjudged)
     _restart_changes(po, pn, weak, unjudged)
     unjudged = [f"{u}: {CANNOT_TELL}" for u in unjudged]
     return weak + unjudged, unjudged

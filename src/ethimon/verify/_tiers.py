@@ -20,8 +20,7 @@ from typing import Any
 
 import z3
 
-from ..compiler import Plan, plan_of
-from ..compiler._plans import spec_without_tiers
+from ..compiler import Plan, plan_of, spec_without_tiers
 from ..compiler._risk_formula import tier_outcome
 from ..runtime import Monitor
 from ..language import Response, Spec
@@ -42,7 +41,7 @@ def has_tiers(spec: Spec | Plan) -> bool:
 
 def base_spec(spec: Spec) -> Spec:
     """The spec without its tiers (what the decision-trace properties are checked on): built by the
-    compiler, which knows which keys are the tiers (:func:`~ethimon.compiler._plans.spec_without_tiers`)."""
+    compiler, which knows which keys are the tiers (:func:`~ethimon.compiler.spec_without_tiers`)."""
     return spec_without_tiers(spec)
 
 
