@@ -300,13 +300,13 @@ def _print_risk(cfg: dict, est: Any, r: Any, why: Any, jr: Any, tiers: dict) -> 
 
 def _judge_and_outcome(spec, text: str, risk: float, tau: float, no_judge: bool):
     """The judge's answer on ``text`` (the spec's ``risk.judge``; none without one) and the tiered outcome."""
+    from ..compiler import plan_of
     from ..risk import JudgeResult, load_judge_for, text_sha256, tier_outcome
     judge = None if (spec is None or no_judge) else load_judge_for(spec)
     jr = judge.judge(text) if judge is not None else JudgeResult(
         None, "not_configured", 0.0, None, None, "", text_sha256(text),
-        "--no-judge" if no_judge and spec is not None and spec.risk.judge_list else "the spec sets no risk.judge")
+        "--no-judge" if no_judge and spec is not None and plan_of(spec).tiers.judges else "the spec sets no risk.judge")
     if spec is not None:
-        from ..compiler import plan_of
         tiers = plan_of(spec).tiers
         tc, cuts, ceiling = tiers.confirm_threshold, tiers.judge_cuts, tiers.hold_ceiling  # judges: their consensus
     else:  # the shipped governor's band
@@ -479,6 +479,7 @@ def cmd_evaluate(args: argparse.Namespace) -> int:
 def _evaluate(args: argparse.Namespace) -> dict:
     """``ethimon evaluate``'s metrics (and its plots, with ``--plots``)."""
     import numpy as np
+    from ..compiler import plan_of
     from ..risk._data import load_labelled_csv
     from ..risk._evaluate import evaluate_logits, plot_confusion, plot_risk_hist
     cfg = risk_config(args.spec)
@@ -512,10 +513,10 @@ def _evaluate(args: argparse.Namespace) -> dict:
               "model_temperature": est.temperature,
               "temperature_source": f"fitted on {args.calibrate_on} ({len(cal)} rows)" if cal
               else "spec risk.estimator" if cfg["spec"] is not None
-              and cfg["spec"].risk.estimator.temperature is not None else "model"})
+              and plan_of(cfg["spec"]).estimator.temperature is not None else "model"})
     tc = args.confirm_threshold
-    if tc is None:  # the spec's; without a spec the shipped governor's (risk_config)
-        tc = cfg["spec"].risk.confirm_threshold if cfg["spec"] is not None else cfg["confirm_threshold"]
+    if tc is None:  # the spec's (its plan's tiers); without a spec the shipped governor's (risk_config)
+        tc = cfg["confirm_threshold"]
     if tc is not None and not 0.0 <= tc < cfg["threshold"]:
         raise ValueError(f"--confirm-threshold {tc:g} must lie in [0, tau = {cfg['threshold']:g})")
     if args.plots:  # at the monitor's thresholds: what it does with each row's R_e

@@ -18,8 +18,8 @@ from ..language import Response, RiskConfig, Spec
 from ._risk_formula import risk_range
 from ._units import Unit, format_unit
 
-__all__ = ["Plan", "ObligationPlan", "SignalSlot", "LatchRule", "RiskPlan", "Tiers", "Ty", "BOOL", "Annotation",
-           "RISK_NAME", "MAX_WINDOW"]
+__all__ = ["Plan", "ObligationPlan", "SignalSlot", "LatchRule", "RiskPlan", "Tiers", "JudgePlan", "EstimatorPlan",
+           "RestartPlan", "Ty", "BOOL", "Annotation", "RISK_NAME", "MAX_WINDOW"]
 
 RISK_NAME = "risk"
 MAX_WINDOW = 1_000_000
@@ -121,6 +121,7 @@ class RiskPlan:
         variance: ``"sample"`` or ``"population"``.
         max_age_s: the spec's ``risk.max_age_s`` (``None``: the caller's limit, or none).
         latch: the rule's latch (:class:`LatchRule`: response, manual, hold).
+        hysteresis: δ as written (``risk.release.hysteresis``; :attr:`release_exact` is τ − δ exactly).
     """
 
     threshold: float
@@ -134,6 +135,7 @@ class RiskPlan:
     variance: str
     max_age_s: float | None
     latch: "LatchRule"
+    hysteresis: float
 
     @cached_property
     def reachable(self) -> tuple[float, float]:
@@ -150,6 +152,64 @@ class RiskPlan:
 
 
 @dataclass(frozen=True)
+class JudgePlan:
+    """One judge's client settings, resolved once (``risk.judge``, or one of ``risk.judges``).
+
+    Attributes:
+        where: where the spec writes it: ``"risk.judge"`` or ``"risk.judges[k]"`` (for messages).
+        url, model, timeout_s, api_key_env, prompt: the server, the model it serves, the time limit,
+            the key variable the spec names (the operator's must match) and the rubric (``None``: built in).
+        safe_below, unsafe_from: this judge's own cuts on its p_unsafe.
+        canaries_path: the spec's own canary CSV as written (relative to the spec file), or ``None``.
+        canaries_every_s, canaries_every_texts: when the canaries are asked again.
+    """
+
+    where: str
+    url: str
+    model: str
+    timeout_s: float
+    api_key_env: str | None
+    prompt: str | None
+    safe_below: float
+    unsafe_from: float
+    canaries_path: str | None
+    canaries_every_s: float
+    canaries_every_texts: int
+
+
+@dataclass(frozen=True)
+class EstimatorPlan:
+    """Which learned model scores task texts for the spec, and how (``risk.estimator``, defaults filled in).
+
+    Not part of the risk rule (the monitor only reads its inputs): the loaders read it
+    (``ethimon.risk.load_estimator_for``), and a reload compares it.
+
+    Attributes:
+        model: the model directory as written (relative to the spec file), ``None``: the shipped default.
+        quantize, temperature, max_length, backend: as :class:`ethimon.language.EstimatorConfig` says.
+    """
+
+    model: str | None
+    quantize: str | None
+    temperature: float | None
+    max_length: int | None
+    backend: str
+
+
+@dataclass(frozen=True)
+class RestartPlan:
+    """The spec's ``restart:`` block (GovernedLoop gates restarts only with one).
+
+    Attributes:
+        start: ``"command"`` or the bool input whose rising edge starts motion.
+        standstill: the bool input reporting a completed stop, or ``None``.
+    """
+
+    start: str
+    standstill: str | None
+
+
+@dataclass(frozen=True)
 class Tiers:
     """The tiers of the risk rule, resolved once (all ``None``: none; the monitor then runs without them).
 
@@ -160,11 +220,15 @@ class Tiers:
             strictest of several in consensus).
         hold_ceiling: ``risk.judge_may_hold_above_tau``'s ceiling, only with a judge: a safe verdict
             turns ``τ <= R_e < ceiling`` into a confirm hold.
+        judges: every judge's client settings (:class:`JudgePlan`), in the spec's order (empty: none).
+        consensus: the spec writes ``risk.judges`` (a panel, even of one) rather than ``risk.judge``.
     """
 
     confirm_threshold: float | None = None
     judge_cuts: tuple[float, float] | None = None
     hold_ceiling: float | None = None
+    judges: tuple[JudgePlan, ...] = ()
+    consensus: bool = False
 
     @property
     def on(self) -> bool:
@@ -222,7 +286,9 @@ class Plan:
         risk_rule, fault_rule: the risk rule's and the fault latch's :class:`LatchRule`.
         risk_plan: the whole risk rule (:class:`RiskPlan`: τ, the exact cut, the weights, K, the
             variance, the accepted range, the max age, its latch), read instead of ``spec.risk``.
-        tiers: the confirm band and the judge (:class:`Tiers`).
+        tiers: the confirm band and the judge (:class:`Tiers`, with every judge's settings).
+        estimator: the spec's estimator settings (:class:`EstimatorPlan`).
+        restart: the spec's ``restart:`` block (:class:`RestartPlan`), ``None`` when it writes none.
 
     Every node of ``obligations``' trees is annotated (``node.ann``, an :class:`Annotation`: its
     type and unit, a temporal node's window in cycles and the seconds the author wrote, a constant's
@@ -236,6 +302,9 @@ class Plan:
 
     The plan points at its spec (``spec``, where it came from); the spec carries its plan in a
     private holder that is no part of its value, set once by :func:`~ethimon.compiler.plan_of`.
+    Only two things go back from a plan to its spec: :func:`~ethimon.compiler.plan_of` (whether a
+    spec's carried plan is its own) and ``Monitor.spec`` (the source a monitor built from a plan
+    shows); ``tests/house/test_plan_reads.py`` keeps every other consumer on the plan.
     """
 
     spec: Spec
@@ -256,10 +325,12 @@ class Plan:
     fault_rule: LatchRule = None  # type: ignore[assignment]
     risk_plan: RiskPlan = None  # type: ignore[assignment]
     tiers: Tiers = None  # type: ignore[assignment]
+    estimator: EstimatorPlan = None  # type: ignore[assignment]
+    restart: RestartPlan | None = None
 
     def __post_init__(self) -> None:
         missing = [k for k in ("threshold", "release_exact", "release_cut", "risk_rule", "fault_rule", "risk_plan",
-                               "tiers")
+                               "tiers", "estimator")
                    if getattr(self, k) is None]
         if missing:
             raise TypeError(f"a Plan is built by compile_plan(spec); missing: {', '.join(missing)}")

@@ -14,7 +14,7 @@ from ..language import Spec
 from ._plan import Plan
 from ._typecheck import compile_plan
 
-__all__ = ["plan_of", "stateless_slots"]
+__all__ = ["plan_of", "spec_without_tiers", "stateless_slots"]
 
 def plan_of(spec: Spec | Plan) -> Plan:
     """The compiled :class:`Plan` of a spec (a plan is returned as is).
@@ -35,6 +35,17 @@ def plan_of(spec: Spec | Plan) -> Plan:
     # a new holder (never mutate a shared one); two threads racing here both compile the same plan
     spec._compiled = type(spec._compiled)(plan)
     return plan
+
+
+def spec_without_tiers(spec: Spec) -> Spec:
+    """``spec`` without its tiers (confirm band, judges, ``judge_may_hold_above_tau``): the base rule
+    ``ethimon verify`` proves its decision-trace properties on. The spec itself when it has none
+    (``Plan.tiers.on``); else a copy, which compiles its own plan."""
+    if not plan_of(spec).tiers.on:
+        return spec
+    risk = spec.risk.model_copy(update={"confirm_threshold": None, "judge": None, "judges": None,
+                                        "judge_may_hold_above_tau": None})
+    return spec.model_copy(update={"risk": risk})
 
 
 def stateless_slots(plan: Plan, ob) -> frozenset[int] | None:

@@ -13,7 +13,8 @@ from ..language._expr import (SEPARATION_PARAMS, UNIT_RULES, Binary, BoolLit, Ca
                           Node, Num, Seconds, Unary, parse_expr, separation_distance)
 from ..language import Constant, Response, Spec, seconds_to_cycles
 from ..language import OPERATORS, Operator
-from ._plan import BOOL, MAX_WINDOW, RISK_NAME, Annotation, LatchRule, ObligationPlan, Plan, RiskPlan, SignalSlot, Tiers, Ty
+from ._plan import (BOOL, MAX_WINDOW, RISK_NAME, Annotation, EstimatorPlan, JudgePlan, LatchRule, ObligationPlan, Plan,
+                    RestartPlan, RiskPlan, SignalSlot, Tiers, Ty)
 from ._risk_formula import release_bound
 from ._units import DIMENSIONLESS, Unit, div, format_unit, mul, parse_unit, sqrt_unit
 
@@ -443,15 +444,30 @@ def compile_plan(spec: Spec) -> Plan:
     risk_rule = LatchRule("risk", Response(r.response), r.release.mode == "manual", int(r.release.hold_cycles))
     risk_plan = RiskPlan(float(r.threshold), exact, cut, float(r.alpha), float(r.beta), float(r.gamma), int(r.classes),
                          int(r.unsafe_index), r.variance, None if r.max_age_s is None else float(r.max_age_s),
-                         risk_rule)
+                         risk_rule, float(r.release.hysteresis))
     cuts = r.judge_cuts()  # risk.judge, or risk.judges (their consensus is the judge input)
     hold = r.judge_may_hold_above_tau
     tiers = Tiers(None if r.confirm_threshold is None else float(r.confirm_threshold),
                   None if cuts is None else (float(cuts[0]), float(cuts[1])),
-                  float(hold.ceiling) if hold is not None and cuts is not None else None)
+                  float(hold.ceiling) if hold is not None and cuts is not None else None,
+                  _judges(r), bool(r.judges))
+    e = r.estimator
+    estimator = EstimatorPlan(e.model, e.quantize, None if e.temperature is None else float(e.temperature),
+                              e.max_length, e.backend)
+    restart = RestartPlan(spec.restart.start, spec.restart.standstill) if "restart" in spec.model_fields_set else None
     return Plan(spec=spec, signals=tuple(signals), risk_slot=len(signals), constants=dict(ck.consts),
                 obligations=tuple(obligations), temporal=tuple(ck.temporal), rate_hz=spec.rate_hz, slots=slots, risk=r,
                 on_fault=Response(spec.on_fault), threshold=float(r.threshold), release_exact=exact,
                 release_cut=cut, risk_rule=risk_rule,
                 fault_rule=LatchRule("fault", Response(spec.on_fault), fmode == "manual", int(fhold)),
-                risk_plan=risk_plan, tiers=tiers)
+                risk_plan=risk_plan, tiers=tiers, estimator=estimator, restart=restart)
+
+
+def _judges(r) -> tuple[JudgePlan, ...]:
+    """Every judge of a spec's ``risk:`` block with where it is written: ``risk.judges[k]`` (a panel,
+    even of one) or ``risk.judge``."""
+    many = bool(r.judges)
+    return tuple(JudgePlan(f"risk.judges[{k}]" if many else "risk.judge", j.url, j.model, float(j.timeout_s),
+                           j.api_key_env, j.prompt, float(j.safe_below), float(j.unsafe_from), j.canaries.path,
+                           float(j.canaries.every_s), int(j.canaries.every_texts))
+                 for k, j in enumerate(r.judge_list))

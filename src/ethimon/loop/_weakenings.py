@@ -2,14 +2,18 @@
 
 Every rule's release (mode, hold), response, τ and the exact release bound τ − δ are read from the
 two compiled plans (``Plan.rules()``, ``Plan.threshold``,
-``Plan.release_exact``), never resolved again from the specs.
+``Plan.release_exact``), never resolved again from the specs; so are the rest of the risk rule
+(``Plan.risk_plan``), the tiers and the judges (``Plan.tiers``), the estimator settings
+(``Plan.estimator``) and the restart block (``Plan.restart``). Only ``risk.allow`` is compared as the
+specs write it (see :func:`weakenings`).
 """
 
 from __future__ import annotations
 
+import dataclasses
 from typing import Any
 
-from ..compiler import Plan, plan_of
+from ..compiler import JudgePlan, Plan, plan_of
 from ..language import Response, Spec
 from ..language._expr import Name, walk
 
@@ -61,9 +65,20 @@ def _risk_inputs(plan: Plan) -> tuple[float, float]:
     return plan.risk_plan.accepted
 
 
-def _formula(spec: Spec) -> tuple:
-    r = spec.risk
+def _formula(plan: Plan) -> tuple:
+    r = plan.risk_plan
     return (r.alpha, r.beta, r.gamma, r.variance, r.classes, r.unsafe_index % r.classes)
+
+
+def _one_judge(plan: Plan) -> JudgePlan | None:
+    """The spec's ``risk.judge`` (``None``: none, or a panel written as ``risk.judges``)."""
+    t = plan.tiers
+    return t.judges[0] if t.judges and not t.consensus else None
+
+
+def _panel(plan: Plan) -> tuple[JudgePlan, ...] | None:
+    """The spec's ``risk.judges`` (``None``: not written)."""
+    return plan.tiers.judges if plan.tiers.consensus else None
 
 
 def _meanings(spec: Spec) -> dict[str, dict[str, tuple]]:
@@ -84,37 +99,51 @@ def _meanings(spec: Spec) -> dict[str, dict[str, tuple]]:
                     elif n.id in consts:
                         names[n.id] = ("constant", float(consts[n.id]))
                     else:  # the built-in R_e
-                        names[n.id] = ("risk", _formula(spec))
+                        names[n.id] = ("risk", _formula(plan))
         out[ob.id] = names
     return out
 
 
-def _judge_tier_changes(ro, rn, weak: list[str], unjudged: list[str]) -> None:
-    """risk.judges and risk.judge_may_hold_above_tau, old -> new (appended to ``weak`` / ``unjudged``)."""
-    if ro.judges != rn.judges:  # risk.judges (consensus): a changed panel cannot be told field by field
+def _tier_changes(po: Plan, pn: Plan, weak: list[str], unjudged: list[str]) -> None:
+    """The tiers, old -> new (appended to ``weak`` / ``unjudged``): risk.confirm_threshold, risk.judge,
+    risk.judges and risk.judge_may_hold_above_tau."""
+    co, cn = po.tiers.confirm_threshold, pn.tiers.confirm_threshold
+    if co is not None and (cn is None or cn > co):
+        weak.append(f"risk.confirm_threshold {co!r} -> {'none' if cn is None else repr(cn)} (fewer texts held "
+                    f"for a confirmation)")
+    jo, jn = _one_judge(po), _one_judge(pn)
+    if jo is None and jn is not None and cn is not None:
+        weak.append("risk.judge added (its safe verdict executes texts in the confirm band)")
+    elif jo is not None and jn is None:
+        weak.append("risk.judge removed (no unsafe verdict can stop a text below tau_confirm)")
+    elif jo is not None and jn is not None and jn != jo:
+        if (jn.safe_below > jo.safe_below or jn.unsafe_from > jo.unsafe_from) or (
+                dataclasses.replace(jn, safe_below=jo.safe_below, unsafe_from=jo.unsafe_from) != jo):
+            unjudged.append("risk.judge settings changed")
+    if _panel(po) != _panel(pn):  # risk.judges (consensus): a changed panel cannot be told field by field
         unjudged.append("risk.judges changed")
-    ho, hn = ro.judge_may_hold_above_tau, rn.judge_may_hold_above_tau
-    if hn is not None and (ho is None or hn.ceiling > ho.ceiling):
+    ho, hn = po.tiers.hold_ceiling, pn.tiers.hold_ceiling
+    if hn is not None and (ho is None or hn > ho):
         weak.append("risk.judge_may_hold_above_tau added or its ceiling raised (a safe verdict holds an R_e >= tau "
                     "stop for a person)")
 
 
-def _restart_changes(old: Spec, new: Spec, weak: list[str], unjudged: list[str]) -> None:
+def _restart_changes(po: Plan, pn: Plan, weak: list[str], unjudged: list[str]) -> None:
     """The ``restart:`` block (issue 32 item 4): GovernedLoop gates restarts only with one."""
-    go, gn = "restart" in old.model_fields_set, "restart" in new.model_fields_set
-    if go and not gn:
+    old, new = po.restart, pn.restart
+    if old is not None and new is None:
         weak.append("restart block removed (an accepted acknowledgement now releases at once: no start awaited)")
         return
-    if not (go and gn):
+    if old is None or new is None:
         return
-    so, sn = old.restart.standstill, new.restart.standstill
+    so, sn = old.standstill, new.standstill
     if so is not None and sn is None:
         weak.append(f"restart.standstill {so} removed (acknowledgements no longer wait for the robot's "
                     "report that the stop completed)")
     elif so != sn and so is not None:
         unjudged.append(f"restart.standstill {so} -> {sn}")
-    if old.restart.start != new.restart.start:
-        unjudged.append(f"restart.start {old.restart.start} -> {new.restart.start}")
+    if old.start != new.start:
+        unjudged.append(f"restart.start {old.start} -> {new.start}")
 
 
 def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> tuple[list[str], list[str]]:
@@ -187,7 +216,7 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
         if nw > ow:
             weak.append(f"obligation {oid}: within_cycles {ow} -> {nw} (more cycles to respond)")
         weak += _release_weaker(f"obligation {oid}", old_rules[oid], new_rules[oid])
-    ro, rn = old.risk, new.risk
+    ro, rn = po.risk_plan, pn.risk_plan  # the risk rule as each plan resolved it
     if pn.threshold > po.threshold:
         weak.append(f"risk.threshold raised {ro.threshold!r} -> {rn.threshold!r} (overrides fire at a higher R_e)")
     for w in ("alpha", "beta", "gamma"):
@@ -200,7 +229,7 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
                     f"{rn.classes}/{rn.unsafe_index}): what counts as unsafe is redefined")
     risk_o, risk_n = po.risk_rule, pn.risk_rule
     if risk_n.severity < risk_o.severity:
-        weak.append(f"risk.response {ro.response} -> {rn.response} (less severe)")
+        weak.append(f"risk.response {risk_o.response.value} -> {risk_n.response.value} (less severe)")
     if pn.fault_rule.severity < po.fault_rule.severity:
         weak.append(f"on_fault {old.on_fault} -> {new.on_fault} (less severe)")
     weak += _release_weaker("on_fault", po.fault_rule, pn.fault_rule)
@@ -211,7 +240,7 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
     bo, bn = po.release_exact, pn.release_exact
     if bn > bo:
         weak.append(f"release bound τ − δ raised {float(bo):g} -> {float(bn):g} (hysteresis "
-                    f"{ro.release.hysteresis!r} -> {rn.release.hysteresis!r}: a latch releases at a higher R_e)")
+                    f"{ro.hysteresis!r} -> {rn.hysteresis!r}: a latch releases at a higher R_e)")
     if risk_n.hold < risk_o.hold:
         weak.append(f"release hold_cycles lowered {risk_o.hold} -> {risk_n.hold}")
     (olo, ohi), (nlo, nhi) = _risk_inputs(po), _risk_inputs(pn)
@@ -238,54 +267,44 @@ def weakenings(old: Spec, new: Spec, *, loop_max_age_s: float | None = None) -> 
             weak.append(f"signal {name}: range {list(so.range)} -> {list(sn.range) if sn.range else 'none'} "
                         "(values that faulted are now accepted)")
     # a constant matters only through the conditions that read it: judged above, by meaning
-    po, pn = old.safe_pose, new.safe_pose
-    if pn.max_joint_speed_rad_s > po.max_joint_speed_rad_s:
-        weak.append(f"safe_pose.max_joint_speed_rad_s raised {po.max_joint_speed_rad_s!r} -> "
-                    f"{pn.max_joint_speed_rad_s!r}")
-    if pn.tolerance_rad > po.tolerance_rad:
-        weak.append(f"safe_pose.tolerance_rad raised {po.tolerance_rad!r} -> {pn.tolerance_rad!r}")
-    if pn.joints_rad != po.joints_rad:
+    so, sn = old.safe_pose, new.safe_pose
+    if sn.max_joint_speed_rad_s > so.max_joint_speed_rad_s:
+        weak.append(f"safe_pose.max_joint_speed_rad_s raised {so.max_joint_speed_rad_s!r} -> "
+                    f"{sn.max_joint_speed_rad_s!r}")
+    if sn.tolerance_rad > so.tolerance_rad:
+        weak.append(f"safe_pose.tolerance_rad raised {so.tolerance_rad!r} -> {sn.tolerance_rad!r}")
+    if sn.joints_rad != so.joints_rad:
         unjudged.append("safe_pose.joints_rad changed")
-    if rn.estimator != ro.estimator:
+    if pn.estimator != po.estimator:
         unjudged.append("risk.estimator settings changed")
-    if getattr(rn, "allow", None) != getattr(ro, "allow", None):
+    # the one read of the specs' risk blocks: the opt-outs are the author's written reasons, compared as
+    # text (what an opt-out lets through, τ or the weights, is compared above, from the plans)
+    if new.risk.allow != old.risk.allow:
         unjudged.append("risk.allow opt-outs changed")
-    co, cn = ro.confirm_threshold, rn.confirm_threshold
-    if co is not None and (cn is None or cn > co):
-        weak.append(f"risk.confirm_threshold {co!r} -> {'none' if cn is None else repr(cn)} (fewer texts held "
-                    f"for a confirmation)")
-    jo, jn = ro.judge, rn.judge
-    if jo is None and jn is not None and cn is not None:
-        weak.append("risk.judge added (its safe verdict executes texts in the confirm band)")
-    elif jo is not None and jn is None:
-        weak.append("risk.judge removed (no unsafe verdict can stop a text below tau_confirm)")
-    elif jo is not None and jn is not None and jn != jo:
-        if (jn.safe_below > jo.safe_below or jn.unsafe_from > jo.unsafe_from) or (
-                jn.model_copy(update={"safe_below": jo.safe_below, "unsafe_from": jo.unsafe_from}) != jo):
-            unjudged.append("risk.judge settings changed")
-    _judge_tier_changes(ro, rn, weak, unjudged)
-    _restart_changes(old, new, weak, unjudged)
+    _tier_changes(po, pn, weak, unjudged)
+    _restart_changes(po, pn, weak, unjudged)
     unjudged = [f"{u}: {CANNOT_TELL}" for u in unjudged]
     return weak + unjudged, unjudged
 
 
 def _rule_identity(plan: Plan, name: str) -> tuple | None:
     """What a latch of rule ``name`` means in ``plan``: its response and its release as the plan resolved
-    them (``Plan.rules()``; ``None``: no such rule)."""
-    r = plan.risk
-    if (name == "judge" and r.judge is None) or (name == "confirm" and r.confirm_threshold is None):
+    them (``Plan.rules()``; ``None``: no such rule). The judges (one, or a panel: ``Plan.tiers.judges``)
+    are part of the ``judge`` and ``confirm`` rules' identity."""
+    judges, tc = plan.tiers.judges or None, plan.tiers.confirm_threshold
+    if (name == "judge" and judges is None) or (name == "confirm" and tc is None):
         return None
     rule = _rules(plan).get(name)
     if rule is None:
         return None
     if name == "confirm":  # the confirm band [τ_confirm, τ): stop_2, released by a confirmation
         # released by a confirmation or by the judge's safe verdict: another judge is another release
-        return (rule.response.value, "band", r.confirm_threshold, plan.threshold, r.judge)
+        return (rule.response.value, "band", tc, plan.threshold, judges)
     ident = (rule.response.value, rule.mode, rule.hold)
     if name == "risk":
         return ident + (plan.release_exact,)
     if name == "judge":  # the judge's unsafe verdict: the risk rule's response and release
-        return ident + (plan.release_exact, r.judge)
+        return ident + (plan.release_exact, judges)
     return ident
 
 
@@ -312,5 +331,7 @@ def _show(ident: tuple | None) -> str:
             return str(x)
         if hasattr(x, "numerator"):
             return f"bound {float(x):g}"
+        if isinstance(x, tuple):  # the judges: one (risk.judge) or a panel (risk.judges)
+            return ("judges " if len(x) > 1 else "judge ") + "+".join(j.url for j in x)
         return f"judge {getattr(x, 'url', x)}"
     return "none" if ident is None else "(" + ", ".join(one(x) for x in ident) + ")"

@@ -127,13 +127,19 @@ DEFAULT_TAU_CONFIRM = 0.328
 
 def model_tau_warnings(spec: Any) -> list[str]:
     """``ethimon lint``: a spec with a ``risk:`` block that loads the shipped model at another τ (or
-    a confirm band at another τ_confirm) than the model card's pair; no band at all is a choice."""
-    if "risk" not in getattr(spec, "model_fields_set", ()) or spec.risk.estimator.model is not None:
+    a confirm band at another τ_confirm) than the model card's pair; no band at all is a choice.
+
+    Whether the spec writes a ``risk:`` block is read from the spec; τ, τ_confirm and the model from its plan."""
+    if "risk" not in getattr(spec, "model_fields_set", ()):
         return []
-    r, tc = spec.risk, spec.risk.confirm_threshold
-    if r.threshold == DEFAULT_TAU and (tc is None or tc == DEFAULT_TAU_CONFIRM):
+    from ..compiler import plan_of
+    plan = plan_of(spec)
+    if plan.estimator.model is not None:
         return []
-    have = f"tau {r.threshold:g}" + (f", tau_confirm {tc:g}" if tc is not None else "")
+    tau, tc = plan.risk_plan.threshold, plan.tiers.confirm_threshold
+    if tau == DEFAULT_TAU and (tc is None or tc == DEFAULT_TAU_CONFIRM):
+        return []
+    have = f"tau {tau:g}" + (f", tau_confirm {tc:g}" if tc is not None else "")
     return [f"risk: {have} differs from the shipped model's pair (tau {DEFAULT_TAU:g}, tau_confirm "
             f"{DEFAULT_TAU_CONFIRM:g}; MODEL_CARD.md), which this spec loads (no risk.estimator.model): "
             "the outcome figures of the model card do not hold at another pair"]
@@ -645,11 +651,13 @@ def load_estimator(model_dir: str | Path | None = None, *, quantize: str | None 
 
 
 def estimator_kwargs(spec: Any) -> dict[str, Any]:
-    """:func:`load_estimator` keyword arguments from a spec's ``risk.estimator`` block.
+    """:func:`load_estimator` keyword arguments from a spec's ``risk.estimator`` block (its plan's
+    ``estimator``, defaults filled in by the compiler).
 
     A relative ``model`` is resolved against the spec file's folder.
     """
-    cfg = spec.risk.estimator
+    from ..compiler import plan_of
+    cfg = plan_of(spec).estimator
     model = cfg.model
     if model is not None and not Path(model).is_absolute() and spec.path:
         model = str((Path(spec.path).resolve().parent / model).resolve())

@@ -12,6 +12,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from ..compiler import plan_of
 from ._judge import KEY_ENV_VAR, Judge, JudgeResult, text_sha256
 
 __all__ = ["JudgePanel", "load_judge_for", "not_configured"]
@@ -80,17 +81,12 @@ class JudgePanel:
         return f"JudgePanel({self.judges!r})"
 
 
-def _judge_configs(risk: Any) -> list[Any]:
-    """The spec's judges: ``risk.judges``, or ``[risk.judge]``, or none."""
-    js = getattr(risk, "judges", None)
-    if js:
-        return list(js)
-    return [risk.judge] if getattr(risk, "judge", None) is not None else []
-
-
 def load_judge_for(spec: Any, *, canaries: Any = "spec", key_env: str | None = None,
                    key_hosts: Any = None) -> "Judge | JudgePanel | None":
     """The spec's ``risk.judge`` as a :class:`Judge` (``risk.judges``: a :class:`JudgePanel`), or ``None``.
+
+    The judges' settings are read from the spec's plan (``Plan.tiers.judges``, resolved by the compiler);
+    ``spec`` may be a :class:`~ethimon.Spec` or its :class:`~ethimon.compiler.Plan`.
 
     Args:
         canaries: ``"spec"`` (default): the shipped set plus the spec's ``canaries.path``; ``None``: off
@@ -99,20 +95,18 @@ def load_judge_for(spec: Any, *, canaries: Any = "spec", key_env: str | None = N
             A spec's ``api_key_env`` that differs from it refuses every call (a spec cannot pick a secret).
         key_hosts: the hosts a key may go to besides loopback (default ``ETHIMON_JUDGE_HOSTS``).
     """
-    cfgs = _judge_configs(spec.risk)
-    if not cfgs:
+    tiers = plan_of(spec).tiers
+    if not tiers.judges:
         return None
     op_env = key_env if key_env is not None else (os.environ.get(KEY_ENV_VAR) or None)
     judges = []
-    for k, j in enumerate(cfgs):
-        where = "risk.judge" if len(cfgs) == 1 and not getattr(spec.risk, "judges", None) else f"risk.judges[{k}]"
+    for j in tiers.judges:
         refused = ""
         if j.api_key_env is not None and j.api_key_env != op_env:
-            refused = (f"{where}.api_key_env names {j.api_key_env}, but a spec cannot choose the key: the operator "
+            refused = (f"{j.where}.api_key_env names {j.api_key_env}, but a spec cannot choose the key: the operator "
                        f"names it ({KEY_ENV_VAR}={j.api_key_env}); no call is made")
-        cc = getattr(j, "canaries", None)
         if canaries == "spec":
-            extra = getattr(cc, "path", None)
+            extra = j.canaries_path
             if extra is not None and not Path(extra).is_absolute():
                 src = getattr(getattr(spec, "source", None), "path", None)
                 if src and Path(src).parent.is_dir() and not str(src).startswith("<"):
@@ -122,9 +116,9 @@ def load_judge_for(spec: Any, *, canaries: Any = "spec", key_env: str | None = N
             can = canaries
         judges.append(Judge(j.url, j.model, timeout_s=j.timeout_s, api_key_env=op_env, prompt=j.prompt,
                             safe_below=j.safe_below, unsafe_from=j.unsafe_from, key_hosts=key_hosts,
-                            canaries=can, canary_every_s=getattr(cc, "every_s", 600.0),
-                            canary_every_texts=getattr(cc, "every_texts", 500), _key_refused=refused))
-    if getattr(spec.risk, "judges", None):
+                            canaries=can, canary_every_s=j.canaries_every_s,
+                            canary_every_texts=j.canaries_every_texts, _key_refused=refused))
+    if tiers.consensus:
         return JudgePanel(judges)
     return judges[0]
 

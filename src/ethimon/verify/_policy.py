@@ -33,8 +33,7 @@ def release_policy_warnings(spec: Spec | Plan) -> list[str]:
                "after a fault stop, although the fault's cause was never seen by anyone")
         out.append(f"on_fault release: auto: the task restarts by itself {f.hold} cycles after the inputs come "
                    f"back, {why} (the default is manual)")
-    sp = plan.spec
-    if "restart" in sp.model_fields_set and sp.restart.standstill is None and plan.manual_rules:
+    if plan.restart is not None and plan.restart.standstill is None and plan.manual_rules:
         out.append("restart: no restart.standstill input: GovernedLoop cannot tell whether a stop has completed "
                    "(standstill, brakes engaged, power state settled), so the integrator must gate "
                    "acknowledgements on it (or name the robot's bool report as restart.standstill)")

@@ -51,7 +51,7 @@ def model_agrees(u: Unrolling, traces: int = 24) -> Finding:
     rlo, rhi = risk_input_range(u.plan)
     # the release bound's neighbours: the cut, the largest float below it, the float tau - delta
     r_pick = [rlo, rhi, u.tau, u.below_cut, u.below_float,
-              float(u.tau - u.spec.risk.release.hysteresis), min(max(u.below - 1e-3, rlo), rhi)]
+              float(u.tau - u.plan.risk_plan.hysteresis), min(max(u.below - 1e-3, rlo), rhi)]
     r_pick = [x for x in r_pick if rlo <= x <= rhi]
     s = z3.Solver()
     s.set("timeout", max(1, u.budget.check_ms()))

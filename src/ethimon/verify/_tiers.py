@@ -20,6 +20,7 @@ from typing import Any
 
 import z3
 
+from ..compiler import Plan, plan_of, spec_without_tiers
 from ..compiler._risk_formula import tier_outcome
 from ..runtime import Monitor
 from ..language import Response, Spec
@@ -33,25 +34,22 @@ __all__ = ["has_tiers", "base_spec", "tier_checks", "lint_confirm_band"]
 _STOP_2 = Response.STOP_2.severity
 
 
-def has_tiers(spec: Spec) -> bool:
-    """Whether the spec sets a confirm band or a judge."""
-    return spec.risk.confirm_threshold is not None or bool(spec.risk.judge_list)
+def has_tiers(spec: Spec | Plan) -> bool:
+    """Whether the spec sets a confirm band or a judge (its plan's ``tiers.on``)."""
+    return plan_of(spec).tiers.on
 
 
 def base_spec(spec: Spec) -> Spec:
-    """The spec without its tiers (what the decision-trace properties are checked on)."""
-    if not has_tiers(spec):
-        return spec
-    risk = spec.risk.model_copy(update={"confirm_threshold": None, "judge": None, "judges": None,
-                                        "judge_may_hold_above_tau": None})
-    return spec.model_copy(update={"risk": risk})
+    """The spec without its tiers (what the decision-trace properties are checked on): built by the
+    compiler, which knows which keys are the tiers (:func:`~ethimon.compiler.spec_without_tiers`)."""
+    return spec_without_tiers(spec)
 
 
 class _Cycle:
     """The free inputs of one valid cycle and the rules' fire conditions (the monitor's, as formulas)."""
 
-    def __init__(self, spec: Spec, plan, tag: str = "") -> None:
-        r = spec.risk
+    def __init__(self, plan: Plan, tag: str = "") -> None:
+        rp, t = plan.risk_plan, plan.tiers
         self.R = z3.Real(f"R{tag}")
         self.jk = z3.Bool(f"judged{tag}")
         self.j = z3.Real(f"p_judge{tag}")
@@ -59,24 +57,23 @@ class _Cycle:
         self.L = z3.Int(f"latched{tag}")
         lo, hi = risk_input_range(plan)
         self.domain = [self.R >= real(lo), self.R <= real(hi), self.j >= 0, self.j <= 1, self.L >= 0, self.L <= 4]
-        tau = real(r.threshold)
+        tau = real(rp.threshold)
         self.tau = tau
-        self.risk_sev = Response(r.response).severity
-        cuts = r.judge_cuts()  # one judge's cuts, or the consensus input's (risk.judges)
+        self.risk_sev = rp.latch.response.severity
+        cuts = t.judge_cuts  # one judge's cuts, or the consensus input's (risk.judges)
         judge_on = z3.BoolVal(cuts is not None)
         self.unsafe = z3.And(judge_on, self.jk, self.j >= real(cuts[1] if cuts else 1.0))
         self.safe = z3.And(judge_on, self.jk, self.j < real(cuts[0] if cuts else 0.0))
-        hold = r.judge_may_hold_above_tau
-        self.ceiling = real(hold.ceiling) if (hold is not None and cuts is not None) else None
+        self.ceiling = real(t.hold_ceiling) if t.hold_ceiling is not None else None  # only with a judge
         # risk.judge_may_hold_above_tau: a safe verdict at tau <= R_e < ceiling is a confirm hold, not a stop
         self.held = (z3.And(self.R >= tau, self.R < self.ceiling, self.safe) if self.ceiling is not None
                      else z3.BoolVal(False))
         self.risk_fires = z3.And(self.R >= tau, z3.Not(self.held))
         self.judge_fires = self.unsafe
-        if r.confirm_threshold is None:
+        if t.confirm_threshold is None:
             self.in_band = z3.BoolVal(False)
         else:
-            self.in_band = z3.And(self.R >= real(r.confirm_threshold), self.R < tau)
+            self.in_band = z3.And(self.R >= real(t.confirm_threshold), self.R < tau)
         self.confirm_fires = z3.Or(
             z3.And(z3.Not(self.judge_fires), self.in_band, z3.Not(self.conf), z3.Not(self.safe)),
             z3.And(z3.Not(self.judge_fires), self.held, z3.Not(self.conf)))
@@ -113,35 +110,36 @@ def ck_val(model, v) -> Any:
 
 def tier_checks(u) -> list[Check]:
     """Every tier property over the unrolling ``u`` (its ``full_spec`` has tiers), in report order."""
-    spec: Spec = u.full_spec
-    r = spec.risk
-    band = r.confirm_threshold is not None
-    judge = bool(r.judge_list)
-    hold_on = judge and r.judge_may_hold_above_tau is not None
-    cuts = r.judge_cuts()
+    plan: Plan = u.full_plan
+    t = plan.tiers
+    response = plan.risk_plan.latch.response.value
+    band = t.confirm_threshold is not None
+    judge = t.judge_cuts is not None
+    hold_on = t.hold_ceiling is not None  # only with a judge
+    cuts = t.judge_cuts
     out: list[Check] = []
 
     def cyc(tag=""):
-        return _Cycle(spec, u.full_plan, tag)
+        return _Cycle(plan, tag)
 
     def stop(u) -> Finding:
         c = cyc()
         if not hold_on:
             return _prove(u, "tier.stop", c, z3.Implies(c.R >= c.tau, z3.And(c.override, c.sev >= c.risk_sev)),
-                          f"R_e >= tau => override ({r.response} or more) whatever the judge says")
-        ceil = r.judge_may_hold_above_tau.ceiling
+                          f"R_e >= tau => override ({response} or more) whatever the judge says")
+        ceil = t.hold_ceiling
         claim = z3.And(z3.Implies(z3.And(c.R >= c.tau, z3.Not(c.safe)), z3.And(c.override, c.sev >= c.risk_sev)),
                        z3.Implies(c.R >= c.ceiling, z3.And(c.override, c.sev >= c.risk_sev)))
         return _prove(u, "tier.stop", c, claim,
                       f"R_e >= tau without a safe verdict, or R_e >= ceiling {ceil:g} whatever the judge says => "
-                      f"override ({r.response} or more)")
+                      f"override ({response} or more)")
     out.append(Check("property", "tier.stop", stop))
     if hold_on:
         def hold_above(u) -> Finding:
             c = cyc()
             claim = z3.Implies(z3.And(c.R >= c.tau, z3.Not(c.conf)), z3.And(c.override, c.sev >= _STOP_2))
             return _prove(u, "tier.hold_above_tau", c, claim,
-                          f"judge_may_hold_above_tau (ceiling {r.judge_may_hold_above_tau.ceiling:g}): at R_e >= tau "
+                          f"judge_may_hold_above_tau (ceiling {t.hold_ceiling:g}): at R_e >= tau "
                           "a safe verdict gives at most a confirm hold (stop_2 or more): never execute without a "
                           "person's confirmation of that text")
         out.append(Check("property", "tier.hold_above_tau", hold_above))
@@ -161,13 +159,13 @@ def tier_checks(u) -> list[Check]:
         def unsafe(u) -> Finding:
             c = cyc()
             return _prove(u, "tier.judge_unsafe", c, z3.Implies(c.unsafe, z3.And(c.override, c.sev >= c.risk_sev)),
-                          f"an unsafe verdict (p_judge >= {cuts[1]:g}) => override ({r.response} or more) "
+                          f"an unsafe verdict (p_judge >= {cuts[1]:g}) => override ({response} or more) "
                           f"at any R_e")
         out.append(Check("property", "tier.judge_unsafe", unsafe))
 
         def raise_only(u) -> Finding:
             c = cyc()
-            below = c.R < (real(r.confirm_threshold) if band else c.tau)
+            below = c.R < (real(t.confirm_threshold) if band else c.tau)
             # the same cycle with no judgement: the judgement can only add overrides below the band
             nj = z3.substitute(z3.And(c.override, c.sev >= 0), (c.jk, z3.BoolVal(False)))
             nj_sev = z3.substitute(c.sev, (c.jk, z3.BoolVal(False)))
@@ -194,19 +192,18 @@ def tier_checks(u) -> list[Check]:
     return out
 
 
-def _points(spec: Spec, plan) -> tuple[list[float], list[float | None]]:
-    r = spec.risk
+def _points(plan: Plan) -> tuple[list[float], list[float | None]]:
+    t, tau = plan.tiers, plan.risk_plan.threshold
     lo, hi = risk_input_range(plan)
-    rs = {lo, hi, float(r.threshold), math.nextafter(float(r.threshold), -math.inf), (lo + hi) / 2}
-    if r.confirm_threshold is not None:
-        tc = float(r.confirm_threshold)
-        rs |= {tc, math.nextafter(tc, -math.inf), math.nextafter(tc, math.inf), (tc + float(r.threshold)) / 2}
-    hold = r.judge_may_hold_above_tau
-    if hold is not None:
-        cl = float(hold.ceiling)
-        rs |= {cl, math.nextafter(cl, -math.inf), (float(r.threshold) + cl) / 2}
+    rs = {lo, hi, tau, math.nextafter(tau, -math.inf), (lo + hi) / 2}
+    if t.confirm_threshold is not None:
+        tc = t.confirm_threshold
+        rs |= {tc, math.nextafter(tc, -math.inf), math.nextafter(tc, math.inf), (tc + tau) / 2}
+    if t.hold_ceiling is not None:
+        cl = t.hold_ceiling
+        rs |= {cl, math.nextafter(cl, -math.inf), (tau + cl) / 2}
     js: set[float] = {0.0, 0.5, 1.0}
-    cuts = r.judge_cuts()
+    cuts = t.judge_cuts
     if cuts is not None:
         for x in cuts:
             js |= {x, max(0.0, math.nextafter(x, -math.inf)), min(1.0, math.nextafter(x, math.inf))}
@@ -215,24 +212,23 @@ def _points(spec: Spec, plan) -> tuple[list[float], list[float | None]]:
 
 def agrees(u) -> Finding:
     """Fresh monitors on every threshold boundary fire what the encoding says (confirmed or not)."""
-    spec: Spec = u.full_spec
-    rs, js = _points(spec, u.full_plan)
-    c = _Cycle(spec, u.full_plan)
-    r = spec.risk
-    cuts = r.judge_cuts()
-    hold = r.judge_may_hold_above_tau if cuts is not None else None
+    plan: Plan = u.full_plan
+    rs, js = _points(plan)
+    c = _Cycle(plan)
+    rp, t = plan.risk_plan, plan.tiers
+    cuts = t.judge_cuts
     n = 0
     for R, jp, confirmed in itertools.product(rs, js, (False, True)):
-        m = Monitor(u.full_plan, margins=False)
+        m = Monitor(plan, margins=False)
         frame: dict[str, Any] = {sig.name: (True if sig.kind == "bool" else min(max(0.0, sig.lo), sig.hi))
-                                 for sig in u.full_plan.signals}
-        if r.max_age_s is not None:
+                                 for sig in plan.signals}
+        if rp.max_age_s is not None:
             frame["risk_age_s"] = 0.0
         if confirmed:  # a confirmation needs the band (or a held text): confirm one first, same task
-            if r.confirm_threshold is not None:
-                m.step({**frame, "risk": float(r.confirm_threshold), "task_id": "t"})
-            elif r.judge_may_hold_above_tau is not None and cuts is not None and cuts[0] > 0:
-                m.step({**frame, "risk": float(r.threshold), "judge": 0.0, "task_id": "t"})
+            if t.confirm_threshold is not None:
+                m.step({**frame, "risk": t.confirm_threshold, "task_id": "t"})
+            elif t.hold_ceiling is not None and cuts[0] > 0:  # a hold ceiling only with a judge
+                m.step({**frame, "risk": rp.threshold, "judge": 0.0, "task_id": "t"})
             else:
                 continue
             if not m.acknowledge().released:
@@ -249,9 +245,9 @@ def agrees(u) -> Finding:
             return Finding("property", "tier.agrees", REFUTED,
                            f"R_e={R!r}, p_judge={jp!r}, confirmed={confirmed}: the Monitor fired {got}, the "
                            f"encoding {want}")
-        outcome = tier_outcome(R, jp, threshold=r.threshold, confirm_threshold=r.confirm_threshold,
+        outcome = tier_outcome(R, jp, threshold=rp.threshold, confirm_threshold=t.confirm_threshold,
                                safe_below=cuts[0] if cuts else 0.2, unsafe_from=cuts[1] if cuts else 0.8,
-                               judge=cuts is not None, hold_ceiling=hold.ceiling if hold is not None else None)
+                               judge=cuts is not None, hold_ceiling=t.hold_ceiling)
         if not confirmed and not [v for v in d.violations if v not in ("risk", "judge", "confirm")]:
             seen = "stop" if ("risk" in got or "judge" in got) else ("confirm" if got else "execute")
             if seen != outcome:
@@ -264,14 +260,14 @@ def agrees(u) -> Finding:
 
 def lint_confirm_band(u) -> Finding:
     """Where the confirm band lies in the reachable R_e (and what ``judge_may_hold_above_tau`` does)."""
-    spec: Spec = u.full_spec
-    r = spec.risk
+    plan: Plan = u.full_plan
+    t = plan.tiers
     name = "lint.confirm_band"
-    if r.confirm_threshold is None:
-        return Finding("lint", name, OK, "no confirm band" + (" (the judge can only stop)" if r.judge_list else "")
-                       + _hold_note(r))
+    if t.confirm_threshold is None:
+        return Finding("lint", name, OK, "no confirm band" + (" (the judge can only stop)" if t.judges else "")
+                       + _hold_note(plan))
     lo, hi = u.risk_range()  # reachable R_e (the tiers do not change the formula)
-    tc, tau = float(r.confirm_threshold), float(r.threshold)
+    tc, tau = t.confirm_threshold, plan.risk_plan.threshold
     if tc >= tau:  # pragma: no cover - the spec model rejects it
         return Finding("lint", name, WARNING, f"tau_confirm={tc:g} is not below tau={tau:g}")
     if tc <= lo:
@@ -280,16 +276,16 @@ def lint_confirm_band(u) -> Finding:
                        f"safe verdict is held for a person")
     if tc >= hi:
         return Finding("lint", name, WARNING, f"tau_confirm={tc:g} is above every reachable R_e: the band is empty")
-    who = ("the judges in consensus or a person" if r.judges else "the judge or a person") if r.judge_list \
+    who = ("the judges in consensus or a person" if t.consensus else "the judge or a person") if t.judges \
         else "a person (no judge)"
     return Finding("lint", name, OK, f"tau_confirm={tc:g} < tau={tau:g}; R_e in [{tc:g}, {tau:g}) goes to {who}"
-                   + _hold_note(r))
+                   + _hold_note(plan))
 
 
-def _hold_note(r) -> str:
+def _hold_note(plan: Plan) -> str:
     """What lint says about risk.judge_may_hold_above_tau (named whenever it is on)."""
-    h = r.judge_may_hold_above_tau
+    h = plan.tiers.hold_ceiling
     if h is None:
         return ""
-    return (f"; judge_may_hold_above_tau: a canary-passed judge's safe verdict holds R_e in [{float(r.threshold):g}, "
-            f"{float(h.ceiling):g}) for a person (stop_2) instead of stopping it")
+    return (f"; judge_may_hold_above_tau: a canary-passed judge's safe verdict holds R_e in "
+            f"[{plan.risk_plan.threshold:g}, {h:g}) for a person (stop_2) instead of stopping it")
