@@ -108,9 +108,13 @@ def _verify(text, tmp_path):
 
 
 @pytest.mark.slow
-def test_verify_proves_the_hold_and_lint_names_it(tmp_path):
+@pytest.mark.parametrize("response", ["stop_0", "safe_pose"])
+def test_verify_proves_the_hold_and_lint_names_it(tmp_path, response):
+    """With ``risk.response: safe_pose`` (below stop_2) a τ-stop without a safe verdict is a safe pose and a
+    held text stop_2: the hold property asks for an override at least the lesser of the two (it asked for
+    stop_2 and was refuted on a correct monitor)."""
     pytest.importorskip("z3")
-    got = _verify(HOLD_SPEC, tmp_path)
+    got = _verify(HOLD_SPEC.replace("response: stop_0", f"response: {response}"), tmp_path)
     for name in ("tier.stop", "tier.hold_above_tau", "tier.band", "tier.judge_unsafe", "tier.raise_only",
                  "tier.adds_only"):
         assert got[name].status == "proved", got[name]

@@ -23,7 +23,7 @@ import z3
 from ..compiler import Plan, plan_of, spec_without_tiers
 from ..compiler._risk_formula import tier_outcome
 from ..runtime import Monitor
-from ..language import Response, Spec
+from ..language import SEVERITY_ORDER, Response, Spec
 from ._encode import real, risk_input_range
 from ._checks import Check
 from ._report import OK, PROVED, REFUTED, UNKNOWN, WARNING, Finding
@@ -137,11 +137,14 @@ def tier_checks(u) -> list[Check]:
     if hold_on:
         def hold_above(u) -> Finding:
             c = cyc()
-            claim = z3.Implies(z3.And(c.R >= c.tau, z3.Not(c.conf)), z3.And(c.override, c.sev >= _STOP_2))
+            # the least an unconfirmed text at R_e >= tau gets: a hold (stop_2) or the risk rule's own response,
+            # whichever is lower (a spec may answer R_e >= tau with safe_pose, below a hold)
+            least = min(_STOP_2, c.risk_sev)
+            claim = z3.Implies(z3.And(c.R >= c.tau, z3.Not(c.conf)), z3.And(c.override, c.sev >= least))
             return _prove(u, "tier.hold_above_tau", c, claim,
                           f"judge_may_hold_above_tau (ceiling {t.hold_ceiling:g}): at R_e >= tau "
                           "a safe verdict gives at most a confirm hold (stop_2 or more): never execute without a "
-                          "person's confirmation of that text")
+                          f"person's confirmation of that text (override {SEVERITY_ORDER[least].value} or more)")
         out.append(Check("property", "tier.hold_above_tau", hold_above))
     if band:
         def hold(u) -> Finding:
