@@ -59,10 +59,6 @@ ALLOWED: dict[str, dict[str, tuple[int, str]]] = {
     "plan.risk": {
         # left for the owners of these files (issue 33): they should read plan.tiers / plan.risk_plan
         "runtime/_tiers.py": (1, "to move: Tiers.__init__ reads plan.risk for the cuts plan.tiers holds"),
-        "scenario/_run.py": (3, "to move: the scenario's judge/band checks read plan.risk, not plan.tiers"),
-        "loop/_feed.py": (4, "to move: whether there is a judge / a band, and a reload's judge change, from "
-                             "plan.risk, not plan.tiers"),
-        "offline/_trace.py": (2, "to move: whether a trace needs the tier inputs, from plan.risk, not plan.tiers"),
     },
 }
 

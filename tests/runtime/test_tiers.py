@@ -317,3 +317,21 @@ def test_a_task_id_that_disappears_ends_the_confirmation():
         assert not m.step({"p": (0.5, 0.5), "task_id": "a"}).override
         d = m.step({"p": (0.5, 0.5)})
         assert d.override and "confirm" in d.violations, type(m).__name__
+
+
+def test_offline_with_a_judge_panel_and_no_band_agrees_with_the_monitor():
+    """A panel (``risk.judges``) without a confirm band is a judge tier too: offline steps it through the
+    monitor (it read only ``risk.judge`` and took the vector path, where an unsafe verdict does nothing)."""
+    import numpy as np
+
+    from ethimon.offline import check_trace
+    spec = ethimon.load_spec_text(
+        "ethimon: 1\nname: panel\nsignals: {d: {unit: m, range: [0, 4]}}\nrisk:\n  threshold: 0.5\n  judges:\n"
+        "    - {url: 'http://127.0.0.1:9/v1', model: a}\n    - {url: 'http://127.0.0.1:9/v1', model: b}\n"
+        "obligations:\n  - {id: near, require: 'd >= 0.5', response: stop_1}\n")
+    d, risk, judge = np.full(4, 2.0), np.full(4, 0.1), np.array([np.nan, 0.95, np.nan, 0.0])
+    m = ethimon.Monitor(spec)
+    want = [m.step({"d": 2.0, "risk": 0.1, **({} if j != j else {"judge": float(j)})}) for j in judge]
+    assert any(x.override for x in want)  # the unsafe verdict stops
+    off = check_trace(spec, {"d": d, "risk": risk, "judge": judge})
+    assert off.override.tolist() == [x.override for x in want]

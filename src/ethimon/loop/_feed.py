@@ -3,6 +3,7 @@ task text both read, turned into a cycle's ``p``/``risk_age_s``/``pending_s``/``
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Mapping
 from typing import Any
@@ -47,7 +48,7 @@ class RiskFeed:
             if judge != "spec":
                 raise ValueError(f"judge={judge!r}; expected 'spec', None, a Judge or an AsyncJudgeSource")
             judge = None
-            if monitor.plan.risk.judge_list:  # risk.judge or risk.judges
+            if monitor.plan.tiers.judges:  # risk.judge or risk.judges
                 from ..risk import load_judge_for
                 judge = load_judge_for(monitor.spec)
         if judge is not None and not isinstance(judge, AsyncJudgeSource):
@@ -98,7 +99,7 @@ class RiskFeed:
                 inputs["pending_s"] = reading.pending_s  # awaited: the monitor holds (stop 2) or fails closed
             else:
                 reasons.append(Fault("estimator", reading.fault))
-        if self.judge is not None or m.plan.risk.confirm_threshold is not None:
+        if self.judge is not None or m.plan.tiers.confirm_threshold is not None:
             self._tier_inputs(inputs, text, sink, loop_cycle)
         return reading
 
@@ -124,10 +125,16 @@ class RiskFeed:
     def swap(self, old: Monitor, new: Monitor) -> None:
         """A reloaded spec: the judge the new spec names (or none) when the judge came from the spec and
         the new spec names another; its texts are asked again."""
-        if self.judge_from_spec and new.plan.risk.judge_list != old.plan.risk.judge_list:
+        if self.judge_from_spec and _clients(new.plan.tiers) != _clients(old.plan.tiers):
             if self.judge is not None:
                 self.judge.stop(timeout=0.0)
             from ..risk import load_judge_for
             j = load_judge_for(new.spec)
             self.judge = AsyncJudgeSource(j) if j is not None else None
             self.task_text = self.task_key = None
+
+
+def _clients(tiers: Any) -> tuple:
+    """The judges' settings a reload compares (where each is written left out: the same judge moved from
+    ``risk.judge`` to a one-judge ``risk.judges`` is the same client)."""
+    return tuple(dataclasses.replace(j, where="") for j in tiers.judges)

@@ -290,7 +290,7 @@ def check_trace(spec: Spec | Plan | str | os.PathLike, columns: Mapping[str, Any
     res._plan = plan
     if inp.n == 0:
         return res
-    if plan.risk.confirm_threshold is not None or plan.risk.judge is not None:
+    if plan.tiers.on:  # a confirm band or a judge (one, or a panel: risk.judges)
         # the tier rules (confirm band, judge) have no vector form: every cycle through the monitor,
         # with the recorded judge answers (a 'judge' column, NaN/None: no judgement) and task ids
         res._tier_rows = _tier_rows(columns, inp.n)

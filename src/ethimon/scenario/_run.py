@@ -282,9 +282,10 @@ def check_expectations(sc: Scenario, decisions: list[Decision]) -> list[str]:
 def _check_ids(sc: Scenario, monitor: Monitor) -> None:
     import difflib
     known = set(monitor.obligation_ids) | {"risk"}
-    if monitor.plan.risk.judge_list:
+    tiers = monitor.plan.tiers
+    if tiers.judges:
         known.add("judge")
-    if monitor.plan.risk.confirm_threshold is not None or monitor.plan.risk.judge_may_hold_above_tau is not None:
+    if tiers.confirm_threshold is not None or tiers.hold_ceiling is not None:
         known.add("confirm")
     for key in ("fired", "not_fired"):
         for i, oid in enumerate(getattr(sc.expect, key)):
