@@ -87,7 +87,8 @@ class Monitor:
 
     __slots__ = ("spec", "plan", "obligation_ids", "_m", "_vals", "_sig", "_fsig", "_rslot", "_ucall", "_vcall",
                  "_obs", "_stateless", "_margins_on", "_margin_fns", "_mcall", "_nan_margins",
-                 "_tau", "_release_cut", "_risk_free", "_cycle", "_hist0", "_risk", "_tiers", "_latches", "_hot")
+                 "_tau", "_release_cut", "_risk_free", "_cycle", "_hist0", "_risk", "_tiers", "_latches", "_hot",
+                 "_sindex")
 
     def __init__(self, plan: Plan | Spec, *, margins: bool = True, max_age_s: float | None = None) -> None:
         plan = plan_of(plan)
@@ -100,16 +101,16 @@ class Monitor:
         self._sig = tuple((s.name, s.slot, s.kind == "bool", s.lo, s.hi,
                            Fault("missing", f"signal {s.name!r} is missing", s.name))  # built once, not per cycle
                           for s in plan.signals)
-        # the fast reading: (index, name, slot, is_bool, lo, hi); the first input that is not a
-        # built-in float in range (or a bool) hands over to _read_rest, which judges it as before
-        self._fsig = tuple((k, s.name, s.slot, s.kind == "bool", s.lo, s.hi) for k, s in enumerate(plan.signals))
+        # the fast reading: (name, slot, is_bool, lo, hi); the first input that is not a built-in float
+        # in range (or a bool) hands over to _read_rest (from its index in _sindex), which judges it as before
+        self._fsig = tuple((s.name, s.slot, s.kind == "bool", s.lo, s.hi) for s in plan.signals)
+        self._sindex = {s.name: k for k, s in enumerate(plan.signals)}
         self._rslot = plan.risk_slot
         # one call each per cycle: every temporal update (inner operators first), then every
         # obligation's verdict (all of them, in order: bounded responses keep state), as one tuple
         self._ucall = m.updates[0] if len(m.updates) == 1 else _tuple_of_calls(m.updates)
         self._vcall = _tuple_of_calls(m.violated)
-        self._obs = tuple((fn, ob.id, ob.response.severity, i)
-                          for i, (fn, ob) in enumerate(zip(m.violated, plan.obligations)))
+        self._obs = tuple((ob.id, i) for i, ob in enumerate(plan.obligations))  # (id, latch index) per verdict
         self._stateless = tuple((fn, ob.id, ob.response.severity, slots, i)
                                 for i, (fn, ob) in enumerate(zip(m.violated, plan.obligations))
                                 if (slots := stateless_slots(plan, ob)) is not None)
@@ -134,10 +135,15 @@ class Monitor:
         self._tiers = Tiers(plan, latches.ji, latches.ci)
         self._cycle = 0
         self._hist0 = 0  # the cycle from which the temporal history runs (set by a reset or a fault)
-        # what step reads every cycle, bound once: step unpacks it into locals in one go (none of it is
-        # ever rebound; the lists and the parts change in place)
+        # what a clean cycle reads, bound once: step unpacks it into locals in one go (none of it is ever
+        # rebound; the lists and the parts change in place). ``clean``: the verdicts of a cycle on which
+        # no obligation fires (a tuple compared by identity of its bools, no ``True in`` scan);
+        # ``cut``: R_e below it and clean verdicts, nothing can fire (τ; -inf with a judge or a confirm
+        # band, whose tier is judged on every valid cycle)
+        clean = tuple(False for _ in plan.obligations)
+        cut = self._tau if not self._tiers.on else -math.inf
         self._hot = (self._fsig, self._vals, self._risk, self._tiers, latches, self._rslot, self._ucall,
-                     self._vcall, self._obs, self._mcall if margins else None, self._tau, self.obligation_ids)
+                     self._vcall, clean, cut, self._mcall if margins else None, self.obligation_ids)
 
     # -- public state ----------------------------------------------------------------
     @property
@@ -178,10 +184,10 @@ class Monitor:
         r = None
         try:
             get = signals.get
-            fsig, vals, risk, tiers, latches, rslot, ucall, vcall, obs, mcall, tau, ids = self._hot
+            fsig, vals, risk, tiers, latches, rslot, ucall, vcall, clean, cut, mcall, ids = self._hot
             faults = None
             bad = None  # slots whose input is unusable this cycle (fault path only)
-            for k, name, slot, is_bool, lo, hi in fsig:
+            for name, slot, is_bool, lo, hi in fsig:
                 v = get(name)
                 if is_bool:
                     if v is True or v is False:
@@ -190,27 +196,29 @@ class Monitor:
                 elif type(v) is float and lo <= v <= hi:  # the common case: a built-in float in range
                     vals[slot] = v
                     continue
-                faults, bad = self._read_rest(get, k, v)  # anything else: judged there, once
+                faults, bad = self._read_rest(get, self._sindex[name], v)  # anything else: judged there, once
                 break
-            rin = get("risk")
-            if rin is not None:
-                r, why = risk.direct(rin)
+            rin = get("risk")  # read first; p_unsafe only without it
+            if rin is None and type(q := get("p_unsafe")) is float and risk.p2 and 0.0 <= q <= 1.0:
+                # the common case, as RiskInput.from_p: compiler._risk_formula.two_class_risk inlined (hot
+                # path; tests/compiler/test_plan_of.py checks this copy equals the one definition on a grid
+                # of inputs and weights)
+                d = q - 0.5
+                var = 2.0 * d * d if risk.sample else d * d
+                top = q if q >= 0.5 else 1.0 - q
+                r = risk.alpha * q + risk.beta * (1.0 - top) + risk.gamma * var
+                if not _isfinite(r):  # weights and inputs are finite; never trust it blindly
+                    why = Fault("internal", f"R_e={r!r} is not finite")
+                    r = None
+                    (faults := faults or []).append(why)
+                    (bad := bad or []).append(rslot)
             else:
-                q = get("p_unsafe")
-                if type(q) is float and risk.p2 and 0.0 <= q <= 1.0:  # the common case, as RiskInput.from_p
-                    # compiler._risk_formula.two_class_risk inlined (hot path; tests/compiler/test_plan_of.py
-                    # checks this copy equals the one definition on a grid of inputs and weights)
-                    d = q - 0.5
-                    var = 2.0 * d * d if risk.sample else d * d
-                    top = q if q >= 0.5 else 1.0 - q
-                    r, why = risk.alpha * q + risk.beta * (1.0 - top) + risk.gamma * var, None
-                else:
-                    r, why = risk.from_p(get, q)
-            if why is None and not _isfinite(r):  # weights and inputs are finite; never trust it blindly
-                r, why = None, Fault("internal", f"R_e={r!r} is not finite")
-            if why is not None:
-                (faults := faults or []).append(why)
-                (bad := bad or []).append(rslot)
+                r, why = risk.direct(rin) if rin is not None else risk.from_p(get, q)
+                if why is None and not _isfinite(r):  # as above
+                    r, why = None, Fault("internal", f"R_e={r!r} is not finite")
+                if why is not None:
+                    (faults := faults or []).append(why)
+                    (bad := bad or []).append(rslot)
             max_age = risk.max_age
             if max_age is not None:
                 age = get("risk_age_s")
@@ -239,47 +247,53 @@ class Monitor:
                 return self._fault(cycle, tuple(faults), r, bad)
             vals[rslot] = r
             ucall()
-            violations = None
-            hits = None  # latched only once every obligation was judged (a later one may raise)
             vs = vcall()  # each verdict is a bool
-            if True in vs:
-                violations = []
-                hits = []
-                for (fn, oid, s, i), v in zip(obs, vs):
-                    if v:
-                        violations.append(oid)
-                        hits.append(i)
-            held = False
-            if r >= tau and not (held := (tiers.hold_hi is not None and r < tiers.hold_hi and jp is not None
-                                                and jp < tiers.jsafe)):
-                if violations is None:
-                    violations = ["risk"]
-                    hits = [latches.ri]
-                else:
-                    violations.append("risk")
-                    hits.append(latches.ri)
-            if tiers.on:
-                tier = tiers.tier(r, jp, get)
-                if tier is not None:
+            if vs == clean and r < cut:  # the common case: nothing fires this cycle, nothing to latch
+                margins = _EMPTY if mcall is None else mcall()  # a margin that cannot be computed is NaN
+                if not latches.n:  # ids: the obligation-id tuple by reference (Decision.margin reads it)
+                    return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY, False, ids)
+                violations = None
+                held = False
+            else:
+                violations = None
+                hits = None  # latched only once every obligation was judged (a later one may raise)
+                held = False
+                if vs != clean:
+                    violations = []
+                    hits = []
+                    for (oid, i), v in zip(self._obs, vs):
+                        if v:
+                            violations.append(oid)
+                            hits.append(i)
+                if r >= self._tau and not (held := (tiers.hold_hi is not None and r < tiers.hold_hi
+                                                    and jp is not None and jp < tiers.jsafe)):
                     if violations is None:
-                        violations = [tier[0]]
-                        hits = [tier[1]]
+                        violations = ["risk"]
+                        hits = [latches.ri]
                     else:
-                        violations.append(tier[0])
-                        hits.append(tier[1])
-            if hits is not None:
-                lat, run, sevs, since = latches.lat, latches.run, latches.sevs, latches.since
-                for i in hits:
-                    if not lat[i]:
-                        lat[i] = sevs[i]
-                        since[i] = cycle
-                        latches.n += 1
-                    run[i] = -1
-            margins = _EMPTY
-            if mcall is not None:
-                margins = mcall()  # a margin that cannot be computed is NaN
-            if not latches.n:  # ids: the obligation-id tuple by reference (Decision.margin reads it)
-                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY, False, ids)
+                        violations.append("risk")
+                        hits.append(latches.ri)
+                if tiers.on:
+                    tier = tiers.tier(r, jp, get)
+                    if tier is not None:
+                        if violations is None:
+                            violations = [tier[0]]
+                            hits = [tier[1]]
+                        else:
+                            violations.append(tier[0])
+                            hits.append(tier[1])
+                if hits is not None:
+                    lat, sevs = latches.lat, latches.sevs
+                    run = latches.run
+                    for i in hits:
+                        if not lat[i]:
+                            lat[i] = sevs[i]
+                            latches.since[i] = cycle
+                            latches.n += 1
+                        run[i] = -1
+                margins = _EMPTY if mcall is None else mcall()
+                if not latches.n:
+                    return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY, False, ids)
             sev, awaiting = latches.release_pass(r < self._release_cut or held)  # held: the confirm latch holds
             if violations is not None:
                 return Decision(True, _RESPONSES[sev], tuple(violations), margins, r, cycle, False, _EMPTY,
@@ -553,9 +567,9 @@ class Monitor:
             margins = self._mcall() if self._margins_on else _EMPTY
         except Exception as exc:  # fail closed, as step does
             return self._fault(cycle, (Fault("internal", f"internal error: {type(exc).__name__}: {exc}"),), None)
-        found = [oid for (fn, oid, sv, i), v in zip(self._obs, vs) if v]
+        found = [oid for (oid, i), v in zip(self._obs, vs) if v]
         found.append("pending")
-        for (fn, oid, sv, i), v in zip(self._obs, vs):
+        for (oid, i), v in zip(self._obs, vs):
             if v:
                 latches.latch(i, cycle)
                 run[i] = -1
