@@ -13,8 +13,8 @@ counted:
   ``monitor.spec``, ...), or ``X.risk.<a RiskConfig field>`` on anything but a plan (``old.risk.allow``);
 - ``plan.spec``: ``X.spec`` where ``X`` names a plan (``plan``, ``self.plan``, ``u.full_plan``,
   ``plan_of(...)``);
-- ``plan.risk``: ``X.risk`` where ``X`` names a plan: the spec's raw ``risk:`` block the Plan still
-  carries (``Plan.risk``), read instead of ``risk_plan``/``tiers``.
+- ``plan.risk``: ``X.risk`` where ``X`` names a plan: the spec's raw ``risk:`` block, which the Plan
+  carried (``Plan.risk``, now gone: the rule is ``risk_plan``, the tiers ``tiers``); kept at zero.
 
 A module outside the allowed tables below reading any of them fails the test, and an allowed module
 may not read more than its count. (A spec's risk block bound to a name first, ``r = spec.risk``, is
@@ -56,10 +56,7 @@ ALLOWED: dict[str, dict[str, tuple[int, str]]] = {
         "runtime/_monitor.py": (1, "Monitor.spec, a public attribute: the source a monitor built from a Plan "
                                    "was compiled from (its name, what a reload compares)"),
     },
-    "plan.risk": {
-        # left for the owners of these files (issue 33): they should read plan.tiers / plan.risk_plan
-        "runtime/_tiers.py": (1, "to move: Tiers.__init__ reads plan.risk for the cuts plan.tiers holds"),
-    },
+    "plan.risk": {},
 }
 
 

@@ -14,7 +14,7 @@ from fractions import Fraction
 from functools import cached_property
 
 from ..language._expr import Call, Node
-from ..language import Response, RiskConfig, Spec
+from ..language import Response, Spec
 from ._risk_formula import risk_range
 from ._units import Unit, format_unit
 
@@ -278,7 +278,6 @@ class Plan:
         rate_hz: the spec's stated control rate (``None``: it counts cycles only).
         slots: input slot of every name an expression can read (signals and ``risk``),
             built once here for every consumer (code generation, fault-path evaluation).
-        risk: the spec's risk settings (τ, weights, classes, release, max age).
         on_fault: the response to a fault.
         threshold: τ, the risk rule fires at ``R_e >= threshold``.
         release_exact: the exact release bound τ − δ (the spec's decimals, as a fraction).
@@ -315,7 +314,6 @@ class Plan:
     temporal: tuple[Call, ...]
     rate_hz: float | None = None
     slots: dict[str, int] = field(default_factory=dict)
-    risk: RiskConfig = field(default_factory=RiskConfig)
     on_fault: Response = Response.SAFE_POSE
     # resolved by compile_plan (no second set of defaults here: a plan built without them is refused)
     threshold: float = None  # type: ignore[assignment]

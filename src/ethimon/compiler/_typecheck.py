@@ -456,7 +456,7 @@ def compile_plan(spec: Spec) -> Plan:
                               e.max_length, e.backend)
     restart = RestartPlan(spec.restart.start, spec.restart.standstill) if "restart" in spec.model_fields_set else None
     return Plan(spec=spec, signals=tuple(signals), risk_slot=len(signals), constants=dict(ck.consts),
-                obligations=tuple(obligations), temporal=tuple(ck.temporal), rate_hz=spec.rate_hz, slots=slots, risk=r,
+                obligations=tuple(obligations), temporal=tuple(ck.temporal), rate_hz=spec.rate_hz, slots=slots,
                 on_fault=Response(spec.on_fault), threshold=float(r.threshold), release_exact=exact,
                 release_cut=cut, risk_rule=risk_rule,
                 fault_rule=LatchRule("fault", Response(spec.on_fault), fmode == "manual", int(fhold)),

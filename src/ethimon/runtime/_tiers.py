@@ -21,16 +21,15 @@ class Tiers:
                  "confirmed", "ctask", "last_task")
 
     def __init__(self, plan: Plan, ji: int, ci: int) -> None:
-        r = plan.risk
+        t = plan.tiers  # resolved once by the compiler (compiler.Tiers)
         self.tau = plan.threshold
         self.ji, self.ci = ji, ci
-        self.tc = None if r.confirm_threshold is None else float(r.confirm_threshold)
-        cuts = r.judge_cuts()  # risk.judge, or risk.judges (their consensus is the judge input)
+        self.tc = None if t.confirm_threshold is None else float(t.confirm_threshold)
+        cuts = t.judge_cuts  # risk.judge, or risk.judges (their consensus is the judge input)
         self.judge_on = cuts is not None
         self.jsafe, self.junsafe = (float(cuts[0]), float(cuts[1])) if cuts is not None else (-1.0, 2.0)
         # risk.judge_may_hold_above_tau: a safe verdict turns tau <= R_e < ceiling into a confirm hold
-        hold = r.judge_may_hold_above_tau
-        self.hold_hi = float(hold.ceiling) if (hold is not None and self.judge_on) else None
+        self.hold_hi = float(t.hold_ceiling) if (t.hold_ceiling is not None and self.judge_on) else None
         self.on = self.judge_on or self.tc is not None
         self.confirmed = False  # acknowledge() confirmed the text in the band (bound to ctask)
         self.ctask = None
