@@ -141,3 +141,24 @@ def test_a_channel_without_an_outlet_is_refused_when_the_monitor_is_built():
 
     with pytest.raises(TypeError, match="Old has no outlet: a Channel's 'out' is an ethimon.io.Outlet"):
         _live(Old(), FakeClock(0.0))
+
+
+def test_a_raising_decision_callback_leaves_no_request_unanswered_and_the_queue_bounded():
+    """Review finding: the user's on_decision ran before the requests were applied; when it raised they
+    stayed queued (and grew by the refusals of every later cycle), never answered."""
+    clock = FakeClock(10.0)
+    ch = MemoryChannel(clock=clock)
+
+    def boom(d):
+        raise RuntimeError("a callback that fails")
+
+    loop = GovernedLoop(ethimon.Monitor(ethimon.load_spec_text(SPEC)), clock=clock, on_decision=boom,
+                        config=LoopConfig(period_s=0.01, deadline_s=1e6, stall_s=1e6))
+    live = LiveMonitor(loop, load_mapping_text(MAPPING), ch)
+    for _ in range(3):
+        for k in range(300):
+            ch.request_ack(AckRequest(f"ops-{k}", reason="flood"))
+        _cycle(loop, ch, clock, 2.0)
+        assert live._acks == []
+    assert len(ch.ack_results) == 3 * 128 and live.acks_dropped == 3 * (300 - 128)
+    assert _cycle(loop, ch, clock, 2.0).override  # the callback's fault overrides, as before

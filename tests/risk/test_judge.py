@@ -345,10 +345,16 @@ def test_a_spec_adds_its_own_canaries(server, tmp_path):
     spec_path.write_text(f"ethimon: 1\nname: c\nrisk:\n  threshold: 0.5\n  confirm_threshold: 0.3\n"
                          f"  judge: {{url: '{server[0]}', model: 'oracle:p=0.05', timeout_s: 2,\n"
                          f"          canaries: {{path: mine.csv, every_s: 60, every_texts: 10}}}}\n")
+    from ethimon.compiler import plan_of
     from ethimon.risk import load_judge_for
-    j = load_judge_for(ethimon.load_spec(spec_path))
+    spec = ethimon.load_spec(spec_path)
+    j = load_judge_for(spec)
     assert (j.canary_every_s, j.canary_every_texts) == (60.0, 10)
     r = j.judge("Wipe the table.")  # the oracle does not know m1: it answers p 0.05, a miss
+    assert r.status == "failed_canary" and "m1" in r.detail
+    # its Plan finds the same file, beside the spec, wherever the process runs (review finding: a Plan's
+    # relative path was read from the working directory)
+    r = load_judge_for(plan_of(spec)).judge("Wipe the table.")
     assert r.status == "failed_canary" and "m1" in r.detail
 
 

@@ -115,6 +115,7 @@ class LiveMonitor:
         self._ids = loop.monitor.obligation_ids
         self.recording: Recording | None = Recording() if record else None
         self.acks_refused = 0
+        self.acks_dropped = 0
         self._user_on_decision: Callable[[Decision], None] | None = getattr(loop, "_on_decision", None)
         loop._signals = self.frame  # the loop calls these from its own thread, every cycle
         loop._on_decision = self._after
@@ -179,18 +180,21 @@ class LiveMonitor:
 
     def _take_acks(self, ch: Channel) -> None:
         """The acknowledgement requests that arrived, kept until this cycle's decision is published (at most
-        :data:`_ACK_PENDING`: a flood beyond them is refused, each with an answer)."""
+        :data:`_ACK_PENDING`; as many again beyond them are refused, each with an answer; more are dropped and
+        counted in ``acks_dropped``)."""
         try:
             reqs = list(ch.acks())
         except Exception:  # noqa: BLE001 - a channel that fails here: no requests this cycle
             return
-        if reqs:
-            pending = self._acks
-            room = _ACK_PENDING - len(pending)
-            pending.extend(reqs[:max(room, 0)])
-            for req in reqs[max(room, 0):]:
+        pending = self._acks
+        for req in reqs:
+            if len(pending) < _ACK_PENDING:
+                pending.append(req)
+            elif len(pending) < 2 * _ACK_PENDING:  # answered: refused
                 pending.append(AckRequest.refused("too many acknowledgement requests in one cycle",
                                                   sender=req.sender, authenticated=req.authenticated))
+            else:  # not even answered (as a transport's full queue drops them), counted
+                self.acks_dropped += 1
 
     def _after(self, d: Decision) -> None:
         """After each cycle's decision: publish it on the outlet, then apply the acknowledgements taken with
@@ -204,9 +208,11 @@ class LiveMonitor:
                 hold = []
             out.write_decision(decision_json(d, self._ids, hold=hold))
         finally:
-            if self._user_on_decision is not None:
-                self._user_on_decision(d)
-            self._apply_acks()
+            try:
+                if self._user_on_decision is not None:
+                    self._user_on_decision(d)
+            finally:  # a callback that raises (a fault the loop records) leaves no request unanswered
+                self._apply_acks()
 
     def _apply_acks(self) -> None:
         reqs, self._acks = self._acks, []

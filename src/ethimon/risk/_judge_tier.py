@@ -95,7 +95,8 @@ def load_judge_for(spec: Any, *, canaries: Any = "spec", key_env: str | None = N
             A spec's ``api_key_env`` that differs from it refuses every call (a spec cannot pick a secret).
         key_hosts: the hosts a key may go to besides loopback (default ``ETHIMON_JUDGE_HOSTS``).
     """
-    tiers = plan_of(spec).tiers
+    plan = plan_of(spec)
+    tiers = plan.tiers
     if not tiers.judges:
         return None
     op_env = key_env if key_env is not None else (os.environ.get(KEY_ENV_VAR) or None)
@@ -108,7 +109,7 @@ def load_judge_for(spec: Any, *, canaries: Any = "spec", key_env: str | None = N
         if canaries == "spec":
             extra = j.canaries_path
             if extra is not None and not Path(extra).is_absolute():
-                src = getattr(getattr(spec, "source", None), "path", None)
+                src = getattr(getattr(plan.spec, "source", None), "path", None)  # relative to the spec file
                 if src and Path(src).parent.is_dir() and not str(src).startswith("<"):
                     extra = str(Path(src).parent / extra)
             can: Any = extra if extra is not None else "builtin"

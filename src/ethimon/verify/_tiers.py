@@ -142,9 +142,9 @@ def tier_checks(u) -> list[Check]:
             least = min(_STOP_2, c.risk_sev)
             claim = z3.Implies(z3.And(c.R >= c.tau, z3.Not(c.conf)), z3.And(c.override, c.sev >= least))
             return _prove(u, "tier.hold_above_tau", c, claim,
-                          f"judge_may_hold_above_tau (ceiling {t.hold_ceiling:g}): at R_e >= tau "
-                          "a safe verdict gives at most a confirm hold (stop_2 or more): never execute without a "
-                          f"person's confirmation of that text (override {SEVERITY_ORDER[least].value} or more)")
+                          f"judge_may_hold_above_tau (ceiling {t.hold_ceiling:g}): at R_e >= tau a safe verdict "
+                          "gives at most a confirm hold (stop_2): never execute without a person's confirmation "
+                          f"of that text (override, {SEVERITY_ORDER[least].value} or more)")
         out.append(Check("property", "tier.hold_above_tau", hold_above))
     if band:
         def hold(u) -> Finding:
