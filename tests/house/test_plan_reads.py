@@ -53,6 +53,8 @@ ALLOWED: dict[str, dict[str, tuple[int, str]]] = {
     },
     "plan.spec": {
         "testing/_reference.py": (1, "ReferenceMonitor.spec: the spec it interprets"),
+        "risk/_judge_tier.py": (1, "the spec file's location (plan.spec.source), where a relative canary path "
+                                   "is read from: where the spec came from, not what it says"),
         "runtime/_monitor.py": (1, "Monitor.spec, a public attribute: the source a monitor built from a Plan "
                                    "was compiled from (its name, what a reload compares)"),
     },
