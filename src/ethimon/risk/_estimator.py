@@ -466,7 +466,7 @@ class RiskEstimator:
                 self.trace()          # lazily: before the pass that takes the count past trace_after
             self._rows += len(seqs)
             try:
-                for idx in _batches(order, seqs, self._batch_size):
+                for idx in _batches(order, seqs, self._batch_size, exact=self.quantized != "int8"):
                     rows = enc.logits([seqs[i] for i in idx])
                     rows = rows.tolist() if hasattr(rows, "tolist") else rows
                     if len(rows) != len(idx):
@@ -518,13 +518,21 @@ def _flatten(wins: list[list[list[int]]]) -> tuple[list[list[int]], list[list[in
 RUN_COST_TOKENS = 4
 
 
-def _batches(order: list[int], seqs: list[list[int]], size: int) -> list[list[int]]:
+#: int8 batches (the batches before issue 30's speed round) are cut where padding would waste more than this
+#: share of a batch's tokens: dynamic int8 quantises activations per batch tensor, so an int8 score depends
+#: on which rows share its pass, and a different cut would move int8 scores
+PAD_WASTE = 0.3
+
+
+def _batches(order: list[int], seqs: list[list[int]], size: int, exact: bool = True) -> list[list[int]]:
     """Length-sorted ``order`` cut into batches of at most ``size`` rows, each padded to its longest row,
     at the least cost (padded tokens + :data:`RUN_COST_TOKENS` per batch; exact, by dynamic programming
     over the sorted lengths). A plan's step views range from one step to the whole plan: one batch would
     pad every view to the longest; a batch per view would stream the weights once per view.
     The batches only decide which rows share a pass, never what a row reads: its logits agree within
-    float rounding (~1e-7)."""
+    float rounding (~1e-7). ``exact=False`` (int8): the cut at :data:`PAD_WASTE`."""
+    if not exact:
+        return _batches_pad_waste(order, seqs, size)
     n = len(order)
     lens = [len(seqs[i]) for i in order]
     best = [0] + [0] * n
@@ -543,6 +551,24 @@ def _batches(order: list[int], seqs: list[list[int]], size: int) -> list[list[in
         out.append(order[cut[j]:j])
         j = cut[j]
     out.reverse()
+    return out
+
+
+def _batches_pad_waste(order: list[int], seqs: list[list[int]], size: int) -> list[list[int]]:
+    """Length-sorted ``order`` cut into batches of at most ``size`` rows whose padding wastes at
+    most :data:`PAD_WASTE` of the tokens."""
+    out: list[list[int]] = []
+    cur: list[int] = []
+    total = 0
+    for i in order:
+        n = len(seqs[i])
+        if cur and (len(cur) >= size or n * (len(cur) + 1) > (1 + PAD_WASTE) * (total + n)):
+            out.append(cur)
+            cur, total = [], 0
+        cur.append(i)
+        total += n
+    if cur:
+        out.append(cur)
     return out
 
 
