@@ -510,66 +510,39 @@ def _flatten(wins: list[list[list[int]]]) -> tuple[list[list[int]], list[list[in
     return seqs, owner
 
 
-#: what one more forward pass costs, in tokens: each pass streams every weight of the encoder once
-#: (MiniLM-L6: ~42 MB fp32, more than the cache) before its first token, and a padding token costs what a
-#: real one does. Measured on 2 shared AVX2 cores (onnx fp32, one thread): ~0.8-1 ms a token, ~1.5-4 ms a
-#: pass; issue 30's bench: a plan of 15 views and 8 short commands both ~15 % faster than cutting where
-#: padding wasted 30 % of a batch.
+#: one more forward pass, in tokens: each pass streams all encoder weights (~42 MB fp32) before its first
+#: token, a padding token costs a real one (2 shared AVX2 cores: ~0.8-1 ms a token, ~1.5-4 ms a pass)
 RUN_COST_TOKENS = 4
-
-
-#: int8 batches (the batches before issue 30's speed round) are cut where padding would waste more than this
-#: share of a batch's tokens: dynamic int8 quantises activations per batch tensor, so an int8 score depends
-#: on which rows share its pass, and a different cut would move int8 scores
+#: int8 keeps the cut of before issue 30's speed round (at this share of padding): dynamic int8 quantises
+#: activations per batch tensor, so another cut would move int8 scores
 PAD_WASTE = 0.3
 
 
 def _batches(order: list[int], seqs: list[list[int]], size: int, exact: bool = True) -> list[list[int]]:
-    """Length-sorted ``order`` cut into batches of at most ``size`` rows, each padded to its longest row,
-    at the least cost (padded tokens + :data:`RUN_COST_TOKENS` per batch; exact, by dynamic programming
-    over the sorted lengths). A plan's step views range from one step to the whole plan: one batch would
-    pad every view to the longest; a batch per view would stream the weights once per view.
-    The batches only decide which rows share a pass, never what a row reads: its logits agree within
-    float rounding (~1e-7). ``exact=False`` (int8): the cut at :data:`PAD_WASTE`."""
-    if not exact:
-        return _batches_pad_waste(order, seqs, size)
-    n = len(order)
+    """Length-sorted ``order`` cut into batches of at most ``size`` rows, each padded to its longest, at the
+    least cost (padded tokens + :data:`RUN_COST_TOKENS` a batch; a DP over the sorted lengths): a plan's
+    views range from one step to the whole plan. Which rows share a pass never changes what a row reads
+    (fp32 logits agree within ~1e-7). ``exact=False`` (int8): cut where padding passes :data:`PAD_WASTE`."""
     lens = [len(seqs[i]) for i in order]
-    best = [0] + [0] * n
-    cut = [0] * (n + 1)
-    for j in range(1, n + 1):          # best[j]: the cheapest cover of the j shortest rows
-        top = lens[j - 1]
-        b, c = None, 0
-        for i in range(j - 1, max(0, j - size) - 1, -1):
-            cost = best[i] + RUN_COST_TOKENS + (j - i) * top
-            if b is None or cost < b:
-                b, c = cost, i
-        best[j], cut[j] = b, c
-    out: list[list[int]] = []
-    j = n
+    if not exact:
+        cuts, total = [0], 0
+        for j, n in enumerate(lens):
+            k = j - cuts[-1]
+            if k and (k >= size or n * (k + 1) > (1 + PAD_WASTE) * (total + n)):
+                cuts.append(j)
+                total = 0
+            total += n
+        return [order[a:b] for a, b in zip(cuts, cuts[1:] + [len(order)]) if b > a]
+    best, cut = [0] * (len(order) + 1), [0] * (len(order) + 1)
+    for j in range(1, len(order) + 1):          # best[j]: the cheapest cover of the j shortest rows
+        best[j], cut[j] = min((best[i] + RUN_COST_TOKENS + (j - i) * lens[j - 1], -i)
+                              for i in range(max(0, j - size), j))
+        cut[j] = -cut[j]
+    out, j = [], len(order)
     while j > 0:
         out.append(order[cut[j]:j])
         j = cut[j]
-    out.reverse()
-    return out
-
-
-def _batches_pad_waste(order: list[int], seqs: list[list[int]], size: int) -> list[list[int]]:
-    """Length-sorted ``order`` cut into batches of at most ``size`` rows whose padding wastes at
-    most :data:`PAD_WASTE` of the tokens."""
-    out: list[list[int]] = []
-    cur: list[int] = []
-    total = 0
-    for i in order:
-        n = len(seqs[i])
-        if cur and (len(cur) >= size or n * (len(cur) + 1) > (1 + PAD_WASTE) * (total + n)):
-            out.append(cur)
-            cur, total = [], 0
-        cur.append(i)
-        total += n
-    if cur:
-        out.append(cur)
-    return out
+    return out[::-1]
 
 
 def _tempered(logits: Sequence[float], temperature: float, unsafe_index: int) -> tuple[float, ...]:
