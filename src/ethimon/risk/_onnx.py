@@ -128,16 +128,26 @@ class FastTokenizer:
                 out[i] = pair_ids(self.prefix, self.suffix, c.ids, f.ids, max_length, truncation)
         return out
 
+    def _encode_many(self, texts: list[str]) -> list:
+        """The encodings of ``texts`` without special tokens: the same ids either way; one text through
+        ``encode`` (``encode_batch`` costs ~0.1 ms more to hand one text to its thread pool)."""
+        if len(texts) == 1:
+            return [self._tok.encode(texts[0], add_special_tokens=False)]
+        return self._tok.encode_batch(texts, add_special_tokens=False)
+
     def encode_view_windows(self, views: list[tuple[str, str]], max_length: int,
                             truncation: str) -> list[list[list[int]]]:
         """As ``_backend.encode_view_windows``: per view, the sequences that read it in full."""
         from ._reading import pair_windows
         if not views:
             return []
-        ctx = self._tok.encode_batch([c for c, _f in views], add_special_tokens=False)
-        foc = self._tok.encode_batch([f for _c, f in views], add_special_tokens=False)
-        return [pair_windows(self.prefix, self.suffix, c.ids if cs else [], f.ids, max_length, truncation)
-                for (cs, _f), c, f in zip(views, ctx, foc)]
+        enc = self._encode_many
+        foc = enc([f for _c, f in views])
+        # only the views that have a context tokenise one (a one-line command has none: one call, not two)
+        with_ctx = [c for c, _f in views if c]
+        ctx = iter(enc(with_ctx)) if with_ctx else iter(())
+        return [pair_windows(self.prefix, self.suffix, next(ctx).ids if cs else [], f.ids, max_length, truncation)
+                for (cs, _f), f in zip(views, foc)]
 
 
 # ---------------------------------------------------------------- loading
@@ -171,13 +181,21 @@ class OnnxModel:
         return False
 
     def logits(self, seqs: list[list[int]]):
+        """One session run; rows padded to the longest row of this batch (its mask says which tokens count)."""
         n = max(len(s) for s in seqs)
-        ids = np.full((len(seqs), n), self.tokenizer.pad_id, dtype=np.int64)
-        mask = np.zeros((len(seqs), n), dtype=np.int64)
-        for i, s in enumerate(seqs):
-            ids[i, :len(s)] = s
-            mask[i, :len(s)] = 1
-        return self.session.run([OUTPUT], {"input_ids": ids, "attention_mask": mask})[0]
+        if all(len(s) == n for s in seqs):      # one text, or rows of one length: no padding to write
+            ids = np.array(seqs, dtype=np.int64)
+            mask = np.ones(ids.shape, dtype=np.int64)
+        else:
+            ids = np.full((len(seqs), n), self.tokenizer.pad_id, dtype=np.int64)
+            mask = np.zeros((len(seqs), n), dtype=np.int64)
+            for i, s in enumerate(seqs):
+                ids[i, :len(s)] = s
+                mask[i, :len(s)] = 1
+        return self.session.run(_OUTPUTS, {"input_ids": ids, "attention_mask": mask})[0]
+
+
+_OUTPUTS = [OUTPUT]
 
 
 def session_options(num_threads: int | None) -> "ort.SessionOptions":
