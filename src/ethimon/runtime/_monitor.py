@@ -248,16 +248,11 @@ class Monitor:
             vals[rslot] = r
             ucall()
             vs = vcall()  # each verdict is a bool
-            if vs == clean and r < cut:  # the common case: nothing fires this cycle, nothing to latch
-                margins = _EMPTY if mcall is None else mcall()  # a margin that cannot be computed is NaN
-                if not latches.n:  # ids: the obligation-id tuple by reference (Decision.margin reads it)
-                    return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY, False, ids)
-                violations = None
-                held = False
-            else:
-                violations = None
+            violations = None
+            held = False
+            # the common case (verdicts all clean, R_e below the cut): nothing fires, nothing to latch
+            if vs != clean or r >= cut:
                 hits = None  # latched only once every obligation was judged (a later one may raise)
-                held = False
                 if vs != clean:
                     violations = []
                     hits = []
@@ -291,9 +286,9 @@ class Monitor:
                             latches.since[i] = cycle
                             latches.n += 1
                         run[i] = -1
-                margins = _EMPTY if mcall is None else mcall()
-                if not latches.n:
-                    return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY, False, ids)
+            margins = _EMPTY if mcall is None else mcall()  # a margin that cannot be computed is NaN
+            if not latches.n:  # ids: the obligation-id tuple by reference (Decision.margin reads it)
+                return Decision(False, _NONE, _EMPTY, margins, r, cycle, False, _EMPTY, False, ids)
             sev, awaiting = latches.release_pass(r < self._release_cut or held)  # held: the confirm latch holds
             if violations is not None:
                 return Decision(True, _RESPONSES[sev], tuple(violations), margins, r, cycle, False, _EMPTY,
