@@ -10,6 +10,9 @@ sim and verify; results in ``bench/results/<concern>/``. Timings live here, neve
 
 from __future__ import annotations
 
+import importlib.util
+import os
+import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -23,3 +26,16 @@ def results_dir(concern: str) -> Path:
     d = RESULTS / concern
     d.mkdir(parents=True, exist_ok=True)
     return d
+
+
+def load_baseline(src: str):
+    """The ``ethimon`` package under ``src`` (another tree's ``src/``, e.g. ``git archive base5 src``)
+    imported as ``ethimon_baseline`` beside this tree's (its imports are relative): the scripts'
+    ``--baseline``, timed in the same rounds."""
+    pkg = os.path.join(src, "ethimon")
+    spec = importlib.util.spec_from_file_location("ethimon_baseline", os.path.join(pkg, "__init__.py"),
+                                                  submodule_search_locations=[pkg])
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["ethimon_baseline"] = mod
+    spec.loader.exec_module(mod)
+    return mod

@@ -43,7 +43,7 @@ import time
 import numpy as np
 
 import ethimon
-from bench import RESULTS
+from bench import RESULTS, load_baseline
 from bench._machine import machine_facts
 from bench.monitor.offline_check import D_MIN, F_MAX, IDS, V_MAX, V_SLOW, V_STOP, make_trace, spec_text
 
@@ -67,17 +67,6 @@ def reelay_formulas(w: int, robustness: bool) -> list[str]:
         f"{{distance >= {D_MIN}}} or {{speed <= {V_SLOW}}}",
         f"(once[0:{w - 1}]{{force > {F_MAX}}}) -> {{speed <= {V_SLOW}}}",
     ]
-
-
-def load_baseline(src: str):
-    """The ``ethimon`` package under ``src`` imported as ``ethimon_baseline`` (its imports are relative)."""
-    pkg = os.path.join(src, "ethimon")
-    spec = importlib.util.spec_from_file_location("ethimon_baseline", os.path.join(pkg, "__init__.py"),
-                                                  submodule_search_locations=[pkg])
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules["ethimon_baseline"] = mod
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def _loop_step(make):

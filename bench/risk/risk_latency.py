@@ -34,15 +34,12 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import importlib.util
 import json
-import os
 import statistics
-import sys
 import time
 from pathlib import Path
 
-from bench import RESULTS
+from bench import RESULTS, load_baseline
 from bench._machine import loadavg, machine_facts
 from bench.risk.risk_cost import PLAN8
 
@@ -67,17 +64,6 @@ def _stats(lat: list[float]) -> dict:
     return {"p50_ms": round(1e3 * statistics.median(lat), 3), "p90_ms": round(1e3 * _pct(lat, 0.9), 3),
             "p95_ms": round(1e3 * _pct(lat, 0.95), 3), "mean_ms": round(1e3 * statistics.mean(lat), 3),
             "n": len(lat)}
-
-
-def load_baseline(src: str):
-    """The ``ethimon`` package under ``src`` imported as ``ethimon_baseline`` (its imports are relative)."""
-    pkg = os.path.join(src, "ethimon")
-    spec = importlib.util.spec_from_file_location("ethimon_baseline", os.path.join(pkg, "__init__.py"),
-                                                  submodule_search_locations=[pkg])
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules["ethimon_baseline"] = mod
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def _tokens(est, text: str) -> int:
