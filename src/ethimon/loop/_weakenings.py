@@ -331,7 +331,6 @@ def _show(ident: tuple | None) -> str:
             return str(x)
         if hasattr(x, "numerator"):
             return f"bound {float(x):g}"
-        if isinstance(x, tuple):  # the judges: one (risk.judge) or a panel (risk.judges)
-            return ("judges " if len(x) > 1 else "judge ") + "+".join(j.url for j in x)
-        return f"judge {getattr(x, 'url', x)}"
+        # the judges (Plan.tiers.judges): one (risk.judge) or a panel (risk.judges)
+        return ("judges " if len(x) > 1 else "judge ") + "+".join(j.url for j in x)
     return "none" if ident is None else "(" + ", ".join(one(x) for x in ident) + ")"
